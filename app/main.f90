@@ -1,0 +1,3 @@
+program feps_main
+  implicit none
+end program feps_main

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Idempotent set-up of everything feps needs on a fresh Debian bookworm machine (run as root).
+# Debian: compiler, BLAS/LAPACK, SuiteSparse (CHOLMOD), METIS, HDF5 with Fortran bindings.
+# PyPI: fpm (the Fortran package manager), numpy, h5py, matplotlib.
+set -euo pipefail
+
+debs=(gfortran libopenblas-dev liblapack-dev libsuitesparse-dev libmetis-dev
+      libhdf5-dev hdf5-tools pkg-config hyperfine)
+
+missing=()
+for p in "${debs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+py=(fpm numpy h5py matplotlib)
+need_py=()
+for p in "${py[@]}"; do
+  python3 -m pip show -q "$p" >/dev/null 2>&1 || need_py+=("$p")
+done
+if ((${#need_py[@]})); then
+  python3 -m pip install -q "${need_py[@]}"
+fi
+# pyenv shims: make sure a newly installed fpm is on PATH.
+command -v pyenv >/dev/null 2>&1 && pyenv rehash || true
+command -v fpm >/dev/null || { echo "setup: fpm not on PATH after install" >&2; exit 1; }
+echo "setup: toolchain ready ($(gfortran -dumpversion | head -1), fpm $(fpm --version 2>/dev/null | head -1 | awk '{print $2}'))"

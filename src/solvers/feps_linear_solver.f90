@@ -1,0 +1,56 @@
+!> The abstract linear solver: analyse a pattern once, factorize as often as the stiffness
+!! changes, solve as often as needed. Implementations: skyline LDL^T and CHOLMOD.
+module feps_linear_solver
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t
+  use feps_sparse_matrix, only: csr_matrix_t
+  implicit none
+  private
+
+  !> Smallest accepted pivot relative to the matrix diagonal entry of its equation; below it
+  !! (or negative) the factorization fails, naming that equation in error%item.
+  real(dp), parameter, public :: pivot_tolerance = 1.0e-11_dp
+
+  type, abstract, public :: linear_solver_t
+    integer(i8) :: factor_nnz = 0         !! nonzeros in the factor (L or the skyline profile)
+    real(dp) :: flops = 0.0_dp            !! floating-point operations of the last factorization
+    real(dp) :: min_pivot_ratio = 0.0_dp  !! min over equations of pivot / diagonal entry
+    real(dp) :: max_pivot_ratio = 0.0_dp  !! max over equations of pivot / diagonal entry
+    integer :: factorizations = 0         !! how many factorizations so far
+  contains
+    procedure(analyze_interface), deferred :: analyze
+    procedure(factorize_interface), deferred :: factorize
+    procedure(solve_interface), deferred :: solve
+    procedure(name_interface), deferred :: name
+  end type linear_solver_t
+
+  abstract interface
+    !> Ordering and symbolic analysis of the pattern of `a`.
+    subroutine analyze_interface(self, a, error)
+      import :: linear_solver_t, csr_matrix_t, error_t
+      class(linear_solver_t), intent(inout) :: self
+      type(csr_matrix_t), intent(in) :: a
+      type(error_t), allocatable, intent(out) :: error
+    end subroutine analyze_interface
+    !> Numerical factorization; a pivot <= pivot_tolerance * a(i,i) fails with error%item = i.
+    subroutine factorize_interface(self, a, error)
+      import :: linear_solver_t, csr_matrix_t, error_t
+      class(linear_solver_t), intent(inout) :: self
+      type(csr_matrix_t), intent(in) :: a
+      type(error_t), allocatable, intent(out) :: error
+    end subroutine factorize_interface
+    !> Solve A x = b in place (b becomes x), with one or several right-hand sides.
+    subroutine solve_interface(self, b, error)
+      import :: linear_solver_t, dp, error_t
+      class(linear_solver_t), intent(inout) :: self
+      real(dp), intent(inout) :: b(:)
+      type(error_t), allocatable, intent(out) :: error
+    end subroutine solve_interface
+    pure function name_interface(self) result(name)
+      import :: linear_solver_t
+      class(linear_solver_t), intent(in) :: self
+      character(len=:), allocatable :: name
+    end function name_interface
+  end interface
+
+end module feps_linear_solver

@@ -1,0 +1,127 @@
+!> A small test-drive-like harness: unit tests are subroutines that return an allocated
+!! error on failure; `check` compares values with stated tolerances.
+module feps_testing
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, fatal_error, err_internal, str
+  implicit none
+  private
+
+  public :: error_t, unittest_t, testsuite_t, new_unittest, new_testsuite, check, test_failed
+  public :: run_testsuites
+
+
+  abstract interface
+    subroutine test_procedure(error)
+      import :: error_t
+      type(error_t), allocatable, intent(out) :: error
+    end subroutine test_procedure
+  end interface
+
+  type :: unittest_t
+    character(len=:), allocatable :: name
+    procedure(test_procedure), pointer, nopass :: run => null()
+  end type unittest_t
+
+  abstract interface
+    subroutine collect_procedure(tests)
+      import :: unittest_t
+      type(unittest_t), allocatable, intent(out) :: tests(:)
+    end subroutine collect_procedure
+  end interface
+  public :: test_procedure, collect_procedure
+
+  type :: testsuite_t
+    character(len=:), allocatable :: name
+    procedure(collect_procedure), pointer, nopass :: collect => null()
+  end type testsuite_t
+
+  interface check
+    module procedure check_logical, check_real, check_int
+  end interface check
+
+contains
+
+  function new_unittest(name, run) result(test)
+    character(len=*), intent(in) :: name
+    procedure(test_procedure) :: run
+    type(unittest_t) :: test
+    test%name = name
+    test%run => run
+  end function new_unittest
+
+  function new_testsuite(name, collect) result(suite)
+    character(len=*), intent(in) :: name
+    procedure(collect_procedure) :: collect
+    type(testsuite_t) :: suite
+    suite%name = name
+    suite%collect => collect
+  end function new_testsuite
+
+  subroutine test_failed(error, message)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in) :: message
+    call fatal_error(error, err_internal, message)
+  end subroutine test_failed
+
+  subroutine check_logical(error, condition, message)
+    type(error_t), allocatable, intent(out) :: error
+    logical, intent(in) :: condition
+    character(len=*), intent(in) :: message
+    if (.not. condition) call test_failed(error, message)
+  end subroutine check_logical
+
+  !> Pass when |actual - expected| <= max(abs, rel*|expected|); NaN always fails.
+  subroutine check_real(error, actual, expected, message, rel, abs)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), intent(in) :: actual, expected
+    character(len=*), intent(in) :: message
+    real(dp), intent(in), optional :: rel, abs
+    real(dp) :: tol
+    tol = 0.0_dp
+    if (present(rel)) tol = max(tol, rel * max(0.0_dp, sign(expected, 1.0_dp)))
+    if (present(abs)) tol = max(tol, abs)
+    if (.not. present(rel) .and. .not. present(abs)) tol = 1.0e-12_dp * sign(expected, 1.0_dp)
+    if (actual /= actual .or. .not. (sign(actual - expected, 1.0_dp) <= tol)) then
+      call test_failed(error, message // ': got ' // str(actual) // ', expected ' // str(expected) // &
+                       ' (tolerance ' // str(tol) // ')')
+    end if
+  end subroutine check_real
+
+  subroutine check_int(error, actual, expected, message)
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(in) :: actual, expected
+    character(len=*), intent(in) :: message
+    if (actual /= expected) call test_failed(error, message // ': got ' // str(actual) // &
+                                             ', expected ' // str(expected))
+  end subroutine check_int
+
+  !> Run every suite (or only those whose name is in `only`), print a line per test and the
+  !! closing line 'N passed, N failed'; return the number of failures.
+  function run_testsuites(suites, only) result(nfail)
+    type(testsuite_t), intent(in) :: suites(:)
+    character(len=*), intent(in) :: only
+    integer :: nfail
+    type(unittest_t), allocatable :: tests(:)
+    type(error_t), allocatable :: error
+    integer :: i, j, npass
+    npass = 0
+    nfail = 0
+    do i = 1, size(suites)
+      if (len_trim(only) > 0 .and. index(' ' // only // ' ', ' ' // suites(i)%name // ' ') == 0) cycle
+      call suites(i)%collect(tests)
+      do j = 1, size(tests)
+        call tests(j)%run(error)
+        if (allocated(error)) then
+          nfail = nfail + 1
+          write (*, '(a)') '  FAIL ' // suites(i)%name // ': ' // tests(j)%name // ': ' // error%message
+          deallocate (error)
+        else
+          npass = npass + 1
+          write (*, '(a)') '  ok   ' // suites(i)%name // ': ' // tests(j)%name
+        end if
+      end do
+    end do
+    write (*, '(a)') str(npass) // ' passed, ' // str(nfail) // ' failed'
+  end function run_testsuites
+
+end module feps_testing

@@ -1,3 +1,161 @@
+!> The `feps` command: parse arguments, run the library, print a summary, choose the exit code.
 program feps_main
+  use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+  use, intrinsic :: iso_c_binding, only: c_int
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, err_input, err_model, str
+  use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version
   implicit none
+
+  interface
+    subroutine c_exit(status) bind(C, name='exit')
+      import :: c_int
+      integer(c_int), value :: status
+    end subroutine c_exit
+  end interface
+
+  type(run_options_t) :: options
+  type(run_summary_t) :: summary
+  type(error_t), allocatable :: error
+  integer :: status
+
+  call parse_arguments(options, status)
+  if (status >= 0) call c_exit(int(status, c_int))
+
+  call run_feps(options, summary, error)
+  if (allocated(error)) then
+    write (error_unit, '(a)') 'feps: error: ' // error%message
+    select case (error%code)
+    case (err_input, err_model)
+      call c_exit(2_c_int)
+    case default
+      call c_exit(1_c_int)
+    end select
+  end if
+  if (.not. options%quiet) call print_summary(summary)
+
+contains
+
+  !> Fill options; status = -1 to go on, or the exit status to stop with.
+  subroutine parse_arguments(options, status)
+    type(run_options_t), intent(out) :: options
+    integer, intent(out) :: status
+    integer :: i, n
+    character(len=:), allocatable :: arg
+    status = -1
+    options%output = ''
+    options%solver = ''
+    n = command_argument_count()
+    i = 0
+    do while (i < n)
+      i = i + 1
+      arg = argument(i)
+      select case (arg)
+      case ('-h', '--help')
+        call print_help()
+        status = 0
+        return
+      case ('-V', '--version')
+        write (output_unit, '(a)') 'feps ' // feps_version
+        status = 0
+        return
+      case ('-q', '--quiet')
+        options%quiet = .true.
+      case ('-o', '--output', '--solver')
+        if (i == n) then
+          write (error_unit, '(a)') 'feps: error: ' // arg // ' needs a value (see feps --help)'
+          status = 2
+          return
+        end if
+        i = i + 1
+        if (arg == '--solver') then
+          options%solver = argument(i)
+          if (options%solver /= 'skyline' .and. options%solver /= 'cholmod') then
+            write (error_unit, '(a)') 'feps: error: --solver takes skyline or cholmod, not "' // options%solver // '"'
+            status = 2
+            return
+          end if
+        else
+          options%output = argument(i)
+        end if
+      case default
+        if (len(arg) > 0 .and. arg(1:1) == '-') then
+          write (error_unit, '(a)') 'feps: error: unknown option "' // arg // '" (see feps --help)'
+          status = 2
+          return
+        end if
+        if (allocated(options%deck)) then
+          write (error_unit, '(a)') 'feps: error: one input deck at a time ("' // options%deck // '" and "' // &
+            arg // '")'
+          status = 2
+          return
+        end if
+        options%deck = arg
+      end select
+    end do
+    if (.not. allocated(options%deck)) then
+      write (error_unit, '(a)') 'feps: error: no input deck given (see feps --help)'
+      status = 2
+    end if
+  end subroutine parse_arguments
+
+  function argument(i) result(arg)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: arg
+    integer :: length
+    call get_command_argument(i, length=length)
+    allocate (character(len=length) :: arg)
+    if (length > 0) call get_command_argument(i, arg)
+  end function argument
+
+  subroutine print_help()
+    write (output_unit, '(a)') &
+      'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
+      '', &
+      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--quiet]', &
+      '       feps --help | --version', &
+      '', &
+      '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
+      '  -o, --output FILE    HDF5 results file (overrides the deck''s OUTPUT record);', &
+      '                       an XDMF file for ParaView is written beside it', &
+      '      --solver NAME    linear solver: cholmod (supernodal, METIS) or skyline (LDL^T, RCM)', &
+      '  -q, --quiet          print nothing but errors', &
+      '  -h, --help           this text', &
+      '  -V, --version        the version', &
+      '', &
+      'Exit status: 0 success, 2 bad input or an unsolvable model, 1 other failures.'
+  end subroutine print_help
+
+  subroutine print_summary(s)
+    type(run_summary_t), intent(in) :: s
+    character(len=32) :: buf
+    if (len(s%title) > 0) write (output_unit, '(a)') 'title            ' // s%title
+    write (output_unit, '(a)') 'nodes            ' // str(s%nodes)
+    write (output_unit, '(a)') 'elements         ' // str(s%elements)
+    if (s%mesh_only) then
+      write (output_unit, '(a,3(1x,es12.5))') 'bounding box min', s%bbox(:, 1)
+      write (output_unit, '(a,3(1x,es12.5))') 'bounding box max', s%bbox(:, 2)
+      write (output_unit, '(a,es12.5)') 'min Jacobian     ', s%min_jacobian
+    else
+      write (output_unit, '(a)') 'dofs             ' // str(s%dofs)
+      if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
+        ' (in no element; no DOFs)'
+      write (output_unit, '(a)') 'solver           ' // s%solver
+      write (buf, '(i0)') s%matrix_nnz
+      write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'
+      write (buf, '(i0)') s%factor_nnz
+      write (output_unit, '(a)') 'factor nonzeros  ' // trim(buf)
+      write (output_unit, '(a,es10.3)') 'factor flops     ', s%flops
+      write (output_unit, '(a,es10.3,a,es10.3)') 'pivot ratio      ', s%min_pivot_ratio, ' .. ', s%max_pivot_ratio
+      write (output_unit, '(a,3(1x,es12.5))') 'applied force   ', s%applied_force
+      write (output_unit, '(a,3(1x,es12.5))') 'reaction force  ', s%reaction_force
+      write (output_unit, '(a,es12.5,a)') 'max displacement ', s%max_displacement, ' at node ' // &
+        str(s%max_displacement_node)
+    end if
+    if (.not. s%mesh_only) write (output_unit, '(a,3(f0.3,a))') 'times            assembly ', s%time_assembly, &
+      ' s, factorization ', s%time_factorization, ' s, solve ', s%time_solve, ' s'
+    write (output_unit, '(a,f0.3,a)') 'wall time        ', s%wall_time, ' s'
+    if (len(s%output) > 0) write (output_unit, '(a)') 'results          ' // s%output
+  end subroutine print_summary
+
 end program feps_main

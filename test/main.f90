@@ -1,12 +1,28 @@
+!> Runs every test suite (or those named as arguments) and ends with 'N passed, N failed'.
 program tester
   use feps_testing, only: testsuite_t, new_testsuite, run_testsuites
+  use test_datain, only: collect_datain
+  use test_elements, only: collect_elements
+  use test_cholmod, only: collect_cholmod
+  use test_skyline, only: collect_skyline
+  use test_results_file, only: collect_results_file
+  use test_analysis, only: collect_analysis
+  use test_bad_input, only: collect_bad_input
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
   integer :: nfail
   only = ''
   if (command_argument_count() > 0) call get_command_argument(1, only)
-  suites = [testsuite_t ::]
+  suites = [ &
+    new_testsuite('datain', collect_datain), &
+    new_testsuite('elements', collect_elements), &
+    new_testsuite('cholmod', collect_cholmod), &
+    new_testsuite('skyline', collect_skyline), &
+    new_testsuite('results_file', collect_results_file), &
+    new_testsuite('analysis', collect_analysis), &
+    new_testsuite('bad_input', collect_bad_input) &
+    ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1
 end program tester

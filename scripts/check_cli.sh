@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Command-line checks of the feps program: exit statuses, help and version, a mesh-only
+# input, the main job's outputs, and that bad input leaves no result file behind.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+fpm build >/dev/null 2>&1 || { echo "check_cli: build failed" >&2; exit 1; }
+feps=$(fpm run --runner echo 2>/dev/null | tail -n 1)
+[ -x "$feps" ] || { echo "check_cli: cannot find the feps executable" >&2; exit 1; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0; fail=0
+ok() { pass=$((pass + 1)); echo "  ok   $1"; }
+bad() { fail=$((fail + 1)); echo "  FAIL $1"; }
+
+expect_status() {  # name expected-status command...
+  local name=$1 want=$2; shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  if [ "$got" -eq "$want" ]; then ok "$name (exit $got)"; else bad "$name: exit $got, expected $want: $(head -c 300 "$tmp/err")"; fi
+}
+
+expect_status "--help" 0 "$feps" --help
+grep -q "usage: feps DECK" "$tmp/out" && ok "--help shows usage" || bad "--help shows usage"
+expect_status "--version" 0 "$feps" --version
+grep -q "^feps [0-9]" "$tmp/out" && ok "--version prints the version" || bad "--version prints the version"
+expect_status "no deck" 2 "$feps"
+expect_status "unknown option" 2 "$feps" --frobnicate input/modelB.dat
+expect_status "bad --solver" 2 "$feps" test/data/cube.dat --solver lu
+
+# A file holding only a DATAIN mesh: report it, write /mesh with --output.
+expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.datain --output "$tmp/t21.h5"
+grep -q "nodes *3375" "$tmp/out" && grep -q "elements *2496" "$tmp/out" && ok "Table 2.1 counts reported" \
+  || bad "Table 2.1 counts reported"
+grep -q "min Jacobian" "$tmp/out" && ok "smallest Jacobian reported" || bad "smallest Jacobian reported"
+python3 - "$tmp/t21.h5" <<'PY' && ok "mesh-only HDF5 has /mesh" || bad "mesh-only HDF5 has /mesh"
+import sys, h5py
+f = h5py.File(sys.argv[1])
+assert f["mesh/coordinates"].shape == (3375, 3)
+assert f["mesh/groups/block1/connectivity"].shape == (2496, 8)
+assert list(f["mesh/groups/block1/connectivity"][0]) == [1, 2, 7, 6, 126, 127, 132, 131]
+PY
+
+# Every bad deck: exit status 2, a one-line error naming the file, no result file.
+for deck in test/data/bad/*.dat; do
+  name=$(basename "$deck" .dat)
+  out="$tmp/$name.h5"
+  "$feps" "$deck" --output "$out" >"$tmp/out" 2>"$tmp/err"; got=$?
+  lines=$(wc -l <"$tmp/err")
+  if [ "$got" -eq 2 ] && [ "$lines" -eq 1 ] && grep -q "$name" "$tmp/err" && [ ! -e "$out" ] && [ ! -e "$out.part" ]; then
+    ok "bad input $name: $(cat "$tmp/err")"
+  else
+    bad "bad input $name: exit $got, $lines stderr lines, files: $(ls "$tmp" | grep "^$name" | tr '\n' ' ')"
+  fi
+done
+
+# The main job with both solvers: results file, XDMF beside it, quiet mode prints nothing.
+for solver in cholmod skyline; do
+  expect_status "model B with $solver" 0 "$feps" input/modelB.dat --solver "$solver" --output "$tmp/b_$solver.h5"
+  [ -s "$tmp/b_$solver.h5" ] && [ -s "$tmp/b_$solver.xmf" ] && ok "model B $solver wrote .h5 and .xmf" \
+    || bad "model B $solver wrote .h5 and .xmf"
+done
+"$feps" input/modelB.dat --quiet --output "$tmp/q.h5" >"$tmp/out" 2>&1
+[ ! -s "$tmp/out" ] && ok "--quiet prints nothing" || bad "--quiet prints nothing"
+python3 - "$tmp/b_cholmod.h5" "$tmp/b_skyline.h5" <<'PY' && ok "HDF5 layout (SPEC 10) and solvers agree" || bad "HDF5 layout (SPEC 10) and solvers agree"
+import sys, h5py, numpy as np
+a, b = (h5py.File(p) for p in sys.argv[1:3])
+n = a["mesh/coordinates"].shape[0]
+assert a["steps/0001/displacement"].shape == (n, 3)
+assert a["steps/0001/displacement"].attrs["components"] in (b"ux uy uz", "ux uy uz")
+s = a["steps/0001/stress/pipe"]
+assert s.shape[1] == 6 and s.attrs["points_per_element"] == 8
+assert a["mesh/groups/pipe"].attrs["element_type"] in (b"hex8", "hex8")
+for k in ("load_factor", "iterations", "residual"):
+    assert k in a["steps/0001"].attrs
+for k in ("program", "input_file", "wall_time", "solver", "dofs", "factor_nonzeros"):
+    assert k in a["summary"].attrs, k
+ua, ub = a["steps/0001/displacement"][...], b["steps/0001/displacement"][...]
+assert np.abs(ua - ub).max() <= 1e-9 * np.abs(ua).max()
+PY
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

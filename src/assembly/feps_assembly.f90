@@ -1,0 +1,373 @@
+!> Assembly: the sparse pattern of the free equations, the global stiffness, prescribed-
+!! displacement loads, and element results (stresses, internal forces) from displacements.
+module feps_assembly
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t, fatal_error, input_error, err_input, err_model, str
+  use feps_model, only: model_t
+  use feps_dof_map, only: dof_map_t
+  use feps_sparse_matrix, only: csr_matrix_t
+  use feps_element, only: element_t
+  use feps_element_factory, only: new_element
+  use feps_material, only: material_slot_t
+  use feps_material_factory, only: new_material
+  implicit none
+  private
+
+  !> Element and material objects of one group, built once.
+  type, public :: group_kernel_t
+    class(element_t), allocatable :: element
+  end type group_kernel_t
+
+  !> Gauss-point stresses of one group, (6, points_per_element * nelem), element-major.
+  type, public :: stress_field_t
+    real(dp), allocatable :: sig(:, :)
+    integer :: points_per_element = 0
+  end type stress_field_t
+
+  public :: build_kernels, build_materials, build_pattern, assemble_stiffness, element_dofs
+  public :: gather_element_displacement, compute_stresses, internal_forces, check_jacobians
+
+contains
+
+  !> One element object per group.
+  subroutine build_kernels(model, kernels, error)
+    type(model_t), intent(in) :: model
+    type(group_kernel_t), allocatable, intent(out) :: kernels(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: g
+    allocate (kernels(size(model%groups)))
+    do g = 1, size(model%groups)
+      call new_element(model%groups(g)%element_type, kernels(g)%element, error)
+      if (allocated(error)) then
+        call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
+                         ': unsupported element type "' // model%groups(g)%element_type // '"')
+        return
+      end if
+    end do
+  end subroutine build_kernels
+
+  !> One material object per material record.
+  subroutine build_materials(model, materials, error)
+    type(model_t), intent(in) :: model
+    type(material_slot_t), allocatable, intent(out) :: materials(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: m
+    allocate (materials(size(model%materials)))
+    do m = 1, size(model%materials)
+      call new_material(model%materials(m), materials(m)%m, error)
+      if (allocated(error)) return
+    end do
+  end subroutine build_materials
+
+  !> Every element must have positive Jacobian determinants at its Gauss points and nodes.
+  subroutine check_jacobians(model, kernels, min_detj, error)
+    type(model_t), intent(in) :: model
+    type(group_kernel_t), intent(in) :: kernels(:)
+    real(dp), intent(out) :: min_detj
+    type(error_t), allocatable, intent(out) :: error
+    integer :: g, e
+    real(dp) :: lo, hi
+    min_detj = huge(1.0_dp)
+    do g = 1, size(model%groups)
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        call kernels(g)%element%jacobian_range(model%coords(:, model%groups(g)%connectivity(:, e)), lo, hi)
+        min_detj = min(min_detj, lo)
+        if (.not. (lo > 0.0_dp)) then
+          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'element ' // str(e) // &
+                           ' of group ' // model%groups(g)%name // ' (nodes ' // &
+                           node_list(model%groups(g)%connectivity(:, e)) // ') has a non-positive Jacobian (' // &
+                           str(lo) // '): check its node order or coordinates')
+          return
+        end if
+      end do
+    end do
+  end subroutine check_jacobians
+
+  function node_list(nodes) result(s)
+    integer, intent(in) :: nodes(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = str(nodes(1))
+    do i = 2, size(nodes)
+      s = s // ' ' // str(nodes(i))
+    end do
+  end function node_list
+
+  !> Compressed-row pattern (lower triangle) of the free equations: equation i couples with j
+  !! when their nodes share an element. Equations are numbered node by node, so sorted
+  !! neighbour nodes give sorted columns.
+  subroutine build_pattern(model, map, a)
+    type(model_t), intent(in) :: model
+    type(dof_map_t), intent(in) :: map
+    type(csr_matrix_t), intent(out) :: a
+    integer, allocatable :: node_ptr(:), node_elems(:), fill(:), marker(:), nbr(:)
+    integer :: nn, g, e, k, n, m, p, nnbr, d, b, ieq, jeq, id, kmax
+    integer(i8) :: pos
+    integer, allocatable :: elem_group(:), elem_index(:)
+
+    nn = model%nnode
+    ! Node -> elements, elements numbered across groups.
+    allocate (node_ptr(nn + 1), fill(nn))
+    node_ptr = 0
+    allocate (elem_group(model%nelem()), elem_index(model%nelem()))
+    id = 0
+    do g = 1, size(model%groups)
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        id = id + 1
+        elem_group(id) = g
+        elem_index(id) = e
+        do k = 1, size(model%groups(g)%connectivity, 1)
+          n = model%groups(g)%connectivity(k, e)
+          node_ptr(n + 1) = node_ptr(n + 1) + 1
+        end do
+      end do
+    end do
+    node_ptr(1) = 1
+    do n = 1, nn
+      node_ptr(n + 1) = node_ptr(n + 1) + node_ptr(n)
+    end do
+    allocate (node_elems(node_ptr(nn + 1) - 1))
+    fill = node_ptr(1:nn)
+    do id = 1, size(elem_group)
+      g = elem_group(id)
+      e = elem_index(id)
+      do k = 1, size(model%groups(g)%connectivity, 1)
+        n = model%groups(g)%connectivity(k, e)
+        node_elems(fill(n)) = id
+        fill(n) = fill(n) + 1
+      end do
+    end do
+
+    a%n = map%neq
+    allocate (a%row_ptr(map%neq + 1), marker(nn))
+    kmax = 0
+    do g = 1, size(model%groups)
+      kmax = max(kmax, size(model%groups(g)%connectivity, 1))
+    end do
+    allocate (nbr(kmax * max(1, maxval(node_ptr(2:nn + 1) - node_ptr(1:nn)))))
+    marker = 0
+    ! Two passes: count, then fill.
+    do p = 1, 2
+      if (p == 2) then
+        allocate (a%col(a%row_ptr(map%neq + 1) - 1))
+        allocate (a%val(size(a%col)))
+        a%val = 0.0_dp
+      end if
+      pos = 1
+      ieq = 0
+      marker = 0
+      do n = 1, nn
+        if (all(map%eq(:, n) == 0)) cycle
+        call neighbours(n)
+        do d = 1, 3
+          ieq = map%eq(d, n)
+          if (ieq == 0) cycle
+          if (p == 1) a%row_ptr(ieq) = pos
+          do k = 1, nnbr
+            m = nbr(k)
+            do b = 1, 3
+              jeq = map%eq(b, m)
+              if (jeq == 0 .or. jeq > ieq) cycle
+              if (p == 2) a%col(pos) = jeq
+              pos = pos + 1
+            end do
+          end do
+        end do
+      end do
+      if (p == 1) a%row_ptr(map%neq + 1) = pos
+    end do
+
+  contains
+
+    !> Sorted nodes sharing an element with node n (n included).
+    subroutine neighbours(n)
+      integer, intent(in) :: n
+      integer :: q, j, node
+      nnbr = 0
+      do q = node_ptr(n), node_ptr(n + 1) - 1
+        id = node_elems(q)
+        do j = 1, size(model%groups(elem_group(id))%connectivity, 1)
+          node = model%groups(elem_group(id))%connectivity(j, elem_index(id))
+          if (marker(node) /= n) then
+            marker(node) = n
+            nnbr = nnbr + 1
+            nbr(nnbr) = node
+          end if
+        end do
+      end do
+      call sort_int(nbr(1:nnbr))
+    end subroutine neighbours
+
+  end subroutine build_pattern
+
+  !> Insertion sort: neighbour lists are short (<= a few hundred).
+  pure subroutine sort_int(v)
+    integer, intent(inout) :: v(:)
+    integer :: i, j, t
+    do i = 2, size(v)
+      t = v(i)
+      j = i - 1
+      do while (j >= 1)
+        if (v(j) <= t) exit
+        v(j + 1) = v(j)
+        j = j - 1
+      end do
+      v(j + 1) = t
+    end do
+  end subroutine sort_int
+
+  !> Equation numbers of an element's DOFs (0 for constrained ones).
+  pure subroutine element_dofs(map, nodes, dofs)
+    type(dof_map_t), intent(in) :: map
+    integer, intent(in) :: nodes(:)
+    integer, intent(out) :: dofs(:)
+    integer :: k
+    do k = 1, size(nodes)
+      dofs(3 * k - 2:3 * k) = map%eq(:, nodes(k))
+    end do
+  end subroutine element_dofs
+
+  !> Rotate an element matrix into the nodal systems: ke <- R^T ke R with R = diag(T_node).
+  pure subroutine rotate_matrix(map, nodes, ke)
+    type(dof_map_t), intent(in) :: map
+    integer, intent(in) :: nodes(:)
+    real(dp), intent(inout) :: ke(:, :)
+    integer :: k, r
+    do k = 1, size(nodes)
+      if (map%node_csys(nodes(k)) == 0) cycle
+      r = 3 * k - 2
+      ke(:, r:r + 2) = matmul(ke(:, r:r + 2), map%basis(:, :, nodes(k)))
+      ke(r:r + 2, :) = matmul(transpose(map%basis(:, :, nodes(k))), ke(r:r + 2, :))
+    end do
+  end subroutine rotate_matrix
+
+  !> Assemble K of the free equations and the load that prescribed displacements cause
+  !! (f_presc = -K_fc u_c). The material tangent comes from each material's elastic matrix.
+  subroutine assemble_stiffness(model, map, kernels, materials, a, f_presc, error)
+    type(model_t), intent(in) :: model
+    type(dof_map_t), intent(in) :: map
+    type(group_kernel_t), intent(in) :: kernels(:)
+    type(material_slot_t), intent(in) :: materials(:)
+    type(csr_matrix_t), intent(inout) :: a
+    real(dp), intent(out) :: f_presc(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: g, e, nen, ndof, i, j, ng, k
+    real(dp), allocatable :: ke(:, :), d(:, :, :), xe(:, :), ubar(:)
+    integer, allocatable :: dofs(:), nodes(:)
+    integer(i8) :: pos
+    real(dp) :: min_detj
+    logical :: has_presc
+
+    a%val = 0.0_dp
+    f_presc = 0.0_dp
+    do g = 1, size(model%groups)
+      nen = kernels(g)%element%nnodes()
+      ng = kernels(g)%element%ngauss()
+      ndof = 3 * nen
+      if (allocated(ke)) deallocate (ke, d, xe, ubar, dofs, nodes)
+      allocate (ke(ndof, ndof), d(6, 6, ng), xe(3, nen), ubar(ndof), dofs(ndof), nodes(nen))
+      do k = 1, ng
+        call materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, k))
+      end do
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        nodes = model%groups(g)%connectivity(:, e)
+        xe = model%coords(:, nodes)
+        call kernels(g)%element%stiffness(xe, d, ke, min_detj)
+        if (.not. (min_detj > 0.0_dp)) then
+          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'element ' // str(e) // &
+                           ' of group ' // model%groups(g)%name // ' has a non-positive Jacobian')
+          return
+        end if
+        if (map%has_rotations()) call rotate_matrix(map, nodes, ke)
+        call element_dofs(map, nodes, dofs)
+        has_presc = .false.
+        do k = 1, nen
+          ubar(3 * k - 2:3 * k) = merge(map%prescribed(:, nodes(k)), 0.0_dp, map%constrained(:, nodes(k)))
+          if (any(ubar(3 * k - 2:3 * k) /= 0.0_dp)) has_presc = .true.
+        end do
+        do i = 1, ndof
+          if (dofs(i) == 0) cycle
+          if (has_presc) f_presc(dofs(i)) = f_presc(dofs(i)) - dot_product(ke(i, :), ubar)
+          do j = 1, ndof
+            if (dofs(j) == 0 .or. dofs(j) > dofs(i)) cycle
+            pos = a%find(dofs(i), dofs(j))
+            a%val(pos) = a%val(pos) + ke(i, j)
+          end do
+        end do
+      end do
+    end do
+    if (a%n == 0) call fatal_error(error, err_model, 'the model has no free degree of freedom')
+  end subroutine assemble_stiffness
+
+  !> Element displacements in global Cartesian components from the nodal-system solution.
+  pure subroutine gather_element_displacement(u_global, nodes, ue)
+    real(dp), intent(in) :: u_global(:, :)
+    integer, intent(in) :: nodes(:)
+    real(dp), intent(out) :: ue(:)
+    integer :: k
+    do k = 1, size(nodes)
+      ue(3 * k - 2:3 * k) = u_global(:, nodes(k))
+    end do
+  end subroutine gather_element_displacement
+
+  !> Gauss-point stresses of every group, sig(6, ngauss*nelem) element-major.
+  subroutine compute_stresses(model, kernels, materials, u_global, stresses)
+    type(model_t), intent(in) :: model
+    type(group_kernel_t), intent(in) :: kernels(:)
+    type(material_slot_t), intent(in) :: materials(:)
+    real(dp), intent(in) :: u_global(:, :)
+    type(stress_field_t), allocatable, intent(out) :: stresses(:)
+    integer :: g, e, ng, nen, k
+    real(dp), allocatable :: d(:, :, :), ue(:)
+    allocate (stresses(size(model%groups)))
+    do g = 1, size(model%groups)
+      ng = kernels(g)%element%ngauss()
+      nen = kernels(g)%element%nnodes()
+      allocate (d(6, 6, ng), ue(3 * nen))
+      do k = 1, ng
+        call materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, k))
+      end do
+      allocate (stresses(g)%sig(6, ng * size(model%groups(g)%connectivity, 2)))
+      stresses(g)%points_per_element = ng
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        call gather_element_displacement(u_global, model%groups(g)%connectivity(:, e), ue)
+        call kernels(g)%element%gauss_stresses(model%coords(:, model%groups(g)%connectivity(:, e)), ue, d, &
+                                               stresses(g)%sig(:, (e - 1) * ng + 1:e * ng))
+      end do
+      deallocate (d, ue)
+    end do
+  end subroutine compute_stresses
+
+  !> Internal nodal forces K u (global Cartesian, all nodes) from element stiffness.
+  subroutine internal_forces(model, kernels, materials, u_global, fint)
+    type(model_t), intent(in) :: model
+    type(group_kernel_t), intent(in) :: kernels(:)
+    type(material_slot_t), intent(in) :: materials(:)
+    real(dp), intent(in) :: u_global(:, :)
+    real(dp), intent(out) :: fint(:, :)
+    integer :: g, e, ng, nen, k
+    real(dp), allocatable :: d(:, :, :), ue(:), ke(:, :), fe(:)
+    real(dp) :: min_detj
+    fint = 0.0_dp
+    do g = 1, size(model%groups)
+      ng = kernels(g)%element%ngauss()
+      nen = kernels(g)%element%nnodes()
+      allocate (d(6, 6, ng), ue(3 * nen), ke(3 * nen, 3 * nen), fe(3 * nen))
+      do k = 1, ng
+        call materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, k))
+      end do
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        call gather_element_displacement(u_global, model%groups(g)%connectivity(:, e), ue)
+        call kernels(g)%element%stiffness(model%coords(:, model%groups(g)%connectivity(:, e)), d, ke, min_detj)
+        fe = matmul(ke, ue)
+        do k = 1, nen
+          associate (n => model%groups(g)%connectivity(k, e))
+            fint(:, n) = fint(:, n) + fe(3 * k - 2:3 * k)
+          end associate
+        end do
+      end do
+      deallocate (d, ue, ke, fe)
+    end do
+  end subroutine internal_forces
+
+end module feps_assembly

@@ -1,0 +1,195 @@
+!> External loads: face sets resolved from element faces, consistent nodal forces of
+!! pressures and tractions (uniform or linear in one coordinate, by intensity or total),
+!! and nodal forces. Forces are assembled in global Cartesian components per node, then
+!! rotated into nodal systems for the free equations.
+module feps_loads
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, input_error, str
+  use feps_model, only: model_t, face_load_t, in_region, load_pressure, load_traction
+  use feps_dof_map, only: dof_map_t
+  use feps_assembly, only: group_kernel_t
+  implicit none
+  private
+
+  public :: resolve_face_sets, nodal_load_vector, to_equations, face_load_intensity_integral
+
+contains
+
+  !> Faces of the set's group whose nodes all lie in the set's region.
+  subroutine resolve_face_sets(model, kernels, error)
+    type(model_t), intent(inout) :: model
+    type(group_kernel_t), intent(in) :: kernels(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: s, g, e, f, k, nfound
+    integer, allocatable :: fn(:), elems(:), faces(:)
+    logical :: all_in
+
+    do s = 1, size(model%face_sets)
+      g = model%face_sets(s)%group
+      allocate (elems(0), faces(0))
+      nfound = 0
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        do f = 1, kernels(g)%element%nfaces()
+          fn = kernels(g)%element%face_nodes(f)
+          all_in = .true.
+          do k = 1, size(fn)
+            if (.not. in_region(model%face_sets(s)%region, model%systems(model%face_sets(s)%region%csys), &
+                                model%coords(:, model%groups(g)%connectivity(fn(k), e)))) then
+              all_in = .false.
+              exit
+            end if
+          end do
+          if (all_in) then
+            elems = [elems, e]
+            faces = [faces, f]
+            nfound = nfound + 1
+          end if
+        end do
+      end do
+      if (nfound == 0) then
+        call input_error(error, model%face_sets(s)%file, model%face_sets(s)%line, 'face set ' // &
+                         model%face_sets(s)%name // ' selects no element face')
+        return
+      end if
+      call move_alloc(elems, model%face_sets(s)%element)
+      call move_alloc(faces, model%face_sets(s)%face)
+    end do
+  end subroutine resolve_face_sets
+
+  !> Shape of a face load at global point x: 1, or linear from 0 at `zero` to 1 at `peak_at`,
+  !! never negative.
+  pure real(dp) function load_shape(model, l, x)
+    type(model_t), intent(in) :: model
+    type(face_load_t), intent(in) :: l
+    real(dp), intent(in) :: x(3)
+    real(dp) :: c(3)
+    if (l%vary_coord == 0) then
+      load_shape = 1.0_dp
+      return
+    end if
+    c = model%systems(l%vary_csys)%from_global(x)
+    load_shape = max(0.0_dp, (c(l%vary_coord) - l%zero) / (l%peak_at - l%zero))
+  end function load_shape
+
+  !> Integral of the load's shape over its faces (the total of a unit peak intensity).
+  function face_load_intensity_integral(model, kernels, l) result(total)
+    type(model_t), intent(in) :: model
+    type(group_kernel_t), intent(in) :: kernels(:)
+    type(face_load_t), intent(in) :: l
+    real(dp) :: total
+    integer :: k, g, e, q
+    real(dp), allocatable :: xg(:, :), nrm(:, :), wda(:), nf(:, :)
+    total = 0.0_dp
+    associate (fs => model%face_sets(l%face_set))
+      g = fs%group
+      call face_work_arrays(kernels(g), xg, nrm, wda, nf)
+      do k = 1, size(fs%element)
+        e = fs%element(k)
+        call kernels(g)%element%face_integration(model%coords(:, model%groups(g)%connectivity(:, e)), fs%face(k), &
+                                                 xg, nrm, wda, nf)
+        do q = 1, size(wda)
+          total = total + load_shape(model, l, xg(:, q)) * wda(q)
+        end do
+      end do
+    end associate
+  end function face_load_intensity_integral
+
+  !> Nodal forces (3, nnode), global Cartesian, of all loads of the model.
+  subroutine nodal_load_vector(model, kernels, f, error)
+    type(model_t), intent(in) :: model
+    type(group_kernel_t), intent(in) :: kernels(:)
+    real(dp), intent(out) :: f(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i, k, n, g, e, q, a
+    real(dp) :: t(3), peak, integral, dir(3), basis(3, 3)
+    real(dp), allocatable :: xg(:, :), nrm(:, :), wda(:), nf(:, :)
+    integer, allocatable :: fn(:)
+
+    f = 0.0_dp
+    do i = 1, size(model%nodal_loads)
+      associate (l => model%nodal_loads(i))
+        do k = 1, size(model%node_sets(l%node_set)%nodes)
+          n = model%node_sets(l%node_set)%nodes(k)
+          basis = model%systems(l%csys)%local_basis(model%coords(:, n))
+          f(:, n) = f(:, n) + matmul(basis, l%components)
+        end do
+      end associate
+    end do
+
+    do i = 1, size(model%face_loads)
+      associate (l => model%face_loads(i), fs => model%face_sets(model%face_loads(i)%face_set))
+        g = fs%group
+        call face_work_arrays(kernels(g), xg, nrm, wda, nf)
+        dir = l%components
+        if (l%kind == load_pressure) then
+          peak = l%value
+        else
+          peak = 1.0_dp
+        end if
+        if (l%use_total) then
+          integral = face_load_intensity_integral(model, kernels, l)
+          if (.not. (integral > 0.0_dp)) then
+            call input_error(error, l%file, l%line, 'the load shape integrates to zero over face set ' // fs%name // &
+                             ': check ZERO= and PEAK=')
+            return
+          end if
+          if (l%kind == load_pressure) then
+            peak = l%total / integral
+          else
+            peak = l%total / integral / norm2(l%components)
+          end if
+        end if
+        do k = 1, size(fs%element)
+          e = fs%element(k)
+          fn = kernels(g)%element%face_nodes(fs%face(k))
+          call kernels(g)%element%face_integration(model%coords(:, model%groups(g)%connectivity(:, e)), fs%face(k), &
+                                                   xg, nrm, wda, nf)
+          do q = 1, size(wda)
+            if (l%kind == load_pressure) then
+              t = -peak * load_shape(model, l, xg(:, q)) * nrm(:, q)
+            else
+              basis = model%systems(l%csys)%local_basis(xg(:, q))
+              t = peak * load_shape(model, l, xg(:, q)) * matmul(basis, dir)
+            end if
+            do a = 1, size(fn)
+              n = model%groups(g)%connectivity(fn(a), e)
+              f(:, n) = f(:, n) + nf(a, q) * wda(q) * t
+            end do
+          end do
+        end do
+      end associate
+    end do
+  end subroutine nodal_load_vector
+
+  !> Face-integration arrays sized for the group's element.
+  subroutine face_work_arrays(kernel, xg, nrm, wda, nf)
+    type(group_kernel_t), intent(in) :: kernel
+    real(dp), allocatable, intent(inout) :: xg(:, :), nrm(:, :), wda(:), nf(:, :)
+    integer :: ng, nn
+    ng = kernel%element%nface_gauss()
+    nn = kernel%element%nface_nodes()
+    if (allocated(xg)) deallocate (xg, nrm, wda, nf)
+    allocate (xg(3, ng), nrm(3, ng), wda(ng), nf(nn, ng))
+  end subroutine face_work_arrays
+
+  !> Free-equation right-hand side from nodal forces (rotated into nodal systems).
+  pure subroutine to_equations(map, f_nodes, b)
+    type(dof_map_t), intent(in) :: map
+    real(dp), intent(in) :: f_nodes(:, :)
+    real(dp), intent(out) :: b(:)
+    integer :: n, d
+    real(dp) :: fl(3)
+    b = 0.0_dp
+    do n = 1, size(f_nodes, 2)
+      if (map%node_csys(n) /= 0) then
+        fl = matmul(transpose(map%basis(:, :, n)), f_nodes(:, n))
+      else
+        fl = f_nodes(:, n)
+      end if
+      do d = 1, 3
+        if (map%eq(d, n) > 0) b(map%eq(d, n)) = b(map%eq(d, n)) + fl(d)
+      end do
+    end do
+  end subroutine to_equations
+
+end module feps_loads

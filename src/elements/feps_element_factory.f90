@@ -1,0 +1,46 @@
+!> Make a solid element from its name. Adding an element type means adding its module and one
+!! case here.
+module feps_element_factory
+  use feps_error, only: error_t, fatal_error, err_input
+  use feps_element, only: element_t
+  use feps_hex8, only: hex8_t
+  use feps_hex20, only: hex20_t
+  implicit none
+  private
+
+  public :: new_element
+
+contains
+
+  !> Allocate `element` for `type_name` (case-insensitive, surrounding blanks ignored):
+  !! 'hex8' (2x2x2 Gauss), 'hex20' (3x3x3), 'hex20r' (hex20 with 2x2x2 reduced integration).
+  !! An unknown name returns an err_input error naming it and the known names.
+  subroutine new_element(type_name, element, error)
+    character(len=*), intent(in) :: type_name
+    class(element_t), allocatable, intent(out) :: element
+    type(error_t), allocatable, intent(out) :: error
+    select case (lower(trim(adjustl(type_name))))
+    case ('hex8')
+      allocate (hex8_t :: element)
+    case ('hex20')
+      allocate (element, source=hex20_t(reduced=.false.))
+    case ('hex20r')
+      allocate (element, source=hex20_t(reduced=.true.))
+    case default
+      call fatal_error(error, err_input, "unknown element type '" // trim(adjustl(type_name)) // &
+                       "' (known: hex8, hex20, hex20r)")
+    end select
+  end subroutine new_element
+
+  pure function lower(text) result(low)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: low
+    integer :: i, code
+    low = text
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      if (code >= iachar('A') .and. code <= iachar('Z')) low(i:i) = achar(code + 32)
+    end do
+  end function lower
+
+end module feps_element_factory

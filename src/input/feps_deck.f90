@@ -1,0 +1,1191 @@
+!> The input deck: legacy-style keyword records, with DATAIN blocks inline or included.
+!! Keywords and their fields are documented in docs/input-format.md. Every error names the
+!! file, the line and, where one is at fault, the field. The reader fills the model's plain
+!! data; face sets are resolved later by the assembly layer, which knows element faces.
+module feps_deck
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, input_error, fatal_error, err_input, str
+  use feps_records, only: record_t, read_records, keyword, nfields, field_text
+  use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check
+  use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, &
+                                    cylindrical_about, csys_cartesian, csys_cylindrical
+  use feps_model, only: model_t, element_group_t, material_spec_t, node_set_t, face_set_t, &
+                        constraint_t, nodal_load_t, face_load_t, region_t, in_region, &
+                        load_pressure, load_traction, name_len
+  implicit none
+  private
+
+  public :: read_deck, resolve_node_sets
+
+  !> What the reader keeps while it walks the records.
+  type :: deck_state_t
+    type(datain_mesh_t) :: mesh
+    integer, allocatable :: block_group(:)      !! group that took each element block
+    integer :: current_group = 0                !! group taking the inline blocks that follow
+    integer :: explicit_nodes = 0
+    real(dp), allocatable :: explicit_coords(:, :)
+    integer, allocatable :: explicit_ids(:)
+    integer, allocatable :: explicit_line(:)
+    character(len=:), allocatable :: explicit_file
+    type(region_t), allocatable :: set_regions(:)
+    integer, allocatable :: set_node(:)          !! NSET by a single node number (0: by region)
+    type(record_t), allocatable :: set_records(:)
+  end type deck_state_t
+
+contains
+
+  !> Read a deck (or a file holding only a DATAIN mesh) into `model`.
+  subroutine read_deck(path, model, error)
+    character(len=*), intent(in) :: path
+    type(model_t), intent(out) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), allocatable :: records(:)
+    type(deck_state_t) :: st
+    integer :: pos
+
+    call read_records(path, records, error)
+    if (allocated(error)) return
+    model%deck_file = path
+    model%title = ''
+    model%solver = 'cholmod'
+    model%output_file = ''
+    model%systems = default_coordinate_systems()
+    allocate (model%groups(0), model%materials(0), model%node_sets(0), model%face_sets(0))
+    allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0))
+    allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0))
+    allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0))
+    st%mesh%nnode = 0
+    allocate (st%mesh%coords(3, 0), st%mesh%blocks(0))
+
+    ! A file of DATAIN records only is a bare mesh to check and report.
+    model%mesh_only = .true.
+    do pos = 1, size(records)
+      if (.not. is_datain_record(records(pos))) model%mesh_only = .false.
+    end do
+    pos = 1
+    do while (pos <= size(records))
+      call read_record(records, pos, model, st, error)
+      if (allocated(error)) return
+    end do
+    call finish_model(path, model, st, error)
+  end subroutine read_deck
+
+  !> Dispatch one record (or a whole DATAIN block) and advance pos.
+  subroutine read_record(records, pos, model, st, error)
+    type(record_t), intent(in) :: records(:)
+    integer, intent(inout) :: pos
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: key
+    integer :: nb_before, b
+
+    key = keyword(records(pos))
+    if (key == 'A') then
+      nb_before = size(st%mesh%blocks)
+      call datain_read_block(records, pos, model%systems, st%mesh, error)
+      if (allocated(error)) return
+      do b = nb_before + 1, size(st%mesh%blocks)
+        st%block_group = [st%block_group, st%current_group]
+      end do
+      return
+    end if
+    if (key == 'E') then
+      ! The closing E of a DATAIN mesh: nothing more to do.
+      pos = pos + 1
+      return
+    end if
+    if (model%mesh_only) then
+      call input_error(error, records(pos)%file, records(pos)%line, &
+                       'a DATAIN mesh file holds only A, % and E records, not "' // key // '"', 1)
+      return
+    end if
+
+    select case (key)
+    case ('TITLE')
+      call read_title(records(pos), model)
+    case ('CSYS')
+      call read_csys(records(pos), model, error)
+    case ('INCLUDE')
+      call read_include(records(pos), model, st, error)
+    case ('NODE')
+      call read_node(records(pos), model, st, error)
+    case ('MATERIAL')
+      call read_material(records(pos), model, error)
+    case ('GROUP')
+      call read_group(records(pos), model, st, error)
+    case ('NSET')
+      call read_nset(records(pos), model, st, error)
+    case ('FSET')
+      call read_fset(records(pos), model, error)
+    case ('FIX')
+      call read_fix(records(pos), model, error)
+    case ('DISPLACE')
+      call read_displace(records(pos), model, error)
+    case ('FORCE')
+      call read_force(records(pos), model, error)
+    case ('PRESSURE', 'TRACTION')
+      call read_face_load(records(pos), model, error)
+    case ('SOLVER')
+      call read_solver(records(pos), model, error)
+    case ('OUTPUT')
+      call require_fields(records(pos), 2, error)
+      if (.not. allocated(error)) model%output_file = field_text(records(pos), 2)   ! relative to the working directory
+    case ('%')
+      call input_error(error, records(pos)%file, records(pos)%line, &
+                       'a % record outside a DATAIN block (no A record opened one)', 1)
+    case default
+      call input_error(error, records(pos)%file, records(pos)%line, 'unknown keyword "' // key // '"', 1)
+    end select
+    pos = pos + 1
+  end subroutine read_record
+
+  ! ---------------------------------------------------------------------------------------
+  ! Keyword readers
+  ! ---------------------------------------------------------------------------------------
+
+  subroutine read_title(rec, model)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer :: i
+    model%title = ''
+    do i = 2, nfields(rec)
+      if (i > 2) model%title = model%title // ', '
+      model%title = model%title // field_text(rec, i)
+    end do
+  end subroutine read_title
+
+  !> CSYS, id, CYLINDRICAL, x0, y0, z0, ax, ay, az [, rx, ry, rz]   or   CSYS, id, CARTESIAN, x0, y0, z0
+  subroutine read_csys(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer :: id, i
+    real(dp) :: v(9), ref(3)
+    type(coordinate_system_t) :: cs
+    type(coordinate_system_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: kind
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    call get_int(rec, 2, id, error)
+    if (allocated(error)) return
+    if (id /= size(model%systems) + 1) then
+      call input_error(error, rec%file, rec%line, 'coordinate systems are numbered in order: expected ' // &
+                       str(size(model%systems) + 1) // ', got ' // str(id), 2)
+      return
+    end if
+    kind = upper(field_text(rec, 3))
+    select case (kind)
+    case ('CYLINDRICAL')
+      call require_fields(rec, 9, error)
+      if (allocated(error)) return
+      do i = 1, 6
+        call get_real(rec, 3 + i, v(i), error)
+        if (allocated(error)) return
+      end do
+      if (norm2(v(4:6)) == 0.0_dp) then
+        call input_error(error, rec%file, rec%line, 'the cylinder axis has zero length', 7)
+        return
+      end if
+      ref = [1.0_dp, 0.0_dp, 0.0_dp]
+      if (nfields(rec) >= 12) then
+        do i = 1, 3
+          call get_real(rec, 9 + i, ref(i), error)
+          if (allocated(error)) return
+        end do
+      else if (abs(v(4)) > 0.9_dp * norm2(v(4:6))) then
+        ref = [0.0_dp, 1.0_dp, 0.0_dp]
+      end if
+      cs = cylindrical_about(v(1:3), v(4:6), ref)
+    case ('CARTESIAN')
+      call require_fields(rec, 6, error)
+      if (allocated(error)) return
+      do i = 1, 3
+        call get_real(rec, 3 + i, v(i), error)
+        if (allocated(error)) return
+      end do
+      cs%kind = csys_cartesian
+      cs%origin = v(1:3)
+    case default
+      call input_error(error, rec%file, rec%line, 'unknown coordinate system kind "' // kind // &
+                       '" (CARTESIAN or CYLINDRICAL)', 3)
+      return
+    end select
+    tmp = [model%systems, cs]
+    call move_alloc(tmp, model%systems)
+  end subroutine read_csys
+
+  !> INCLUDE, file: a DATAIN file (blocks and the closing E), path relative to the deck.
+  subroutine read_include(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), allocatable :: inc(:)
+    character(len=:), allocatable :: path, key
+    integer :: pos, nb_before, b
+    logical :: closed
+
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    path = resolve_path(rec%file, field_text(rec, 2))
+    call read_records(path, inc, error)
+    if (allocated(error)) then
+      error%message = rec%file // ':' // str(rec%line) // ': INCLUDE: ' // error%message
+      error%code = err_input
+      return
+    end if
+    pos = 1
+    closed = .false.
+    do while (pos <= size(inc))
+      key = keyword(inc(pos))
+      if (closed) then
+        call input_error(error, inc(pos)%file, inc(pos)%line, 'record after the closing E of the mesh', 1)
+        return
+      end if
+      select case (key)
+      case ('A')
+        nb_before = size(st%mesh%blocks)
+        call datain_read_block(inc, pos, model%systems, st%mesh, error)
+        if (allocated(error)) return
+        do b = nb_before + 1, size(st%mesh%blocks)
+          st%block_group = [st%block_group, st%current_group]
+        end do
+      case ('E')
+        closed = .true.
+        pos = pos + 1
+      case default
+        call input_error(error, inc(pos)%file, inc(pos)%line, &
+                         'an included DATAIN file holds only A, % and E records, not "' // key // '"', 1)
+        return
+      end select
+    end do
+    if (.not. closed) then
+      call input_error(error, inc(size(inc))%file, inc(size(inc))%line, &
+                       'truncated DATAIN file: the closing E record of the mesh is missing')
+    end if
+  end subroutine read_include
+
+  !> NODE, id, c1, c2, c3 [, CSYS=n]: one node given explicitly.
+  subroutine read_node(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    integer :: id, cs, i
+    real(dp) :: c(3)
+    call require_fields(rec, 5, error)
+    if (allocated(error)) return
+    call get_int(rec, 2, id, error)
+    if (allocated(error)) return
+    if (id < 1) then
+      call input_error(error, rec%file, rec%line, 'node number ' // str(id) // ' must be positive', 2)
+      return
+    end if
+    do i = 1, 3
+      call get_real(rec, 2 + i, c(i), error)
+      if (allocated(error)) return
+    end do
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
+    if (allocated(error)) return
+    if (any(st%explicit_ids(1:st%explicit_nodes) == id)) then
+      call input_error(error, rec%file, rec%line, 'duplicate node ' // str(id) // ' (defined before)', 2)
+      return
+    end if
+    st%explicit_ids = [st%explicit_ids, id]
+    st%explicit_line = [st%explicit_line, rec%line]
+    st%explicit_file = rec%file
+    st%explicit_coords = reshape([st%explicit_coords, model%systems(cs)%to_global(c)], &
+                                 [3, st%explicit_nodes + 1])
+    st%explicit_nodes = st%explicit_nodes + 1
+  end subroutine read_node
+
+  !> MATERIAL, name, kind, KEY=value, ...
+  subroutine read_material(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(material_spec_t) :: m
+    type(material_spec_t), allocatable :: tmp(:)
+    integer :: i, eq
+    character(len=:), allocatable :: f
+    real(dp) :: v
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    m%name = field_text(rec, 2)
+    if (model%find_material(m%name) > 0) then
+      call input_error(error, rec%file, rec%line, 'material "' // m%name // '" is defined twice', 2)
+      return
+    end if
+    m%kind = lower(field_text(rec, 3))
+    m%file = rec%file
+    m%line = rec%line
+    allocate (m%keys(0), m%values(0))
+    do i = 4, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) then
+        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
+        return
+      end if
+      call parse_real(f(eq + 1:), v, error, rec, i)
+      if (allocated(error)) return
+      m%keys = [character(len=name_len) :: m%keys, lower(f(:eq - 1))]
+      m%values = [m%values, v]
+    end do
+    tmp = [model%materials, m]
+    call move_alloc(tmp, model%materials)
+  end subroutine read_material
+
+  !> GROUP, name, TYPE=hex8, MATERIAL=name [, BLOCKS=i or i:j]
+  subroutine read_group(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(element_group_t) :: g
+    type(element_group_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: text
+    integer :: ifield, lo, hi, b
+    logical :: found
+
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    g%name = field_text(rec, 2)
+    if (model%find_group(g%name) > 0) then
+      call input_error(error, rec%file, rec%line, 'group "' // g%name // '" is defined twice', 2)
+      return
+    end if
+    call option_text(rec, 'TYPE', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'GROUP needs TYPE=<element type>')
+      return
+    end if
+    g%element_type = lower(text)
+    select case (g%element_type)
+    case ('hex8', 'hex20', 'hex20r')
+    case default
+      call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (hex8, hex20, hex20r)', &
+                       ifield)
+      return
+    end select
+    call option_text(rec, 'MATERIAL', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'GROUP needs MATERIAL=<name>')
+      return
+    end if
+    g%material_name = text
+    g%file = rec%file
+    g%line = rec%line
+    allocate (g%blocks(0))
+    call option_text(rec, 'BLOCKS', text, ifield, found)
+    tmp = [model%groups, g]
+    call move_alloc(tmp, model%groups)
+    if (found) then
+      call parse_range_int(text, lo, hi, error, rec, ifield)
+      if (allocated(error)) return
+      if (lo < 1 .or. hi < lo) then
+        call input_error(error, rec%file, rec%line, 'BLOCKS range "' // text // '" is empty or not positive', &
+                         ifield)
+        return
+      end if
+      model%groups(size(model%groups))%blocks = [(b, b = lo, hi)]
+      st%current_group = 0
+    else
+      st%current_group = size(model%groups)
+    end if
+  end subroutine read_group
+
+  !> NSET, name, [CSYS=n,] <coordinate>=a[:b] ..., [TOL=t]   or   NSET, name, NODE=n
+  subroutine read_nset(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(node_set_t) :: s
+    type(node_set_t), allocatable :: tmp(:)
+    type(record_t), allocatable :: rtmp(:)
+    type(region_t) :: r
+    character(len=:), allocatable :: text
+    integer :: ifield, node
+    logical :: found
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    s%name = field_text(rec, 2)
+    if (model%find_node_set(s%name) > 0) then
+      call input_error(error, rec%file, rec%line, 'node set "' // s%name // '" is defined twice', 2)
+      return
+    end if
+    node = 0
+    call option_text(rec, 'NODE', text, ifield, found)
+    if (found) then
+      call parse_int(text, node, error, rec, ifield)
+      if (allocated(error)) return
+      if (node < 1) then
+        call input_error(error, rec%file, rec%line, 'node number ' // str(node) // ' must be positive', ifield)
+        return
+      end if
+    else
+      call read_region(rec, model, r, error)
+      if (allocated(error)) return
+    end if
+    allocate (s%nodes(0))
+    tmp = [model%node_sets, s]
+    call move_alloc(tmp, model%node_sets)
+    st%set_regions = [st%set_regions, r]
+    st%set_node = [st%set_node, node]
+    rtmp = [st%set_records, rec]
+    call move_alloc(rtmp, st%set_records)
+  end subroutine read_nset
+
+  !> FSET, name, GROUP=g, [CSYS=n,] <coordinate>=a[:b] ..., [TOL=t]
+  subroutine read_fset(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(face_set_t) :: s
+    type(face_set_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    s%name = field_text(rec, 2)
+    if (model%find_face_set(s%name) > 0) then
+      call input_error(error, rec%file, rec%line, 'face set "' // s%name // '" is defined twice', 2)
+      return
+    end if
+    call option_text(rec, 'GROUP', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'FSET needs GROUP=<element group>')
+      return
+    end if
+    s%group = model%find_group(text)
+    if (s%group == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
+      return
+    end if
+    call read_region(rec, model, s%region, error)
+    if (allocated(error)) return
+    s%file = rec%file
+    s%line = rec%line
+    allocate (s%element(0), s%face(0))
+    tmp = [model%face_sets, s]
+    call move_alloc(tmp, model%face_sets)
+  end subroutine read_fset
+
+  !> FIX, set, dof [, dof ...] [, CSYS=n]: dofs X Y Z (Cartesian) or R T Z (cylindrical), or ALL.
+  subroutine read_fix(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer :: iset, cs, i, dof
+    character(len=:), allocatable :: f
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    call get_node_set(rec, model, iset, error)
+    if (allocated(error)) return
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
+    if (allocated(error)) return
+    do i = 3, nfields(rec)
+      f = upper(field_text(rec, i))
+      if (index(f, '=') > 0) cycle
+      if (f == 'ALL') then
+        do dof = 1, 3
+          call add_constraint(model, rec, iset, cs, dof, 0.0_dp)
+        end do
+        cycle
+      end if
+      call dof_index(f, model%systems(cs)%kind, dof)
+      if (dof == 0) then
+        call input_error(error, rec%file, rec%line, 'unknown degree of freedom "' // f // '" for this system (' &
+                         // dof_names(model%systems(cs)%kind) // ' or ALL)', i)
+        return
+      end if
+      call add_constraint(model, rec, iset, cs, dof, 0.0_dp)
+    end do
+  end subroutine read_fix
+
+  !> DISPLACE, set, DOF=value [, DOF=value ...] [, CSYS=n]
+  subroutine read_displace(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer :: iset, cs, i, dof, eq
+    character(len=:), allocatable :: f
+    real(dp) :: v
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    call get_node_set(rec, model, iset, error)
+    if (allocated(error)) return
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
+    if (allocated(error)) return
+    do i = 3, nfields(rec)
+      f = upper(field_text(rec, i))
+      eq = index(f, '=')
+      if (eq == 0) then
+        call input_error(error, rec%file, rec%line, 'expected DOF=value, got "' // f // '"', i)
+        return
+      end if
+      if (f(:eq - 1) == 'CSYS') cycle
+      call dof_index(f(:eq - 1), model%systems(cs)%kind, dof)
+      if (dof == 0) then
+        call input_error(error, rec%file, rec%line, 'unknown degree of freedom "' // f(:eq - 1) // &
+                         '" for this system (' // dof_names(model%systems(cs)%kind) // ')', i)
+        return
+      end if
+      call parse_real(f(eq + 1:), v, error, rec, i)
+      if (allocated(error)) return
+      call add_constraint(model, rec, iset, cs, dof, v)
+    end do
+  end subroutine read_displace
+
+  !> FORCE, set, DOF=value ... [, CSYS=n]: the same force on every node of the set.
+  subroutine read_force(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(nodal_load_t) :: l
+    type(nodal_load_t), allocatable :: tmp(:)
+    integer :: i, dof, eq
+    character(len=:), allocatable :: f
+    real(dp) :: v
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    call get_node_set(rec, model, l%node_set, error)
+    if (allocated(error)) return
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
+    if (allocated(error)) return
+    do i = 3, nfields(rec)
+      f = upper(field_text(rec, i))
+      eq = index(f, '=')
+      if (eq == 0) then
+        call input_error(error, rec%file, rec%line, 'expected DOF=value, got "' // f // '"', i)
+        return
+      end if
+      if (f(:eq - 1) == 'CSYS') cycle
+      call dof_index(f(:eq - 1), model%systems(l%csys)%kind, dof)
+      if (dof == 0) then
+        call input_error(error, rec%file, rec%line, 'unknown direction "' // f(:eq - 1) // '" (' // &
+                         dof_names(model%systems(l%csys)%kind) // ')', i)
+        return
+      end if
+      call parse_real(f(eq + 1:), v, error, rec, i)
+      if (allocated(error)) return
+      l%components(dof) = v
+    end do
+    tmp = [model%nodal_loads, l]
+    call move_alloc(tmp, model%nodal_loads)
+  end subroutine read_force
+
+  !> PRESSURE, fset, VALUE=p | TOTAL=P [, VARY=coord, ZERO=a, PEAK=b, VARY_CSYS=n]
+  !! TRACTION, fset, [CSYS=n,] DIR=value ..., [TOTAL=P,] [VARY=...]
+  subroutine read_face_load(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(face_load_t) :: l
+    type(face_load_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: text, f, k
+    integer :: ifield, i, eq, dof
+    logical :: found, has_value
+    real(dp) :: v
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    l%face_set = model%find_face_set(field_text(rec, 2))
+    if (l%face_set == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined face set "' // field_text(rec, 2) // '"', 2)
+      return
+    end if
+    l%file = rec%file
+    l%line = rec%line
+    l%kind = merge(load_pressure, load_traction, keyword(rec) == 'PRESSURE')
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
+    if (allocated(error)) return
+    has_value = .false.
+    do i = 3, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) then
+        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
+        return
+      end if
+      k = upper(f(:eq - 1))
+      select case (k)
+      case ('CSYS', 'VARY', 'VARY_CSYS')
+        cycle
+      case ('VALUE', 'TOTAL', 'ZERO', 'PEAK')
+        call parse_real(f(eq + 1:), v, error, rec, i)
+        if (allocated(error)) return
+        select case (k)
+        case ('VALUE')
+          if (l%kind == load_traction) then
+            call input_error(error, rec%file, rec%line, 'TRACTION takes components (e.g. Z=1.0), not VALUE=', i)
+            return
+          end if
+          l%value = v
+          has_value = .true.
+        case ('TOTAL')
+          l%total = v
+          l%use_total = .true.
+        case ('ZERO')
+          l%zero = v
+        case ('PEAK')
+          l%peak_at = v
+        end select
+      case default
+        if (l%kind == load_pressure) then
+          call input_error(error, rec%file, rec%line, 'unknown PRESSURE option "' // k // &
+                           '" (VALUE, TOTAL, VARY, ZERO, PEAK, VARY_CSYS)', i)
+          return
+        end if
+        call dof_index(k, model%systems(l%csys)%kind, dof)
+        if (dof == 0) then
+          call input_error(error, rec%file, rec%line, 'unknown TRACTION option or direction "' // k // '"', i)
+          return
+        end if
+        call parse_real(f(eq + 1:), v, error, rec, i)
+        if (allocated(error)) return
+        l%components(dof) = v
+        has_value = .true.
+      end select
+    end do
+    if (l%kind == load_pressure .and. has_value .eqv. l%use_total) then
+      call input_error(error, rec%file, rec%line, 'PRESSURE needs exactly one of VALUE= and TOTAL=')
+      return
+    end if
+    if (l%kind == load_traction .and. .not. has_value) then
+      call input_error(error, rec%file, rec%line, 'TRACTION needs at least one component (e.g. Z=1.0)')
+      return
+    end if
+    if (l%kind == load_traction .and. l%use_total .and. norm2(l%components) == 0.0_dp) then
+      call input_error(error, rec%file, rec%line, 'TRACTION with TOTAL= needs a nonzero direction')
+      return
+    end if
+    ! A linear variation in one coordinate
+    call option_text(rec, 'VARY', text, ifield, found)
+    if (found) then
+      l%vary_csys = csys_cartesian
+      select case (upper(text))
+      case ('X')
+        l%vary_coord = 1
+      case ('Y')
+        l%vary_coord = 2
+      case ('Z')
+        l%vary_coord = 3
+      case ('R')
+        l%vary_coord = 1
+        l%vary_csys = csys_cylindrical
+      case ('THETA', 'T')
+        l%vary_coord = 2
+        l%vary_csys = csys_cylindrical
+      case default
+        call input_error(error, rec%file, rec%line, 'VARY takes X, Y, Z, R or THETA, not "' // text // '"', &
+                         ifield)
+        return
+      end select
+      call get_csys_option(rec, model, 'VARY_CSYS', l%vary_csys, l%vary_csys, error)
+      if (allocated(error)) return
+      if (l%peak_at == l%zero) then
+        call input_error(error, rec%file, rec%line, 'VARY needs ZERO= and PEAK= at different places')
+        return
+      end if
+    end if
+    tmp = [model%face_loads, l]
+    call move_alloc(tmp, model%face_loads)
+  end subroutine read_face_load
+
+  subroutine read_solver(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    model%solver = lower(field_text(rec, 2))
+    if (model%solver /= 'cholmod' .and. model%solver /= 'skyline') then
+      call input_error(error, rec%file, rec%line, 'unknown solver "' // field_text(rec, 2) // &
+                       '" (skyline or cholmod)', 2)
+    end if
+  end subroutine read_solver
+
+  ! ---------------------------------------------------------------------------------------
+  ! After the last record: nodes, groups, node sets
+  ! ---------------------------------------------------------------------------------------
+
+  subroutine finish_model(path, model, st, error)
+    character(len=*), intent(in) :: path
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: defined(:)
+    integer :: nnode, i, g, b, nel, k, first
+
+    ! Nodes: DATAIN blocks first, explicit NODE records at their numbers.
+    nnode = st%mesh%nnode
+    if (st%explicit_nodes > 0) nnode = max(nnode, maxval(st%explicit_ids))
+    allocate (model%coords(3, nnode), defined(nnode))
+    defined = .false.
+    model%coords(:, 1:st%mesh%nnode) = st%mesh%coords(:, 1:st%mesh%nnode)
+    defined(1:st%mesh%nnode) = .true.
+    do i = 1, st%explicit_nodes
+      if (defined(st%explicit_ids(i))) then
+        call input_error(error, st%explicit_file, st%explicit_line(i), 'duplicate node ' // &
+                         str(st%explicit_ids(i)) // ' (already generated by a DATAIN block)', 2)
+        return
+      end if
+      model%coords(:, st%explicit_ids(i)) = st%explicit_coords(:, i)
+      defined(st%explicit_ids(i)) = .true.
+    end do
+    model%nnode = nnode
+    if (nnode == 0) then
+      call input_error(error, path, 1, 'the model has no nodes')
+      return
+    end if
+    st%mesh%nnode = nnode
+    call datain_check(st%mesh, error)
+    if (allocated(error)) return
+
+    if (model%mesh_only) then
+      ! A bare DATAIN mesh: one group per element block, typed by its node count.
+      deallocate (model%groups)
+      allocate (model%groups(size(st%mesh%blocks)))
+      do b = 1, size(st%mesh%blocks)
+        model%groups(b)%name = 'block' // str(b)
+        select case (st%mesh%blocks(b)%nodes_per_element)
+        case (8)
+          model%groups(b)%element_type = 'hex8'
+        case (20)
+          model%groups(b)%element_type = 'hex20'
+        case default
+          model%groups(b)%element_type = 'nodes' // str(st%mesh%blocks(b)%nodes_per_element)
+        end select
+        model%groups(b)%material_name = ''
+        model%groups(b)%connectivity = st%mesh%blocks(b)%connectivity
+        model%groups(b)%blocks = [b]
+        model%groups(b)%file = st%mesh%blocks(b)%file
+        model%groups(b)%line = st%mesh%blocks(b)%line
+      end do
+    else
+      ! Blocks to groups: explicit BLOCKS= lists, else the group that preceded them.
+      do g = 1, size(model%groups)
+        do k = 1, size(model%groups(g)%blocks)
+          b = model%groups(g)%blocks(k)
+          if (b > size(st%mesh%blocks)) then
+            call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name &
+                             // ' names element block ' // str(b) // ' but the mesh has ' // &
+                             str(size(st%mesh%blocks)) // ' blocks')
+            return
+          end if
+          if (st%block_group(b) /= 0 .and. st%block_group(b) /= g) then
+            call input_error(error, model%groups(g)%file, model%groups(g)%line, 'element block ' // str(b) // &
+                             ' already belongs to group ' // model%groups(st%block_group(b))%name)
+            return
+          end if
+          st%block_group(b) = g
+        end do
+      end do
+      do b = 1, size(st%mesh%blocks)
+        if (st%block_group(b) == 0) then
+          call input_error(error, st%mesh%blocks(b)%file, st%mesh%blocks(b)%line, 'element block ' // str(b) // &
+                           ' belongs to no GROUP (give GROUP before it or BLOCKS= in a GROUP)')
+          return
+        end if
+      end do
+      do g = 1, size(model%groups)
+        model%groups(g)%blocks = pack([(b, b = 1, size(st%mesh%blocks))], st%block_group == g)
+        nel = 0
+        do k = 1, size(model%groups(g)%blocks)
+          b = model%groups(g)%blocks(k)
+          nel = nel + size(st%mesh%blocks(b)%connectivity, 2)
+          if (st%mesh%blocks(b)%nodes_per_element /= nodes_of(model%groups(g)%element_type)) then
+            call input_error(error, st%mesh%blocks(b)%file, st%mesh%blocks(b)%line, 'element block ' // str(b) &
+                             // ' has ' // str(st%mesh%blocks(b)%nodes_per_element) // ' nodes per element, but ' &
+                             // 'group ' // model%groups(g)%name // ' is ' // model%groups(g)%element_type // &
+                             ' (' // str(nodes_of(model%groups(g)%element_type)) // ' nodes)')
+            return
+          end if
+        end do
+        if (nel == 0) then
+          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
+                           ' has no elements')
+          return
+        end if
+        allocate (model%groups(g)%connectivity(nodes_of(model%groups(g)%element_type), nel))
+        first = 0
+        do k = 1, size(model%groups(g)%blocks)
+          b = model%groups(g)%blocks(k)
+          nel = size(st%mesh%blocks(b)%connectivity, 2)
+          model%groups(g)%connectivity(:, first + 1:first + nel) = st%mesh%blocks(b)%connectivity
+          first = first + nel
+        end do
+        model%groups(g)%material = model%find_material(model%groups(g)%material_name)
+        if (model%groups(g)%material == 0) then
+          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'undefined material "' // &
+                           model%groups(g)%material_name // '"')
+          return
+        end if
+      end do
+      do g = 1, size(model%groups)
+        do k = 1, size(model%groups(g)%connectivity, 2)
+          do i = 1, size(model%groups(g)%connectivity, 1)
+            if (.not. defined(model%groups(g)%connectivity(i, k))) then
+              call input_error(error, model%groups(g)%file, model%groups(g)%line, 'element ' // str(k) // &
+                               ' of group ' // model%groups(g)%name // ' uses node ' // &
+                               str(model%groups(g)%connectivity(i, k)) // ', which is not defined')
+              return
+            end if
+          end do
+        end do
+      end do
+    end if
+    if (size(model%groups) == 0) then
+      call input_error(error, path, 1, 'the model has no elements')
+      return
+    end if
+    call resolve_node_sets(model, st%set_regions, st%set_node, st%set_records, error)
+  end subroutine finish_model
+
+  !> Fill each node set with the nodes in its region (or its one node); an empty set is an error.
+  subroutine resolve_node_sets(model, regions, single, records, error)
+    type(model_t), intent(inout) :: model
+    type(region_t), intent(in) :: regions(:)
+    integer, intent(in) :: single(:)
+    type(record_t), intent(in) :: records(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: s, n
+    logical, allocatable :: inside(:)
+    allocate (inside(model%nnode))
+    do s = 1, size(model%node_sets)
+      if (single(s) > 0) then
+        if (single(s) > model%nnode) then
+          call input_error(error, records(s)%file, records(s)%line, 'node ' // str(single(s)) // &
+                           ' is out of range (the mesh has ' // str(model%nnode) // ' nodes)')
+          return
+        end if
+        model%node_sets(s)%nodes = [single(s)]
+        cycle
+      end if
+      do n = 1, model%nnode
+        inside(n) = in_region(regions(s), model%systems(regions(s)%csys), model%coords(:, n))
+      end do
+      model%node_sets(s)%nodes = pack([(n, n = 1, model%nnode)], inside)
+      if (size(model%node_sets(s)%nodes) == 0) then
+        call input_error(error, records(s)%file, records(s)%line, 'node set ' // model%node_sets(s)%name // &
+                         ' selects no node')
+        return
+      end if
+    end do
+  end subroutine resolve_node_sets
+
+  ! ---------------------------------------------------------------------------------------
+  ! Field helpers
+  ! ---------------------------------------------------------------------------------------
+
+  !> Region options of a NSET/FSET record: CSYS=, TOL= and coordinate=a[:b] fields.
+  subroutine read_region(rec, model, r, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(region_t), intent(out) :: r
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i, eq, k
+    character(len=:), allocatable :: f, key
+
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, r%csys, error)
+    if (allocated(error)) return
+    do i = 3, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) then
+        call input_error(error, rec%file, rec%line, 'expected COORDINATE=value or =from:to, got "' // f // '"', i)
+        return
+      end if
+      key = upper(f(:eq - 1))
+      select case (key)
+      case ('CSYS', 'GROUP')
+        cycle
+      case ('TOL')
+        call parse_real(f(eq + 1:), r%tol, error, rec, i)
+        if (allocated(error)) return
+        cycle
+      end select
+      call dof_index(key, model%systems(r%csys)%kind, k)
+      if (k == 0) then
+        call input_error(error, rec%file, rec%line, 'unknown coordinate "' // key // '" for this system (' // &
+                         dof_names(model%systems(r%csys)%kind) // ')', i)
+        return
+      end if
+      call parse_range_real(f(eq + 1:), r%lo(k), r%hi(k), error, rec, i)
+      if (allocated(error)) return
+      r%active(k) = .true.
+    end do
+    if (.not. any(r%active)) then
+      call input_error(error, rec%file, rec%line, 'the selection gives no coordinate range')
+    end if
+  end subroutine read_region
+
+  subroutine add_constraint(model, rec, iset, cs, dof, value)
+    type(model_t), intent(inout) :: model
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: iset, cs, dof
+    real(dp), intent(in) :: value
+    type(constraint_t) :: c
+    type(constraint_t), allocatable :: tmp(:)
+    c%node_set = iset
+    c%csys = cs
+    c%dof = dof
+    c%value = value
+    c%file = rec%file
+    c%line = rec%line
+    tmp = [model%constraints, c]
+    call move_alloc(tmp, model%constraints)
+  end subroutine add_constraint
+
+  subroutine get_node_set(rec, model, iset, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    integer, intent(out) :: iset
+    type(error_t), allocatable, intent(out) :: error
+    iset = model%find_node_set(field_text(rec, 2))
+    if (iset == 0) call input_error(error, rec%file, rec%line, 'undefined node set "' // field_text(rec, 2) // '"', 2)
+  end subroutine get_node_set
+
+  !> Direction or coordinate index from its name in a system of kind `kind`; 0 if unknown.
+  pure subroutine dof_index(name, kind, dof)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: kind
+    integer, intent(out) :: dof
+    dof = 0
+    select case (name)
+    case ('1', 'U1')
+      dof = 1
+    case ('2', 'U2')
+      dof = 2
+    case ('3', 'U3')
+      dof = 3
+    end select
+    if (dof /= 0) return
+    if (kind == csys_cylindrical) then
+      select case (name)
+      case ('R', 'UR')
+        dof = 1
+      case ('T', 'THETA', 'UT')
+        dof = 2
+      case ('Z', 'UZ')
+        dof = 3
+      end select
+    else
+      select case (name)
+      case ('X', 'UX')
+        dof = 1
+      case ('Y', 'UY')
+        dof = 2
+      case ('Z', 'UZ')
+        dof = 3
+      end select
+    end if
+  end subroutine dof_index
+
+  pure function dof_names(kind) result(s)
+    integer, intent(in) :: kind
+    character(len=:), allocatable :: s
+    if (kind == csys_cylindrical) then
+      s = 'R, THETA, Z'
+    else
+      s = 'X, Y, Z'
+    end if
+  end function dof_names
+
+  subroutine get_csys_option(rec, model, key, default, cs, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: key
+    integer, intent(in) :: default
+    integer, intent(out) :: cs
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    cs = default
+    call option_text(rec, key, text, ifield, found)
+    if (.not. found) return
+    call parse_int(text, cs, error, rec, ifield)
+    if (allocated(error)) return
+    if (cs < 1 .or. cs > size(model%systems)) then
+      call input_error(error, rec%file, rec%line, 'undefined coordinate system ' // str(cs), ifield)
+    end if
+  end subroutine get_csys_option
+
+  !> The text after KEY= in the first field of that key (case-insensitive).
+  subroutine option_text(rec, key, text, ifield, found)
+    type(record_t), intent(in) :: rec
+    character(len=*), intent(in) :: key
+    character(len=:), allocatable, intent(out) :: text
+    integer, intent(out) :: ifield
+    logical, intent(out) :: found
+    integer :: i, eq
+    character(len=:), allocatable :: f
+    found = .false.
+    ifield = 0
+    text = ''
+    do i = 2, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) cycle
+      if (upper(f(:eq - 1)) == key) then
+        text = f(eq + 1:)
+        ifield = i
+        found = .true.
+        return
+      end if
+    end do
+  end subroutine option_text
+
+  subroutine require_fields(rec, n, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: n
+    type(error_t), allocatable, intent(out) :: error
+    if (nfields(rec) < n) call input_error(error, rec%file, rec%line, keyword(rec) // ' needs at least ' // &
+                                           str(n - 1) // ' fields after the keyword; field ' // str(nfields(rec) + 1) &
+                                           // ' is missing', nfields(rec) + 1)
+  end subroutine require_fields
+
+  subroutine get_real(rec, i, v, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    real(dp), intent(out) :: v
+    type(error_t), allocatable, intent(out) :: error
+    call parse_real(field_text(rec, i), v, error, rec, i)
+  end subroutine get_real
+
+  subroutine get_int(rec, i, v, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer, intent(out) :: v
+    type(error_t), allocatable, intent(out) :: error
+    call parse_int(field_text(rec, i), v, error, rec, i)
+  end subroutine get_int
+
+  subroutine parse_real(text, v, error, rec, i)
+    character(len=*), intent(in) :: text
+    real(dp), intent(out) :: v
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: ios
+    v = 0.0_dp
+    ios = 1
+    if (len_trim(text) > 0 .and. verify(trim(text), '0123456789+-.eEdD') == 0) read (text, *, iostat=ios) v
+    if (ios /= 0 .or. v /= v .or. abs(v) > huge(v)) then
+      call input_error(error, rec%file, rec%line, 'expected a number, got "' // trim(text) // '"', i)
+    end if
+  end subroutine parse_real
+
+  subroutine parse_int(text, v, error, rec, i)
+    character(len=*), intent(in) :: text
+    integer, intent(out) :: v
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: ios
+    v = 0
+    ios = 1
+    if (len_trim(text) > 0 .and. verify(trim(text), '0123456789+-') == 0) read (text, *, iostat=ios) v
+    if (ios /= 0) call input_error(error, rec%file, rec%line, 'expected an integer, got "' // trim(text) // '"', i)
+  end subroutine parse_int
+
+  subroutine parse_range_real(text, lo, hi, error, rec, i)
+    character(len=*), intent(in) :: text
+    real(dp), intent(out) :: lo, hi
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: c
+    c = index(text, ':')
+    if (c == 0) then
+      call parse_real(text, lo, error, rec, i)
+      hi = lo
+      return
+    end if
+    call parse_real(text(:c - 1), lo, error, rec, i)
+    if (allocated(error)) return
+    call parse_real(text(c + 1:), hi, error, rec, i)
+    if (allocated(error)) return
+    if (hi < lo) call input_error(error, rec%file, rec%line, 'empty range "' // text // '" (from > to)', i)
+  end subroutine parse_range_real
+
+  subroutine parse_range_int(text, lo, hi, error, rec, i)
+    character(len=*), intent(in) :: text
+    integer, intent(out) :: lo, hi
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: c
+    c = index(text, ':')
+    if (c == 0) then
+      call parse_int(text, lo, error, rec, i)
+      hi = lo
+      return
+    end if
+    call parse_int(text(:c - 1), lo, error, rec, i)
+    if (allocated(error)) return
+    call parse_int(text(c + 1:), hi, error, rec, i)
+  end subroutine parse_range_int
+
+  !> A path relative to the directory of the file that names it.
+  pure function resolve_path(base, path) result(full)
+    character(len=*), intent(in) :: base, path
+    character(len=:), allocatable :: full
+    integer :: slash
+    if (len(path) > 0) then
+      if (path(1:1) == '/') then
+        full = path
+        return
+      end if
+    end if
+    slash = index(base, '/', back=.true.)
+    full = base(:slash) // path
+  end function resolve_path
+
+  pure integer function nodes_of(element_type)
+    character(len=*), intent(in) :: element_type
+    select case (element_type)
+    case ('hex8')
+      nodes_of = 8
+    case ('hex20', 'hex20r')
+      nodes_of = 20
+    case default
+      nodes_of = 0
+    end select
+  end function nodes_of
+
+  pure function upper(s) result(u)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: u
+    integer :: i, c
+    u = s
+    do i = 1, len(s)
+      c = iachar(s(i:i))
+      if (c >= iachar('a') .and. c <= iachar('z')) u(i:i) = achar(c - 32)
+    end do
+  end function upper
+
+  pure function lower(s) result(u)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: u
+    integer :: i, c
+    u = s
+    do i = 1, len(s)
+      c = iachar(s(i:i))
+      if (c >= iachar('A') .and. c <= iachar('Z')) u(i:i) = achar(c + 32)
+    end do
+  end function lower
+
+end module feps_deck

@@ -1,0 +1,454 @@
+!> Records of comma-separated fields, shared by the input-deck reader and the DATAIN reader.
+!!
+!! Lexical rules (SPEC section 2):
+!! - fields are separated by commas and trimmed; tabs and carriage returns count as blanks;
+!! - `!` starts a comment that runs to the end of the line; blank lines are ignored;
+!! - one trailing comma on a line is allowed and does not make an empty last field;
+!!   any other empty field (`a,,b`, `,a`, `a,,`) is the error "empty field";
+!! - a line whose first field begins with a digit, `+`, `-` or `.` continues the previous
+!!   record (Table 2.1 continues an element record on the next line); any other line starts
+!!   a new record. A continuation line before any record is an error.
+!!
+!! Every field remembers its line, so errors name file, line and field number (the field
+!! number counts from 1 over the whole record, continuation lines included). A missing
+!! field is reported on the record's last line, where it should have been.
+module feps_records
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, fatal_error, input_error, str, err_io, err_input
+  implicit none
+  private
+
+  public :: field_t, record_t
+  public :: read_records, records_from_text
+  public :: keyword, nfields, field_text, field_line, field_real, field_int, get_option
+  public :: record_error, to_upper, is_integer_text, is_real_text
+
+  !> One field of a record: its trimmed text and the line it is on.
+  type :: field_t
+    character(len=:), allocatable :: text
+    integer :: line = 0
+  end type field_t
+
+  !> One record: file name, line of its first line, and its fields (keyword first).
+  type :: record_t
+    character(len=:), allocatable :: file
+    integer :: line = 0
+    type(field_t), allocatable :: fields(:)
+  end type record_t
+
+  !> Records being collected from the lines of one file.
+  type :: record_builder_t
+    type(record_t), allocatable :: records(:)
+    integer :: nrec = 0
+  end type record_builder_t
+
+  character(len=*), parameter :: continuation_start = '0123456789+-.'
+
+contains
+
+  !> Read a text file into records (rules in the module header).
+  !! Errors: err_io if the file cannot be opened or read; err_input for an empty field,
+  !! a continuation line before any record, or a file without records.
+  subroutine read_records(path, records, error)
+    character(len=*), intent(in) :: path
+    type(record_t), allocatable, intent(out) :: records(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(record_builder_t) :: builder
+    character(len=:), allocatable :: line
+    character(len=256) :: iomsg
+    integer :: unit, iostat, lineno
+    logical :: eof
+
+    open (newunit=unit, file=path, status='old', action='read', form='formatted', &
+          access='sequential', iostat=iostat, iomsg=iomsg)
+    if (iostat /= 0) then
+      call fatal_error(error, err_io, path // ': cannot open file: ' // trim(iomsg))
+      return
+    end if
+    lineno = 0
+    do
+      call read_line(unit, line, eof, iostat, iomsg)
+      if (iostat /= 0) then
+        call fatal_error(error, err_io, path // ':' // str(lineno + 1) // ': cannot read: ' // trim(iomsg))
+        exit
+      end if
+      if (eof) exit
+      lineno = lineno + 1
+      call add_line(builder, path, line, lineno, error)
+      if (allocated(error)) exit
+    end do
+    close (unit)
+    if (allocated(error)) return
+    call finish_records(builder, path, records, error)
+  end subroutine read_records
+
+  !> Build records from lines held in memory, as if they were the file `name`
+  !! (line numbers are the array indices). Same rules and errors as `read_records`.
+  subroutine records_from_text(name, lines, records, error)
+    character(len=*), intent(in) :: name
+    character(len=*), intent(in) :: lines(:)
+    type(record_t), allocatable, intent(out) :: records(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(record_builder_t) :: builder
+    integer :: i
+    do i = 1, size(lines)
+      call add_line(builder, name, lines(i), i, error)
+      if (allocated(error)) return
+    end do
+    call finish_records(builder, name, records, error)
+  end subroutine records_from_text
+
+  !> First field upper-cased ('' for a record without fields).
+  pure function keyword(rec) result(key)
+    type(record_t), intent(in) :: rec
+    character(len=:), allocatable :: key
+    if (nfields(rec) > 0) then
+      key = to_upper(rec%fields(1)%text)
+    else
+      key = ''
+    end if
+  end function keyword
+
+  !> Number of fields, keyword included.
+  pure integer function nfields(rec)
+    type(record_t), intent(in) :: rec
+    if (allocated(rec%fields)) then
+      nfields = size(rec%fields)
+    else
+      nfields = 0
+    end if
+  end function nfields
+
+  !> Text of field i ('' if the record has fewer fields).
+  pure function field_text(rec, i) result(text)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    character(len=:), allocatable :: text
+    if (i >= 1 .and. i <= nfields(rec)) then
+      text = rec%fields(i)%text
+    else
+      text = ''
+    end if
+  end function field_text
+
+  !> Line of field i; for a missing field, the record's last line.
+  pure integer function field_line(rec, i)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: n
+    n = nfields(rec)
+    if (i >= 1 .and. i <= n) then
+      field_line = rec%fields(i)%line
+    else if (n > 0) then
+      field_line = rec%fields(n)%line
+    else
+      field_line = rec%line
+    end if
+  end function field_line
+
+  !> Input error at a record: "FILE:LINE: field I: MESSAGE" when `field` is given (the line
+  !! is that field's), else "FILE:LINE: MESSAGE" with the record's first line.
+  pure subroutine record_error(error, rec, message, field)
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    character(len=*), intent(in) :: message
+    integer, intent(in), optional :: field
+    if (present(field)) then
+      call input_error(error, rec%file, field_line(rec, field), message, field)
+    else
+      call input_error(error, rec%file, rec%line, message)
+    end if
+  end subroutine record_error
+
+  !> Field i as a real number; error if it is missing or not a number.
+  pure subroutine field_real(rec, i, value, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    real(dp), intent(out) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer :: iostat
+    value = 0.0_dp
+    if (i > nfields(rec)) then
+      call record_error(error, rec, 'missing field: expected a real number', i)
+      return
+    end if
+    if (.not. is_real_text(rec%fields(i)%text)) then
+      call record_error(error, rec, "expected a real number, got '" // rec%fields(i)%text // "'", i)
+      return
+    end if
+    read (rec%fields(i)%text, *, iostat=iostat) value
+    if (iostat /= 0) call record_error(error, rec, "real number out of range: '" // &
+                                       rec%fields(i)%text // "'", i)
+  end subroutine field_real
+
+  !> Field i as an integer; error if it is missing or not an integer.
+  pure subroutine field_int(rec, i, value, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer, intent(out) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer :: iostat
+    value = 0
+    if (i > nfields(rec)) then
+      call record_error(error, rec, 'missing field: expected an integer', i)
+      return
+    end if
+    if (.not. is_integer_text(rec%fields(i)%text)) then
+      call record_error(error, rec, "expected an integer, got '" // rec%fields(i)%text // "'", i)
+      return
+    end if
+    read (rec%fields(i)%text, *, iostat=iostat) value
+    if (iostat /= 0) call record_error(error, rec, "integer out of range: '" // &
+                                       rec%fields(i)%text // "'", i)
+  end subroutine field_int
+
+  !> Look for a field `key=value` (key case-insensitive, blanks around `=` allowed);
+  !! `value_text` is the trimmed text after `=` ('' if not found), `index` the field number
+  !! (0 if not found). The first matching field wins.
+  pure subroutine get_option(rec, key, value_text, found, index)
+    type(record_t), intent(in) :: rec
+    character(len=*), intent(in) :: key
+    character(len=:), allocatable, intent(out) :: value_text
+    logical, intent(out) :: found
+    integer, intent(out), optional :: index
+    integer :: i, eq
+    found = .false.
+    value_text = ''
+    if (present(index)) index = 0
+    do i = 1, nfields(rec)
+      eq = scan(rec%fields(i)%text, '=')
+      if (eq == 0) cycle
+      if (to_upper(trim(adjustl(rec%fields(i)%text(:eq - 1)))) /= to_upper(trim(adjustl(key)))) cycle
+      found = .true.
+      value_text = trim(adjustl(rec%fields(i)%text(eq + 1:)))
+      if (present(index)) index = i
+      return
+    end do
+  end subroutine get_option
+
+  !> Upper-case copy of a string (ASCII letters only).
+  pure function to_upper(text) result(upper)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: upper
+    integer :: i, c
+    upper = text
+    do i = 1, len(text)
+      c = iachar(text(i:i))
+      if (c >= iachar('a') .and. c <= iachar('z')) upper(i:i) = achar(c - 32)
+    end do
+  end function to_upper
+
+  !> True for [sign] digits.
+  pure logical function is_integer_text(text)
+    character(len=*), intent(in) :: text
+    integer :: first
+    is_integer_text = .false.
+    if (len(text) == 0) return
+    first = 1
+    if (text(1:1) == '+' .or. text(1:1) == '-') first = 2
+    if (first > len(text)) return
+    is_integer_text = verify(text(first:), '0123456789') == 0
+  end function is_integer_text
+
+  !> True for [sign] mantissa [exponent]: the mantissa has digits with at most one '.',
+  !! the exponent is e, E, d or D, an optional sign and digits.
+  pure logical function is_real_text(text)
+    character(len=*), intent(in) :: text
+    integer :: pos, ndigits, n
+    is_real_text = .false.
+    n = len(text)
+    pos = 1
+    if (n == 0) return
+    if (text(1:1) == '+' .or. text(1:1) == '-') pos = 2
+    ndigits = 0
+    do while (pos <= n)
+      if (verify(text(pos:pos), '0123456789') /= 0) exit
+      ndigits = ndigits + 1
+      pos = pos + 1
+    end do
+    if (pos <= n) then
+      if (text(pos:pos) == '.') then
+        pos = pos + 1
+        do while (pos <= n)
+          if (verify(text(pos:pos), '0123456789') /= 0) exit
+          ndigits = ndigits + 1
+          pos = pos + 1
+        end do
+      end if
+    end if
+    if (ndigits == 0) return
+    if (pos <= n) then
+      if (scan(text(pos:pos), 'eEdD') == 0) return
+      pos = pos + 1
+      if (pos <= n) then
+        if (text(pos:pos) == '+' .or. text(pos:pos) == '-') pos = pos + 1
+      end if
+      if (pos > n) return
+      if (verify(text(pos:), '0123456789') /= 0) return
+    end if
+    is_real_text = .true.
+  end function is_real_text
+
+  ! ---- private ----
+
+  !> Split one line into fields and add them as a new record or as a continuation.
+  subroutine add_line(builder, name, raw, lineno, error)
+    type(record_builder_t), intent(inout) :: builder
+    character(len=*), intent(in) :: name
+    character(len=*), intent(in) :: raw
+    integer, intent(in) :: lineno
+    type(error_t), allocatable, intent(out) :: error
+    character(len=len(raw)) :: line
+    type(field_t), allocatable :: parts(:)
+    integer :: i, nparts, first_field, bang, start, comma
+    logical :: continues
+
+    line = raw
+    do i = 1, len(line)
+      if (line(i:i) == achar(9) .or. line(i:i) == achar(13)) line(i:i) = ' '
+    end do
+    bang = index(line, '!')
+    if (bang > 0) line(bang:) = ' '
+    if (len_trim(line) == 0) return
+
+    ! count fields first, then cut them out
+    nparts = 1
+    do i = 1, len_trim(line)
+      if (line(i:i) == ',') nparts = nparts + 1
+    end do
+    allocate (parts(nparts))
+    start = 1
+    do i = 1, nparts
+      comma = index(line(start:), ',')
+      if (comma == 0) then
+        parts(i)%text = trim(adjustl(line(start:len_trim(line))))
+      else
+        parts(i)%text = trim(adjustl(line(start:start + comma - 2)))
+        start = start + comma
+      end if
+      parts(i)%line = lineno
+    end do
+    ! one trailing comma is allowed
+    if (nparts > 1 .and. len(parts(nparts)%text) == 0) nparts = nparts - 1
+
+    continues = .false.
+    if (len(parts(1)%text) > 0) continues = scan(parts(1)%text(1:1), continuation_start) == 1
+    if (continues .and. builder%nrec == 0) then
+      call input_error(error, name, lineno, 'continuation line (it begins with a number) before any record')
+      return
+    end if
+    first_field = 0
+    if (continues) first_field = nfields(builder%records(builder%nrec))
+    do i = 1, nparts
+      if (len(parts(i)%text) == 0) then
+        call input_error(error, name, lineno, 'empty field', first_field + i)
+        return
+      end if
+    end do
+
+    if (continues) then
+      call append_fields(builder%records(builder%nrec), parts(1:nparts))
+    else
+      call push_record(builder, name, lineno, parts(1:nparts))
+    end if
+  end subroutine add_line
+
+  subroutine append_fields(rec, parts)
+    type(record_t), intent(inout) :: rec
+    type(field_t), intent(in) :: parts(:)
+    type(field_t), allocatable :: merged(:)
+    integer :: i, n
+    n = nfields(rec)
+    allocate (merged(n + size(parts)))
+    do i = 1, n
+      merged(i) = rec%fields(i)
+    end do
+    do i = 1, size(parts)
+      merged(n + i) = parts(i)
+    end do
+    call move_alloc(merged, rec%fields)
+  end subroutine append_fields
+
+  subroutine push_record(builder, name, lineno, parts)
+    type(record_builder_t), intent(inout) :: builder
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: lineno
+    type(field_t), intent(in) :: parts(:)
+    type(record_t), allocatable :: bigger(:)
+    integer :: i
+    if (.not. allocated(builder%records)) allocate (builder%records(64))
+    if (builder%nrec == size(builder%records)) then
+      allocate (bigger(2 * size(builder%records)))
+      do i = 1, builder%nrec
+        call move_record(builder%records(i), bigger(i))
+      end do
+      call move_alloc(bigger, builder%records)
+    end if
+    builder%nrec = builder%nrec + 1
+    associate (rec => builder%records(builder%nrec))
+      rec%file = name
+      rec%line = lineno
+      allocate (rec%fields(size(parts)))
+      do i = 1, size(parts)
+        rec%fields(i) = parts(i)
+      end do
+    end associate
+  end subroutine push_record
+
+  !> Move a record's allocatable parts without copying the fields.
+  subroutine move_record(from, to)
+    type(record_t), intent(inout) :: from
+    type(record_t), intent(inout) :: to
+    call move_alloc(from%file, to%file)
+    to%line = from%line
+    call move_alloc(from%fields, to%fields)
+  end subroutine move_record
+
+  subroutine finish_records(builder, name, records, error)
+    type(record_builder_t), intent(inout) :: builder
+    character(len=*), intent(in) :: name
+    type(record_t), allocatable, intent(out) :: records(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i
+    if (builder%nrec == 0) then
+      call fatal_error(error, err_input, name // ': empty file (no records)')
+      allocate (records(0))
+      return
+    end if
+    allocate (records(builder%nrec))
+    do i = 1, builder%nrec
+      call move_record(builder%records(i), records(i))
+    end do
+  end subroutine finish_records
+
+  !> Read one whole line of any length; `eof` on end of file.
+  subroutine read_line(unit, line, eof, iostat, iomsg)
+    integer, intent(in) :: unit
+    character(len=:), allocatable, intent(out) :: line
+    logical, intent(out) :: eof
+    integer, intent(out) :: iostat
+    character(len=*), intent(inout) :: iomsg
+    character(len=512) :: chunk
+    integer :: nread
+    line = ''
+    eof = .false.
+    do
+      read (unit, '(a)', advance='no', iostat=iostat, iomsg=iomsg, size=nread) chunk
+      if (is_iostat_eor(iostat)) then
+        line = line // chunk(:nread)
+        iostat = 0
+        return
+      else if (is_iostat_end(iostat)) then
+        ! a last line without a newline still counts; the next call reports the end
+        line = line // chunk(:nread)
+        eof = len(line) == 0
+        iostat = 0
+        return
+      else if (iostat /= 0) then
+        return
+      end if
+      line = line // chunk(:nread)
+    end do
+  end subroutine read_line
+
+end module feps_records

@@ -1,0 +1,69 @@
+!> The abstract material: an elastic tangent (for the initial stiffness) and a stress update
+!! from the state at the start of a step, returning the consistent tangent. Solid materials
+!! work on 6 Voigt components [xx yy zz yz xz xy] (engineering shears); interface materials
+!! on 3 [gamma1 gamma2 eps_n] (3D) or 2 [gamma eps_n] (2D) relative displacements.
+module feps_material
+  use feps_kinds, only: dp
+  implicit none
+  private
+
+  !> Gauss-point states written to the results.
+  integer, parameter, public :: state_elastic = 0   !! elastic (interfaces: stuck)
+  integer, parameter, public :: state_plastic = 1   !! on the yield surface (interfaces: sliding)
+  integer, parameter, public :: state_open = 2      !! interface gap: open
+  integer, parameter, public :: state_tension = 3   !! tension zone (apex) of a solid material
+
+  type, abstract, public :: material_t
+    character(len=:), allocatable :: name
+  contains
+    procedure(elastic_tangent_interface), deferred :: elastic_tangent
+    procedure(update_interface), deferred :: update
+    procedure(is_linear_interface), deferred :: is_linear
+    procedure :: symmetric_tangent => material_symmetric_tangent
+  end type material_t
+
+  abstract interface
+    !> Elastic stiffness matrix for size(d, 1) components.
+    !! (A subroutine: gfortran 12 fails on array-valued deferred functions called through
+    !! arrays of polymorphic components.)
+    pure subroutine elastic_tangent_interface(self, d)
+      import :: material_t, dp
+      class(material_t), intent(in) :: self
+      real(dp), intent(out) :: d(:, :)
+    end subroutine elastic_tangent_interface
+
+    !> Stress update over a step: from stress sig0, total strain eps0 and state0 at the start
+    !! of the step and the strain increment deps, the stress sig and state at its end and the
+    !! consistent tangent dtan = d sig / d deps there.
+    pure subroutine update_interface(self, sig0, eps0, deps, state0, sig, state, dtan)
+      import :: material_t, dp
+      class(material_t), intent(in) :: self
+      real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
+      integer, intent(in) :: state0
+      real(dp), intent(out) :: sig(:)
+      integer, intent(out) :: state
+      real(dp), intent(out) :: dtan(:, :)
+    end subroutine update_interface
+
+    !> True when the material is linear elastic (no iteration, no state).
+    pure logical function is_linear_interface(self)
+      import :: material_t
+      class(material_t), intent(in) :: self
+    end function is_linear_interface
+  end interface
+
+  !> A slot in an array of polymorphic materials.
+  type, public :: material_slot_t
+    class(material_t), allocatable :: m
+  end type material_slot_t
+
+contains
+
+  !> True when the consistent tangent is symmetric (associated flow); a material with
+  !! non-associated flow overrides this.
+  pure logical function material_symmetric_tangent(self)
+    class(material_t), intent(in) :: self
+    material_symmetric_tangent = .true.
+  end function material_symmetric_tangent
+
+end module feps_material

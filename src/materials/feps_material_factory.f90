@@ -1,0 +1,56 @@
+!> Builds material objects from the model's material parameters, checking them.
+module feps_material_factory
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, input_error, str
+  use feps_model, only: material_spec_t
+  use feps_material, only: material_t
+  use feps_linear_elastic, only: linear_elastic_t
+  implicit none
+  private
+
+  public :: new_material
+
+contains
+
+  !> A material from its parameters; errors name the MATERIAL record's file and line.
+  subroutine new_material(spec, material, error)
+    type(material_spec_t), intent(in) :: spec
+    class(material_t), allocatable, intent(out) :: material
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: e, nu, g
+    logical :: has_e, has_nu, has_g
+    select case (spec%kind)
+    case ('elastic')
+      call spec%get('e', e, has_e)
+      call spec%get('nu', nu, has_nu)
+      call spec%get('g', g, has_g)
+      if (.not. has_nu) then
+        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': nu is missing')
+        return
+      end if
+      if (.not. (nu < 0.5_dp .and. nu > -1.0_dp)) then
+        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': nu = ' // str(nu) // &
+                         ' is outside (-1, 0.5): the material would not be positive definite')
+        return
+      end if
+      if (has_g .and. .not. has_e) then
+        e = 2.0_dp * g * (1.0_dp + nu)
+        has_e = .true.
+      end if
+      if (.not. has_e) then
+        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': E (or G) is missing')
+        return
+      end if
+      if (.not. (e > 0.0_dp) .or. e > huge(e)) then
+        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': E = ' // str(e) // &
+                         ' must be positive and finite')
+        return
+      end if
+      allocate (material, source=linear_elastic_t(name=spec%name, e=e, nu=nu))
+    case default
+      call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': unknown material kind "' // &
+                       spec%kind // '"')
+    end select
+  end subroutine new_material
+
+end module feps_material_factory

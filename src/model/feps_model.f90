@@ -1,0 +1,227 @@
+!> The analysis model as plain data: nodes, coordinate systems, element groups, material
+!! parameters, node and face selections, supports, loads and controls. The deck reader fills
+!! it; the element, material and assembly layers interpret it.
+module feps_model
+  use feps_kinds, only: dp
+  use feps_coordinate_system, only: coordinate_system_t
+  implicit none
+  private
+
+  integer, parameter, public :: name_len = 64
+
+  !> Material parameters by name (E, nu, G, ...), interpreted by the material layer.
+  type, public :: material_spec_t
+    character(len=:), allocatable :: name
+    character(len=:), allocatable :: kind          !! 'elastic', ...
+    character(len=name_len), allocatable :: keys(:)
+    real(dp), allocatable :: values(:)
+    character(len=:), allocatable :: file
+    integer :: line = 0
+  contains
+    procedure :: get => material_get
+  end type material_spec_t
+
+  !> Elements of one type and one material.
+  type, public :: element_group_t
+    character(len=:), allocatable :: name
+    character(len=:), allocatable :: element_type   !! 'hex8', 'hex20', 'hex20r'
+    character(len=:), allocatable :: material_name
+    integer :: material = 0                         !! index into model%materials
+    integer, allocatable :: connectivity(:, :)      !! (nodes per element, nelem), 1-based
+    integer, allocatable :: blocks(:)               !! DATAIN element blocks it holds
+    character(len=:), allocatable :: file
+    integer :: line = 0
+  end type element_group_t
+
+  !> A box in a coordinate system: each coordinate within [lo - tol, hi + tol] when active.
+  !! For a cylindrical system's theta (degrees) the range is taken modulo 360.
+  type, public :: region_t
+    integer :: csys = 2
+    logical :: active(3) = .false.
+    real(dp) :: lo(3) = 0.0_dp
+    real(dp) :: hi(3) = 0.0_dp
+    real(dp) :: tol = 1.0e-6_dp
+  end type region_t
+
+  type, public :: node_set_t
+    character(len=:), allocatable :: name
+    integer, allocatable :: nodes(:)
+  end type node_set_t
+
+  !> Element faces whose nodes all lie in a region, within one group (resolved by the
+  !! assembly layer, which knows the element faces).
+  type, public :: face_set_t
+    character(len=:), allocatable :: name
+    integer :: group = 0
+    type(region_t) :: region
+    integer, allocatable :: element(:)
+    integer, allocatable :: face(:)
+    character(len=:), allocatable :: file
+    integer :: line = 0
+  end type face_set_t
+
+  !> Fixed (value 0) or prescribed displacement of one DOF of every node of a set, the DOF
+  !! counted in the directions of coordinate system csys (radial, hoop, axial if cylindrical).
+  type, public :: constraint_t
+    integer :: node_set = 0
+    integer :: csys = 2
+    integer :: dof = 0
+    real(dp) :: value = 0.0_dp
+    character(len=:), allocatable :: file
+    integer :: line = 0
+  end type constraint_t
+
+  !> Force on every node of a set, components in the directions of system csys.
+  type, public :: nodal_load_t
+    integer :: node_set = 0
+    integer :: csys = 2
+    real(dp) :: components(3) = 0.0_dp
+  end type nodal_load_t
+
+  integer, parameter, public :: load_pressure = 1, load_traction = 2
+
+  !> Distributed load on a face set. Pressure acts against the outward normal; a traction has
+  !! components in the directions of system csys. Intensity = peak * shape(x), where shape is
+  !! 1 (uniform) or linear in one coordinate of system vary_csys: 0 at `zero`, 1 at `peak_at`,
+  !! clipped below at 0. With `use_total` the peak is scaled so that the integral of the
+  !! intensity over the faces equals `total`.
+  type, public :: face_load_t
+    integer :: face_set = 0
+    integer :: kind = load_pressure
+    integer :: csys = 2
+    real(dp) :: components(3) = 0.0_dp       !! traction direction and size (kind = traction)
+    real(dp) :: value = 0.0_dp               !! peak intensity (pressure)
+    logical :: use_total = .false.
+    real(dp) :: total = 0.0_dp
+    integer :: vary_csys = 2
+    integer :: vary_coord = 0                !! 0: uniform; 1..3: coordinate of vary_csys
+    real(dp) :: zero = 0.0_dp
+    real(dp) :: peak_at = 1.0_dp
+    character(len=:), allocatable :: file
+    integer :: line = 0
+  end type face_load_t
+
+  type, public :: model_t
+    character(len=:), allocatable :: title
+    character(len=:), allocatable :: deck_file
+    type(coordinate_system_t), allocatable :: systems(:)
+    integer :: nnode = 0
+    real(dp), allocatable :: coords(:, :)                 !! (3, nnode) global Cartesian
+    type(element_group_t), allocatable :: groups(:)
+    type(material_spec_t), allocatable :: materials(:)
+    type(node_set_t), allocatable :: node_sets(:)
+    type(face_set_t), allocatable :: face_sets(:)
+    type(constraint_t), allocatable :: constraints(:)
+    type(nodal_load_t), allocatable :: nodal_loads(:)
+    type(face_load_t), allocatable :: face_loads(:)
+    character(len=:), allocatable :: solver                !! 'cholmod' or 'skyline'
+    character(len=:), allocatable :: output_file
+    logical :: mesh_only = .false.                         !! a file holding only a DATAIN mesh
+  contains
+    procedure :: nelem => model_nelem
+    procedure :: find_node_set, find_face_set, find_material, find_group
+  end type model_t
+
+  public :: in_region
+
+contains
+
+  !> Value of parameter `key` (case as stored: lower case); `found` false if absent.
+  pure subroutine material_get(self, key, value, found)
+    class(material_spec_t), intent(in) :: self
+    character(len=*), intent(in) :: key
+    real(dp), intent(out) :: value
+    logical, intent(out) :: found
+    integer :: i
+    found = .false.
+    value = 0.0_dp
+    if (.not. allocated(self%keys)) return
+    do i = 1, size(self%keys)
+      if (trim(self%keys(i)) == key) then
+        value = self%values(i)
+        found = .true.
+        return
+      end if
+    end do
+  end subroutine material_get
+
+  pure integer function model_nelem(self) result(n)
+    class(model_t), intent(in) :: self
+    integer :: g
+    n = 0
+    if (.not. allocated(self%groups)) return
+    do g = 1, size(self%groups)
+      n = n + size(self%groups(g)%connectivity, 2)
+    end do
+  end function model_nelem
+
+  pure integer function find_node_set(self, name) result(idx)
+    class(model_t), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer :: i
+    idx = 0
+    if (.not. allocated(self%node_sets)) return
+    do i = 1, size(self%node_sets)
+      if (self%node_sets(i)%name == name) idx = i
+    end do
+  end function find_node_set
+
+  pure integer function find_face_set(self, name) result(idx)
+    class(model_t), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer :: i
+    idx = 0
+    if (.not. allocated(self%face_sets)) return
+    do i = 1, size(self%face_sets)
+      if (self%face_sets(i)%name == name) idx = i
+    end do
+  end function find_face_set
+
+  pure integer function find_material(self, name) result(idx)
+    class(model_t), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer :: i
+    idx = 0
+    if (.not. allocated(self%materials)) return
+    do i = 1, size(self%materials)
+      if (self%materials(i)%name == name) idx = i
+    end do
+  end function find_material
+
+  pure integer function find_group(self, name) result(idx)
+    class(model_t), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer :: i
+    idx = 0
+    if (.not. allocated(self%groups)) return
+    do i = 1, size(self%groups)
+      if (self%groups(i)%name == name) idx = i
+    end do
+  end function find_group
+
+  !> Is global point x inside region r (coordinates taken in system cs)?
+  pure logical function in_region(r, cs, x)
+    type(region_t), intent(in) :: r
+    type(coordinate_system_t), intent(in) :: cs
+    real(dp), intent(in) :: x(3)
+    real(dp) :: c(3), t
+    integer :: k
+    c = cs%from_global(x)
+    in_region = .true.
+    do k = 1, 3
+      if (.not. r%active(k)) cycle
+      if (k == 2 .and. cs%kind == 3) then
+        ! theta in degrees: shift into [lo - tol, lo - tol + 360)
+        t = modulo(c(2) - (r%lo(2) - r%tol), 360.0_dp) + (r%lo(2) - r%tol)
+        if (t > r%hi(2) + r%tol) then
+          in_region = .false.
+          return
+        end if
+      else if (c(k) < r%lo(k) - r%tol .or. c(k) > r%hi(k) + r%tol) then
+        in_region = .false.
+        return
+      end if
+    end do
+  end function in_region
+
+end module feps_model

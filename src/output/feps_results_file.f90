@@ -1,0 +1,720 @@
+!> The HDF5 results file of a run (SPEC section 10) and the XDMF file beside it.
+!!
+!! The file is written under the temporary name `<path>.part` and renamed to `<path>` only by a
+!! successful `close`; `discard` removes the temporary file, so a failed run leaves no partial
+!! result behind. Arrays are passed as Fortran sees them, (components, rows); HDF5 stores them
+!! transposed, so h5py sees (rows, components). Every results dataset carries a string attribute
+!! `components`; Gauss-point datasets are element-major and carry `points_per_element`.
+!!
+!! Errors: HDF5 or file-system failures return `err_io`; calls that break the contract (wrong
+!! shapes, a step not begun, no open file) return `err_internal`.
+module feps_results_file
+  use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char, c_loc, c_ptr
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t, fatal_error, err_io, err_internal, str
+  use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_type, &
+                       xdmf_topology_path, count_words
+  use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
+                  H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
+                  h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
+                  h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, h5aclose_f, &
+                  h5aexists_f, h5adelete_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
+                  H5T_FORTRAN_S1, H5T_STR_NULLPAD_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
+                  H5T_STD_I64LE, h5kind_to_type, H5_INTEGER_KIND, &
+                  h5pcreate_f, h5pset_create_inter_group_f, h5pclose_f, H5P_LINK_CREATE_F
+  implicit none
+  private
+
+  public :: results_file_t, step_group_name
+
+  !> An HDF5 results file being written; see the module notes for the life cycle.
+  type :: results_file_t
+    private
+    character(len=:), allocatable :: path        ! final name
+    character(len=:), allocatable :: part_path   ! temporary name while writing
+    integer(hid_t) :: file_id = -1
+    integer(hid_t) :: link_plist = -1            ! creates missing intermediate groups
+    logical :: is_open = .false.
+    logical :: part_exists = .false.
+    integer :: node_count = 0                    ! 0 until write_mesh
+    type(xdmf_group_t), allocatable :: groups(:)
+    type(xdmf_step_t), allocatable :: steps(:)
+  contains
+    procedure :: create
+    procedure :: write_mesh
+    procedure :: write_group
+    procedure :: begin_step
+    procedure :: write_nodal
+    procedure :: write_gauss
+    procedure :: write_summary_string
+    procedure :: write_summary_real
+    procedure :: write_summary_int
+    procedure :: close => close_file
+    procedure :: discard
+  end type results_file_t
+
+  interface
+    function c_rename(old_name, new_name) bind(C, name='rename') result(status)
+      import :: c_char, c_int
+      character(kind=c_char), intent(in) :: old_name(*), new_name(*)
+      integer(c_int) :: status
+    end function c_rename
+    function c_remove(name) bind(C, name='remove') result(status)
+      import :: c_char, c_int
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: status
+    end function c_remove
+  end interface
+
+contains
+
+  !> Name of the group of a step: the number with at least 4 digits, zero padded ('0001').
+  pure function step_group_name(step) result(name)
+    integer, intent(in) :: step
+    character(len=:), allocatable :: name
+    name = str(step)
+    if (len(name) < 4) name = repeat('0', 4 - len(name)) // name
+  end function step_group_name
+
+  !> Start a results file: HDF5 file `path // '.part'`, renamed to `path` by `close`.
+  subroutine create(self, path, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: error
+    integer :: hdferr
+
+    if (self%is_open) then
+      call fatal_error(error, err_internal, 'results file ' // self%path // ' is already open')
+      return
+    end if
+    if (len_trim(path) == 0) then
+      call fatal_error(error, err_io, 'results file name is empty')
+      return
+    end if
+    self%path = trim(path)
+    self%part_path = self%path // '.part'
+    self%node_count = 0
+    if (allocated(self%groups)) deallocate (self%groups)
+    if (allocated(self%steps)) deallocate (self%steps)
+    allocate (self%groups(0), self%steps(0))
+
+    call h5open_f(hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot initialise the HDF5 library')
+      return
+    end if
+    ! Failures are reported through error_t; the HDF5 error stack must not print to the screen.
+    call h5eset_auto_f(0, hdferr)
+
+    call h5fcreate_f(self%part_path, H5F_ACC_TRUNC_F, self%file_id, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create results file ' // self%part_path)
+      return
+    end if
+    self%is_open = .true.
+    self%part_exists = .true.
+    call h5pcreate_f(H5P_LINK_CREATE_F, self%link_plist, hdferr)
+    if (hdferr >= 0) call h5pset_create_inter_group_f(self%link_plist, 1, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot set up HDF5 link creation in ' // self%part_path)
+      return
+    end if
+  end subroutine create
+
+  !> `/mesh/coordinates`: coordinates(3, nnode), global Cartesian (h5py: nnode x 3).
+  subroutine write_mesh(self, coordinates, error)
+    class(results_file_t), intent(inout) :: self
+    real(dp), intent(in) :: coordinates(:, :)
+    type(error_t), allocatable, intent(out) :: error
+
+    call require_open(self, error)
+    if (allocated(error)) return
+    if (size(coordinates, 1) /= 3) then
+      call fatal_error(error, err_internal, 'write_mesh: coordinates need 3 rows, got ' // &
+                       str(size(coordinates, 1)))
+      return
+    end if
+    if (self%node_count > 0) then
+      call fatal_error(error, err_internal, 'write_mesh: the mesh is already written')
+      return
+    end if
+    call write_real_dataset(self, '/mesh/coordinates', coordinates, 'x y z', error)
+    if (allocated(error)) return
+    self%node_count = size(coordinates, 2)
+  end subroutine write_mesh
+
+  !> `/mesh/groups/<name>/connectivity`: connectivity(k, nelem), 1-based node numbers, and the
+  !! group attribute `element_type`; a 0-based copy at `/xdmf/<name>/topology` when XDMF can show it.
+  subroutine write_group(self, name, element_type, connectivity, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    character(len=*), intent(in) :: element_type
+    integer, intent(in) :: connectivity(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id
+    integer :: hdferr
+    type(xdmf_group_t), allocatable :: grown(:)
+
+    call require_open(self, error)
+    if (allocated(error)) return
+    call check_name(name, 'element group', error)
+    if (allocated(error)) return
+    if (find_group(self, name) > 0) then
+      call fatal_error(error, err_internal, 'write_group: group ' // name // ' is already written')
+      return
+    end if
+
+    call h5gcreate_f(self%file_id, '/mesh/groups/' // name, group_id, hdferr, lcpl_id=self%link_plist)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create group /mesh/groups/' // name // ' in ' // self%part_path)
+      return
+    end if
+    call write_string_attribute(group_id, 'element_type', element_type, error)
+    call h5gclose_f(group_id, hdferr)
+    if (allocated(error)) return
+    call write_int_dataset(self, '/mesh/groups/' // name // '/connectivity', connectivity, error)
+    if (allocated(error)) return
+    if (len(xdmf_topology_type(element_type)) > 0) then
+      call write_int_dataset(self, xdmf_topology_path(name), connectivity - 1, error)
+      if (allocated(error)) return
+    end if
+
+    allocate (grown(size(self%groups) + 1))
+    grown(:size(self%groups)) = self%groups
+    grown(size(grown))%name = name
+    grown(size(grown))%element_type = element_type
+    grown(size(grown))%nodes_per_element = size(connectivity, 1)
+    grown(size(grown))%element_count = size(connectivity, 2)
+    call move_alloc(grown, self%groups)
+  end subroutine write_group
+
+  !> Group `/steps/<NNNN>` with attributes `load_factor`, `iterations` and `residual`.
+  subroutine begin_step(self, step, load_factor, iterations, residual, error)
+    class(results_file_t), intent(inout) :: self
+    integer, intent(in) :: step
+    real(dp), intent(in) :: load_factor
+    integer, intent(in) :: iterations
+    real(dp), intent(in) :: residual
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id
+    integer :: hdferr
+    type(xdmf_step_t), allocatable :: grown(:)
+
+    call require_open(self, error)
+    if (allocated(error)) return
+    if (step < 0) then
+      call fatal_error(error, err_internal, 'begin_step: negative step number ' // str(step))
+      return
+    end if
+    if (find_step(self, step) > 0) then
+      call fatal_error(error, err_internal, 'begin_step: step ' // str(step) // ' is already written')
+      return
+    end if
+    call h5gcreate_f(self%file_id, '/steps/' // step_group_name(step), group_id, hdferr, &
+                     lcpl_id=self%link_plist)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create group /steps/' // step_group_name(step) // &
+                       ' in ' // self%part_path)
+      return
+    end if
+    call write_real_attribute(group_id, 'load_factor', load_factor, error)
+    if (.not. allocated(error)) call write_int_attribute(group_id, 'iterations', iterations, error)
+    if (.not. allocated(error)) call write_real_attribute(group_id, 'residual', residual, error)
+    call h5gclose_f(group_id, hdferr)
+    if (allocated(error)) return
+
+    allocate (grown(size(self%steps) + 1))
+    grown(:size(self%steps)) = self%steps
+    grown(size(grown))%number = step
+    grown(size(grown))%load_factor = load_factor
+    allocate (grown(size(grown))%fields(0))
+    call move_alloc(grown, self%steps)
+  end subroutine begin_step
+
+  !> `/steps/<NNNN>/<name>`: values(ncomp, nnode) at the nodes, attribute `components`
+  !! (ncomp space-separated names, e.g. 'ux uy uz').
+  subroutine write_nodal(self, step, name, values, components, error)
+    class(results_file_t), intent(inout) :: self
+    integer, intent(in) :: step
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: values(:, :)
+    character(len=*), intent(in) :: components
+    type(error_t), allocatable, intent(out) :: error
+    integer :: istep
+    character(len=:), allocatable :: dataset
+
+    call require_step(self, step, istep, error)
+    if (allocated(error)) return
+    call check_name(name, 'nodal field', error)
+    if (allocated(error)) return
+    call check_components(components, size(values, 1), name, error)
+    if (allocated(error)) return
+    if (self%node_count > 0 .and. size(values, 2) /= self%node_count) then
+      call fatal_error(error, err_internal, 'write_nodal: ' // name // ' has ' // str(size(values, 2)) // &
+                       ' nodes, the mesh ' // str(self%node_count))
+      return
+    end if
+    dataset = '/steps/' // step_group_name(step) // '/' // name
+    call write_real_dataset(self, dataset, values, components, error)
+    if (allocated(error)) return
+    call add_field(self%steps(istep), name, dataset, '', components, .true., size(values, 2), size(values, 1))
+  end subroutine write_nodal
+
+  !> `/steps/<NNNN>/<kind>/<group>`: values(ncomp, npoints) at the Gauss points, element-major, with
+  !! attributes `components` and `points_per_element`; and the element averages of each component,
+  !! (ncomp, nelem), at `/steps/<NNNN>/cell/<kind>/<group>` for the XDMF file.
+  subroutine write_gauss(self, step, kind, group, values, components, points_per_element, error)
+    class(results_file_t), intent(inout) :: self
+    integer, intent(in) :: step
+    character(len=*), intent(in) :: kind
+    character(len=*), intent(in) :: group
+    real(dp), intent(in) :: values(:, :)
+    character(len=*), intent(in) :: components
+    integer, intent(in) :: points_per_element
+    type(error_t), allocatable, intent(out) :: error
+    integer :: istep, igroup, nelem, e
+    integer(hid_t) :: dataset_id
+    integer :: hdferr
+    character(len=:), allocatable :: dataset, cell_dataset
+    real(dp), allocatable :: averages(:, :)
+
+    call require_step(self, step, istep, error)
+    if (allocated(error)) return
+    call check_name(kind, 'Gauss-point field', error)
+    if (allocated(error)) return
+    if (kind == 'cell') then
+      call fatal_error(error, err_internal, "write_gauss: kind 'cell' is reserved for element averages")
+      return
+    end if
+    call check_name(group, 'element group', error)
+    if (allocated(error)) return
+    call check_components(components, size(values, 1), kind // '/' // group, error)
+    if (allocated(error)) return
+    if (points_per_element < 1) then
+      call fatal_error(error, err_internal, 'write_gauss: points_per_element must be positive')
+      return
+    end if
+    if (mod(size(values, 2), points_per_element) /= 0) then
+      call fatal_error(error, err_internal, 'write_gauss: ' // str(size(values, 2)) // &
+                       ' points are not a multiple of ' // str(points_per_element) // ' per element')
+      return
+    end if
+    nelem = size(values, 2) / points_per_element
+    igroup = find_group(self, group)
+    if (igroup > 0) then
+      if (self%groups(igroup)%element_count /= nelem) then
+        call fatal_error(error, err_internal, 'write_gauss: ' // kind // '/' // group // ' has ' // &
+                         str(nelem) // ' elements, the group ' // str(self%groups(igroup)%element_count))
+        return
+      end if
+    end if
+
+    dataset = '/steps/' // step_group_name(step) // '/' // kind // '/' // group
+    call write_real_dataset(self, dataset, values, components, error, dataset_id)
+    if (allocated(error)) return
+    call write_int_attribute(dataset_id, 'points_per_element', points_per_element, error)
+    call h5dclose_f(dataset_id, hdferr)
+    if (allocated(error)) return
+
+    allocate (averages(size(values, 1), nelem))
+    do e = 1, nelem
+      averages(:, e) = sum(values(:, (e - 1) * points_per_element + 1:e * points_per_element), dim=2) &
+                       / real(points_per_element, dp)
+    end do
+    cell_dataset = '/steps/' // step_group_name(step) // '/cell/' // kind // '/' // group
+    call write_real_dataset(self, cell_dataset, averages, components, error)
+    if (allocated(error)) return
+    call add_field(self%steps(istep), kind, cell_dataset, group, components, .false., nelem, size(values, 1))
+  end subroutine write_gauss
+
+  !> String attribute `key` of the group `/summary` (replaced if it exists).
+  subroutine write_summary_string(self, key, value, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: key
+    character(len=*), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id
+    integer :: hdferr
+    call open_summary(self, key, group_id, error)
+    if (allocated(error)) return
+    call write_string_attribute(group_id, key, value, error)
+    call h5gclose_f(group_id, hdferr)
+  end subroutine write_summary_string
+
+  !> Real attribute `key` of the group `/summary` (replaced if it exists).
+  subroutine write_summary_real(self, key, value, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: key
+    real(dp), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id
+    integer :: hdferr
+    call open_summary(self, key, group_id, error)
+    if (allocated(error)) return
+    call write_real_attribute(group_id, key, value, error)
+    call h5gclose_f(group_id, hdferr)
+  end subroutine write_summary_real
+
+  !> 64-bit integer attribute `key` of the group `/summary` (replaced if it exists).
+  subroutine write_summary_int(self, key, value, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: key
+    integer(i8), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id, space_id, attribute_id
+    integer :: hdferr, hdferr2
+    integer(i8), target :: buffer
+    type(c_ptr) :: pointer
+
+    call open_summary(self, key, group_id, error)
+    if (allocated(error)) return
+    buffer = value
+    pointer = c_loc(buffer)
+    call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+    if (hdferr >= 0) then
+      call h5acreate_f(group_id, key, H5T_STD_I64LE, space_id, attribute_id, hdferr)
+      if (hdferr >= 0) then
+        call h5awrite_f(attribute_id, h5kind_to_type(i8, H5_INTEGER_KIND), pointer, hdferr)
+        call h5aclose_f(attribute_id, hdferr2)
+      end if
+      call h5sclose_f(space_id, hdferr2)
+    end if
+    call h5gclose_f(group_id, hdferr2)
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute /summary/' // key)
+  end subroutine write_summary_int
+
+  !> Close the HDF5 file, write the XDMF file beside it and rename `<path>.part` to `<path>`.
+  !! On an error the caller should `discard`.
+  subroutine close_file(self, error)
+    class(results_file_t), intent(inout) :: self
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: xdmf_path
+    integer :: hdferr, status
+
+    call require_open(self, error)
+    if (allocated(error)) return
+    call release_handles(self, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot close results file ' // self%part_path)
+      return
+    end if
+
+    xdmf_path = xdmf_file_name(self%path)
+    call write_xdmf(xdmf_path, base_name(self%path), self%node_count, self%groups, self%steps, error)
+    if (allocated(error)) then
+      status = c_remove(xdmf_path // c_null_char)
+      return
+    end if
+    if (c_rename(self%part_path // c_null_char, self%path // c_null_char) /= 0) then
+      status = c_remove(xdmf_path // c_null_char)
+      call fatal_error(error, err_io, 'cannot rename ' // self%part_path // ' to ' // self%path)
+      return
+    end if
+    self%part_exists = .false.
+  end subroutine close_file
+
+  !> Give up the file: close what is open and delete `<path>.part`. Harmless after `close`,
+  !! twice, or before `create`.
+  subroutine discard(self)
+    class(results_file_t), intent(inout) :: self
+    integer :: hdferr, status
+    if (self%is_open) call release_handles(self, hdferr)
+    if (self%part_exists) then
+      status = c_remove(self%part_path // c_null_char)
+      self%part_exists = .false.
+    end if
+  end subroutine discard
+
+  ! ---------------------------------------------------------------------------------------------
+
+  !> Close the property list and the file; the object is closed even if HDF5 reports an error.
+  subroutine release_handles(self, hdferr)
+    type(results_file_t), intent(inout) :: self
+    integer, intent(out) :: hdferr
+    integer :: plist_err
+    plist_err = 0
+    if (self%link_plist >= 0) call h5pclose_f(self%link_plist, plist_err)
+    self%link_plist = -1
+    call h5fclose_f(self%file_id, hdferr)
+    if (plist_err < 0) hdferr = plist_err
+    self%file_id = -1
+    self%is_open = .false.
+  end subroutine release_handles
+
+  subroutine require_open(self, error)
+    type(results_file_t), intent(in) :: self
+    type(error_t), allocatable, intent(out) :: error
+    if (.not. self%is_open) call fatal_error(error, err_internal, 'results file is not open')
+  end subroutine require_open
+
+  !> Index of `step` in the steps begun, or an error.
+  subroutine require_step(self, step, istep, error)
+    type(results_file_t), intent(in) :: self
+    integer, intent(in) :: step
+    integer, intent(out) :: istep
+    type(error_t), allocatable, intent(out) :: error
+    istep = 0
+    call require_open(self, error)
+    if (allocated(error)) return
+    istep = find_step(self, step)
+    if (istep == 0) call fatal_error(error, err_internal, 'step ' // str(step) // ' was not begun')
+  end subroutine require_step
+
+  pure function find_step(self, step) result(istep)
+    type(results_file_t), intent(in) :: self
+    integer, intent(in) :: step
+    integer :: istep
+    do istep = size(self%steps), 1, -1
+      if (self%steps(istep)%number == step) return
+    end do
+    istep = 0
+  end function find_step
+
+  pure function find_group(self, name) result(igroup)
+    type(results_file_t), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer :: igroup
+    do igroup = 1, size(self%groups)
+      if (self%groups(igroup)%name == name) return
+    end do
+    igroup = 0
+  end function find_group
+
+  !> HDF5 link names: not empty, no '/', not '.' (they become one path component).
+  subroutine check_name(name, what, error)
+    character(len=*), intent(in) :: name, what
+    type(error_t), allocatable, intent(out) :: error
+    if (len_trim(name) == 0 .or. index(name, '/') > 0 .or. name == '.') then
+      call fatal_error(error, err_io, 'cannot write results: ' // what // " name '" // name // &
+                       "' is empty, '.' or contains '/'")
+    end if
+  end subroutine check_name
+
+  subroutine check_components(components, ncomp, what, error)
+    character(len=*), intent(in) :: components
+    integer, intent(in) :: ncomp
+    character(len=*), intent(in) :: what
+    type(error_t), allocatable, intent(out) :: error
+    if (count_words(components) /= ncomp) then
+      call fatal_error(error, err_internal, what // ": components '" // components // "' name " // &
+                       str(count_words(components)) // ' columns, the values have ' // str(ncomp))
+    end if
+  end subroutine check_components
+
+  subroutine add_field(step, name, dataset, group, components, nodal, rows, columns)
+    type(xdmf_step_t), intent(inout) :: step
+    character(len=*), intent(in) :: name, dataset, group, components
+    logical, intent(in) :: nodal
+    integer, intent(in) :: rows, columns
+    type(xdmf_field_t), allocatable :: grown(:)
+    integer :: n
+    n = size(step%fields)
+    allocate (grown(n + 1))
+    grown(:n) = step%fields
+    grown(n + 1)%name = name
+    grown(n + 1)%dataset = dataset
+    grown(n + 1)%group = group
+    grown(n + 1)%components = components
+    grown(n + 1)%nodal = nodal
+    grown(n + 1)%rows = rows
+    grown(n + 1)%columns = columns
+    call move_alloc(grown, step%fields)
+  end subroutine add_field
+
+  !> Open `/summary` (created on first use) and remove an existing attribute `key`.
+  subroutine open_summary(self, key, group_id, error)
+    type(results_file_t), intent(in) :: self
+    character(len=*), intent(in) :: key
+    integer(hid_t), intent(out) :: group_id
+    type(error_t), allocatable, intent(out) :: error
+    logical :: exists
+    integer :: hdferr
+
+    group_id = -1
+    call require_open(self, error)
+    if (allocated(error)) return
+    if (len_trim(key) == 0) then
+      call fatal_error(error, err_internal, 'summary attribute name is empty')
+      return
+    end if
+    call h5lexists_f(self%file_id, 'summary', exists, hdferr)
+    if (hdferr >= 0) then
+      if (exists) then
+        call h5gopen_f(self%file_id, 'summary', group_id, hdferr)
+      else
+        call h5gcreate_f(self%file_id, 'summary', group_id, hdferr)
+      end if
+    end if
+    if (hdferr >= 0) then
+      call h5aexists_f(group_id, key, exists, hdferr)
+      if (hdferr >= 0 .and. exists) call h5adelete_f(group_id, key, hdferr)
+      if (hdferr < 0) call h5gclose_f(group_id, hdferr)
+    end if
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot open group /summary in ' // self%part_path)
+  end subroutine open_summary
+
+  !> Dataset of doubles, values(ncomp, n) (h5py: n x ncomp), with attribute `components`. With
+  !! `dataset_id` present the dataset stays open for more attributes (the caller closes it).
+  subroutine write_real_dataset(self, path, values, components, error, dataset_id)
+    type(results_file_t), intent(in) :: self
+    character(len=*), intent(in) :: path
+    real(dp), intent(in) :: values(:, :)
+    character(len=*), intent(in) :: components
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t), intent(out), optional :: dataset_id
+    integer(hid_t) :: space_id, id
+    integer(hsize_t) :: dims(2)
+    integer :: hdferr, ignored
+
+    dims = shape(values, kind=hsize_t)
+    call h5screate_simple_f(2, dims, space_id, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create dataspace for ' // path)
+      return
+    end if
+    call h5dcreate_f(self%file_id, path, H5T_NATIVE_DOUBLE, space_id, id, hdferr, lcpl_id=self%link_plist)
+    call h5sclose_f(space_id, ignored)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create dataset ' // path // ' in ' // self%part_path)
+      return
+    end if
+    if (size(values) > 0) call h5dwrite_f(id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path)
+    else
+      call write_string_attribute(id, 'components', components, error)
+    end if
+    if (present(dataset_id) .and. .not. allocated(error)) then
+      dataset_id = id
+    else
+      call h5dclose_f(id, ignored)
+      if (present(dataset_id)) dataset_id = -1
+    end if
+  end subroutine write_real_dataset
+
+  !> Dataset of default integers, values(k, n) (h5py: n x k).
+  subroutine write_int_dataset(self, path, values, error)
+    type(results_file_t), intent(in) :: self
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: values(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: space_id, id
+    integer(hsize_t) :: dims(2)
+    integer :: hdferr, ignored
+
+    dims = shape(values, kind=hsize_t)
+    call h5screate_simple_f(2, dims, space_id, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create dataspace for ' // path)
+      return
+    end if
+    call h5dcreate_f(self%file_id, path, H5T_NATIVE_INTEGER, space_id, id, hdferr, lcpl_id=self%link_plist)
+    call h5sclose_f(space_id, ignored)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create dataset ' // path // ' in ' // self%part_path)
+      return
+    end if
+    if (size(values) > 0) call h5dwrite_f(id, H5T_NATIVE_INTEGER, values, dims, hdferr)
+    call h5dclose_f(id, ignored)
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path)
+  end subroutine write_int_dataset
+
+  !> Fixed-length, null-padded ASCII string attribute (h5py reads it as bytes).
+  subroutine write_string_attribute(object_id, name, value, error)
+    integer(hid_t), intent(in) :: object_id
+    character(len=*), intent(in) :: name
+    character(len=*), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: type_id, space_id, attribute_id
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr, ignored
+    character(len=max(1, len(value))) :: buffer
+
+    ! HDF5 strings cannot have length 0: an empty value is stored as one null character.
+    buffer = value
+    if (len(value) == 0) buffer = c_null_char
+    dims = 1
+    call h5tcopy_f(H5T_FORTRAN_S1, type_id, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create string type for attribute ' // name)
+      return
+    end if
+    call h5tset_size_f(type_id, int(len(buffer), size_t), hdferr)
+    if (hdferr >= 0) call h5tset_strpad_f(type_id, H5T_STR_NULLPAD_F, hdferr)
+    if (hdferr >= 0) call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+    if (hdferr >= 0) then
+      call h5acreate_f(object_id, name, type_id, space_id, attribute_id, hdferr)
+      if (hdferr >= 0) then
+        call h5awrite_f(attribute_id, type_id, buffer, dims, hdferr)
+        call h5aclose_f(attribute_id, ignored)
+      end if
+      call h5sclose_f(space_id, ignored)
+    end if
+    call h5tclose_f(type_id, ignored)
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write string attribute ' // name)
+  end subroutine write_string_attribute
+
+  subroutine write_real_attribute(object_id, name, value, error)
+    integer(hid_t), intent(in) :: object_id
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: space_id, attribute_id
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr, ignored
+    dims = 1
+    call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+    if (hdferr >= 0) then
+      call h5acreate_f(object_id, name, H5T_NATIVE_DOUBLE, space_id, attribute_id, hdferr)
+      if (hdferr >= 0) then
+        call h5awrite_f(attribute_id, H5T_NATIVE_DOUBLE, value, dims, hdferr)
+        call h5aclose_f(attribute_id, ignored)
+      end if
+      call h5sclose_f(space_id, ignored)
+    end if
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute ' // name)
+  end subroutine write_real_attribute
+
+  subroutine write_int_attribute(object_id, name, value, error)
+    integer(hid_t), intent(in) :: object_id
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: space_id, attribute_id
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr, ignored
+    dims = 1
+    call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+    if (hdferr >= 0) then
+      call h5acreate_f(object_id, name, H5T_NATIVE_INTEGER, space_id, attribute_id, hdferr)
+      if (hdferr >= 0) then
+        call h5awrite_f(attribute_id, H5T_NATIVE_INTEGER, value, dims, hdferr)
+        call h5aclose_f(attribute_id, ignored)
+      end if
+      call h5sclose_f(space_id, ignored)
+    end if
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute ' // name)
+  end subroutine write_int_attribute
+
+  !> The XDMF file beside `path`: its extension replaced by '.xmf', or '.xmf' appended.
+  pure function xdmf_file_name(path) result(xdmf)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: xdmf
+    integer :: slash, dot
+    slash = index(path, '/', back=.true.)
+    dot = index(path, '.', back=.true.)
+    ! A dot that starts the file name (hidden file) is not an extension.
+    if (dot > slash + 1) then
+      xdmf = path(:dot - 1) // '.xmf'
+    else
+      xdmf = path // '.xmf'
+    end if
+  end function xdmf_file_name
+
+  pure function base_name(path) result(name)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: name
+    name = path(index(path, '/', back=.true.) + 1:)
+  end function base_name
+
+end module feps_results_file

@@ -1,0 +1,304 @@
+!> XDMF (version 3 XML) description of a feps HDF5 results file, so that ParaView can open it.
+!!
+!! The XML only points into the HDF5 file: geometry from `/mesh/coordinates`, topology from the
+!! 0-based connectivity copies `/xdmf/<group>/topology`, attributes from the nodal datasets and the
+!! element averages `/steps/<NNNN>/cell/<kind>/<group>`. Steps form a temporal collection (time =
+!! step number, because load factors may repeat across stages); each step is a spatial collection
+!! of one uniform grid per element group. Element types without an XDMF topology are left out.
+module feps_xdmf
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, fatal_error, err_io, str
+  implicit none
+  private
+
+  public :: write_xdmf, xdmf_topology_type, xdmf_topology_path, count_words, word
+
+  !> An element group as the XDMF file needs it.
+  type, public :: xdmf_group_t
+    character(len=:), allocatable :: name           !! group name, as in `/mesh/groups/<name>`
+    character(len=:), allocatable :: element_type   !! feps element type, e.g. 'hex8'
+    integer :: nodes_per_element = 0
+    integer :: element_count = 0
+  end type xdmf_group_t
+
+  !> A dataset of one step that ParaView should show.
+  type, public :: xdmf_field_t
+    character(len=:), allocatable :: name        !! attribute name (nodal) or prefix (cell), e.g. 'stress'
+    character(len=:), allocatable :: dataset     !! absolute HDF5 path of the dataset
+    character(len=:), allocatable :: group       !! element group of a cell field; '' for a nodal field
+    character(len=:), allocatable :: components  !! space-separated component names
+    logical :: nodal = .true.                    !! Center="Node" (else Center="Cell")
+    integer :: rows = 0                          !! nodes or elements (h5py first dimension)
+    integer :: columns = 0                       !! components (h5py second dimension)
+  end type xdmf_field_t
+
+  !> One written step and its fields.
+  type, public :: xdmf_step_t
+    integer :: number = 0
+    real(dp) :: load_factor = 0.0_dp
+    type(xdmf_field_t), allocatable :: fields(:)
+  end type xdmf_step_t
+
+contains
+
+  !> XDMF topology type for a feps element type; '' when XDMF has no matching cell.
+  !! Interface elements (lower layer then upper layer, pair by pair) are shown as flat solids.
+  pure function xdmf_topology_type(element_type) result(topology)
+    character(len=*), intent(in) :: element_type
+    character(len=:), allocatable :: topology
+    select case (element_type)
+    case ('hex8', 'interface-quad4')
+      topology = 'Hexahedron'
+    case ('hex20')
+      topology = 'Hexahedron_20'
+    case ('tri3')
+      topology = 'Triangle'
+    case ('tri6')
+      topology = 'Triangle_6'
+    case ('quad4')
+      topology = 'Quadrilateral'
+    case ('interface-tri3')
+      topology = 'Wedge'
+    case ('bar2')
+      topology = 'Polyline'
+    case default
+      topology = ''
+    end select
+  end function xdmf_topology_type
+
+  !> HDF5 path of the 0-based connectivity copy of a group.
+  pure function xdmf_topology_path(group) result(path)
+    character(len=*), intent(in) :: group
+    character(len=:), allocatable :: path
+    path = '/xdmf/' // group // '/topology'
+  end function xdmf_topology_path
+
+  !> Number of blank-separated words in `text`.
+  pure function count_words(text) result(n)
+    character(len=*), intent(in) :: text
+    integer :: n
+    integer :: i
+    logical :: in_word
+    n = 0
+    in_word = .false.
+    do i = 1, len(text)
+      if (text(i:i) /= ' ') then
+        if (.not. in_word) n = n + 1
+        in_word = .true.
+      else
+        in_word = .false.
+      end if
+    end do
+  end function count_words
+
+  !> The k-th blank-separated word of `text` ('' if there are fewer words).
+  pure function word(text, k) result(w)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: k
+    character(len=:), allocatable :: w
+    integer :: i, n, first
+    n = 0
+    first = 0
+    w = ''
+    do i = 1, len(text) + 1
+      if (i <= len(text)) then
+        if (text(i:i) /= ' ') then
+          if (first == 0) first = i
+          cycle
+        end if
+      end if
+      if (first > 0) then
+        n = n + 1
+        if (n == k) then
+          w = text(first:i - 1)
+          return
+        end if
+        first = 0
+      end if
+    end do
+  end function word
+
+  !> Write the XDMF file `path` describing the HDF5 file `hdf5_name` (a name relative to the
+  !! XDMF file's folder). With no steps the file shows the mesh alone; with no nodes, nothing.
+  subroutine write_xdmf(path, hdf5_name, node_count, groups, steps, error)
+    character(len=*), intent(in) :: path
+    character(len=*), intent(in) :: hdf5_name
+    integer, intent(in) :: node_count
+    type(xdmf_group_t), intent(in) :: groups(:)
+    type(xdmf_step_t), intent(in) :: steps(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: unit, ios, i
+    character(len=256) :: message
+    character(len=:), allocatable :: h5
+
+    h5 = escape(hdf5_name)
+    open (newunit=unit, file=path, status='replace', action='write', form='formatted', &
+          iostat=ios, iomsg=message)
+    if (ios /= 0) then
+      call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // trim(message))
+      return
+    end if
+
+    call put('<?xml version="1.0" ?>')
+    call put('<!DOCTYPE Xdmf SYSTEM "Xdmf.dtd" []>')
+    call put('<Xdmf Version="3.0">')
+    call put('  <Domain>')
+    if (node_count > 0) then
+      if (size(steps) == 0) then
+        call put('    <Grid Name="mesh" GridType="Collection" CollectionType="Spatial">')
+        call put_group_grids(6, 0)
+        call put('    </Grid>')
+      else
+        call put('    <Grid Name="steps" GridType="Collection" CollectionType="Temporal">')
+        do i = 1, size(steps)
+          call put('      <Grid Name="step ' // str(steps(i)%number) // &
+                   '" GridType="Collection" CollectionType="Spatial">')
+          call put('        <Time Value="' // str(steps(i)%number) // '"/>')
+          call put('        <Information Name="load_factor" Value="' // real_text(steps(i)%load_factor) // '"/>')
+          call put_group_grids(8, i)
+          call put('      </Grid>')
+        end do
+        call put('    </Grid>')
+      end if
+    end if
+    call put('  </Domain>')
+    call put('</Xdmf>')
+
+    if (ios /= 0) then
+      close (unit, status='delete', iostat=i)
+      call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // trim(message))
+      return
+    end if
+    close (unit, iostat=ios, iomsg=message)
+    if (ios /= 0) call fatal_error(error, err_io, 'cannot close XDMF file ' // path // ': ' // trim(message))
+
+  contains
+
+    !> One line; after the first failure nothing more is written (the error is reported once).
+    subroutine put(line)
+      character(len=*), intent(in) :: line
+      if (ios /= 0) return
+      write (unit, '(a)', iostat=ios, iomsg=message) line
+    end subroutine put
+
+    !> One uniform grid per group with an XDMF topology; fields of step `istep` (0: none).
+    subroutine put_group_grids(indent, istep)
+      integer, intent(in) :: indent, istep
+      character(len=:), allocatable :: pad, topology
+      integer :: g, f
+      pad = repeat(' ', indent)
+      do g = 1, size(groups)
+        topology = xdmf_topology_type(groups(g)%element_type)
+        if (len(topology) == 0) cycle
+        call put(pad // '<Grid Name="' // escape(groups(g)%name) // '" GridType="Uniform">')
+        if (topology == 'Polyline') then
+          call put(pad // '  <Topology TopologyType="' // topology // '" NumberOfElements="' // &
+                   str(groups(g)%element_count) // '" NodesPerElement="' // &
+                   str(groups(g)%nodes_per_element) // '">')
+        else
+          call put(pad // '  <Topology TopologyType="' // topology // '" NumberOfElements="' // &
+                   str(groups(g)%element_count) // '">')
+        end if
+        call put(pad // '    ' // data_item(groups(g)%element_count, groups(g)%nodes_per_element, &
+                 'Int', '4', xdmf_topology_path(escape(groups(g)%name))))
+        call put(pad // '  </Topology>')
+        call put(pad // '  <Geometry GeometryType="XYZ">')
+        call put(pad // '    ' // data_item(node_count, 3, 'Float', '8', '/mesh/coordinates'))
+        call put(pad // '  </Geometry>')
+        if (istep > 0) then
+          if (allocated(steps(istep)%fields)) then
+            do f = 1, size(steps(istep)%fields)
+              associate (field => steps(istep)%fields(f))
+                if (field%nodal) then
+                  if (field%rows == node_count) call put_attributes(pad // '  ', field, 'Node')
+                else if (field%group == groups(g)%name .and. field%rows == groups(g)%element_count) then
+                  call put_attributes(pad // '  ', field, 'Cell')
+                end if
+              end associate
+            end do
+          end if
+        end if
+        call put(pad // '</Grid>')
+      end do
+    end subroutine put_group_grids
+
+    !> A nodal 3-column field becomes one Vector; anything else one Scalar per column (a hyperslab).
+    subroutine put_attributes(pad, field, center)
+      character(len=*), intent(in) :: pad
+      type(xdmf_field_t), intent(in) :: field
+      character(len=*), intent(in) :: center
+      integer :: c
+      character(len=:), allocatable :: name
+      if (field%nodal .and. field%columns == 3) then
+        call put(pad // '<Attribute Name="' // escape(field%name) // '" AttributeType="Vector" Center="' // &
+                 center // '">')
+        call put(pad // '  ' // data_item(field%rows, 3, 'Float', '8', escape(field%dataset)))
+        call put(pad // '</Attribute>')
+        return
+      end if
+      do c = 1, field%columns
+        if (field%nodal .and. field%columns == 1) then
+          name = field%name
+        else
+          name = word(field%components, c)
+          if (len(name) == 0) name = str(c)
+          name = field%name // '_' // name
+        end if
+        call put(pad // '<Attribute Name="' // escape(name) // '" AttributeType="Scalar" Center="' // &
+                 center // '">')
+        call put(pad // '  <DataItem ItemType="HyperSlab" Dimensions="' // str(field%rows) // &
+                 ' 1" Type="HyperSlab">')
+        call put(pad // '    <DataItem Dimensions="3 2" NumberType="Int" Format="XML">0 ' // str(c - 1) // &
+                 ' 1 1 ' // str(field%rows) // ' 1</DataItem>')
+        call put(pad // '    ' // data_item(field%rows, field%columns, 'Float', '8', escape(field%dataset)))
+        call put(pad // '  </DataItem>')
+        call put(pad // '</Attribute>')
+      end do
+    end subroutine put_attributes
+
+    !> A DataItem pointing into the HDF5 file; rows x columns as h5py sees the dataset.
+    function data_item(rows, columns, number_type, precision, dataset) result(line)
+      integer, intent(in) :: rows, columns
+      character(len=*), intent(in) :: number_type, precision, dataset
+      character(len=:), allocatable :: line
+      line = '<DataItem Dimensions="' // str(rows) // ' ' // str(columns) // '" NumberType="' // &
+             number_type // '" Precision="' // precision // '" Format="HDF">' // h5 // ':' // &
+             dataset // '</DataItem>'
+    end function data_item
+
+  end subroutine write_xdmf
+
+  !> Full-precision text of a real.
+  pure function real_text(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=40) :: buf
+    write (buf, '(es24.16e3)') x
+    s = trim(adjustl(buf))
+  end function real_text
+
+  !> Text safe inside XML attribute values and element content.
+  pure function escape(text) result(safe)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: safe
+    integer :: i
+    safe = ''
+    do i = 1, len(text)
+      select case (text(i:i))
+      case ('&')
+        safe = safe // '&amp;'
+      case ('<')
+        safe = safe // '&lt;'
+      case ('>')
+        safe = safe // '&gt;'
+      case ('"')
+        safe = safe // '&quot;'
+      case ("'")
+        safe = safe // '&apos;'
+      case default
+        safe = safe // text(i:i)
+      end select
+    end do
+  end function escape
+
+end module feps_xdmf

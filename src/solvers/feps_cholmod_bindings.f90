@@ -1,0 +1,110 @@
+!> C interfaces to the CHOLMOD shim (feps_cholmod_shim.c). The C side owns all CHOLMOD
+!! state behind an opaque handle; nothing of cholmod_common is mirrored here.
+!! Column numbers returned by the shim are original (unpermuted) and 1-based.
+module feps_cholmod_bindings
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_int32_t, c_int64_t, c_double
+  implicit none
+  private
+
+  public :: feps_chol_create, feps_chol_free, feps_chol_analyze, feps_chol_factorize, feps_chol_solve
+  public :: feps_chol_flops, feps_chol_lnz, feps_chol_status, feps_chol_failed_column
+  public :: feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column
+
+  !> Return codes of analyze, factorize and solve (must match the enum in the shim).
+  integer(c_int), parameter, public :: chol_ok = 0            !! success
+  integer(c_int), parameter, public :: chol_bad_input = 1     !! invalid pattern or sizes
+  integer(c_int), parameter, public :: chol_not_posdef = 2    !! a pivot <= 0; see failed_column
+  integer(c_int), parameter, public :: chol_cholmod_error = 3 !! CHOLMOD failed; see status
+  integer(c_int), parameter, public :: chol_not_ready = 4     !! no analysis or no valid factor
+
+  interface
+    !> New handle (supernodal, METIS ordering, silent); c_null_ptr if out of memory.
+    function feps_chol_create() result(handle) bind(C, name="feps_chol_create")
+      import :: c_ptr
+      type(c_ptr) :: handle
+    end function feps_chol_create
+
+    !> Free the handle and everything it holds; a null handle is ignored.
+    subroutine feps_chol_free(handle) bind(C, name="feps_chol_free")
+      import :: c_ptr
+      type(c_ptr), value :: handle
+    end subroutine feps_chol_free
+
+    !> Keep the pattern (lower triangle CSR, 1-based, diagonal last in each row) and analyse it.
+    function feps_chol_analyze(handle, n, row_ptr, col) result(code) bind(C, name="feps_chol_analyze")
+      import :: c_ptr, c_int, c_int32_t, c_int64_t
+      type(c_ptr), value :: handle
+      integer(c_int64_t), value :: n
+      integer(c_int64_t), intent(in) :: row_ptr(*)
+      integer(c_int32_t), intent(in) :: col(*)
+      integer(c_int) :: code
+    end function feps_chol_analyze
+
+    !> Numerical factorization with the values in the order of the analysed pattern.
+    function feps_chol_factorize(handle, val) result(code) bind(C, name="feps_chol_factorize")
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: handle
+      real(c_double), intent(in) :: val(*)
+      integer(c_int) :: code
+    end function feps_chol_factorize
+
+    !> Solve A x = b in place; b is n x nrhs, column-major.
+    function feps_chol_solve(handle, n, nrhs, b) result(code) bind(C, name="feps_chol_solve")
+      import :: c_ptr, c_int, c_int64_t, c_double
+      type(c_ptr), value :: handle
+      integer(c_int64_t), value :: n, nrhs
+      real(c_double), intent(inout) :: b(*)
+      integer(c_int) :: code
+    end function feps_chol_solve
+
+    !> LL' flop count of the last analysis.
+    function feps_chol_flops(handle) result(flops) bind(C, name="feps_chol_flops")
+      import :: c_ptr, c_double
+      type(c_ptr), value :: handle
+      real(c_double) :: flops
+    end function feps_chol_flops
+
+    !> Nonzeros in L (with diagonal, without supernodal padding) of the last analysis.
+    function feps_chol_lnz(handle) result(lnz) bind(C, name="feps_chol_lnz")
+      import :: c_ptr, c_int64_t
+      type(c_ptr), value :: handle
+      integer(c_int64_t) :: lnz
+    end function feps_chol_lnz
+
+    !> CHOLMOD's Common->status after the last call.
+    function feps_chol_status(handle) result(status) bind(C, name="feps_chol_status")
+      import :: c_ptr, c_int
+      type(c_ptr), value :: handle
+      integer(c_int) :: status
+    end function feps_chol_status
+
+    !> Equation whose pivot was <= 0 in the last factorization (original, 1-based), or 0.
+    function feps_chol_failed_column(handle) result(column) bind(C, name="feps_chol_failed_column")
+      import :: c_ptr, c_int64_t
+      type(c_ptr), value :: handle
+      integer(c_int64_t) :: column
+    end function feps_chol_failed_column
+
+    !> Smallest L_jj**2 / A_jj of the last factorization (0 if it failed).
+    function feps_chol_min_ratio(handle) result(ratio) bind(C, name="feps_chol_min_ratio")
+      import :: c_ptr, c_double
+      type(c_ptr), value :: handle
+      real(c_double) :: ratio
+    end function feps_chol_min_ratio
+
+    !> Largest L_jj**2 / A_jj of the last factorization.
+    function feps_chol_max_ratio(handle) result(ratio) bind(C, name="feps_chol_max_ratio")
+      import :: c_ptr, c_double
+      type(c_ptr), value :: handle
+      real(c_double) :: ratio
+    end function feps_chol_max_ratio
+
+    !> Equation of the smallest ratio (original, 1-based).
+    function feps_chol_min_ratio_column(handle) result(column) bind(C, name="feps_chol_min_ratio_column")
+      import :: c_ptr, c_int64_t
+      type(c_ptr), value :: handle
+      integer(c_int64_t) :: column
+    end function feps_chol_min_ratio_column
+  end interface
+
+end module feps_cholmod_bindings

@@ -1,0 +1,168 @@
+!> Sparse Cholesky solver using CHOLMOD (supernodal, METIS ordering) through the C shim.
+!! The CHOLMOD state lives behind a C handle that the finalizer frees; do not copy a
+!! cholmod_solver_t after analysis (the copy would share, and later free, the same handle).
+module feps_cholmod_solver
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_int64_t
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t, fatal_error, err_model, err_solver, err_internal, str
+  use feps_sparse_matrix, only: csr_matrix_t
+  use feps_linear_solver, only: linear_solver_t, pivot_tolerance
+  use feps_cholmod_bindings, only: feps_chol_create, feps_chol_free, feps_chol_analyze, &
+    feps_chol_factorize, feps_chol_solve, feps_chol_flops, feps_chol_lnz, feps_chol_status, &
+    feps_chol_failed_column, feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column, &
+    chol_ok, chol_bad_input, chol_not_posdef, chol_not_ready
+  implicit none
+  private
+
+  !> CHOLMOD LL' solver: analyze once per pattern, factorize per set of values, solve many times.
+  type, extends(linear_solver_t), public :: cholmod_solver_t
+    private
+    type(c_ptr) :: handle = c_null_ptr
+    integer :: n = 0                 !! equations of the analysed pattern
+    integer(i8) :: nnz = 0           !! stored entries of the analysed pattern
+    logical :: factorized = .false.  !! a valid factor is available for solve
+  contains
+    procedure :: analyze => cholmod_analyze
+    procedure :: factorize => cholmod_factorize
+    procedure :: solve => cholmod_solve
+    procedure :: name => cholmod_name
+    final :: cholmod_finalize
+  end type cholmod_solver_t
+
+contains
+
+  !> METIS ordering and supernodal symbolic analysis of the pattern of `a`.
+  subroutine cholmod_analyze(self, a, error)
+    class(cholmod_solver_t), intent(inout) :: self
+    type(csr_matrix_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+
+    self%factorized = .false.
+    self%n = 0
+    self%nnz = 0
+    if (a%n <= 0 .or. .not. allocated(a%row_ptr) .or. .not. allocated(a%col)) then
+      call fatal_error(error, err_internal, 'cholmod: analyze called with an empty matrix')
+      return
+    end if
+    if (size(a%row_ptr, kind=i8) /= a%n + 1_i8 .or. size(a%col, kind=i8) < a%nnz()) then
+      call fatal_error(error, err_internal, 'cholmod: matrix arrays do not match its size')
+      return
+    end if
+    if (.not. c_associated(self%handle)) self%handle = feps_chol_create()
+    if (.not. c_associated(self%handle)) then
+      call fatal_error(error, err_solver, 'cholmod: cannot start CHOLMOD (out of memory)')
+      return
+    end if
+
+    code = feps_chol_analyze(self%handle, int(a%n, c_int64_t), a%row_ptr, a%col)
+    select case (code)
+    case (chol_ok)
+    case (chol_bad_input)
+      call fatal_error(error, err_internal, 'cholmod: pattern is not a sorted lower triangle ' // &
+                       'with the diagonal last in each row')
+      return
+    case default
+      call fatal_error(error, err_solver, 'cholmod: analysis failed (CHOLMOD status ' // &
+                       str(int(feps_chol_status(self%handle))) // ')')
+      return
+    end select
+    self%n = a%n
+    self%nnz = a%nnz()
+    self%factor_nnz = feps_chol_lnz(self%handle)
+    self%flops = feps_chol_flops(self%handle)
+  end subroutine cholmod_analyze
+
+  !> Numerical LL' factorization. Fails with err_model, naming the equation in error%item,
+  !! when a pivot is not positive or pivot / diagonal <= pivot_tolerance.
+  subroutine cholmod_factorize(self, a, error)
+    class(cholmod_solver_t), intent(inout) :: self
+    type(csr_matrix_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+    integer :: equation
+
+    self%factorized = .false.
+    if (.not. c_associated(self%handle) .or. self%n == 0) then
+      call fatal_error(error, err_internal, 'cholmod: factorize called before analyze')
+      return
+    end if
+    if (a%n /= self%n .or. .not. allocated(a%val)) then
+      call fatal_error(error, err_internal, 'cholmod: matrix does not match the analysed pattern')
+      return
+    end if
+    if (size(a%val, kind=i8) < self%nnz) then
+      call fatal_error(error, err_internal, 'cholmod: matrix does not match the analysed pattern')
+      return
+    end if
+
+    code = feps_chol_factorize(self%handle, a%val)
+    self%min_pivot_ratio = feps_chol_min_ratio(self%handle)
+    self%max_pivot_ratio = feps_chol_max_ratio(self%handle)
+    select case (code)
+    case (chol_ok)
+    case (chol_not_posdef)
+      equation = int(feps_chol_failed_column(self%handle))
+      call fatal_error(error, err_model, 'cholmod: stiffness matrix not positive definite at equation ' // &
+                       str(equation) // ' (unconstrained, mechanism or negative stiffness)', equation)
+      return
+    case (chol_not_ready)
+      call fatal_error(error, err_internal, 'cholmod: factorize called before analyze')
+      return
+    case default
+      call fatal_error(error, err_solver, 'cholmod: factorization failed (CHOLMOD status ' // &
+                       str(int(feps_chol_status(self%handle))) // ')')
+      return
+    end select
+
+    if (.not. (self%min_pivot_ratio > pivot_tolerance)) then
+      equation = int(feps_chol_min_ratio_column(self%handle))
+      call fatal_error(error, err_model, 'cholmod: stiffness matrix singular at equation ' // &
+                       str(equation) // ': pivot / diagonal = ' // str(self%min_pivot_ratio) // &
+                       ' <= ' // str(pivot_tolerance) // ' (unconstrained or mechanism)', equation)
+      return
+    end if
+    self%factorized = .true.
+    self%factorizations = self%factorizations + 1
+  end subroutine cholmod_factorize
+
+  !> Solve A x = b in place; size(b) = n * nrhs holds nrhs right-hand sides one after another.
+  subroutine cholmod_solve(self, b, error)
+    class(cholmod_solver_t), intent(inout) :: self
+    real(dp), intent(inout) :: b(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+    integer(i8) :: nrhs
+
+    if (.not. self%factorized) then
+      call fatal_error(error, err_internal, 'cholmod: solve called without a valid factorization')
+      return
+    end if
+    nrhs = size(b, kind=i8) / self%n
+    if (nrhs < 1 .or. nrhs * self%n /= size(b, kind=i8)) then
+      call fatal_error(error, err_internal, 'cholmod: right-hand side size is not a multiple of ' // &
+                       str(self%n))
+      return
+    end if
+    code = feps_chol_solve(self%handle, int(self%n, c_int64_t), nrhs, b)
+    if (code /= chol_ok) then
+      call fatal_error(error, err_solver, 'cholmod: solve failed (CHOLMOD status ' // &
+                       str(int(feps_chol_status(self%handle))) // ')')
+    end if
+  end subroutine cholmod_solve
+
+  pure function cholmod_name(self) result(name)
+    class(cholmod_solver_t), intent(in) :: self
+    character(len=:), allocatable :: name
+    name = 'cholmod'
+  end function cholmod_name
+
+  !> Release the CHOLMOD handle and everything it holds.
+  subroutine cholmod_finalize(self)
+    type(cholmod_solver_t), intent(inout) :: self
+    if (c_associated(self%handle)) call feps_chol_free(self%handle)
+    self%handle = c_null_ptr
+    self%factorized = .false.
+  end subroutine cholmod_finalize
+
+end module feps_cholmod_solver

@@ -1,0 +1,58 @@
+!> Explicit interfaces to the LAPACK and BLAS routines feps calls (double precision,
+!! reference argument lists, default-integer LP64 build).
+module feps_lapack
+  use feps_kinds, only: dp
+  implicit none
+  private
+
+  public :: dposv, dsyev, dgesv, dgemm, dpotrf
+
+  interface
+    !> Solve A X = B for symmetric positive definite A by Cholesky factorization.
+    subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
+      import :: dp
+      character(len=1), intent(in) :: uplo
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dposv
+
+    !> Eigenvalues (and optionally eigenvectors) of a symmetric matrix.
+    subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+      import :: dp
+      character(len=1), intent(in) :: jobz, uplo
+      integer, intent(in) :: n, lda, lwork
+      real(dp), intent(inout) :: a(lda, *)
+      real(dp), intent(out) :: w(*), work(*)
+      integer, intent(out) :: info
+    end subroutine dsyev
+
+    !> Solve A X = B for a general A by LU factorization with partial pivoting.
+    subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+      import :: dp
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+      integer, intent(out) :: ipiv(*), info
+    end subroutine dgesv
+
+    !> C = alpha op(A) op(B) + beta C.
+    subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
+      import :: dp
+      character(len=1), intent(in) :: transa, transb
+      integer, intent(in) :: m, n, k, lda, ldb, ldc
+      real(dp), intent(in) :: alpha, beta
+      real(dp), intent(in) :: a(lda, *), b(ldb, *)
+      real(dp), intent(inout) :: c(ldc, *)
+    end subroutine dgemm
+
+    !> Cholesky factorization of a symmetric positive definite matrix.
+    subroutine dpotrf(uplo, n, a, lda, info)
+      import :: dp
+      character(len=1), intent(in) :: uplo
+      integer, intent(in) :: n, lda
+      real(dp), intent(inout) :: a(lda, *)
+      integer, intent(out) :: info
+    end subroutine dpotrf
+  end interface
+
+end module feps_lapack

@@ -1,0 +1,324 @@
+!> End-to-end linear analyses against closed forms and each other.
+module test_analysis
+  use feps_kinds, only: dp, pi
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_model, only: model_t, node_set_t, constraint_t
+  use feps_deck, only: read_deck
+  use feps_linear_analysis, only: linear_result_t, run_linear
+  use feps_elastic, only: elastic_matrix
+  use feps_program, only: run_options_t, run_summary_t, run_feps
+  implicit none
+  private
+
+  public :: collect_analysis
+
+contains
+
+  subroutine collect_analysis(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest('cube under uniform pressure, both solvers', test_cube), &
+      new_unittest('patch test on a distorted hex8 mesh', test_patch_hex8), &
+      new_unittest('patch test on a distorted hex20 mesh', test_patch_hex20), &
+      new_unittest('Lame cylinder, hex20, nodal cylindrical supports', test_lame), &
+      new_unittest('cantilever tip deflection, hex20', test_cantilever), &
+      new_unittest('model B: skyline equals CHOLMOD', test_model_b_solvers), &
+      new_unittest('model B: edge load integrates to 1000 kN', test_model_b_load), &
+      new_unittest('Table 2.1 read as a mesh-only input', test_mesh_only) &
+      ]
+  end subroutine collect_analysis
+
+  !> Uniaxial compression: szz = -p, other stresses 0; uz(top) = -p L / E, lateral nu p L / E.
+  subroutine test_cube(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(linear_result_t) :: res
+    character(len=7), parameter :: solvers(2) = ['cholmod', 'skyline']
+    integer :: s, q, n
+    real(dp), parameter :: p = 100.0_dp, e = 200000.0_dp, nu = 0.3_dp, l = 10.0_dp
+    do s = 1, 2
+      call read_deck('test/data/cube.dat', model, error)
+      if (allocated(error)) return
+      call run_linear(model, trim(solvers(s)), res, error)
+      if (allocated(error)) return
+      do q = 1, size(res%stresses(1)%sig, 2)
+        call check(error, res%stresses(1)%sig(3, q), -p, 'szz at a Gauss point', rel=1.0e-10_dp)
+        if (allocated(error)) return
+        call check(error, maxval(abs(res%stresses(1)%sig([1, 2, 4, 5, 6], q))), 0.0_dp, 'other stresses', &
+                   abs=1.0e-9_dp)
+        if (allocated(error)) return
+      end do
+      n = 27   ! corner (10, 10, 10)
+      call check(error, res%displacement(3, n), -p * l / e, 'uz at the top', rel=1.0e-10_dp)
+      if (allocated(error)) return
+      call check(error, res%displacement(1, n), nu * p * l / e, 'ux at x = 10', rel=1.0e-10_dp)
+      if (allocated(error)) return
+      call check(error, sum(res%reaction(3, :)), p * l * l, 'vertical reaction', rel=1.0e-10_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_cube
+
+  subroutine test_patch_hex8(error)
+    type(error_t), allocatable, intent(out) :: error
+    call patch_test('test/data/patch_hex8.dat', 0.12_dp, error)
+  end subroutine test_patch_hex8
+
+  subroutine test_patch_hex20(error)
+    type(error_t), allocatable, intent(out) :: error
+    call patch_test('test/data/patch_hex20.dat', 0.05_dp, error)
+  end subroutine test_patch_hex20
+
+  !> Distort every node but the cube's, prescribe u = A x + c on the boundary nodes, solve:
+  !! the interior displacements and every Gauss-point stress must be exact (1e-10).
+  subroutine patch_test(deck, amplitude, error)
+    character(len=*), intent(in) :: deck
+    real(dp), intent(in) :: amplitude
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(linear_result_t) :: res
+    real(dp), parameter :: grad(3, 3) = reshape([1.0e-3_dp, -2.0e-4_dp, 3.0e-4_dp, 5.0e-4_dp, -7.0e-4_dp, &
+                                                 1.0e-4_dp, -4.0e-4_dp, 6.0e-4_dp, 2.0e-3_dp], [3, 3])
+    real(dp), parameter :: shift(3) = [0.01_dp, -0.02_dp, 0.03_dp]
+    real(dp) :: x(3), eps(6), sig(6), u(3)
+    logical, allocatable :: boundary(:)
+    integer :: n, d, q, nb
+    type(node_set_t), allocatable :: sets(:)
+    type(constraint_t), allocatable :: cons(:)
+
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    allocate (boundary(model%nnode))
+    do n = 1, model%nnode
+      x = model%coords(:, n)
+      boundary(n) = any(abs(x) < 1.0e-9_dp .or. abs(x - 1.0_dp) < 1.0e-9_dp)
+      ! Deterministic distortion of interior nodes
+      if (.not. boundary(n)) model%coords(:, n) = x + amplitude * [sin(7.1_dp * n), cos(3.3_dp * n), sin(5.7_dp * n + 1)]
+    end do
+    nb = count(boundary)
+    allocate (sets(nb), cons(3 * nb))
+    nb = 0
+    do n = 1, model%nnode
+      if (.not. boundary(n)) cycle
+      nb = nb + 1
+      sets(nb)%name = 'b'
+      sets(nb)%nodes = [n]
+      u = matmul(grad, model%coords(:, n)) + shift
+      do d = 1, 3
+        cons(3 * (nb - 1) + d) = constraint_t(node_set=nb, csys=2, dof=d, value=u(d), file=deck, line=0)
+      end do
+    end do
+    model%node_sets = sets
+    model%constraints = cons
+    call run_linear(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    do n = 1, model%nnode
+      u = matmul(grad, model%coords(:, n)) + shift
+      if (boundary(n)) cycle
+      if (all(res%displacement(:, n) == 0.0_dp)) cycle   ! a lattice node in no element
+      do d = 1, 3
+        call check(error, res%displacement(d, n), u(d), 'interior displacement', abs=1.0e-12_dp)
+        if (allocated(error)) return
+      end do
+    end do
+    eps = [grad(1, 1), grad(2, 2), grad(3, 3), grad(2, 3) + grad(3, 2), grad(1, 3) + grad(3, 1), &
+           grad(1, 2) + grad(2, 1)]
+    sig = matmul(elastic_matrix(1000.0_dp, 0.25_dp), eps)
+    do q = 1, size(res%stresses(1)%sig, 2)
+      do d = 1, 6
+        call check(error, res%stresses(1)%sig(d, q), sig(d), 'constant stress', abs=1.0e-10_dp * maxval(abs(sig)))
+        if (allocated(error)) return
+      end do
+    end do
+  end subroutine patch_test
+
+  !> Plane-strain Lame solution: u(a) and the hoop stress at the Gauss points nearest the bore.
+  subroutine test_lame(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(linear_result_t) :: res
+    real(dp), parameter :: a = 600.0_dp, b = 715.0_dp, p = 10.0_dp, e = 40000.0_dp, nu = 0.2_dp
+    real(dp) :: ca, cb, r, sr, st, u_exact, x(3), hoop
+    integer :: n, q, e_idx, g, checked
+    call read_deck('test/data/lame_hex20.dat', model, error)
+    if (allocated(error)) return
+    call run_linear(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    ca = p * a**2 / (b**2 - a**2)
+    cb = p * a**2 * b**2 / (b**2 - a**2)
+    ! plane strain: u/r = ((1 - nu^2) s_theta - nu (1 + nu) s_r) / E at r = a
+    sr = ca - cb / a**2
+    st = ca + cb / a**2
+    u_exact = a * ((1.0_dp - nu**2) * st - nu * (1.0_dp + nu) * sr) / e
+    checked = 0
+    do n = 1, model%nnode
+      x = model%coords(:, n)
+      if (abs(hypot(x(1), x(2)) - a) > 1.0e-6_dp) cycle
+      if (all(res%displacement(:, n) == 0.0_dp)) cycle
+      call check(error, dot_product(res%displacement(1:2, n), x(1:2)) / a, u_exact, 'radial displacement at bore', &
+                 rel=0.01_dp)
+      if (allocated(error)) return
+      checked = checked + 1
+    end do
+    call check(error, checked > 10, 'bore nodes were checked')
+    if (allocated(error)) return
+    ! hoop stress at every Gauss point of the elements at the bore against the exact field
+    do e_idx = 1, size(model%groups(1)%connectivity, 2), 4
+      do g = 1, 27
+        q = (e_idx - 1) * 27 + g
+        x = gauss_point_position(model, e_idx, g)
+        r = hypot(x(1), x(2))
+        hoop = hoop_stress(res%stresses(1)%sig(:, q), x)
+        call check(error, hoop, ca + cb / r**2, 'hoop stress at a Gauss point near the bore', rel=0.01_dp)
+        if (allocated(error)) return
+      end do
+    end do
+  end subroutine test_lame
+
+  !> Position of Gauss point g (3x3x3 rule, first direction fastest) of element e of group 1,
+  !! from the element's corner nodes by trilinear interpolation (enough to get its radius).
+  function gauss_point_position(model, e, g) result(x)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: e, g
+    real(dp) :: x(3), xi(3), nsh(8)
+    real(dp), parameter :: pts(3) = [-sqrt(0.6_dp), 0.0_dp, sqrt(0.6_dp)]
+    real(dp), parameter :: sgn(3, 8) = reshape([-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1, -1, -1, 1, 1, -1, 1, &
+                                               1, 1, 1, -1, 1, 1], [3, 8]) * 1.0_dp
+    integer :: i, j, k, a
+    i = mod(g - 1, 3) + 1
+    j = mod((g - 1) / 3, 3) + 1
+    k = (g - 1) / 9 + 1
+    xi = [pts(i), pts(j), pts(k)]
+    do a = 1, 8
+      nsh(a) = product(1.0_dp + sgn(:, a) * xi) / 8.0_dp
+    end do
+    x = matmul(model%coords(:, model%groups(1)%connectivity(1:8, e)), nsh)
+  end function gauss_point_position
+
+  pure real(dp) function hoop_stress(s, x)
+    real(dp), intent(in) :: s(6), x(3)
+    real(dp) :: c, sn
+    c = x(1) / hypot(x(1), x(2))
+    sn = x(2) / hypot(x(1), x(2))
+    hoop_stress = s(1) * sn**2 + s(2) * c**2 - 2.0_dp * s(6) * sn * c
+  end function hoop_stress
+
+  !> Timoshenko cantilever: P L^3 / (3 E I) + P L / (kappa G A), kappa = 5/6, within 2%.
+  subroutine test_cantilever(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(linear_result_t) :: res
+    real(dp), parameter :: p = 100.0_dp, l = 100.0_dp, h = 10.0_dp, e = 200000.0_dp
+    real(dp) :: inertia, g, delta, tip
+    integer :: n, count_tip
+    call read_deck('test/data/cantilever_hex20.dat', model, error)
+    if (allocated(error)) return
+    call run_linear(model, model%solver, res, error)
+    if (allocated(error)) return
+    inertia = h**4 / 12.0_dp
+    g = e / 2.0_dp
+    delta = p * l**3 / (3.0_dp * e * inertia) + p * l / (5.0_dp / 6.0_dp * g * h * h)
+    tip = 0.0_dp
+    count_tip = 0
+    do n = 1, model%nnode
+      if (abs(model%coords(1, n) - l) > 1.0e-9_dp .or. all(res%displacement(:, n) == 0.0_dp)) cycle
+      tip = tip + res%displacement(2, n)
+      count_tip = count_tip + 1
+    end do
+    call check(error, -tip / count_tip, delta, 'mean tip deflection', rel=0.02_dp)
+    if (allocated(error)) return
+    call check(error, sum(res%reaction(2, :)), p, 'shear reaction at the clamp', rel=1.0e-9_dp)
+  end subroutine test_cantilever
+
+  !> The two solvers on the model B deck: displacements equal to 1e-9 relative.
+  subroutine test_model_b_solvers(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(linear_result_t) :: res_c, res_s
+    real(dp) :: diff, scale
+    call read_deck('input/modelB.dat', model, error)
+    if (allocated(error)) return
+    call run_linear(model, 'cholmod', res_c, error)
+    if (allocated(error)) return
+    call read_deck('input/modelB.dat', model, error)
+    if (allocated(error)) return
+    call run_linear(model, 'skyline', res_s, error)
+    if (allocated(error)) return
+    scale = maxval(abs(res_c%displacement))
+    diff = maxval(abs(res_c%displacement - res_s%displacement))
+    call check(error, diff / scale, 0.0_dp, 'max |u_cholmod - u_skyline| / max |u|', abs=1.0e-9_dp)
+    if (allocated(error)) return
+    call check(error, scale > 0.0_dp, 'nonzero displacements')
+  end subroutine test_model_b_solvers
+
+  !> The edge load on each end sums to 1000 kN (in +z at z = 0, -z at z = 2500) and its
+  !! peak intensity matches the closed-form integral over the exact annulus within 1%
+  !! (the mesh's faces are chords of the circle); the anchor's z reaction vanishes.
+  subroutine test_model_b_load(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(linear_result_t) :: res
+    real(dp) :: f_low, f_high, integral, r, dr, theta0, moment_fe, moment_exact, w
+    integer :: n, i
+    integer, parameter :: nsimpson = 2000
+    call read_deck('input/modelB.dat', model, error)
+    if (allocated(error)) return
+    call run_linear(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    f_low = 0.0_dp
+    f_high = 0.0_dp
+    moment_fe = 0.0_dp
+    do n = 1, model%nnode
+      if (abs(model%coords(3, n)) < 1.0e-6_dp) then
+        f_low = f_low + res%external_force(3, n)
+        moment_fe = moment_fe + res%external_force(3, n) * model%coords(1, n)
+      end if
+      if (abs(model%coords(3, n) - 2500.0_dp) < 1.0e-6_dp) f_high = f_high + res%external_force(3, n)
+    end do
+    call check(error, f_low, 1.0e6_dp, 'resultant at z = 0 (N)', rel=1.0e-10_dp)
+    if (allocated(error)) return
+    call check(error, f_high, -1.0e6_dp, 'resultant at z = 2500 (N)', rel=1.0e-10_dp)
+    if (allocated(error)) return
+    ! Closed form: for a unit peak, integral of (-220 - x)/495 over the part of the half
+    ! annulus with x < -220, and its first moment in x; the resultant's x position follows.
+    dr = (715.0_dp - 600.0_dp) / nsimpson
+    integral = 0.0_dp
+    moment_exact = 0.0_dp
+    do i = 0, nsimpson
+      r = 600.0_dp + i * dr
+      w = merge(1.0_dp, merge(4.0_dp, 2.0_dp, mod(i, 2) == 1), i == 0 .or. i == nsimpson) * dr / 3.0_dp
+      theta0 = acos(-220.0_dp / r)
+      integral = integral + w * r * (-220.0_dp * (pi - theta0) + r * sin(theta0)) / 495.0_dp
+      ! integral of x (-220 - x) over theta: x = r cos t
+      moment_exact = moment_exact + w * r * (-220.0_dp * r * (-sin(theta0)) - r**2 * &
+                     ((pi - theta0) / 2.0_dp - sin(2.0_dp * theta0) / 4.0_dp)) / 495.0_dp
+    end do
+    call check(error, moment_fe / f_low, moment_exact / integral, 'x of the load resultant (mm)', rel=0.01_dp)
+    if (allocated(error)) return
+    call check(error, maxval(abs(res%reaction(3, :))), 0.0_dp, 'z reaction at the anchor node (N)', &
+               abs=1.0e-6_dp * 1.0e6_dp)
+  end subroutine test_model_b_load
+
+  !> Table 2.1 as the whole input: counts and a positive smallest Jacobian.
+  subroutine test_mesh_only(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    opt%deck = '../shared/benchmarks/table2_1.datain'
+    opt%output = ''
+    opt%solver = ''
+    call run_feps(opt, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%nodes, 3375, 'nodes')
+    if (allocated(error)) return
+    call check(error, summary%elements, 2496, 'elements')
+    if (allocated(error)) return
+    call check(error, summary%mesh_only, 'reported as a mesh')
+    if (allocated(error)) return
+    call check(error, summary%min_jacobian > 0.0_dp, 'positive Jacobians')
+    if (allocated(error)) return
+    call check(error, summary%bbox(3, 2), 220.0_dp, 'z extent', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, summary%bbox(1, 1), -100.0_dp, 'x min (r = 100 at theta = 180)', rel=1.0e-12_dp)
+  end subroutine test_mesh_only
+
+end module test_analysis

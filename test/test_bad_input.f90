@@ -1,0 +1,199 @@
+!> Every kind of bad input: a one-line error naming the file and line (or element, or node
+!! and DOF), an input/model error code (exit status 2), and no result file left behind.
+module test_bad_input
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_error, only: err_input, err_model, err_io
+  use feps_program, only: run_options_t, run_summary_t, run_feps
+  implicit none
+  private
+
+  public :: collect_bad_input
+
+  character(len=*), parameter :: out = 'build/test_bad_input.h5'
+
+contains
+
+  subroutine collect_bad_input(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest('the valid cube deck runs and writes its file', test_valid), &
+      new_unittest('unknown keyword', test_unknown_keyword), &
+      new_unittest('unknown record inside a DATAIN block', test_unknown_record), &
+      new_unittest('missing field', test_missing_field), &
+      new_unittest('non-numeric field', test_non_numeric), &
+      new_unittest('zero repeat count', test_zero_repeat), &
+      new_unittest('truncated file', test_truncated), &
+      new_unittest('empty file', test_empty), &
+      new_unittest('missing file', test_missing_file), &
+      new_unittest('node number out of range', test_node_out_of_range), &
+      new_unittest('duplicate node', test_duplicate_node), &
+      new_unittest('non-positive Jacobian names the element', test_negative_jacobian), &
+      new_unittest('undefined material', test_undefined_material), &
+      new_unittest('nu = 0.5 rejected', test_nu_half), &
+      new_unittest('nu = -1 rejected', test_nu_minus_one), &
+      new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode) &
+      ]
+  end subroutine collect_bad_input
+
+  !> Run a deck that must fail; check the error code, the message's pieces and that no
+  !! result file (nor its temporary or XDMF) exists afterwards.
+  subroutine expect_failure(deck, code, pieces, error)
+    character(len=*), intent(in) :: deck
+    integer, intent(in) :: code
+    character(len=*), intent(in) :: pieces(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    integer :: i
+    logical :: exists
+    call remove_outputs()
+    opt%deck = deck
+    opt%output = out
+    opt%solver = ''
+    call run_feps(opt, summary, run_error)
+    if (.not. allocated(run_error)) then
+      call test_failed(error, deck // ': expected an error, the run succeeded')
+      return
+    end if
+    call check(error, run_error%code, code, deck // ': error code (message: ' // run_error%message // ')')
+    if (allocated(error)) return
+    call check(error, index(run_error%message, new_line('a')) == 0, 'one-line message')
+    if (allocated(error)) return
+    do i = 1, size(pieces)
+      if (index(run_error%message, trim(pieces(i))) == 0) then
+        call test_failed(error, 'message "' // run_error%message // '" lacks "' // trim(pieces(i)) // '"')
+        return
+      end if
+    end do
+    inquire (file=out, exist=exists)
+    call check(error, .not. exists, 'no result file left behind')
+    if (allocated(error)) return
+    inquire (file=out // '.part', exist=exists)
+    call check(error, .not. exists, 'no temporary result file left behind')
+    if (allocated(error)) return
+    inquire (file='build/test_bad_input.xmf', exist=exists)
+    call check(error, .not. exists, 'no XDMF file left behind')
+  end subroutine expect_failure
+
+  subroutine remove_outputs()
+    integer :: u, ios
+    character(len=*), parameter :: files(3) = [character(len=40) :: out, out // '.part', 'build/test_bad_input.xmf']
+    integer :: i
+    logical :: exists
+    do i = 1, 3
+      inquire (file=trim(files(i)), exist=exists)
+      if (exists) then
+        open (newunit=u, file=trim(files(i)), iostat=ios)
+        if (ios == 0) close (u, status='delete')
+      end if
+    end do
+  end subroutine remove_outputs
+
+  subroutine test_valid(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    logical :: exists
+    call remove_outputs()
+    opt%deck = 'test/data/cube.dat'
+    opt%output = out
+    opt%solver = ''
+    call run_feps(opt, summary, error)
+    if (allocated(error)) return
+    inquire (file=out, exist=exists)
+    call check(error, exists, 'result file written')
+    if (allocated(error)) return
+    inquire (file='build/test_bad_input.xmf', exist=exists)
+    call check(error, exists, 'XDMF file written')
+    call remove_outputs()
+  end subroutine test_valid
+
+  subroutine test_unknown_keyword(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/unknown_keyword.dat', err_input, &
+                        [character(len=40) :: 'unknown_keyword.dat:3:', 'FROB'], error)
+  end subroutine test_unknown_keyword
+
+  subroutine test_unknown_record(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/unknown_record.dat', err_input, &
+                        [character(len=40) :: 'unknown_record.dat:5:'], error)
+  end subroutine test_unknown_record
+
+  subroutine test_missing_field(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/missing_field.dat', err_input, &
+                        [character(len=40) :: 'missing_field.dat:15:', 'field 3'], error)
+  end subroutine test_missing_field
+
+  subroutine test_non_numeric(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/non_numeric_field.dat', err_input, &
+                        [character(len=40) :: 'non_numeric_field.dat:15:', 'field 4', '2o0000'], error)
+  end subroutine test_non_numeric
+
+  subroutine test_zero_repeat(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/zero_repeat.dat', err_input, &
+                        [character(len=40) :: 'zero_repeat.dat:5:', 'repeat'], error)
+  end subroutine test_zero_repeat
+
+  subroutine test_truncated(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/truncated.dat', err_input, &
+                        [character(len=40) :: 'truncated.dat:', 'truncated'], error)
+  end subroutine test_truncated
+
+  subroutine test_empty(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/empty.dat', err_input, [character(len=40) :: 'empty.dat', 'empty'], error)
+  end subroutine test_empty
+
+  subroutine test_missing_file(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/no_such_deck.dat', err_io, [character(len=40) :: 'no_such_deck.dat'], error)
+  end subroutine test_missing_file
+
+  subroutine test_node_out_of_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/node_out_of_range.dat', err_input, &
+                        [character(len=40) :: 'node_out_of_range.dat:9:', '99'], error)
+  end subroutine test_node_out_of_range
+
+  subroutine test_duplicate_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/duplicate_node.dat', err_input, &
+                        [character(len=40) :: 'duplicate_node.dat:17:', 'duplicate node 28'], error)
+  end subroutine test_duplicate_node
+
+  subroutine test_negative_jacobian(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/negative_jacobian.dat', err_input, &
+                        [character(len=40) :: 'negative_jacobian.dat:8:', 'element 1 ', 'Jacobian'], error)
+  end subroutine test_negative_jacobian
+
+  subroutine test_undefined_material(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/undefined_material.dat', err_input, &
+                        [character(len=40) :: 'undefined_material.dat:8:', 'unobtainium'], error)
+  end subroutine test_undefined_material
+
+  subroutine test_nu_half(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/nu_half.dat', err_input, [character(len=40) :: 'nu_half.dat:15:', 'nu'], error)
+  end subroutine test_nu_half
+
+  subroutine test_nu_minus_one(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/nu_minus_one.dat', err_input, &
+                        [character(len=40) :: 'nu_minus_one.dat:15:', 'nu'], error)
+  end subroutine test_nu_minus_one
+
+  subroutine test_rigid_body_mode(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/rigid_body_mode.dat', err_model, &
+                        [character(len=40) :: 'rigid_body_mode.dat', 'node ', 'DOF u'], error)
+  end subroutine test_rigid_body_mode
+
+end module test_bad_input

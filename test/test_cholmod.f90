@@ -1,0 +1,386 @@
+!> Tests of the CHOLMOD solver: accuracy against known solutions and LAPACK, refactorization,
+!! and detection of singular and indefinite stiffness matrices.
+module test_cholmod
+  use feps_kinds, only: dp, i8, pi
+  use feps_error, only: err_model, err_internal, str
+  use feps_sparse_matrix, only: csr_matrix_t
+  use feps_lapack, only: dposv, dgemm
+  use feps_cholmod_solver, only: cholmod_solver_t
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  implicit none
+  private
+
+  public :: collect_cholmod
+
+contains
+
+  subroutine collect_cholmod(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest("laplacian 2d solution", test_laplacian), &
+      new_unittest("random spd equals lapack dposv", test_random_spd), &
+      new_unittest("refactorize with doubled values", test_refactorize), &
+      new_unittest("several right-hand sides", test_several_rhs), &
+      new_unittest("free-free bar is singular", test_free_bar), &
+      new_unittest("negative diagonal names its equation", test_indefinite), &
+      new_unittest("pivot ratios of a nearly dependent pair", test_pivot_ratios), &
+      new_unittest("factor statistics of a dense matrix", test_statistics), &
+      new_unittest("solve before factorize fails", test_solve_unfactorized) &
+    ]
+  end subroutine collect_cholmod
+
+  !> 5-point Laplacian on an m x m interior grid with Dirichlet boundaries (lower triangle).
+  function laplacian_2d(m) result(a)
+    integer, intent(in) :: m
+    type(csr_matrix_t) :: a
+    integer :: i, j, row
+    integer(i8) :: pos
+    a%n = m * m
+    allocate (a%row_ptr(a%n + 1), a%col(3 * a%n), a%val(3 * a%n))
+    pos = 1
+    do j = 1, m
+      do i = 1, m
+        row = (j - 1) * m + i
+        a%row_ptr(row) = pos
+        if (j > 1) call add(row - m, -1.0_dp)
+        if (i > 1) call add(row - 1, -1.0_dp)
+        call add(row, 4.0_dp)
+      end do
+    end do
+    a%row_ptr(a%n + 1) = pos
+    a%col = a%col(1:pos - 1)
+    a%val = a%val(1:pos - 1)
+  contains
+    subroutine add(column, value)
+      integer, intent(in) :: column
+      real(dp), intent(in) :: value
+      a%col(pos) = column
+      a%val(pos) = value
+      pos = pos + 1
+    end subroutine add
+  end function laplacian_2d
+
+  !> Lower triangle of a dense symmetric matrix, zeros kept, as CSR.
+  pure function dense_to_csr(dense) result(a)
+    real(dp), intent(in) :: dense(:, :)
+    type(csr_matrix_t) :: a
+    integer :: i, j
+    integer(i8) :: pos
+    a%n = size(dense, 1)
+    allocate (a%row_ptr(a%n + 1), a%col(a%n * (a%n + 1) / 2), a%val(a%n * (a%n + 1) / 2))
+    pos = 1
+    do i = 1, a%n
+      a%row_ptr(i) = pos
+      do j = 1, i
+        a%col(pos) = j
+        a%val(pos) = dense(i, j)
+        pos = pos + 1
+      end do
+    end do
+    a%row_ptr(a%n + 1) = pos
+  end function dense_to_csr
+
+  !> Tridiagonal lower triangle with the given diagonal and sub-diagonal.
+  pure function tridiagonal(diag, sub) result(a)
+    real(dp), intent(in) :: diag(:), sub(:)
+    type(csr_matrix_t) :: a
+    integer :: i
+    integer(i8) :: pos
+    a%n = size(diag)
+    allocate (a%row_ptr(a%n + 1), a%col(2 * a%n - 1), a%val(2 * a%n - 1))
+    pos = 1
+    do i = 1, a%n
+      a%row_ptr(i) = pos
+      if (i > 1) then
+        a%col(pos) = i - 1
+        a%val(pos) = sub(i - 1)
+        pos = pos + 1
+      end if
+      a%col(pos) = i
+      a%val(pos) = diag(i)
+      pos = pos + 1
+    end do
+    a%row_ptr(a%n + 1) = pos
+  end function tridiagonal
+
+  !> Deterministic pseudo-random numbers in [0, 1) (linear congruential, 31-bit).
+  pure subroutine fill_random(x, seed)
+    real(dp), intent(out) :: x(:)
+    integer(i8), intent(inout) :: seed
+    integer :: k
+    do k = 1, size(x)
+      seed = modulo(1103515245_i8 * seed + 12345_i8, 2147483648_i8)
+      x(k) = real(seed, dp) / 2147483648.0_dp
+    end do
+  end subroutine fill_random
+
+  !> Pass when `error` (consumed) is an err_model error whose item lies in first..last and whose
+  !! message names that equation and has no NaN; fail otherwise, saying `what`.
+  subroutine expect_model_error(error, first, last, what)
+    type(error_t), allocatable, intent(inout) :: error
+    integer, intent(in) :: first, last
+    character(len=*), intent(in) :: what
+    type(error_t), allocatable :: got
+    call move_alloc(error, got)
+    if (.not. allocated(got)) then
+      call test_failed(error, what // ': no error')
+    else if (got%code /= err_model .or. got%item < first .or. got%item > last .or. &
+             (index(got%message, 'equation ' // str(got%item) // ' ') == 0 .and. &
+              index(got%message, 'equation ' // str(got%item) // ':') == 0) .or. &
+             index(got%message, 'NaN') > 0) then
+      call test_failed(error, what // ': expected err_model naming an equation in ' // str(first) // '..' // &
+                       str(last) // ', got code ' // str(got%code) // ' item ' // str(got%item) // ': ' // &
+                       got%message)
+    end if
+  end subroutine expect_model_error
+
+  !> Analyse and factorize `a` with `solver`.
+  subroutine analyze_and_factorize(solver, a, error)
+    type(cholmod_solver_t), intent(inout) :: solver
+    type(csr_matrix_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    call solver%analyze(a, error)
+    if (allocated(error)) return
+    call solver%factorize(a, error)
+  end subroutine analyze_and_factorize
+
+  !> b = A x_true on a 30 x 30 grid; the solve must return x_true to 1e-10 relative.
+  subroutine test_laplacian(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp), allocatable :: x_true(:), b(:)
+    integer :: k
+    a = laplacian_2d(30)
+    allocate (x_true(a%n), b(a%n))
+    x_true = [(sin(0.1_dp * k) + 0.01_dp * k, k = 1, a%n)]
+    call a%multiply(x_true, b)
+    call analyze_and_factorize(solver, a, error)
+    if (allocated(error)) return
+    call check(error, solver%name() == 'cholmod', 'solver name')
+    if (allocated(error)) return
+    call solver%solve(b, error)
+    if (allocated(error)) return
+    call check(error, maxval(abs(b - x_true)) / maxval(abs(x_true)), 0.0_dp, &
+               'relative error of the Laplacian solution', abs=1.0e-10_dp)
+    if (allocated(error)) return
+    ! Every pivot of an SPD matrix lies in [lambda_min(A), A_jj]; the first one eliminated is A_jj.
+    call check(error, solver%max_pivot_ratio, 1.0_dp, 'largest pivot ratio', abs=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, solver%min_pivot_ratio >= (4.0_dp - 4.0_dp * cos(pi / 31.0_dp)) / 4.0_dp, &
+               'smallest pivot ratio >= lambda_min / 4: ' // str(solver%min_pivot_ratio))
+  end subroutine test_laplacian
+
+  !> A = M^T M + n I for a random M; CHOLMOD and LAPACK dposv agree to 1e-12 relative.
+  subroutine test_random_spd(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: n = 12
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp) :: m(n, n), dense(n, n), b(n), x_lapack(n, 1), x_cholmod(n)
+    integer(i8) :: seed
+    integer :: info, i
+    seed = 2024
+    call fill_random(m(:, 1), seed)
+    do i = 2, n
+      call fill_random(m(:, i), seed)
+    end do
+    m = m - 0.5_dp
+    dense = 0.0_dp
+    do i = 1, n
+      dense(i, i) = real(n, dp)
+    end do
+    call dgemm('T', 'N', n, n, n, 1.0_dp, m, n, m, n, 1.0_dp, dense, n)
+    call fill_random(b, seed)
+
+    x_lapack(:, 1) = b
+    block
+      real(dp) :: work(n, n)
+      work = dense
+      call dposv('L', n, 1, work, n, x_lapack, n, info)
+    end block
+    call check(error, info, 0, 'dposv info')
+    if (allocated(error)) return
+
+    a = dense_to_csr(dense)
+    call analyze_and_factorize(solver, a, error)
+    if (allocated(error)) return
+    x_cholmod = b
+    call solver%solve(x_cholmod, error)
+    if (allocated(error)) return
+    call check(error, maxval(abs(x_cholmod - x_lapack(:, 1))) / maxval(abs(x_lapack)), 0.0_dp, &
+               'relative difference to dposv', abs=1.0e-12_dp)
+  end subroutine test_random_spd
+
+  !> Same pattern, values doubled: the factorization is redone and the solution halves.
+  subroutine test_refactorize(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp), allocatable :: b(:), x1(:), x2(:)
+    a = laplacian_2d(12)
+    allocate (b(a%n))
+    b = 1.0_dp
+    call analyze_and_factorize(solver, a, error)
+    if (allocated(error)) return
+    x1 = b
+    call solver%solve(x1, error)
+    if (allocated(error)) return
+    a%val = 2.0_dp * a%val
+    call solver%factorize(a, error)
+    if (allocated(error)) return
+    x2 = b
+    call solver%solve(x2, error)
+    if (allocated(error)) return
+    call check(error, solver%factorizations, 2, 'factorization count')
+    if (allocated(error)) return
+    call check(error, maxval(abs(2.0_dp * x2 - x1)) / maxval(abs(x1)), 0.0_dp, &
+               'solution halves when A doubles', abs=1.0e-13_dp)
+  end subroutine test_refactorize
+
+  !> Two right-hand sides stored one after another are solved in one call.
+  subroutine test_several_rhs(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp), allocatable :: x1(:), x2(:), b(:)
+    integer :: k
+    a = laplacian_2d(8)
+    x1 = [(1.0_dp + k, k = 1, a%n)]
+    x2 = [(cos(0.3_dp * k), k = 1, a%n)]
+    allocate (b(2 * a%n))
+    call a%multiply(x1, b(1:a%n))
+    call a%multiply(x2, b(a%n + 1:))
+    call analyze_and_factorize(solver, a, error)
+    if (allocated(error)) return
+    call solver%solve(b, error)
+    if (allocated(error)) return
+    call check(error, maxval(abs(b(1:a%n) - x1)) / maxval(abs(x1)), 0.0_dp, 'first solution', abs=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, maxval(abs(b(a%n + 1:) - x2)) / maxval(abs(x2)), 0.0_dp, 'second solution', abs=1.0e-12_dp)
+  end subroutine test_several_rhs
+
+  !> A bar of 20 elements with no support has one rigid mode, with equal or unequal element
+  !! stiffness (exact zero or round-off last pivot).
+  subroutine test_free_bar(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: nel = 20
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp) :: stiffness(nel), diag(nel + 1)
+    integer :: e, variant
+    do variant = 0, 1
+      stiffness = [(1.0_dp + 0.37_dp * variant * e, e = 1, nel)]
+      diag = 0.0_dp
+      diag(1:nel) = stiffness
+      diag(2:nel + 1) = diag(2:nel + 1) + stiffness
+      a = tridiagonal(diag, -stiffness)
+      call analyze_and_factorize(solver, a, error)
+      call expect_model_error(error, 1, a%n, 'free-free bar, variant ' // str(variant))
+      if (allocated(error)) return
+      call check(error, solver%min_pivot_ratio == solver%min_pivot_ratio, 'min pivot ratio is not NaN')
+      if (allocated(error)) return
+    end do
+  end subroutine test_free_bar
+
+  !> Diagonally dominant tridiagonal matrix with A(7,7) = -4: the pivot of equation 7 is the
+  !! first to fail whatever the ordering (the other leading principal blocks stay SPD).
+  subroutine test_indefinite(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: n = 20, bad = 7
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp) :: diag(n), sub(n - 1)
+    diag = 4.0_dp
+    diag(bad) = -4.0_dp
+    sub = -1.0_dp
+    a = tridiagonal(diag, sub)
+    call analyze_and_factorize(solver, a, error)
+    call expect_model_error(error, bad, bad, 'negative diagonal')
+    if (allocated(error)) return
+    ! The solver recovers: the same pattern with a positive diagonal factorizes and solves.
+    a%val(a%row_ptr(bad + 1) - 1) = 4.0_dp
+    call solver%factorize(a, error)
+    if (allocated(error)) return
+    block
+      real(dp) :: x_true(n), b(n)
+      integer :: k
+      x_true = [(real(k, dp), k = 1, n)]
+      call a%multiply(x_true, b)
+      call solver%solve(b, error)
+      if (allocated(error)) return
+      call check(error, maxval(abs(b - x_true)) / n, 0.0_dp, 'solution after recovery', abs=1.0e-13_dp)
+    end block
+  end subroutine test_indefinite
+
+  !> A = S B S with S = diag(1..n), B unit diagonal with only B(14,13) = 1 - delta off the diagonal.
+  !! Pivot ratios are invariant under the scaling: the pair's second one is 1 - (1 - delta)**2, all
+  !! others 1. Small delta passes; delta = 1e-13 fails naming 13 or 14.
+  subroutine test_pivot_ratios(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: n = 20
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp) :: diag(n), sub(n - 1), delta
+    integer :: i
+    diag = [(real(i, dp)**2, i = 1, n)]
+    sub = 0.0_dp
+    delta = 1.0e-3_dp
+    sub(13) = (1.0_dp - delta) * 13.0_dp * 14.0_dp
+    a = tridiagonal(diag, sub)
+    call analyze_and_factorize(solver, a, error)
+    if (allocated(error)) return
+    call check(error, solver%min_pivot_ratio, 1.0_dp - (1.0_dp - delta)**2, 'smallest pivot ratio', rel=1.0e-10_dp)
+    if (allocated(error)) return
+    call check(error, solver%max_pivot_ratio, 1.0_dp, 'largest pivot ratio', abs=1.0e-15_dp)
+    if (allocated(error)) return
+
+    a%val(a%row_ptr(14)) = (1.0_dp - 1.0e-13_dp) * 13.0_dp * 14.0_dp
+    call solver%factorize(a, error)
+    call expect_model_error(error, 13, 14, 'nearly dependent pair')
+  end subroutine test_pivot_ratios
+
+  !> A dense n x n SPD matrix fills L completely: nnz(L) = n(n+1)/2 under any ordering, and
+  !! the LL' flop count is at least n^3/3.
+  subroutine test_statistics(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: n = 15
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp) :: dense(n, n)
+    integer :: i, j
+    do j = 1, n
+      do i = 1, n
+        dense(i, j) = 1.0_dp / real(i + j, dp)
+      end do
+      dense(j, j) = dense(j, j) + 1.0_dp
+    end do
+    a = dense_to_csr(dense)
+    call analyze_and_factorize(solver, a, error)
+    if (allocated(error)) return
+    call check(error, solver%factor_nnz > 0 .and. solver%flops > 0.0_dp, 'factor_nnz and flops positive')
+    if (allocated(error)) return
+    call check(error, int(solver%factor_nnz), n * (n + 1) / 2, 'nnz(L) of a dense matrix')
+    if (allocated(error)) return
+    call check(error, solver%flops >= real(n, dp)**3 / 3.0_dp, 'flops >= n^3/3: ' // str(solver%flops))
+    if (allocated(error)) return
+    call check(error, solver%factorizations, 1, 'factorization count')
+  end subroutine test_statistics
+
+  !> Solving without a factorization is an error, not a crash.
+  subroutine test_solve_unfactorized(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(cholmod_solver_t) :: solver
+    type(error_t), allocatable :: got
+    real(dp) :: b(4)
+    b = 1.0_dp
+    call solver%solve(b, error)
+    call move_alloc(error, got)
+    if (.not. allocated(got)) then
+      call test_failed(error, 'solve without factorization succeeded')
+    else if (got%code /= err_internal) then
+      call test_failed(error, 'expected err_internal, got ' // str(got%code) // ': ' // got%message)
+    end if
+  end subroutine test_solve_unfactorized
+
+end module test_cholmod

@@ -1,0 +1,883 @@
+!> Tests of the solid element library: Gauss rules, hex8 and hex20 shape functions, B-matrix,
+!! stiffness, Gauss-point results, Jacobian checks and face integration.
+module test_elements
+  use feps_kinds, only: dp
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_error, only: str
+  use feps_gauss, only: gauss_legendre, square_rule, cube_rule
+  use feps_element, only: element_t
+  use feps_hex8, only: hex8_t
+  use feps_hex20, only: hex20_t
+  use feps_element_factory, only: new_element
+  implicit none
+  private
+
+  public :: collect_elements
+
+  !> Corner pairs of the hex20 mid-edge nodes 9-20.
+  integer, parameter :: hex20_edges(2, 12) = reshape([1, 2, 2, 3, 3, 4, 4, 1, 5, 6, 6, 7, 7, 8, 8, 5, &
+                                                      1, 5, 2, 6, 3, 7, 4, 8], [2, 12])
+
+  interface
+    !> LAPACK symmetric eigenvalues (local explicit interface).
+    subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+      import :: dp
+      character, intent(in) :: jobz, uplo
+      integer, intent(in) :: n, lda, lwork
+      real(dp), intent(inout) :: a(lda, *)
+      real(dp), intent(out) :: w(*), work(*)
+      integer, intent(out) :: info
+    end subroutine dsyev
+  end interface
+
+contains
+
+  subroutine collect_elements(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest("gauss_rules_exact_degree", test_gauss_rules), &
+      new_unittest("tensor_rules", test_tensor_rules), &
+      new_unittest("factory", test_factory), &
+      new_unittest("partition_of_unity", test_partition_of_unity), &
+      new_unittest("kronecker_at_nodes", test_kronecker), &
+      new_unittest("derivatives_finite_difference", test_derivatives_fd), &
+      new_unittest("face_shape_functions", test_face_shapes), &
+      new_unittest("linear_field_constant_strain", test_linear_field), &
+      new_unittest("rigid_modes_and_symmetry", test_rigid_modes), &
+      new_unittest("unit_cube_hex8_stiffness", test_unit_cube_hex8), &
+      new_unittest("zero_energy_modes", test_zero_energy_modes), &
+      new_unittest("jacobian_range", test_jacobian_range), &
+      new_unittest("faces_planar_hex8", test_faces_planar_hex8), &
+      new_unittest("faces_curved_hex20", test_faces_curved_hex20), &
+      new_unittest("faces_divergence_theorem", test_divergence_theorem), &
+      new_unittest("uniform_stress_patch", test_uniform_stress_patch) &
+    ]
+  end subroutine collect_elements
+
+  ! ------------------------------------------------------------------ helpers
+
+  !> Isotropic elastic matrix, Voigt [xx, yy, zz, yz, xz, xy], engineering shears.
+  pure function isotropic_d(e, nu) result(d)
+    real(dp), intent(in) :: e, nu
+    real(dp) :: d(6, 6), lambda, mu
+    lambda = e * nu / ((1.0_dp + nu) * (1.0_dp - 2.0_dp * nu))
+    mu = e / (2.0_dp * (1.0_dp + nu))
+    d = 0.0_dp
+    d(1:3, 1:3) = lambda
+    d(1, 1) = lambda + 2.0_dp * mu
+    d(2, 2) = lambda + 2.0_dp * mu
+    d(3, 3) = lambda + 2.0_dp * mu
+    d(4, 4) = mu
+    d(5, 5) = mu
+    d(6, 6) = mu
+  end function isotropic_d
+
+  !> The same D at every Gauss point.
+  pure function d_at_points(d, ng) result(dg)
+    real(dp), intent(in) :: d(6, 6)
+    integer, intent(in) :: ng
+    real(dp) :: dg(6, 6, ng)
+    integer :: g
+    do g = 1, ng
+      dg(:, :, g) = d
+    end do
+  end function d_at_points
+
+  pure function cross(a, b) result(c)
+    real(dp), intent(in) :: a(3), b(3)
+    real(dp) :: c(3)
+    c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
+  end function cross
+
+  !> Natural coordinates of the hex8 corners (independent copy of the node order in the brief).
+  pure function corner_xi() result(xi)
+    real(dp) :: xi(3, 8)
+    xi = reshape([-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1, &
+                  -1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1, 1] * 1.0_dp, [3, 8])
+  end function corner_xi
+
+  !> A distorted hex8: a 2 x 1.5 x 1 box with every node moved by up to 0.2 in each direction.
+  pure function distorted_hex8() result(xe)
+    real(dp) :: xe(3, 8), c(3, 8)
+    real(dp), parameter :: box(3) = [2.0_dp, 1.5_dp, 1.0_dp]
+    integer :: a, i
+    c = corner_xi()
+    do a = 1, 8
+      do i = 1, 3
+        xe(i, a) = 0.5_dp * (c(i, a) + 1.0_dp) * box(i) + 0.2_dp * sin(1.7_dp * a + 2.3_dp * i + 0.5_dp)
+      end do
+    end do
+  end function distorted_hex8
+
+  !> A hex20 on the corners of `distorted_hex8` whose mid-edge nodes are moved off the edge
+  !! midpoints by up to 0.1: curved edges and faces.
+  pure function curved_hex20() result(xe)
+    real(dp) :: xe(3, 20)
+    integer :: m, i
+    xe(:, 1:8) = distorted_hex8()
+    do m = 1, 12
+      do i = 1, 3
+        xe(i, 8 + m) = 0.5_dp * (xe(i, hex20_edges(1, m)) + xe(i, hex20_edges(2, m))) + &
+                       0.1_dp * cos(1.3_dp * m + 0.7_dp * i)
+      end do
+    end do
+  end function curved_hex20
+
+  !> hex20 with straight edges and mid-edge nodes at the midpoints of the given corners.
+  pure function straight_hex20(corners) result(xe)
+    real(dp), intent(in) :: corners(3, 8)
+    real(dp) :: xe(3, 20)
+    integer :: m
+    xe(:, 1:8) = corners
+    do m = 1, 12
+      xe(:, 8 + m) = 0.5_dp * (corners(:, hex20_edges(1, m)) + corners(:, hex20_edges(2, m)))
+    end do
+  end function straight_hex20
+
+  !> The unit cube [0, 1]^3 as hex8 corners.
+  pure function unit_cube() result(xe)
+    real(dp) :: xe(3, 8)
+    xe = 0.5_dp * (corner_xi() + 1.0_dp)
+  end function unit_cube
+
+  !> A general affine image of the unit cube: x = A xi + c (a parallelepiped).
+  pure function affine_hex8() result(xe)
+    real(dp) :: xe(3, 8), a(3, 3), c(3, 8)
+    integer :: k
+    a = reshape([1.2_dp, 0.1_dp, -0.2_dp, 0.3_dp, 0.9_dp, 0.15_dp, -0.1_dp, 0.25_dp, 1.4_dp], [3, 3])
+    c = corner_xi()
+    do k = 1, 8
+      xe(:, k) = matmul(a, c(:, k)) + [0.5_dp, -1.0_dp, 2.0_dp]
+    end do
+  end function affine_hex8
+
+  !> Displacement vector of the field u = h x + c at the nodes `xe`.
+  pure function linear_field(xe, h, c) result(u)
+    real(dp), intent(in) :: xe(:, :), h(3, 3), c(3)
+    real(dp) :: u(3 * size(xe, 2))
+    integer :: a
+    do a = 1, size(xe, 2)
+      u(3 * a - 2:3 * a) = matmul(h, xe(:, a)) + c
+    end do
+  end function linear_field
+
+  !> Engineering Voigt strain of the displacement gradient h.
+  pure function voigt_strain(h) result(eps)
+    real(dp), intent(in) :: h(3, 3)
+    real(dp) :: eps(6)
+    eps = [h(1, 1), h(2, 2), h(3, 3), h(2, 3) + h(3, 2), h(1, 3) + h(3, 1), h(1, 2) + h(2, 1)]
+  end function voigt_strain
+
+  !> The three test elements: distorted hex8, curved hex20 (3x3x3), curved hex20 reduced.
+  subroutine test_element(k, element, xe, label)
+    integer, intent(in) :: k
+    class(element_t), allocatable, intent(out) :: element
+    real(dp), allocatable, intent(out) :: xe(:, :)
+    character(len=:), allocatable, intent(out) :: label
+    select case (k)
+    case (1)
+      allocate (hex8_t :: element)
+      xe = distorted_hex8()
+      label = 'hex8'
+    case (2)
+      allocate (element, source=hex20_t(reduced=.false.))
+      xe = curved_hex20()
+      label = 'hex20'
+    case default
+      allocate (element, source=hex20_t(reduced=.true.))
+      xe = curved_hex20()
+      label = 'hex20r'
+    end select
+  end subroutine test_element
+
+  !> A few fixed points inside the reference cube.
+  pure function sample_points() result(xi)
+    real(dp) :: xi(3, 5)
+    xi = reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.3_dp, -0.7_dp, 0.55_dp, -0.9_dp, 0.2_dp, 0.8_dp, &
+                  1.0_dp, -1.0_dp, 0.35_dp, -0.123_dp, 0.456_dp, -0.789_dp], [3, 5])
+  end function sample_points
+
+  ! ------------------------------------------------------------------ Gauss rules
+
+  !> n points integrate x^k exactly (2/(k+1) for even k, 0 for odd) up to k = 2n-1, not x^(2n).
+  subroutine test_gauss_rules(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(error_t), allocatable :: refused
+    real(dp) :: x(5), w(5), exact
+    integer :: n, k
+    do n = 1, 5
+      call gauss_legendre(n, x, w, error)
+      if (allocated(error)) return
+      do k = 0, 2 * n
+        exact = merge(2.0_dp / (k + 1), 0.0_dp, mod(k, 2) == 0)
+        if (k <= 2 * n - 1) then
+          call check(error, sum(w(1:n) * x(1:n)**k), exact, 'n = ' // str(n) // ': integral of x^' // str(k), &
+                     abs=2.0e-15_dp)
+        else
+          call check(error, abs(sum(w(1:n) * x(1:n)**k) - exact) > 1.0e-3_dp, 'n = ' // str(n) // &
+                     ': x^' // str(k) // ' must not be integrated exactly')
+        end if
+        if (allocated(error)) return
+      end do
+    end do
+    call gauss_legendre(6, x, w, refused)
+    call check(error, allocated(refused), '6-point rule must be refused')
+    if (allocated(error)) return
+  end subroutine test_gauss_rules
+
+  !> Tensor rules: weights sum to the measure, integral of x^2 y^4 z^2 over the cube (3x3x3:
+  !! 2/3 * 2/5 * 2/3 = 8/45), x^2 y^2 over the square (2x2: 4/9).
+  subroutine test_tensor_rules(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: xi(3, 27), w(27), s(2, 4), ws(4)
+    call cube_rule(3, xi, w, error)
+    if (allocated(error)) return
+    call check(error, sum(w), 8.0_dp, 'cube weights', abs=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, sum(w * xi(1, :)**2 * xi(2, :)**4 * xi(3, :)**2), 8.0_dp / 45.0_dp, &
+               'cube integral x^2 y^4 z^2', abs=1.0e-14_dp)
+    if (allocated(error)) return
+    ! first coordinate varies fastest
+    call check(error, xi(1, 1) < xi(1, 2) .and. xi(2, 1) == xi(2, 2) .and. xi(2, 1) < xi(2, 4) .and. &
+               xi(3, 1) == xi(3, 9) .and. xi(3, 1) < xi(3, 10), &
+               'cube rule ordering')
+    if (allocated(error)) return
+    call square_rule(2, s, ws, error)
+    if (allocated(error)) return
+    call check(error, sum(ws), 4.0_dp, 'square weights', abs=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, sum(ws * s(1, :)**2 * s(2, :)**2), 4.0_dp / 9.0_dp, 'square integral x^2 y^2', abs=1.0e-14_dp)
+    if (allocated(error)) return
+  end subroutine test_tensor_rules
+
+  ! ------------------------------------------------------------------ factory
+
+  subroutine test_factory(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    type(error_t), allocatable :: refused
+    character(len=6), parameter :: names(3) = ['hex8  ', 'hex20 ', 'HEX20r']
+    character(len=5), parameter :: types(3) = ['hex8 ', 'hex20', 'hex20']
+    integer, parameter :: nen(3) = [8, 20, 20], ng(3) = [8, 27, 8], nfg(3) = [4, 9, 9], nfn(3) = [4, 8, 8]
+    integer :: k
+    do k = 1, 3
+      call new_element(names(k), element, error)
+      if (allocated(error)) return
+      call check(error, element%element_type() == trim(types(k)), 'element_type of ' // trim(names(k)))
+      if (allocated(error)) return
+      call check(error, element%nnodes(), nen(k), 'nnodes of ' // trim(names(k)))
+      if (allocated(error)) return
+      call check(error, element%ngauss(), ng(k), 'ngauss of ' // trim(names(k)))
+      if (allocated(error)) return
+      call check(error, element%nfaces(), 6, 'nfaces of ' // trim(names(k)))
+      if (allocated(error)) return
+      call check(error, element%nface_gauss(), nfg(k), 'nface_gauss of ' // trim(names(k)))
+      if (allocated(error)) return
+      call check(error, element%nface_nodes(), nfn(k), 'nface_nodes of ' // trim(names(k)))
+      if (allocated(error)) return
+      call check(error, size(element%face_nodes(3)), nfn(k), 'size of face_nodes of ' // trim(names(k)))
+      if (allocated(error)) return
+    end do
+    call new_element('tet4', element, refused)
+    call check(error, allocated(refused), 'unknown element type must be refused')
+    if (allocated(error)) return
+  end subroutine test_factory
+
+  ! ------------------------------------------------------------------ shape functions
+
+  !> sum N = 1, sum dN/dxi = 0 and sum N_a xi_a = xi at sample points, hex8 and hex20.
+  subroutine test_partition_of_unity(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: n(:), dn(:, :), nodes(:, :)
+    real(dp) :: pts(3, 5)
+    integer :: k, p, i
+    pts = sample_points()
+    do k = 1, 2
+      if (k == 1) then
+        allocate (hex8_t :: element)
+      else
+        allocate (hex20_t :: element)
+      end if
+      allocate (n(element%nnodes()), dn(3, element%nnodes()), nodes(3, element%nnodes()))
+      call element%natural_coordinates(nodes)
+      do p = 1, size(pts, 2)
+        call element%shape(pts(:, p), n, dn)
+        call check(error, sum(n), 1.0_dp, element%element_type() // ': sum of N', abs=1.0e-14_dp)
+        if (allocated(error)) return
+        do i = 1, 3
+          call check(error, sum(dn(i, :)), 0.0_dp, element%element_type() // ': sum of dN/dxi', abs=1.0e-14_dp)
+          if (allocated(error)) return
+          call check(error, sum(n * nodes(i, :)), pts(i, p), element%element_type() // ': sum of N xi_a', &
+                     abs=1.0e-14_dp)
+          if (allocated(error)) return
+          ! d/dxi_i of sum N_a xi_a,j = delta_ij
+          call check(error, sum(dn(i, :) * nodes(i, :)), 1.0_dp, element%element_type() // &
+                     ': sum of dN/dxi_i xi_a,i', abs=1.0e-14_dp)
+          if (allocated(error)) return
+        end do
+      end do
+      deallocate (element, n, dn, nodes)
+    end do
+  end subroutine test_partition_of_unity
+
+  !> N_a(xi_b) = delta_ab; also the node coordinates follow the stated node order.
+  subroutine test_kronecker(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: n(:), dn(:, :), nodes(:, :)
+    real(dp) :: expected_xi(3, 20)
+    integer :: k, a, b, m
+    ! the brief's node order, built independently: corners, then midpoints of the listed edges
+    expected_xi(:, 1:8) = corner_xi()
+    do m = 1, 12
+      expected_xi(:, 8 + m) = 0.5_dp * (expected_xi(:, hex20_edges(1, m)) + expected_xi(:, hex20_edges(2, m)))
+    end do
+    do k = 1, 2
+      if (k == 1) then
+        allocate (hex8_t :: element)
+      else
+        allocate (hex20_t :: element)
+      end if
+      allocate (n(element%nnodes()), dn(3, element%nnodes()), nodes(3, element%nnodes()))
+      call element%natural_coordinates(nodes)
+      call check(error, maxval(abs(nodes - expected_xi(:, 1:element%nnodes()))), 0.0_dp, &
+                 element%element_type() // ': node natural coordinates', abs=0.0_dp)
+      if (allocated(error)) return
+      do b = 1, element%nnodes()
+        call element%shape(nodes(:, b), n, dn)
+        do a = 1, element%nnodes()
+          call check(error, n(a), merge(1.0_dp, 0.0_dp, a == b), element%element_type() // ': N_' // str(a) // &
+                     ' at node ' // str(b), abs=1.0e-15_dp)
+          if (allocated(error)) return
+        end do
+      end do
+      deallocate (element, n, dn, nodes)
+    end do
+  end subroutine test_kronecker
+
+  !> dN/dxi against central differences of N (h = 1e-5; the cubic terms give errors ~1e-10).
+  subroutine test_derivatives_fd(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: n(:), dn(:, :), np(:), nm(:), dummy(:, :)
+    real(dp) :: pts(3, 5), step(3)
+    real(dp), parameter :: h = 1.0e-5_dp
+    integer :: k, p, i
+    pts = sample_points()
+    do k = 1, 2
+      if (k == 1) then
+        allocate (hex8_t :: element)
+      else
+        allocate (hex20_t :: element)
+      end if
+      allocate (n(element%nnodes()), dn(3, element%nnodes()), np(element%nnodes()), nm(element%nnodes()), &
+                dummy(3, element%nnodes()))
+      do p = 1, size(pts, 2)
+        call element%shape(pts(:, p), n, dn)
+        do i = 1, 3
+          step = 0.0_dp
+          step(i) = h
+          call element%shape(pts(:, p) + step, np, dummy)
+          call element%shape(pts(:, p) - step, nm, dummy)
+          call check(error, maxval(abs((np - nm) / (2.0_dp * h) - dn(i, :))), 0.0_dp, &
+                     element%element_type() // ': dN/dxi_' // str(i) // ' vs finite differences', abs=1.0e-9_dp)
+          if (allocated(error)) return
+        end do
+      end do
+      deallocate (element, n, dn, np, nm, dummy)
+    end do
+  end subroutine test_derivatives_fd
+
+  !> Face shape functions: partition of unity, Kronecker at the face nodes (corners (+-1, +-1)
+  !! counter-clockwise, then mid-edges), finite-difference derivatives; and the face tables:
+  !! face mid-edge node k+4 is the natural midpoint of face corners k and k+1, and all face nodes
+  !! lie on the face plane of the reference cube.
+  subroutine test_face_shapes(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: n(:), dn(:, :), np(:), nm(:), dummy(:, :), nodes(:, :)
+    real(dp) :: snodes(2, 8), s(2), step(2)
+    real(dp), parameter :: h = 1.0e-5_dp
+    integer, allocatable :: fn(:)
+    integer :: k, a, b, i, face, nfn
+    snodes = reshape([-1, -1, 1, -1, 1, 1, -1, 1, 0, -1, 1, 0, 0, 1, -1, 0] * 1.0_dp, [2, 8])
+    do k = 1, 2
+      if (k == 1) then
+        allocate (hex8_t :: element)
+      else
+        allocate (hex20_t :: element)
+      end if
+      nfn = element%nface_nodes()
+      allocate (n(nfn), dn(2, nfn), np(nfn), nm(nfn), dummy(2, nfn), nodes(3, element%nnodes()))
+      do b = 1, nfn
+        call element%face_shape(snodes(:, b), n, dn)
+        do a = 1, nfn
+          call check(error, n(a), merge(1.0_dp, 0.0_dp, a == b), element%element_type() // ': face N_' // str(a) // &
+                     ' at face node ' // str(b), abs=1.0e-15_dp)
+          if (allocated(error)) return
+        end do
+      end do
+      s = [0.37_dp, -0.61_dp]
+      call element%face_shape(s, n, dn)
+      call check(error, sum(n), 1.0_dp, element%element_type() // ': face sum of N', abs=1.0e-14_dp)
+      if (allocated(error)) return
+      do i = 1, 2
+        step = 0.0_dp
+        step(i) = h
+        call element%face_shape(s + step, np, dummy)
+        call element%face_shape(s - step, nm, dummy)
+        call check(error, maxval(abs((np - nm) / (2.0_dp * h) - dn(i, :))), 0.0_dp, &
+                   element%element_type() // ': face dN/ds_' // str(i) // ' vs finite differences', abs=1.0e-9_dp)
+        if (allocated(error)) return
+      end do
+      call element%natural_coordinates(nodes)
+      do face = 1, element%nfaces()
+        fn = element%face_nodes(face)
+        ! all nodes of a face share one natural coordinate at +-1
+        call check(error, any([(all(abs(nodes(i, fn) - nodes(i, fn(1))) < 1.0e-14_dp .and. &
+                                    abs(abs(nodes(i, fn(1))) - 1.0_dp) < 1.0e-14_dp), i = 1, 3)]), &
+                   element%element_type() // ': nodes of face ' // str(face) // ' on one face of the cube')
+        if (allocated(error)) return
+        do a = 5, nfn
+          call check(error, maxval(abs(nodes(:, fn(a)) - 0.5_dp * (nodes(:, fn(a - 4)) + &
+                     nodes(:, fn(mod(a - 4, 4) + 1))))), 0.0_dp, element%element_type() // ': face ' // str(face) // &
+                     ' mid-edge node ' // str(a), abs=1.0e-15_dp)
+          if (allocated(error)) return
+        end do
+      end do
+      deallocate (element, n, dn, np, nm, dummy, nodes)
+    end do
+  end subroutine test_face_shapes
+
+  ! ------------------------------------------------------------------ B-matrix and stiffness
+
+  !> u = H x + c on distorted/curved elements gives eps = sym(H) (engineering) at every Gauss point
+  !! (1e-10), D eps as stresses, and b_matrix times u gives the same strain at an arbitrary point.
+  subroutine test_linear_field(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: xe(:, :), u(:), eps(:, :), sig(:, :), b(:, :), dg(:, :, :)
+    character(len=:), allocatable :: label
+    real(dp) :: h(3, 3), c(3), expected(6), d(6, 6), detj
+    integer :: k, g
+    h = reshape([0.1_dp, -0.3_dp, 0.25_dp, 0.7_dp, -0.2_dp, 0.05_dp, -0.45_dp, 0.33_dp, 0.6_dp], [3, 3])
+    c = [1.0_dp, -2.0_dp, 0.5_dp]
+    expected = voigt_strain(h)
+    d = isotropic_d(30000.0_dp, 0.2_dp)
+    do k = 1, 3
+      call test_element(k, element, xe, label)
+      u = linear_field(xe, h, c)
+      allocate (eps(6, element%ngauss()), sig(6, element%ngauss()), b(6, size(u)))
+      dg = d_at_points(d, element%ngauss())
+      call element%gauss_strains(xe, u, eps)
+      call element%gauss_stresses(xe, u, dg, sig)
+      do g = 1, element%ngauss()
+        call check(error, maxval(abs(eps(:, g) - expected)), 0.0_dp, label // ': strain at Gauss point ' // str(g), &
+                   abs=1.0e-10_dp)
+        if (allocated(error)) return
+        call check(error, maxval(abs(sig(:, g) - matmul(d, expected))), 0.0_dp, label // ': stress at Gauss point ' &
+                   // str(g), abs=1.0e-10_dp * maxval(abs(d)))
+        if (allocated(error)) return
+      end do
+      call element%b_matrix(xe, [0.21_dp, -0.77_dp, 0.4_dp], b, detj)
+      call check(error, detj > 0.0_dp, label // ': positive Jacobian')
+      if (allocated(error)) return
+      call check(error, maxval(abs(matmul(b, u) - expected)), 0.0_dp, label // ': B u at a point', abs=1.0e-10_dp)
+      if (allocated(error)) return
+      deallocate (eps, sig, b)
+    end do
+  end subroutine test_linear_field
+
+  !> Rigid translations and rotations: ke u = 0 (to 1e-10 ||ke|| ||u||); ke symmetric.
+  subroutine test_rigid_modes(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: xe(:, :), ke(:, :), u(:)
+    character(len=:), allocatable :: label
+    real(dp) :: h(3, 3), c(3), min_detj, kn
+    integer :: k, mode
+    do k = 1, 3
+      call test_element(k, element, xe, label)
+      allocate (ke(3 * size(xe, 2), 3 * size(xe, 2)))
+      call element%stiffness(xe, d_at_points(isotropic_d(30000.0_dp, 0.2_dp), element%ngauss()), ke, min_detj)
+      call check(error, min_detj > 0.0_dp, label // ': positive Jacobian')
+      if (allocated(error)) return
+      kn = norm2(ke)
+      call check(error, maxval(abs(ke - transpose(ke))), 0.0_dp, label // ': ke symmetric', abs=1.0e-13_dp * kn)
+      if (allocated(error)) return
+      do mode = 1, 6
+        h = 0.0_dp
+        c = 0.0_dp
+        select case (mode)
+        case (1:3)
+          c(mode) = 1.0_dp
+        case (4)   ! rotation about x
+          h(2, 3) = -1.0_dp
+          h(3, 2) = 1.0_dp
+        case (5)   ! about y
+          h(1, 3) = 1.0_dp
+          h(3, 1) = -1.0_dp
+        case (6)   ! about z
+          h(1, 2) = -1.0_dp
+          h(2, 1) = 1.0_dp
+        end select
+        u = linear_field(xe, h, c)
+        call check(error, norm2(matmul(ke, u)), 0.0_dp, label // ': ke times rigid mode ' // str(mode), &
+                   abs=1.0e-10_dp * kn * norm2(u))
+        if (allocated(error)) return
+      end do
+      deallocate (ke)
+    end do
+  end subroutine test_rigid_modes
+
+  !> Unit cube, E = 1, nu = 0.25 (lambda = mu = 0.4): volume 1 (hex8 and hex20), detJ = 1/8;
+  !! closed forms K(1x,1x) = (lambda + 4 mu)/9 = 2/9, K(1x,1y) = (lambda + mu)/12 = 1/15,
+  !! trace = 24 * 2/9; and every entry against an independent 3x3x3 integration written here
+  !! with the trilinear functions in x, y, z.
+  subroutine test_unit_cube_hex8(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(hex8_t) :: hex8
+    type(hex20_t) :: hex20
+    real(dp) :: xe(3, 8), ke(24, 24), kref(24, 24), d(6, 6), min_detj
+    integer :: i
+    xe = unit_cube()
+    d = isotropic_d(1.0_dp, 0.25_dp)
+    call check(error, hex8%volume(xe), 1.0_dp, 'hex8 unit cube volume', abs=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, hex20%volume(straight_hex20(xe)), 1.0_dp, 'hex20 unit cube volume', abs=1.0e-14_dp)
+    if (allocated(error)) return
+    call hex8%stiffness(xe, d_at_points(d, 8), ke, min_detj)
+    call check(error, min_detj, 0.125_dp, 'unit cube detJ', abs=1.0e-15_dp)
+    if (allocated(error)) return
+    call check(error, ke(1, 1), 2.0_dp / 9.0_dp, 'K(1x,1x)', abs=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, ke(1, 2), 1.0_dp / 15.0_dp, 'K(1x,1y)', abs=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, sum([(ke(i, i), i = 1, 24)]), 48.0_dp / 9.0_dp, 'trace of ke', abs=1.0e-13_dp)
+    if (allocated(error)) return
+    kref = reference_cube_stiffness(d)
+    call check(error, maxval(abs(ke - kref)), 0.0_dp, 'ke against independent integration', abs=1.0e-14_dp)
+    if (allocated(error)) return
+  end subroutine test_unit_cube_hex8
+
+  !> Independent stiffness of the hex8 unit cube [0,1]^3: 3-point Gauss on [0,1] per direction
+  !! (exact for the degree-2 integrand), derivatives of the trilinear functions taken directly in
+  !! x, y, z, full B^T D B products.
+  pure function reference_cube_stiffness(d) result(kref)
+    real(dp), intent(in) :: d(6, 6)
+    real(dp) :: kref(24, 24)
+    real(dp) :: pts(3), wts(3), corner(3, 8), x(3), b(6, 24), grad(3), f(3), df(3)
+    integer :: i, j, l, a, m
+    pts = [0.5_dp - sqrt(0.15_dp), 0.5_dp, 0.5_dp + sqrt(0.15_dp)]
+    wts = [5.0_dp, 8.0_dp, 5.0_dp] / 18.0_dp
+    corner = unit_cube()
+    kref = 0.0_dp
+    do l = 1, 3
+      do j = 1, 3
+        do i = 1, 3
+          x = [pts(i), pts(j), pts(l)]
+          b = 0.0_dp
+          do a = 1, 8
+            ! 1D factors: x for a corner at 1, (1 - x) for a corner at 0
+            do m = 1, 3
+              if (corner(m, a) > 0.5_dp) then
+                f(m) = x(m)
+                df(m) = 1.0_dp
+              else
+                f(m) = 1.0_dp - x(m)
+                df(m) = -1.0_dp
+              end if
+            end do
+            grad = [df(1) * f(2) * f(3), f(1) * df(2) * f(3), f(1) * f(2) * df(3)]
+            b(1, 3 * a - 2) = grad(1)
+            b(2, 3 * a - 1) = grad(2)
+            b(3, 3 * a) = grad(3)
+            b(4, 3 * a - 1) = grad(3)
+            b(4, 3 * a) = grad(2)
+            b(5, 3 * a - 2) = grad(3)
+            b(5, 3 * a) = grad(1)
+            b(6, 3 * a - 2) = grad(2)
+            b(6, 3 * a - 1) = grad(1)
+          end do
+          kref = kref + wts(i) * wts(j) * wts(l) * matmul(transpose(b), matmul(d, b))
+        end do
+      end do
+    end do
+  end function reference_cube_stiffness
+
+  !> Eigenvalues of ke on the distorted elements: exactly 6 below 1e-9 lambda_max for hex8
+  !! (2x2x2) and hex20 (3x3x3), and the 7th above 1e-4 lambda_max; hex20 with 2x2x2 has 12
+  !! (6 spurious zero-energy modes).
+  subroutine test_zero_energy_modes(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: xe(:, :), ke(:, :), lam(:), work(:)
+    character(len=:), allocatable :: label
+    real(dp) :: min_detj
+    integer :: k, ndof, info, nzero
+    do k = 1, 3
+      call test_element(k, element, xe, label)
+      ndof = 3 * size(xe, 2)
+      allocate (ke(ndof, ndof), lam(ndof), work(64 * ndof))
+      call element%stiffness(xe, d_at_points(isotropic_d(30000.0_dp, 0.2_dp), element%ngauss()), ke, min_detj)
+      call dsyev('N', 'U', ndof, ke, ndof, lam, work, size(work), info)
+      call check(error, info, 0, label // ': dsyev info')
+      if (allocated(error)) return
+      nzero = count(abs(lam) <= 1.0e-9_dp * maxval(abs(lam)))
+      call check(error, minval(lam) > -1.0e-9_dp * maxval(abs(lam)), label // ': no negative eigenvalue')
+      if (allocated(error)) return
+      if (k < 3) then
+        call check(error, nzero, 6, label // ': number of zero eigenvalues')
+        if (allocated(error)) return
+        call check(error, lam(7) > 1.0e-4_dp * lam(ndof), label // ': smallest deformation mode is stiff, ratio ' // &
+                   str(lam(7) / lam(ndof)))
+      else
+        ! 6 rigid + 6 spurious modes, the known count for the 20-node brick with 2x2x2 Gauss
+        call check(error, nzero, 12, label // ': number of zero eigenvalues')
+      end if
+      if (allocated(error)) return
+      deallocate (ke, lam, work)
+    end do
+  end subroutine test_zero_energy_modes
+
+  !> Jacobian range: 1/8 everywhere on the unit cube (hex8, straight hex20); det(A) for an affine
+  !! element; a node-order mistake (top and bottom swapped) gives negative values; a hex20 with
+  !! quarter-point mid-edge nodes along one corner's three edges has detJ = 0 at that corner.
+  subroutine test_jacobian_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(hex8_t) :: hex8
+    type(hex20_t) :: hex20
+    real(dp) :: xe(3, 8), xe20(3, 20), jmin, jmax, a(3, 3)
+    xe = unit_cube()
+    call hex8%jacobian_range(xe, jmin, jmax)
+    call check(error, jmin, 0.125_dp, 'unit cube min detJ', abs=1.0e-15_dp)
+    if (allocated(error)) return
+    call check(error, jmax, 0.125_dp, 'unit cube max detJ', abs=1.0e-15_dp)
+    if (allocated(error)) return
+    call hex20%jacobian_range(straight_hex20(xe), jmin, jmax)
+    call check(error, jmin, 0.125_dp, 'hex20 unit cube min detJ', abs=1.0e-15_dp)
+    if (allocated(error)) return
+    call check(error, jmax, 0.125_dp, 'hex20 unit cube max detJ', abs=1.0e-15_dp)
+    if (allocated(error)) return
+    ! affine element x = A xi + c: detJ = det(A)
+    a = reshape([1.2_dp, 0.1_dp, -0.2_dp, 0.3_dp, 0.9_dp, 0.15_dp, -0.1_dp, 0.25_dp, 1.4_dp], [3, 3])
+    call hex8%jacobian_range(affine_hex8(), jmin, jmax)
+    call check(error, jmin, dot_product(a(:, 1), cross(a(:, 2), a(:, 3))), 'affine detJ', rel=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, hex8%volume(affine_hex8()), 8.0_dp * dot_product(a(:, 1), cross(a(:, 2), a(:, 3))), &
+               'affine volume', rel=1.0e-14_dp)
+    if (allocated(error)) return
+    ! inverted: top and bottom faces swapped
+    call hex8%jacobian_range(xe(:, [5, 6, 7, 8, 1, 2, 3, 4]), jmin, jmax)
+    call check(error, jmax, -0.125_dp, 'inverted element max detJ', abs=1.0e-15_dp)
+    if (allocated(error)) return
+    ! quarter-point nodes next to corner 1 on edges 1-2 (node 9), 4-1 (node 12), 1-5 (node 17)
+    xe20 = straight_hex20(xe)
+    xe20(:, 9) = [0.25_dp, 0.0_dp, 0.0_dp]
+    xe20(:, 12) = [0.0_dp, 0.25_dp, 0.0_dp]
+    xe20(:, 17) = [0.0_dp, 0.0_dp, 0.25_dp]
+    call hex20%jacobian_range(xe20, jmin, jmax)
+    call check(error, jmin, 0.0_dp, 'quarter-point corner detJ', abs=1.0e-15_dp)
+    if (allocated(error)) return
+  end subroutine test_jacobian_range
+
+  ! ------------------------------------------------------------------ faces
+
+  !> Area, centroid (by two triangles) and unit normal of a planar quadrilateral p1 p2 p3 p4.
+  pure subroutine planar_quad(p, area, centroid, normal)
+    real(dp), intent(in) :: p(3, 4)
+    real(dp), intent(out) :: area, centroid(3), normal(3)
+    real(dp) :: a1, a2, c(3)
+    c = cross(p(:, 3) - p(:, 1), p(:, 4) - p(:, 2))
+    normal = c / norm2(c)
+    a1 = 0.5_dp * norm2(cross(p(:, 2) - p(:, 1), p(:, 3) - p(:, 1)))
+    a2 = 0.5_dp * norm2(cross(p(:, 3) - p(:, 1), p(:, 4) - p(:, 1)))
+    area = a1 + a2
+    centroid = (a1 * (p(:, 1) + p(:, 2) + p(:, 3)) + a2 * (p(:, 1) + p(:, 3) + p(:, 4))) / (3.0_dp * area)
+  end subroutine planar_quad
+
+  !> A hex8 whose faces are planar but not parallel (a skew frustum under a general affine map).
+  pure function planar_face_hex8() result(xe)
+    real(dp) :: xe(3, 8), a(3, 3), p(3, 8)
+    integer :: k
+    p = reshape([0.0_dp, 0.0_dp, 0.0_dp, 2.0_dp, 0.0_dp, 0.0_dp, 2.0_dp, 2.0_dp, 0.0_dp, 0.0_dp, 2.0_dp, 0.0_dp, &
+                 0.3_dp, 0.2_dp, 1.5_dp, 1.5_dp, 0.2_dp, 1.5_dp, 1.5_dp, 1.8_dp, 1.5_dp, 0.3_dp, 1.8_dp, 1.5_dp], [3, 8])
+    a = reshape([1.2_dp, 0.1_dp, -0.2_dp, 0.3_dp, 0.9_dp, 0.15_dp, -0.1_dp, 0.25_dp, 1.4_dp], [3, 3])
+    do k = 1, 8
+      xe(:, k) = matmul(a, p(:, k))
+    end do
+  end function planar_face_hex8
+
+  !> hex8 with planar, non-parallel faces: per face, sum of wda = area (two triangles), the
+  !! integral of a linear function = area times its value at the area centroid, every normal
+  !! equals the plane's unit normal and points out (dot with face centroid minus element centroid > 0).
+  subroutine test_faces_planar_hex8(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(hex8_t) :: hex8
+    real(dp) :: xe(3, 8), xg(3, 4), normal(3, 4), wda(4), nf(4, 4), area, centroid(3), plane_normal(3)
+    real(dp) :: out(3), coef(3)
+    integer, allocatable :: fn(:)
+    integer :: face, g
+    xe = planar_face_hex8()
+    coef = [0.7_dp, -1.3_dp, 2.1_dp]
+    do face = 1, 6
+      fn = hex8%face_nodes(face)
+      call hex8%face_integration(xe, face, xg, normal, wda, nf)
+      call planar_quad(xe(:, fn), area, centroid, plane_normal)
+      call check(error, sum(wda), area, 'hex8 face ' // str(face) // ' area', rel=1.0e-13_dp)
+      if (allocated(error)) return
+      call check(error, sum(wda * (3.0_dp + matmul(coef, xg))), area * (3.0_dp + dot_product(coef, centroid)), &
+                 'hex8 face ' // str(face) // ' integral of a linear function', rel=1.0e-13_dp)
+      if (allocated(error)) return
+      out = sum(xe(:, fn), dim=2) / 4.0_dp - sum(xe, dim=2) / 8.0_dp
+      do g = 1, 4
+        call check(error, dot_product(normal(:, g), out) > 0.0_dp, 'hex8 face ' // str(face) // ' normal outward')
+        if (allocated(error)) return
+        call check(error, norm2(normal(:, g) - sign(1.0_dp, dot_product(plane_normal, out)) * plane_normal), &
+                   0.0_dp, 'hex8 face ' // str(face) // ' normal equals plane normal', abs=1.0e-14_dp)
+        if (allocated(error)) return
+      end do
+    end do
+  end subroutine test_faces_planar_hex8
+
+  !> hex20 extruded along z (height 1.2) from a planar quadrilateral with parabolic edges: the
+  !! bottom and top faces are planar, so their areas and linear integrals have closed forms
+  !! (polygon plus parabolic segments 2/3 L delta with centroid 2/5 delta off the chord), the
+  !! volume is height times that area, and the bottom/top normals are -z/+z.
+  subroutine test_faces_curved_hex20(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(hex20_t) :: hex20
+    real(dp), parameter :: height = 1.2_dp
+    real(dp) :: corners(2, 4), delta(4), xe(3, 20), chord(2), nout(2), seg_area, seg_c(2)
+    real(dp) :: area, moment(2), area_c(3), a_tri, xg(3, 9), normal(3, 9), wda(9), nf(8, 9), coef(3)
+    integer :: e, k
+    corners = reshape([0.0_dp, 0.0_dp, 3.0_dp, 0.0_dp, 2.6_dp, 2.2_dp, 0.2_dp, 1.8_dp], [2, 4])
+    delta = [0.15_dp, -0.1_dp, 0.2_dp, 0.12_dp]   ! sagitta of each edge, outward positive
+    do k = 1, 4
+      xe(:, k) = [corners(:, k), 0.0_dp]
+      xe(:, k + 4) = [corners(:, k), height]
+      xe(:, 16 + k) = [corners(:, k), 0.5_dp * height]
+    end do
+    ! closed-form area and first moment of the planar region
+    area = 0.0_dp
+    moment = 0.0_dp
+    do e = 1, 4
+      k = mod(e, 4) + 1
+      chord = corners(:, k) - corners(:, e)
+      nout = [chord(2), -chord(1)] / norm2(chord)   ! outward for a counter-clockwise polygon
+      xe(:, 8 + e) = [0.5_dp * (corners(:, e) + corners(:, k)) + delta(e) * nout, 0.0_dp]
+      xe(:, 12 + e) = [xe(1:2, 8 + e), height]
+      seg_area = 2.0_dp / 3.0_dp * norm2(chord) * delta(e)
+      seg_c = 0.5_dp * (corners(:, e) + corners(:, k)) + 0.4_dp * delta(e) * nout
+      area = area + seg_area
+      moment = moment + seg_area * seg_c
+    end do
+    do k = 2, 3   ! polygon as two triangles 1-2-3 and 1-3-4
+      a_tri = 0.5_dp * ((corners(1, k) - corners(1, 1)) * (corners(2, k + 1) - corners(2, 1)) - &
+                        (corners(2, k) - corners(2, 1)) * (corners(1, k + 1) - corners(1, 1)))
+      area = area + a_tri
+      moment = moment + a_tri * (corners(:, 1) + corners(:, k) + corners(:, k + 1)) / 3.0_dp
+    end do
+    call check(error, hex20%volume(xe), height * area, 'extruded hex20 volume', rel=1.0e-13_dp)
+    if (allocated(error)) return
+    coef = [0.7_dp, -1.3_dp, 2.1_dp]
+    do k = 1, 2   ! face 1 bottom (z = 0), face 2 top (z = height)
+      call hex20%face_integration(xe, k, xg, normal, wda, nf)
+      call check(error, sum(wda), area, 'hex20 curved face ' // str(k) // ' area', rel=1.0e-13_dp)
+      if (allocated(error)) return
+      area_c = [moment / area, merge(0.0_dp, height, k == 1)]
+      call check(error, sum(wda * (3.0_dp + matmul(coef, xg))), area * (3.0_dp + dot_product(coef, area_c)), &
+                 'hex20 curved face ' // str(k) // ' linear integral', rel=1.0e-13_dp)
+      if (allocated(error)) return
+      call check(error, maxval(abs(normal(3, :) - merge(-1.0_dp, 1.0_dp, k == 1))), 0.0_dp, &
+                 'hex20 face ' // str(k) // ' normal', abs=1.0e-14_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_faces_curved_hex20
+
+  !> Divergence theorem on closed element surfaces (distorted hex8 with warped faces, curved
+  !! hex20): sum over faces of the integral of n dA = 0 and of x.n dA = 3 V (both exact for
+  !! these rules), and every Gauss-point normal is unit and points out of the element.
+  subroutine test_divergence_theorem(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: xe(:, :), xg(:, :), normal(:, :), wda(:), nf(:, :)
+    character(len=:), allocatable :: label
+    real(dp) :: flux_n(3), flux_x, out(3), scale
+    integer, allocatable :: fn(:)
+    integer :: k, face, g
+    do k = 1, 2
+      call test_element(k, element, xe, label)
+      allocate (xg(3, element%nface_gauss()), normal(3, element%nface_gauss()), wda(element%nface_gauss()), &
+                nf(element%nface_nodes(), element%nface_gauss()))
+      flux_n = 0.0_dp
+      flux_x = 0.0_dp
+      scale = 0.0_dp
+      do face = 1, element%nfaces()
+        call element%face_integration(xe, face, xg, normal, wda, nf)
+        fn = element%face_nodes(face)
+        out = sum(xe(:, fn), dim=2) / size(fn) - sum(xe, dim=2) / size(xe, 2)
+        do g = 1, size(wda)
+          call check(error, dot_product(normal(:, g), out) > 0.0_dp, label // ': face ' // str(face) // &
+                     ' normal outward at point ' // str(g))
+          if (allocated(error)) return
+          call check(error, norm2(normal(:, g)), 1.0_dp, label // ': unit normal', abs=1.0e-14_dp)
+          if (allocated(error)) return
+          ! nf interpolates the position
+          call check(error, norm2(matmul(xe(:, fn), nf(:, g)) - xg(:, g)), 0.0_dp, label // ': xg = sum N x', &
+                     abs=1.0e-14_dp)
+          if (allocated(error)) return
+        end do
+        flux_n = flux_n + matmul(normal, wda)
+        flux_x = flux_x + sum(wda * sum(xg * normal, dim=1))
+        scale = scale + sum(wda)
+      end do
+      call check(error, norm2(flux_n), 0.0_dp, label // ': closed surface integral of n', abs=1.0e-13_dp * scale)
+      if (allocated(error)) return
+      call check(error, flux_x, 3.0_dp * element%volume(xe), label // ': integral of x.n = 3 V', rel=1.0e-13_dp)
+      if (allocated(error)) return
+      deallocate (xg, normal, wda, nf)
+    end do
+  end subroutine test_divergence_theorem
+
+  !> Constant strain patch, one element: for u = H x, ke u equals the consistent nodal forces of the
+  !! surface tractions sigma.n (sigma = D eps(H)) integrated with face_integration. Distorted hex8,
+  !! curved hex20 (exact for these rules) and hex20 reduced on a parallelepiped.
+  subroutine test_uniform_stress_patch(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: xe(:, :), ke(:, :), u(:), f(:), xg(:, :), normal(:, :), wda(:), nf(:, :)
+    character(len=:), allocatable :: label
+    real(dp) :: h(3, 3), sv(6), sigma(3, 3), min_detj
+    integer, allocatable :: fn(:)
+    integer :: k, face, g, a
+    h = reshape([0.1_dp, -0.3_dp, 0.25_dp, 0.7_dp, -0.2_dp, 0.05_dp, -0.45_dp, 0.33_dp, 0.6_dp], [3, 3]) * 1.0e-3_dp
+    sv = matmul(isotropic_d(30000.0_dp, 0.2_dp), voigt_strain(h))
+    sigma = reshape([sv(1), sv(6), sv(5), sv(6), sv(2), sv(4), sv(5), sv(4), sv(3)], [3, 3])
+    do k = 1, 3
+      call test_element(k, element, xe, label)
+      if (k == 3) xe = straight_hex20(affine_hex8())
+      allocate (ke(3 * size(xe, 2), 3 * size(xe, 2)), f(3 * size(xe, 2)), xg(3, element%nface_gauss()), &
+                normal(3, element%nface_gauss()), wda(element%nface_gauss()), &
+                nf(element%nface_nodes(), element%nface_gauss()))
+      call element%stiffness(xe, d_at_points(isotropic_d(30000.0_dp, 0.2_dp), element%ngauss()), ke, min_detj)
+      u = linear_field(xe, h, [0.0_dp, 0.0_dp, 0.0_dp])
+      f = 0.0_dp
+      do face = 1, element%nfaces()
+        call element%face_integration(xe, face, xg, normal, wda, nf)
+        fn = element%face_nodes(face)
+        do g = 1, size(wda)
+          do a = 1, size(fn)
+            f(3 * fn(a) - 2:3 * fn(a)) = f(3 * fn(a) - 2:3 * fn(a)) + nf(a, g) * wda(g) * matmul(sigma, normal(:, g))
+          end do
+        end do
+      end do
+      call check(error, maxval(abs(matmul(ke, u) - f)), 0.0_dp, label // ': ke u against face tractions', &
+                 abs=1.0e-10_dp * maxval(abs(f)))
+      if (allocated(error)) return
+      deallocate (ke, f, xg, normal, wda, nf)
+    end do
+  end subroutine test_uniform_stress_patch
+
+end module test_elements

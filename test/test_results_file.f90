@@ -1,0 +1,584 @@
+!> Tests of the HDF5 results file and its XDMF companion: a small file is written, then read back
+!! with the HDF5 API and compared exactly with the values written (all are exact binary fractions).
+module test_results_file
+  use feps_kinds, only: dp, i8
+  use feps_error, only: err_internal
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_results_file, only: results_file_t, step_group_name
+  use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, &
+                  h5dopen_f, h5dread_f, h5dclose_f, h5dget_space_f, h5sget_simple_extent_ndims_f, &
+                  h5sget_simple_extent_dims_f, h5sclose_f, h5aopen_by_name_f, h5aread_f, h5aclose_f, &
+                  h5aget_type_f, h5tget_size_f, h5tcopy_f, h5tset_size_f, h5tclose_f, H5T_FORTRAN_S1, &
+                  H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, h5kind_to_type, H5_INTEGER_KIND
+  use, intrinsic :: iso_c_binding, only: c_loc, c_ptr
+  implicit none
+  private
+
+  public :: collect_results_file
+
+  integer, parameter :: nnode = 12, nelem = 2, npe = 8, ngauss = 8
+
+contains
+
+  subroutine collect_results_file(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest("mesh datasets read back", test_mesh_datasets), &
+      new_unittest("step datasets and cell averages", test_step_datasets), &
+      new_unittest("summary attributes", test_summary), &
+      new_unittest("xdmf file and rename", test_xdmf_file), &
+      new_unittest("mesh-only xdmf", test_mesh_only_xdmf), &
+      new_unittest("discard leaves no file", test_discard), &
+      new_unittest("contract violations are errors", test_contract_errors), &
+      new_unittest("step group names", test_step_names) &
+    ]
+  end subroutine collect_results_file
+
+  ! ----------------------------------------------------------------- sample model
+
+  !> A scratch file name: under build/ when run from the package root, else /tmp.
+  function scratch_path(name) result(path)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: path
+    logical :: exists
+    inquire (file='build/.', exist=exists)
+    if (exists) then
+      path = 'build/feps_test_' // name
+    else
+      path = '/tmp/feps_test_' // name
+    end if
+  end function scratch_path
+
+  !> Nodes on a 3 x 2 x 2 grid (x = 100 i, y = 50 j, z = 25 k), node = 1 + i + 3 j + 6 k.
+  pure function sample_coordinates() result(x)
+    real(dp) :: x(3, nnode)
+    integer :: i, j, k, n
+    do k = 0, 1
+      do j = 0, 1
+        do i = 0, 2
+          n = 1 + i + 3 * j + 6 * k
+          x(:, n) = [100.0_dp * i, 50.0_dp * j, 25.0_dp * k]
+        end do
+      end do
+    end do
+  end function sample_coordinates
+
+  !> Two hex8 along x: bottom face counter-clockwise, then the top face.
+  pure function sample_connectivity() result(c)
+    integer :: c(npe, nelem)
+    integer :: e
+    do e = 1, nelem
+      c(:4, e) = [e, e + 1, e + 4, e + 3]
+      c(5:, e) = c(:4, e) + 6
+    end do
+  end function sample_connectivity
+
+  pure function sample_displacement() result(u)
+    real(dp) :: u(3, nnode)
+    integer :: c, n
+    do n = 1, nnode
+      do c = 1, 3
+        u(c, n) = c + 0.25_dp * n
+      end do
+    end do
+  end function sample_displacement
+
+  !> Stress at Gauss point p (element-major): 1000 c + p + 0.5.
+  pure function sample_stress() result(s)
+    real(dp) :: s(6, nelem * ngauss)
+    integer :: c, p
+    do p = 1, nelem * ngauss
+      do c = 1, 6
+        s(c, p) = 1000.0_dp * c + p + 0.5_dp
+      end do
+    end do
+  end function sample_stress
+
+  !> Write the sample file (mesh, one step, summary) and close it.
+  subroutine write_sample(path, error)
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: error
+    type(results_file_t) :: file
+
+    call file%create(path, error)
+    if (.not. allocated(error)) call file%write_mesh(sample_coordinates(), error)
+    if (.not. allocated(error)) call file%write_group('pipe', 'hex8', sample_connectivity(), error)
+    if (.not. allocated(error)) call file%begin_step(1, 0.5_dp, 3, 1.25e-7_dp, error)
+    if (.not. allocated(error)) call file%write_nodal(1, 'displacement', sample_displacement(), 'ux uy uz', error)
+    if (.not. allocated(error)) call file%write_gauss(1, 'stress', 'pipe', sample_stress(), &
+                                                      'sxx syy szz syz sxz sxy', ngauss, error)
+    if (.not. allocated(error)) call file%write_summary_string('version', 'feps 0.1.0', error)
+    if (.not. allocated(error)) call file%write_summary_string('input', '', error)
+    if (.not. allocated(error)) call file%write_summary_real('wall_time', 2.5_dp, error)
+    if (.not. allocated(error)) call file%write_summary_int('dofs', 5000000000_i8, error)
+    if (.not. allocated(error)) call file%write_summary_int('dofs', 36_i8, error)   ! replaces
+    if (.not. allocated(error)) call file%close(error)
+    if (allocated(error)) call file%discard()
+  end subroutine write_sample
+
+  ! ----------------------------------------------------------------- reading helpers
+
+  subroutine open_read(path, file_id, error)
+    character(len=*), intent(in) :: path
+    integer(hid_t), intent(out) :: file_id
+    type(error_t), allocatable, intent(out) :: error
+    integer :: hdferr
+    call h5open_f(hdferr)
+    call h5fopen_f(path, H5F_ACC_RDONLY_F, file_id, hdferr)
+    if (hdferr < 0) call test_failed(error, 'cannot open ' // path // ' for reading')
+  end subroutine open_read
+
+  !> Fortran-order dimensions of a rank-2 dataset (h5py shows them reversed).
+  subroutine dataset_dims(file_id, path, dims, error)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: path
+    integer(hsize_t), intent(out) :: dims(2)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: dataset_id, space_id
+    integer(hsize_t) :: maxdims(2)
+    integer :: hdferr, rank
+    dims = 0
+    call h5dopen_f(file_id, path, dataset_id, hdferr)
+    if (hdferr < 0) then
+      call test_failed(error, 'no dataset ' // path)
+      return
+    end if
+    call h5dget_space_f(dataset_id, space_id, hdferr)
+    call h5sget_simple_extent_ndims_f(space_id, rank, hdferr)
+    if (rank == 2) call h5sget_simple_extent_dims_f(space_id, dims, maxdims, hdferr)
+    call h5sclose_f(space_id, hdferr)
+    call h5dclose_f(dataset_id, hdferr)
+    if (rank /= 2) call test_failed(error, path // ' is not rank 2')
+  end subroutine dataset_dims
+
+  subroutine read_real(file_id, path, values, error)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: path
+    real(dp), allocatable, intent(out) :: values(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hsize_t) :: dims(2)
+    integer(hid_t) :: dataset_id
+    integer :: hdferr
+    call dataset_dims(file_id, path, dims, error)
+    if (allocated(error)) return
+    allocate (values(dims(1), dims(2)))
+    call h5dopen_f(file_id, path, dataset_id, hdferr)
+    call h5dread_f(dataset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+    call h5dclose_f(dataset_id, hdferr)
+  end subroutine read_real
+
+  subroutine read_int(file_id, path, values, error)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: path
+    integer, allocatable, intent(out) :: values(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hsize_t) :: dims(2)
+    integer(hid_t) :: dataset_id
+    integer :: hdferr
+    call dataset_dims(file_id, path, dims, error)
+    if (allocated(error)) return
+    allocate (values(dims(1), dims(2)))
+    call h5dopen_f(file_id, path, dataset_id, hdferr)
+    call h5dread_f(dataset_id, H5T_NATIVE_INTEGER, values, dims, hdferr)
+    call h5dclose_f(dataset_id, hdferr)
+  end subroutine read_int
+
+  !> String attribute `name` of the object `object` (trailing nulls removed; '?' when absent).
+  function string_attribute(file_id, object, name) result(value)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: object, name
+    character(len=:), allocatable :: value
+    integer(hid_t) :: attribute_id, file_type, memory_type
+    integer(size_t) :: length
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr, last
+    value = '?'
+    call h5aopen_by_name_f(file_id, object, name, attribute_id, hdferr)
+    if (hdferr < 0) return
+    call h5aget_type_f(attribute_id, file_type, hdferr)
+    call h5tget_size_f(file_type, length, hdferr)
+    call h5tclose_f(file_type, hdferr)
+    call h5tcopy_f(H5T_FORTRAN_S1, memory_type, hdferr)
+    call h5tset_size_f(memory_type, length, hdferr)
+    deallocate (value)
+    allocate (character(len=length) :: value)
+    dims = 1
+    call h5aread_f(attribute_id, memory_type, value, dims, hdferr)
+    call h5tclose_f(memory_type, hdferr)
+    call h5aclose_f(attribute_id, hdferr)
+    last = len(value)
+    do while (last > 0)
+      if (value(last:last) /= achar(0)) exit
+      last = last - 1
+    end do
+    value = value(:last)
+  end function string_attribute
+
+  function real_attribute(file_id, object, name) result(value)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: object, name
+    real(dp) :: value
+    integer(hid_t) :: attribute_id
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr
+    value = -huge(1.0_dp)
+    dims = 1
+    call h5aopen_by_name_f(file_id, object, name, attribute_id, hdferr)
+    if (hdferr < 0) return
+    call h5aread_f(attribute_id, H5T_NATIVE_DOUBLE, value, dims, hdferr)
+    call h5aclose_f(attribute_id, hdferr)
+  end function real_attribute
+
+  function int_attribute(file_id, object, name) result(value)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: object, name
+    integer :: value
+    integer(hid_t) :: attribute_id
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr
+    value = -huge(1)
+    dims = 1
+    call h5aopen_by_name_f(file_id, object, name, attribute_id, hdferr)
+    if (hdferr < 0) return
+    call h5aread_f(attribute_id, H5T_NATIVE_INTEGER, value, dims, hdferr)
+    call h5aclose_f(attribute_id, hdferr)
+  end function int_attribute
+
+  function int64_attribute(file_id, object, name) result(value)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: object, name
+    integer(i8) :: value
+    integer(i8), target :: buffer
+    integer(hid_t) :: attribute_id
+    integer :: hdferr
+    type(c_ptr) :: pointer
+    buffer = -huge(1_i8)
+    pointer = c_loc(buffer)
+    call h5aopen_by_name_f(file_id, object, name, attribute_id, hdferr)
+    if (hdferr >= 0) then
+      call h5aread_f(attribute_id, h5kind_to_type(i8, H5_INTEGER_KIND), pointer, hdferr)
+      call h5aclose_f(attribute_id, hdferr)
+    end if
+    value = buffer
+  end function int64_attribute
+
+  logical function file_exists(path)
+    character(len=*), intent(in) :: path
+    inquire (file=path, exist=file_exists)
+  end function file_exists
+
+  subroutine delete_file(path)
+    character(len=*), intent(in) :: path
+    integer :: unit, ios
+    if (.not. file_exists(path)) return
+    open (newunit=unit, file=path, status='old', iostat=ios)
+    if (ios == 0) close (unit, status='delete')
+  end subroutine delete_file
+
+  !> The whole text of a file, lines joined by new lines ('' if it cannot be read).
+  function file_text(path) result(text)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: text
+    character(len=1000) :: line
+    integer :: unit, ios
+    text = ''
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios)
+    if (ios /= 0) return
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      text = text // trim(line) // new_line('a')
+    end do
+    close (unit)
+  end function file_text
+
+  !> Times `pattern` occurs in `text`.
+  pure function occurrences(text, pattern) result(n)
+    character(len=*), intent(in) :: text, pattern
+    integer :: n, start, at
+    n = 0
+    start = 1
+    do
+      at = index(text(start:), pattern)
+      if (at == 0) exit
+      n = n + 1
+      start = start + at - 1 + len(pattern)
+    end do
+  end function occurrences
+
+  ! ----------------------------------------------------------------- tests
+
+  subroutine test_mesh_datasets(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path
+    integer(hid_t) :: file_id
+    integer :: hdferr
+    real(dp), allocatable :: x(:, :)
+    integer, allocatable :: c(:, :), t(:, :)
+
+    path = scratch_path('mesh.h5')
+    call write_sample(path, error)
+    if (allocated(error)) return
+    call open_read(path, file_id, error)
+    if (allocated(error)) return
+    call read_real(file_id, '/mesh/coordinates', x, error)
+    if (.not. allocated(error)) call read_int(file_id, '/mesh/groups/pipe/connectivity', c, error)
+    if (.not. allocated(error)) call read_int(file_id, '/xdmf/pipe/topology', t, error)
+    if (.not. allocated(error)) then
+      ! Fortran (3, nnode) is h5py (nnode, 3).
+      call check(error, size(x, 1) == 3 .and. size(x, 2) == nnode, 'coordinates shape (3, 12)')
+      if (.not. allocated(error)) call check(error, all(x == sample_coordinates()), 'coordinates exact')
+      if (.not. allocated(error)) call check(error, string_attribute(file_id, '/mesh/coordinates', &
+                                                  'components') == 'x y z', 'coordinates components')
+      if (.not. allocated(error)) call check(error, size(c, 1) == npe .and. size(c, 2) == nelem, &
+                                             'connectivity shape (8, 2)')
+      if (.not. allocated(error)) call check(error, all(c == sample_connectivity()), 'connectivity 1-based')
+      if (.not. allocated(error)) call check(error, c(1, 1), 1, 'first node of element 1')
+      if (.not. allocated(error)) call check(error, string_attribute(file_id, '/mesh/groups/pipe', &
+                                                  'element_type') == 'hex8', 'element_type hex8')
+      if (.not. allocated(error)) call check(error, size(t, 1) == npe .and. size(t, 2) == nelem, &
+                                             'topology shape (8, 2)')
+      if (.not. allocated(error)) call check(error, all(t == sample_connectivity() - 1), 'topology 0-based')
+      if (.not. allocated(error)) call check(error, minval(t), 0, 'smallest topology node')
+    end if
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(path)
+    call delete_file(scratch_path('mesh.xmf'))
+  end subroutine test_mesh_datasets
+
+  subroutine test_step_datasets(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path
+    character(len=*), parameter :: step = '/steps/0001'
+    integer(hid_t) :: file_id
+    integer :: hdferr, e, k
+    real(dp), allocatable :: u(:, :), s(:, :), a(:, :)
+    real(dp) :: expected(6, nelem)
+
+    path = scratch_path('step.h5')
+    call write_sample(path, error)
+    if (allocated(error)) return
+    call open_read(path, file_id, error)
+    if (allocated(error)) return
+    call read_real(file_id, step // '/displacement', u, error)
+    if (.not. allocated(error)) call read_real(file_id, step // '/stress/pipe', s, error)
+    if (.not. allocated(error)) call read_real(file_id, step // '/cell/stress/pipe', a, error)
+    if (.not. allocated(error)) then
+      call check(error, real_attribute(file_id, step, 'load_factor'), 0.5_dp, 'load_factor', abs=0.0_dp)
+      if (.not. allocated(error)) call check(error, int_attribute(file_id, step, 'iterations'), 3, 'iterations')
+      if (.not. allocated(error)) call check(error, real_attribute(file_id, step, 'residual'), 1.25e-7_dp, &
+                                             'residual', abs=0.0_dp)
+      if (.not. allocated(error)) call check(error, size(u, 1) == 3 .and. size(u, 2) == nnode, &
+                                             'displacement shape (3, 12)')
+      if (.not. allocated(error)) call check(error, all(u == sample_displacement()), 'displacement exact')
+      if (.not. allocated(error)) call check(error, string_attribute(file_id, step // '/displacement', &
+                                                  'components') == 'ux uy uz', 'displacement components')
+      if (.not. allocated(error)) call check(error, size(s, 1) == 6 .and. size(s, 2) == nelem * ngauss, &
+                                             'stress shape (6, 16)')
+      if (.not. allocated(error)) call check(error, all(s == sample_stress()), 'stress exact')
+      if (.not. allocated(error)) call check(error, string_attribute(file_id, step // '/stress/pipe', &
+                                                  'components') == 'sxx syy szz syz sxz sxy', 'stress components')
+      if (.not. allocated(error)) call check(error, int_attribute(file_id, step // '/stress/pipe', &
+                                                  'points_per_element'), ngauss, 'points_per_element')
+      if (.not. allocated(error)) call check(error, size(a, 1) == 6 .and. size(a, 2) == nelem, &
+                                             'cell average shape (6, 2)')
+      if (.not. allocated(error)) then
+        ! mean over p = 8(e-1)+1 .. 8e of (1000 c + p + 0.5) = 1000 c + 8(e-1) + 4.5 + 0.5
+        do e = 1, nelem
+          do k = 1, 6
+            expected(k, e) = 1000.0_dp * k + 8.0_dp * (e - 1) + 5.0_dp
+          end do
+        end do
+        call check(error, a(1, 2), expected(1, 2), 'cell average sxx of element 2', abs=0.0_dp)
+        if (.not. allocated(error)) call check(error, all(a == expected), 'all cell averages exact')
+      end if
+      if (.not. allocated(error)) call check(error, string_attribute(file_id, step // '/cell/stress/pipe', &
+                                                  'components') == 'sxx syy szz syz sxz sxy', 'cell components')
+    end if
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(path)
+    call delete_file(scratch_path('step.xmf'))
+  end subroutine test_step_datasets
+
+  subroutine test_summary(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path
+    integer(hid_t) :: file_id
+    integer :: hdferr
+
+    path = scratch_path('summary.h5')
+    call write_sample(path, error)
+    if (allocated(error)) return
+    call open_read(path, file_id, error)
+    if (allocated(error)) return
+    call check(error, string_attribute(file_id, '/summary', 'version') == 'feps 0.1.0', 'version string')
+    if (.not. allocated(error)) call check(error, string_attribute(file_id, '/summary', 'input') == '', &
+                                           'empty string attribute')
+    if (.not. allocated(error)) call check(error, real_attribute(file_id, '/summary', 'wall_time'), 2.5_dp, &
+                                           'wall_time', abs=0.0_dp)
+    if (.not. allocated(error)) call check(error, int64_attribute(file_id, '/summary', 'dofs') == 36_i8, &
+                                           'dofs (second write replaces the first)')
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(path)
+    call delete_file(scratch_path('summary.xmf'))
+  end subroutine test_summary
+
+  subroutine test_xdmf_file(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path, xmf, text
+
+    path = scratch_path('xdmf.h5')
+    xmf = scratch_path('xdmf.xmf')
+    call write_sample(path, error)
+    if (allocated(error)) return
+    text = file_text(xmf)
+    call check(error, file_exists(path), 'results file exists after close')
+    if (.not. allocated(error)) call check(error, .not. file_exists(path // '.part'), 'no .part after close')
+    if (.not. allocated(error)) call check(error, file_exists(xmf), 'XDMF file beside it (extension replaced)')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'CollectionType="Temporal"'), 1, &
+                                           'one temporal collection')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'TopologyType="Hexahedron"'), 1, &
+                                           'hexahedron topology per step')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'feps_test_xdmf.h5:/xdmf/pipe/topology'), 1, &
+                                           'topology from the 0-based copy')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'feps_test_xdmf.h5:/mesh/coordinates'), 1, &
+                                           'geometry from coordinates')
+    if (.not. allocated(error)) call check(error, occurrences(text, &
+                                           'Name="displacement" AttributeType="Vector" Center="Node"'), 1, &
+                                           'displacement as a nodal vector')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'Center="Cell"'), 6, &
+                                           'six cell scalars for the stress')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'Name="stress_sxy"'), 1, &
+                                           'stress_sxy attribute')
+    if (.not. allocated(error)) call check(error, occurrences(text, '<Grid'), &
+                                           occurrences(text, '</Grid>'), 'Grid elements balanced')
+    if (.not. allocated(error)) call check(error, occurrences(text, '<DataItem'), &
+                                           occurrences(text, '</DataItem>'), 'DataItem elements balanced')
+    call delete_file(path)
+    call delete_file(xmf)
+  end subroutine test_xdmf_file
+
+  subroutine test_mesh_only_xdmf(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path, text
+    type(results_file_t) :: file
+    integer :: bars(2, 1)
+
+    ! No extension: '.xmf' is appended.
+    path = scratch_path('meshonly')
+    bars(:, 1) = [1, 12]
+    call file%create(path, error)
+    if (.not. allocated(error)) call file%write_mesh(sample_coordinates(), error)
+    if (.not. allocated(error)) call file%write_group('pipe', 'hex8', sample_connectivity(), error)
+    if (.not. allocated(error)) call file%write_group('tie', 'bar2', bars, error)
+    if (.not. allocated(error)) call file%write_group('odd', 'unknown-type', bars, error)
+    if (.not. allocated(error)) call file%close(error)
+    if (allocated(error)) then
+      call file%discard()
+      return
+    end if
+    text = file_text(path // '.xmf')
+    call check(error, file_exists(path) .and. .not. file_exists(path // '.part'), 'renamed file')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'CollectionType="Temporal"'), 0, &
+                                           'no temporal collection without steps')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'CollectionType="Spatial"'), 1, &
+                                           'one spatial collection')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'GridType="Uniform"'), 2, &
+                                           'two grids: the unknown type is left out')
+    if (.not. allocated(error)) call check(error, occurrences(text, &
+                                           'TopologyType="Polyline" NumberOfElements="1" NodesPerElement="2"'), &
+                                           1, 'bar2 as a 2-node polyline')
+    if (.not. allocated(error)) call check(error, occurrences(text, '<Attribute'), 0, 'no attributes')
+    call delete_file(path)
+    call delete_file(path // '.xmf')
+  end subroutine test_mesh_only_xdmf
+
+  subroutine test_discard(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path
+    type(results_file_t) :: file
+
+    path = scratch_path('discard.h5')
+    call file%create(path, error)
+    if (.not. allocated(error)) call file%write_mesh(sample_coordinates(), error)
+    if (allocated(error)) return
+    call check(error, file_exists(path // '.part'), '.part exists while writing')
+    if (allocated(error)) return
+    call file%discard()
+    call check(error, .not. file_exists(path // '.part'), 'no .part after discard')
+    if (.not. allocated(error)) call check(error, .not. file_exists(path), 'no file after discard')
+    if (allocated(error)) return
+    call file%discard()   ! twice is harmless
+
+    ! discard after a successful close keeps the results
+    call file%create(path, error)
+    if (.not. allocated(error)) call file%write_mesh(sample_coordinates(), error)
+    if (.not. allocated(error)) call file%close(error)
+    if (allocated(error)) then
+      call file%discard()
+      return
+    end if
+    call file%discard()
+    call check(error, file_exists(path), 'discard after close keeps the file')
+    call delete_file(path)
+    call delete_file(scratch_path('discard.xmf'))
+  end subroutine test_discard
+
+  subroutine test_contract_errors(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(error_t), allocatable :: failure
+    character(len=:), allocatable :: path
+    type(results_file_t) :: file
+    real(dp) :: u(3, nnode)
+
+    path = scratch_path('contract.h5')
+    u = sample_displacement()
+    call file%write_mesh(sample_coordinates(), failure)
+    call check(error, allocated(failure), 'write_mesh before create fails')
+    if (allocated(error)) return
+    call file%create(path, error)
+    if (.not. allocated(error)) call file%write_mesh(sample_coordinates(), error)
+    if (allocated(error)) then
+      call file%discard()
+      return
+    end if
+    call file%write_nodal(2, 'displacement', u, 'ux uy uz', failure)
+    call check(error, allocated(failure), 'nodal field of a step not begun fails')
+    if (.not. allocated(error)) then
+      call check(error, failure%code, err_internal, 'error category')
+      deallocate (failure)
+    end if
+    if (.not. allocated(error)) call file%begin_step(2, 1.0_dp, 1, 0.0_dp, error)
+    if (.not. allocated(error)) then
+      call file%write_nodal(2, 'displacement', u, 'ux uy', failure)
+      call check(error, allocated(failure), 'two component names for three columns fails')
+      if (allocated(failure)) deallocate (failure)
+    end if
+    if (.not. allocated(error)) then
+      call file%write_nodal(2, 'displacement', u(:, :10), 'ux uy uz', failure)
+      call check(error, allocated(failure), '10 nodes for a 12-node mesh fails')
+      if (allocated(failure)) deallocate (failure)
+    end if
+    if (.not. allocated(error)) then
+      call file%write_gauss(2, 'stress', 'pipe', sample_stress(), 'sxx syy szz syz sxz sxy', 5, failure)
+      call check(error, allocated(failure), '16 points with 5 per element fails')
+      if (allocated(failure)) deallocate (failure)
+    end if
+    if (.not. allocated(error)) then
+      call file%write_group('a/b', 'hex8', sample_connectivity(), failure)
+      call check(error, allocated(failure), "group name with '/' fails")
+      if (allocated(failure)) deallocate (failure)
+    end if
+    call file%discard()
+    if (.not. allocated(error)) call check(error, .not. file_exists(path // '.part') .and. &
+                                           .not. file_exists(path), 'nothing left after discard')
+  end subroutine test_contract_errors
+
+  subroutine test_step_names(error)
+    type(error_t), allocatable, intent(out) :: error
+    call check(error, step_group_name(1) == '0001', 'step 1')
+    if (.not. allocated(error)) call check(error, step_group_name(120) == '0120', 'step 120')
+    if (.not. allocated(error)) call check(error, step_group_name(12345) == '12345', 'step 12345')
+  end subroutine test_step_names
+
+end module test_results_file

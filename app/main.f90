@@ -22,7 +22,11 @@ program feps_main
   call parse_arguments(options, status)
   if (status >= 0) call c_exit(int(status, c_int))
 
-  call run_feps(options, summary, error)
+  if (options%quiet) then
+    call run_feps(options, summary, error)
+  else
+    call run_feps(options, summary, error, print_line)
+  end if
   if (allocated(error)) then
     write (error_unit, '(a)') 'feps: error: ' // error%message
     select case (error%code)
@@ -36,6 +40,12 @@ program feps_main
 
 contains
 
+  subroutine print_line(line)
+    character(len=*), intent(in) :: line
+    write (output_unit, '(a)') line
+    flush (output_unit)
+  end subroutine print_line
+
   !> Fill options; status = -1 to go on, or the exit status to stop with.
   subroutine parse_arguments(options, status)
     type(run_options_t), intent(out) :: options
@@ -45,6 +55,7 @@ contains
     status = -1
     options%output = ''
     options%solver = ''
+    options%method = ''
     n = command_argument_count()
     i = 0
     do while (i < n)
@@ -61,14 +72,16 @@ contains
         return
       case ('-q', '--quiet')
         options%quiet = .true.
-      case ('-o', '--output', '--solver')
+      case ('-o', '--output', '--solver', '--method')
         if (i == n) then
           write (error_unit, '(a)') 'feps: error: ' // arg // ' needs a value (see feps --help)'
           status = 2
           return
         end if
         i = i + 1
-        if (arg == '--solver') then
+        if (arg == '--method') then
+          options%method = argument(i)
+        else if (arg == '--solver') then
           options%solver = argument(i)
           if (options%solver /= 'skyline' .and. options%solver /= 'cholmod') then
             write (error_unit, '(a)') 'feps: error: --solver takes skyline or cholmod, not "' // options%solver // '"'
@@ -112,14 +125,16 @@ contains
     write (output_unit, '(a)') &
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
-      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--quiet]', &
+      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--quiet]', &
       '       feps --help | --version', &
       '', &
       '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
       '  -o, --output FILE    HDF5 results file (overrides the deck''s OUTPUT record);', &
       '                       an XDMF file for ParaView is written beside it', &
       '      --solver NAME    linear solver: cholmod (supernodal, METIS) or skyline (LDL^T, RCM)', &
-      '  -q, --quiet          print nothing but errors', &
+      '      --method NAME    solve every stage by one method: euler, modified-euler, newton-raphson,', &
+      '                       modified-newton-raphson, initial-stiffness (overrides the deck)', &
+      '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &
       '', &
@@ -141,6 +156,13 @@ contains
       if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
         ' (in no element; no DOFs)'
       write (output_unit, '(a)') 'solver           ' // s%solver
+      if (s%linear) then
+        write (output_unit, '(a)') 'analysis         linear: ' // str(s%factorizations) // ' factorization(s)'
+      else
+        write (output_unit, '(a)') 'analysis         nonlinear: ' // str(s%steps) // ' steps, ' // &
+          str(s%iterations) // ' iterations, ' // str(s%factorizations) // ' factorizations, ' // &
+          str(s%cutbacks) // ' cut-backs'
+      end if
       write (buf, '(i0)') s%matrix_nnz
       write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'
       write (buf, '(i0)') s%factor_nnz

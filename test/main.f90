@@ -8,6 +8,9 @@ program tester
   use test_results_file, only: collect_results_file
   use test_analysis, only: collect_analysis
   use test_bad_input, only: collect_bad_input
+  use test_interface_element, only: collect_interface_element
+  use test_interface_mc, only: collect_interface_mc
+  use test_nonlinear, only: collect_nonlinear
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
@@ -21,7 +24,10 @@ program tester
     new_testsuite('skyline', collect_skyline), &
     new_testsuite('results_file', collect_results_file), &
     new_testsuite('analysis', collect_analysis), &
-    new_testsuite('bad_input', collect_bad_input) &
+    new_testsuite('bad_input', collect_bad_input), &
+    new_testsuite('interface_element', collect_interface_element), &
+    new_testsuite('interface_mc', collect_interface_mc), &
+    new_testsuite('nonlinear', collect_nonlinear) &
     ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1

@@ -8,6 +8,7 @@ module feps_assembly
   use feps_sparse_matrix, only: csr_matrix_t
   use feps_element, only: element_t
   use feps_element_factory, only: new_element
+  use feps_interface_element, only: interface_element_t, new_interface_element, is_interface_type
   use feps_material, only: material_slot_t
   use feps_material_factory, only: new_material
   implicit none
@@ -15,7 +16,12 @@ module feps_assembly
 
   !> Element and material objects of one group, built once.
   type, public :: group_kernel_t
-    class(element_t), allocatable :: element
+    logical :: is_interface = .false.
+    class(element_t), allocatable :: element      !! solid groups
+    type(interface_element_t) :: iface            !! interface groups
+    integer :: nnodes = 0                         !! nodes per element
+    integer :: npoints = 0                        !! integration points per element
+    integer :: ncomp = 0                          !! stress components (6 solid, 3 interface)
   end type group_kernel_t
 
   !> Gauss-point stresses of one group, (6, points_per_element * nelem), element-major.
@@ -26,6 +32,7 @@ module feps_assembly
 
   public :: build_kernels, build_materials, build_pattern, assemble_stiffness, element_dofs
   public :: gather_element_displacement, compute_stresses, internal_forces, check_jacobians
+  public :: element_stiffness, element_strains, element_internal_force, scatter_element_matrix, rotate_matrix
 
 contains
 
@@ -37,12 +44,32 @@ contains
     integer :: g
     allocate (kernels(size(model%groups)))
     do g = 1, size(model%groups)
-      call new_element(model%groups(g)%element_type, kernels(g)%element, error)
-      if (allocated(error)) then
-        call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
-                         ': unsupported element type "' // model%groups(g)%element_type // '"')
-        return
-      end if
+      associate (k => kernels(g), grp => model%groups(g))
+        k%is_interface = is_interface_type(grp%element_type)
+        if (k%is_interface) then
+          call new_interface_element(grp%element_type, k%iface, error)
+          if (.not. allocated(error)) then
+            if (k%iface%ndim() /= 3) call input_error(error, grp%file, grp%line, 'group ' // grp%name // &
+                                                      ': 2D interfaces need a plane-strain analysis')
+          end if
+        else
+          call new_element(grp%element_type, k%element, error)
+        end if
+        if (allocated(error)) then
+          call input_error(error, grp%file, grp%line, 'group ' // grp%name // ': unsupported element type "' // &
+                           grp%element_type // '"')
+          return
+        end if
+        if (k%is_interface) then
+          k%nnodes = k%iface%nnodes()
+          k%npoints = k%iface%ngauss()
+          k%ncomp = k%iface%ncomp()
+        else
+          k%nnodes = k%element%nnodes()
+          k%npoints = k%element%ngauss()
+          k%ncomp = 6
+        end if
+      end associate
     end do
   end subroutine build_kernels
 
@@ -70,6 +97,17 @@ contains
     min_detj = huge(1.0_dp)
     do g = 1, size(model%groups)
       do e = 1, size(model%groups(g)%connectivity, 2)
+        if (kernels(g)%is_interface) then
+          lo = kernels(g)%iface%min_jacobian(model%coords(:, model%groups(g)%connectivity(:, e)))
+          if (.not. (lo > 0.0_dp)) then
+            call input_error(error, model%groups(g)%file, model%groups(g)%line, 'interface element ' // str(e) // &
+                             ' of group ' // model%groups(g)%name // ' (nodes ' // &
+                             node_list(model%groups(g)%connectivity(:, e)) // ') has a degenerate or folded ' // &
+                             'lower face (surface Jacobian ' // str(lo) // ')')
+            return
+          end if
+          cycle
+        end if
         call kernels(g)%element%jacobian_range(model%coords(:, model%groups(g)%connectivity(:, e)), lo, hi)
         min_detj = min(min_detj, lo)
         if (.not. (lo > 0.0_dp)) then
@@ -251,10 +289,9 @@ contains
     type(csr_matrix_t), intent(inout) :: a
     real(dp), intent(out) :: f_presc(:)
     type(error_t), allocatable, intent(out) :: error
-    integer :: g, e, nen, ndof, i, j, ng, k
+    integer :: g, e, nen, ndof, i, ng, k
     real(dp), allocatable :: ke(:, :), d(:, :, :), xe(:, :), ubar(:)
     integer, allocatable :: dofs(:), nodes(:)
-    integer(i8) :: pos
     real(dp) :: min_detj
     logical :: has_presc
 
@@ -285,19 +322,33 @@ contains
           ubar(3 * k - 2:3 * k) = merge(map%prescribed(:, nodes(k)), 0.0_dp, map%constrained(:, nodes(k)))
           if (any(ubar(3 * k - 2:3 * k) /= 0.0_dp)) has_presc = .true.
         end do
-        do i = 1, ndof
-          if (dofs(i) == 0) cycle
-          if (has_presc) f_presc(dofs(i)) = f_presc(dofs(i)) - dot_product(ke(i, :), ubar)
-          do j = 1, ndof
-            if (dofs(j) == 0 .or. dofs(j) > dofs(i)) cycle
-            pos = a%find(dofs(i), dofs(j))
-            a%val(pos) = a%val(pos) + ke(i, j)
+        if (has_presc) then
+          do i = 1, ndof
+            if (dofs(i) > 0) f_presc(dofs(i)) = f_presc(dofs(i)) - dot_product(ke(i, :), ubar)
           end do
-        end do
+        end if
+        call scatter_element_matrix(dofs, ke, a)
       end do
     end do
     if (a%n == 0) call fatal_error(error, err_model, 'the model has no free degree of freedom')
   end subroutine assemble_stiffness
+
+  !> Add an element matrix into the lower triangle of the free equations.
+  subroutine scatter_element_matrix(dofs, ke, a)
+    integer, intent(in) :: dofs(:)
+    real(dp), intent(in) :: ke(:, :)
+    type(csr_matrix_t), intent(inout) :: a
+    integer :: i, j
+    integer(i8) :: pos
+    do i = 1, size(dofs)
+      if (dofs(i) == 0) cycle
+      do j = 1, size(dofs)
+        if (dofs(j) == 0 .or. dofs(j) > dofs(i)) cycle
+        pos = a%find(dofs(i), dofs(j))
+        a%val(pos) = a%val(pos) + ke(i, j)
+      end do
+    end do
+  end subroutine scatter_element_matrix
 
   !> Element displacements in global Cartesian components from the nodal-system solution.
   pure subroutine gather_element_displacement(u_global, nodes, ue)
@@ -369,5 +420,50 @@ contains
       deallocate (d, ue, ke, fe)
     end do
   end subroutine internal_forces
+
+  !> Element stiffness from material tangents at its points: d(ncomp, ncomp, npoints).
+  subroutine element_stiffness(kernel, xe, d, ke)
+    type(group_kernel_t), intent(in) :: kernel
+    real(dp), intent(in) :: xe(:, :), d(:, :, :)
+    real(dp), intent(out) :: ke(:, :)
+    real(dp) :: min_detj
+    if (kernel%is_interface) then
+      call kernel%iface%stiffness(xe, d, ke)
+    else
+      call kernel%element%stiffness(xe, d, ke, min_detj)
+    end if
+  end subroutine element_stiffness
+
+  !> Strains (solids: Voigt, engineering shears; interfaces: relative displacements) at the
+  !! element's points from its displacements ue (global Cartesian, node by node).
+  subroutine element_strains(kernel, xe, ue, eps)
+    type(group_kernel_t), intent(in) :: kernel
+    real(dp), intent(in) :: xe(:, :), ue(:)
+    real(dp), intent(out) :: eps(:, :)
+    if (kernel%is_interface) then
+      call kernel%iface%strains(xe, ue, eps)
+    else
+      call kernel%element%gauss_strains(xe, ue, eps)
+    end if
+  end subroutine element_strains
+
+  !> Internal nodal forces, sum of B^T sigma over the element's points.
+  subroutine element_internal_force(kernel, xe, sig, fe)
+    type(group_kernel_t), intent(in) :: kernel
+    real(dp), intent(in) :: xe(:, :), sig(:, :)
+    real(dp), intent(out) :: fe(:)
+    real(dp) :: xi(3, kernel%npoints), w(kernel%npoints), b(6, 3 * kernel%nnodes), detj
+    integer :: q
+    if (kernel%is_interface) then
+      call kernel%iface%internal_force(xe, sig, fe)
+      return
+    end if
+    call kernel%element%gauss_rule(xi, w)
+    fe = 0.0_dp
+    do q = 1, kernel%npoints
+      call kernel%element%b_matrix(xe, xi(:, q), b, detj)
+      fe = fe + matmul(sig(:, q), b) * (w(q) * detj)
+    end do
+  end subroutine element_internal_force
 
 end module feps_assembly

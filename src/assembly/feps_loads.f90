@@ -94,12 +94,14 @@ contains
     end associate
   end function face_load_intensity_integral
 
-  !> Nodal forces (3, nnode), global Cartesian, of all loads of the model.
-  subroutine nodal_load_vector(model, kernels, f, error)
+  !> Nodal forces (3, nnode), global Cartesian, of the loads of the model (of one stage's
+  !! own loads if `stage` is given: 0 for the reference loads).
+  subroutine nodal_load_vector(model, kernels, f, error, stage)
     type(model_t), intent(in) :: model
     type(group_kernel_t), intent(in) :: kernels(:)
     real(dp), intent(out) :: f(:, :)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: stage
     integer :: i, k, n, g, e, q, a
     real(dp) :: t(3), peak, integral, dir(3), basis(3, 3)
     real(dp), allocatable :: xg(:, :), nrm(:, :), wda(:), nf(:, :)
@@ -107,6 +109,9 @@ contains
 
     f = 0.0_dp
     do i = 1, size(model%nodal_loads)
+      if (present(stage)) then
+        if (model%nodal_loads(i)%stage /= stage) cycle
+      end if
       associate (l => model%nodal_loads(i))
         do k = 1, size(model%node_sets(l%node_set)%nodes)
           n = model%node_sets(l%node_set)%nodes(k)
@@ -117,6 +122,9 @@ contains
     end do
 
     do i = 1, size(model%face_loads)
+      if (present(stage)) then
+        if (model%face_loads(i)%stage /= stage) cycle
+      end if
       associate (l => model%face_loads(i), fs => model%face_sets(model%face_loads(i)%face_set))
         g = fs%group
         call face_work_arrays(kernels(g), xg, nrm, wda, nf)

@@ -11,7 +11,8 @@ module feps_deck
                                     cylindrical_about, csys_cartesian, csys_cylindrical
   use feps_model, only: model_t, element_group_t, material_spec_t, node_set_t, face_set_t, &
                         constraint_t, nodal_load_t, face_load_t, region_t, in_region, &
-                        load_pressure, load_traction, name_len
+                        load_pressure, load_traction, name_len, stage_t, controls_t, method_names, &
+                        method_euler, method_modified_euler, method_newton_raphson
   implicit none
   private
 
@@ -29,7 +30,9 @@ module feps_deck
     character(len=:), allocatable :: explicit_file
     type(region_t), allocatable :: set_regions(:)
     integer, allocatable :: set_node(:)          !! NSET by a single node number (0: by region)
+    character(len=name_len), allocatable :: set_group(:)  !! NSET restricted to a group's nodes ('' if not)
     type(record_t), allocatable :: set_records(:)
+    integer :: current_stage = 0                 !! stage that loads and displacements belong to
   end type deck_state_t
 
 contains
@@ -51,8 +54,8 @@ contains
     model%output_file = ''
     model%systems = default_coordinate_systems()
     allocate (model%groups(0), model%materials(0), model%node_sets(0), model%face_sets(0))
-    allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0))
-    allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0))
+    allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0), model%stages(0))
+    allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0), st%set_group(0))
     allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0))
     st%mesh%nnode = 0
     allocate (st%mesh%coords(3, 0), st%mesh%blocks(0))
@@ -121,11 +124,16 @@ contains
     case ('FIX')
       call read_fix(records(pos), model, error)
     case ('DISPLACE')
-      call read_displace(records(pos), model, error)
+      call read_displace(records(pos), model, st%current_stage, error)
     case ('FORCE')
-      call read_force(records(pos), model, error)
+      call read_force(records(pos), model, st%current_stage, error)
     case ('PRESSURE', 'TRACTION')
-      call read_face_load(records(pos), model, error)
+      call read_face_load(records(pos), model, st%current_stage, error)
+    case ('CONTROLS')
+      call read_controls(records(pos), 2, model%controls, error)
+    case ('STAGE')
+      call read_stage(records(pos), model, error)
+      st%current_stage = size(model%stages)
     case ('SOLVER')
       call read_solver(records(pos), model, error)
     case ('OUTPUT')
@@ -364,13 +372,17 @@ contains
       return
     end if
     g%element_type = lower(text)
-    select case (g%element_type)
-    case ('hex8', 'hex20', 'hex20r')
-    case default
-      call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (hex8, hex20, hex20r)', &
-                       ifield)
+    if (nodes_of(g%element_type) == 0) then
+      if (index(g%element_type, 'interface-line') == 1) then
+        call input_error(error, rec%file, rec%line, 'element type "' // text // '" is a 2D (plane strain) ' // &
+                         'interface; 2D analyses are not available yet: use a 3D interface type', ifield)
+      else
+        call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (hex8, hex20, ' // &
+                         'hex20r, interface-quad4, interface-quad8, interface-tri3, interface-tri6, with -nodal ' // &
+                         'for nodal integration of an interface)', ifield)
+      end if
       return
-    end select
+    end if
     call option_text(rec, 'MATERIAL', text, ifield, found)
     if (.not. found) then
       call input_error(error, rec%file, rec%line, 'GROUP needs MATERIAL=<name>')
@@ -435,6 +447,9 @@ contains
     allocate (s%nodes(0))
     tmp = [model%node_sets, s]
     call move_alloc(tmp, model%node_sets)
+    call option_text(rec, 'GROUP', text, ifield, found)
+    if (.not. found) text = ''
+    st%set_group = [character(len=name_len) :: st%set_group, text]
     st%set_regions = [st%set_regions, r]
     st%set_node = [st%set_node, node]
     rtmp = [st%set_records, rec]
@@ -469,6 +484,11 @@ contains
       call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
       return
     end if
+    if (index(model%groups(s%group)%element_type, 'interface-') == 1) then
+      call input_error(error, rec%file, rec%line, 'face sets take faces of solid elements; group "' // text // &
+                       '" holds interface elements', ifield)
+      return
+    end if
     call read_region(rec, model, s%region, error)
     if (allocated(error)) return
     s%file = rec%file
@@ -497,7 +517,7 @@ contains
       if (index(f, '=') > 0) cycle
       if (f == 'ALL') then
         do dof = 1, 3
-          call add_constraint(model, rec, iset, cs, dof, 0.0_dp)
+          call add_constraint(model, rec, iset, cs, dof, 0.0_dp, 0)
         end do
         cycle
       end if
@@ -507,14 +527,15 @@ contains
                          // dof_names(model%systems(cs)%kind) // ' or ALL)', i)
         return
       end if
-      call add_constraint(model, rec, iset, cs, dof, 0.0_dp)
+      call add_constraint(model, rec, iset, cs, dof, 0.0_dp, 0)
     end do
   end subroutine read_fix
 
   !> DISPLACE, set, DOF=value [, DOF=value ...] [, CSYS=n]
-  subroutine read_displace(rec, model, error)
+  subroutine read_displace(rec, model, stage, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
     type(error_t), allocatable, intent(out) :: error
     integer :: iset, cs, i, dof, eq
     character(len=:), allocatable :: f
@@ -542,14 +563,15 @@ contains
       end if
       call parse_real(f(eq + 1:), v, error, rec, i)
       if (allocated(error)) return
-      call add_constraint(model, rec, iset, cs, dof, v)
+      call add_constraint(model, rec, iset, cs, dof, v, stage)
     end do
   end subroutine read_displace
 
   !> FORCE, set, DOF=value ... [, CSYS=n]: the same force on every node of the set.
-  subroutine read_force(rec, model, error)
+  subroutine read_force(rec, model, stage, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
     type(error_t), allocatable, intent(out) :: error
     type(nodal_load_t) :: l
     type(nodal_load_t), allocatable :: tmp(:)
@@ -559,6 +581,7 @@ contains
 
     call require_fields(rec, 3, error)
     if (allocated(error)) return
+    l%stage = stage
     call get_node_set(rec, model, l%node_set, error)
     if (allocated(error)) return
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
@@ -587,9 +610,10 @@ contains
 
   !> PRESSURE, fset, VALUE=p | TOTAL=P [, VARY=coord, ZERO=a, PEAK=b, VARY_CSYS=n]
   !! TRACTION, fset, [CSYS=n,] DIR=value ..., [TOTAL=P,] [VARY=...]
-  subroutine read_face_load(rec, model, error)
+  subroutine read_face_load(rec, model, stage, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
     type(error_t), allocatable, intent(out) :: error
     type(face_load_t) :: l
     type(face_load_t), allocatable :: tmp(:)
@@ -607,6 +631,7 @@ contains
     end if
     l%file = rec%file
     l%line = rec%line
+    l%stage = stage
     l%kind = merge(load_pressure, load_traction, keyword(rec) == 'PRESSURE')
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
     if (allocated(error)) return
@@ -832,6 +857,14 @@ contains
                            model%groups(g)%material_name // '"')
           return
         end if
+        if ((index(model%groups(g)%element_type, 'interface-') == 1) .neqv. &
+            (model%materials(model%groups(g)%material)%kind == 'interface')) then
+          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
+                           ' (' // model%groups(g)%element_type // ') cannot use material ' // &
+                           model%groups(g)%material_name // ' (' // model%materials(model%groups(g)%material)%kind // &
+                           '): interface elements take INTERFACE materials, solids the others')
+          return
+        end if
       end do
       do g = 1, size(model%groups)
         do k = 1, size(model%groups(g)%connectivity, 2)
@@ -850,19 +883,176 @@ contains
       call input_error(error, path, 1, 'the model has no elements')
       return
     end if
-    call resolve_node_sets(model, st%set_regions, st%set_node, st%set_records, error)
+    call resolve_node_sets(model, st%set_regions, st%set_node, st%set_records, error, st%set_group)
+    if (allocated(error)) return
+    call finish_stages(model)
   end subroutine finish_model
 
+  !> Without STAGE records the deck is one stage of one step applying everything; with them,
+  !! LOAD= defaults to 1 for a single stage and 0 otherwise. Method presets fix the iteration
+  !! limits the thesis gives them (2.6.3).
+  subroutine finish_stages(model)
+    type(model_t), intent(inout) :: model
+    integer :: s
+    if (size(model%stages) == 0) then
+      deallocate (model%stages)
+      allocate (model%stages(1))
+      model%stages(1)%name = 'stage1'
+      model%stages(1)%steps = 1
+      model%stages(1)%load_fraction = 1.0_dp
+      model%stages(1)%controls = model%controls
+      model%stages(1)%file = model%deck_file
+      model%stages(1)%line = 0
+    end if
+    do s = 1, size(model%stages)
+      if (model%stages(s)%load_fraction < 0.0_dp) model%stages(s)%load_fraction = &
+        merge(1.0_dp, 0.0_dp, size(model%stages) == 1)
+      associate (c => model%stages(s)%controls)
+        select case (c%method)
+        case (method_euler, method_modified_euler)
+          c%max_iterations = 1
+        case (method_newton_raphson)
+          if (.not. c%max_iterations_set) c%max_iterations = 50
+        end select
+      end associate
+    end do
+  end subroutine finish_stages
+
+  !> CONTROLS, METHOD=name, MAXIT=n, DELTA1..DELTA4=value, CUTBACKS=n (also inside STAGE).
+  subroutine read_controls(rec, first, c, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: first
+    type(controls_t), intent(inout) :: c
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i, eq, m
+    character(len=:), allocatable :: f, k, v
+    real(dp) :: x
+    do i = first, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) then
+        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
+        return
+      end if
+      k = upper(f(:eq - 1))
+      v = f(eq + 1:)
+      select case (k)
+      case ('METHOD')
+        c%method = 0
+        do m = 1, size(method_names)
+          if (lower(v) == trim(method_names(m))) c%method = m
+        end do
+        if (c%method == 0) then
+          call input_error(error, rec%file, rec%line, 'unknown METHOD "' // v // '" (euler, modified-euler, ' // &
+                           'newton-raphson, modified-newton-raphson, initial-stiffness)', i)
+          return
+        end if
+      case ('MAXIT', 'CUTBACKS')
+        call parse_int(v, m, error, rec, i)
+        if (allocated(error)) return
+        if (m < merge(1, 0, k == 'MAXIT')) then
+          call input_error(error, rec%file, rec%line, k // ' must be ' // merge('>= 1', '>= 0', k == 'MAXIT'), i)
+          return
+        end if
+        if (k == 'MAXIT') then
+          c%max_iterations = m
+          c%max_iterations_set = .true.
+        else
+          c%max_cutbacks = m
+        end if
+      case ('DELTA1', 'DELTA2', 'DELTA3', 'DELTA4')
+        call parse_real(v, x, error, rec, i)
+        if (allocated(error)) return
+        if (x < 0.0_dp) then
+          call input_error(error, rec%file, rec%line, k // ' must not be negative', i)
+          return
+        end if
+        select case (k)
+        case ('DELTA1')
+          c%delta1 = x
+        case ('DELTA2')
+          c%delta2 = x
+        case ('DELTA3')
+          c%delta3 = x
+        case ('DELTA4')
+          c%delta4 = x
+        end select
+      case default
+        if (first == 2) then
+          call input_error(error, rec%file, rec%line, 'unknown CONTROLS option "' // k // &
+                           '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, CUTBACKS)', i)
+          return
+        end if
+      end select
+    end do
+  end subroutine read_controls
+
+  !> STAGE, name, STEPS=n, LOAD=fraction, OUTPUT=k, and any CONTROLS option.
+  subroutine read_stage(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(stage_t) :: st
+    type(stage_t), allocatable :: tmp(:)
+    integer :: i, eq
+    character(len=:), allocatable :: f, k
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    st%name = field_text(rec, 2)
+    st%file = rec%file
+    st%line = rec%line
+    st%load_fraction = -1.0_dp    ! default decided once all stages are known
+    st%controls = model%controls
+    do i = 3, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) then
+        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
+        return
+      end if
+      k = upper(f(:eq - 1))
+      select case (k)
+      case ('STEPS')
+        call parse_int(f(eq + 1:), st%steps, error, rec, i)
+        if (allocated(error)) return
+        if (st%steps < 1) then
+          call input_error(error, rec%file, rec%line, 'STEPS must be at least 1', i)
+          return
+        end if
+      case ('LOAD')
+        call parse_real(f(eq + 1:), st%load_fraction, error, rec, i)
+        if (allocated(error)) return
+      case ('OUTPUT')
+        call parse_int(f(eq + 1:), st%output_every, error, rec, i)
+        if (allocated(error)) return
+        if (st%output_every < 0) then
+          call input_error(error, rec%file, rec%line, 'OUTPUT (every k steps) must not be negative', i)
+          return
+        end if
+      case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4')
+      case default
+        call input_error(error, rec%file, rec%line, 'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
+                         'METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, CUTBACKS)', i)
+        return
+      end select
+    end do
+    call read_controls(rec, 3, st%controls, error)
+    if (allocated(error)) return
+    tmp = [model%stages, st]
+    call move_alloc(tmp, model%stages)
+  end subroutine read_stage
+
   !> Fill each node set with the nodes in its region (or its one node); an empty set is an error.
-  subroutine resolve_node_sets(model, regions, single, records, error)
+  subroutine resolve_node_sets(model, regions, single, records, error, groups)
     type(model_t), intent(inout) :: model
     type(region_t), intent(in) :: regions(:)
     integer, intent(in) :: single(:)
     type(record_t), intent(in) :: records(:)
     type(error_t), allocatable, intent(out) :: error
-    integer :: s, n
-    logical, allocatable :: inside(:)
-    allocate (inside(model%nnode))
+    character(len=*), intent(in), optional :: groups(:)   !! restrict to the nodes of a group
+    integer :: s, n, g
+    logical, allocatable :: inside(:), in_group(:)
+    allocate (inside(model%nnode), in_group(model%nnode))
     do s = 1, size(model%node_sets)
       if (single(s) > 0) then
         if (single(s) > model%nnode) then
@@ -873,8 +1063,22 @@ contains
         model%node_sets(s)%nodes = [single(s)]
         cycle
       end if
+      in_group = .true.
+      if (present(groups)) then
+        if (len_trim(groups(s)) > 0) then
+          g = model%find_group(trim(groups(s)))
+          if (g == 0) then
+            call input_error(error, records(s)%file, records(s)%line, 'undefined element group "' // &
+                             trim(groups(s)) // '"')
+            return
+          end if
+          in_group = .false.
+          in_group(pack(model%groups(g)%connectivity, .true.)) = .true.
+        end if
+      end if
       do n = 1, model%nnode
-        inside(n) = in_region(regions(s), model%systems(regions(s)%csys), model%coords(:, n))
+        inside(n) = in_group(n)
+        if (inside(n)) inside(n) = in_region(regions(s), model%systems(regions(s)%csys), model%coords(:, n))
       end do
       model%node_sets(s)%nodes = pack([(n, n = 1, model%nnode)], inside)
       if (size(model%node_sets(s)%nodes) == 0) then
@@ -931,10 +1135,10 @@ contains
     end if
   end subroutine read_region
 
-  subroutine add_constraint(model, rec, iset, cs, dof, value)
+  subroutine add_constraint(model, rec, iset, cs, dof, value, stage)
     type(model_t), intent(inout) :: model
     type(record_t), intent(in) :: rec
-    integer, intent(in) :: iset, cs, dof
+    integer, intent(in) :: iset, cs, dof, stage
     real(dp), intent(in) :: value
     type(constraint_t) :: c
     type(constraint_t), allocatable :: tmp(:)
@@ -942,6 +1146,7 @@ contains
     c%csys = cs
     c%dof = dof
     c%value = value
+    c%stage = stage
     c%file = rec%file
     c%line = rec%line
     tmp = [model%constraints, c]
@@ -1157,10 +1362,16 @@ contains
   pure integer function nodes_of(element_type)
     character(len=*), intent(in) :: element_type
     select case (element_type)
-    case ('hex8')
+    case ('hex8', 'interface-quad4', 'interface-quad4-nodal')
       nodes_of = 8
     case ('hex20', 'hex20r')
       nodes_of = 20
+    case ('interface-quad8', 'interface-quad8-nodal')
+      nodes_of = 16
+    case ('interface-tri3', 'interface-tri3-nodal')
+      nodes_of = 6
+    case ('interface-tri6', 'interface-tri6-nodal')
+      nodes_of = 12
     case default
       nodes_of = 0
     end select

@@ -5,6 +5,7 @@ module feps_material_factory
   use feps_model, only: material_spec_t
   use feps_material, only: material_t
   use feps_linear_elastic, only: linear_elastic_t
+  use feps_interface_mohr_coulomb, only: new_interface_mohr_coulomb
   implicit none
   private
 
@@ -47,9 +48,11 @@ contains
         return
       end if
       allocate (material, source=linear_elastic_t(name=spec%name, e=e, nu=nu))
+    case ('interface')
+      call new_interface_mohr_coulomb(spec, material, error)
     case default
       call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': unknown material kind "' // &
-                       spec%kind // '"')
+                       spec%kind // '" (ELASTIC, INTERFACE)')
     end select
   end subroutine new_material
 

@@ -67,12 +67,14 @@ module feps_model
     integer :: csys = 2
     integer :: dof = 0
     real(dp) :: value = 0.0_dp
+    integer :: stage = 0                     !! 0: scaled by each stage's LOAD=; s: increment in stage s
     character(len=:), allocatable :: file
     integer :: line = 0
   end type constraint_t
 
   !> Force on every node of a set, components in the directions of system csys.
   type, public :: nodal_load_t
+    integer :: stage = 0                     !! 0: reference load scaled by LOAD=; s: increment in stage s
     integer :: node_set = 0
     integer :: csys = 2
     real(dp) :: components(3) = 0.0_dp
@@ -86,6 +88,7 @@ module feps_model
   !! clipped below at 0. With `use_total` the peak is scaled so that the integral of the
   !! intensity over the faces equals `total`.
   type, public :: face_load_t
+    integer :: stage = 0                     !! 0: reference load scaled by LOAD=; s: increment in stage s
     integer :: face_set = 0
     integer :: kind = load_pressure
     integer :: csys = 2
@@ -101,6 +104,36 @@ module feps_model
     integer :: line = 0
   end type face_load_t
 
+  !> Solution methods of the modified Newton-Raphson family (thesis 2.6).
+  integer, parameter, public :: method_euler = 1, method_modified_euler = 2, method_newton_raphson = 3, &
+                                method_modified_newton_raphson = 4, method_initial_stiffness = 5
+  character(len=23), parameter, public :: method_names(5) = [character(len=23) :: 'euler', 'modified-euler', &
+    'newton-raphson', 'modified-newton-raphson', 'initial-stiffness']
+
+  !> Solution controls of a stage (thesis eqs. 2.6.6-2.6.7).
+  type, public :: controls_t
+    integer :: method = method_modified_newton_raphson
+    integer :: max_iterations = 10           !! per step (1 for the Euler methods)
+    real(dp) :: delta1 = 1.0e-6_dp           !! converged when |R| / |P| < delta1 ...
+    real(dp) :: delta2 = 0.0_dp              !! ... or |R| < delta2 (N)
+    real(dp) :: delta3 = 1.0e-3_dp           !! modified NR refactorizes when |R| / |P| > delta3 ...
+    real(dp) :: delta4 = huge(1.0_dp)        !! ... or |R| > delta4 at the end of a step
+    integer :: max_cutbacks = 10             !! halvings of a step that diverges
+    logical :: max_iterations_set = .false.
+  end type controls_t
+
+  !> A loading stage: its own load and displacement increments plus LOAD= times the
+  !! reference (stage-0) loads, applied in equal steps.
+  type, public :: stage_t
+    character(len=:), allocatable :: name
+    integer :: steps = 1
+    real(dp) :: load_fraction = 1.0_dp
+    integer :: output_every = 0              !! write every k steps (0: the stage's last step)
+    type(controls_t) :: controls
+    character(len=:), allocatable :: file
+    integer :: line = 0
+  end type stage_t
+
   type, public :: model_t
     character(len=:), allocatable :: title
     character(len=:), allocatable :: deck_file
@@ -114,11 +147,14 @@ module feps_model
     type(constraint_t), allocatable :: constraints(:)
     type(nodal_load_t), allocatable :: nodal_loads(:)
     type(face_load_t), allocatable :: face_loads(:)
+    type(stage_t), allocatable :: stages(:)
+    type(controls_t) :: controls                           !! defaults for the stages
     character(len=:), allocatable :: solver                !! 'cholmod' or 'skyline'
     character(len=:), allocatable :: output_file
     logical :: mesh_only = .false.                         !! a file holding only a DATAIN mesh
   contains
     procedure :: nelem => model_nelem
+    procedure :: has_interfaces
     procedure :: find_node_set, find_face_set, find_material, find_group
   end type model_t
 
@@ -154,6 +190,15 @@ contains
       n = n + size(self%groups(g)%connectivity, 2)
     end do
   end function model_nelem
+
+  pure logical function has_interfaces(self)
+    class(model_t), intent(in) :: self
+    integer :: g
+    has_interfaces = .false.
+    do g = 1, size(self%groups)
+      if (index(self%groups(g)%element_type, 'interface-') == 1) has_interfaces = .true.
+    end do
+  end function has_interfaces
 
   pure integer function find_node_set(self, name) result(idx)
     class(model_t), intent(in) :: self

@@ -4,10 +4,12 @@
 module feps_program
   use feps_kinds, only: dp, i8
   use feps_error, only: error_t, fatal_error, err_input, str
-  use feps_model, only: model_t
+  use feps_model, only: model_t, method_names, method_euler, method_modified_euler, method_newton_raphson
   use feps_deck, only: read_deck
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
-  use feps_linear_analysis, only: linear_result_t, run_linear, wall_clock
+  use feps_linear_analysis, only: wall_clock
+  use feps_incremental_analysis, only: analysis_summary_t, run_analysis
+  use feps_observer, only: observer_t, step_result_t
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
   implicit none
@@ -20,6 +22,7 @@ module feps_program
     character(len=:), allocatable :: deck
     character(len=:), allocatable :: output
     character(len=:), allocatable :: solver
+    character(len=:), allocatable :: method     !! overrides every stage's METHOD when not empty
     logical :: quiet = .false.
   end type run_options_t
 
@@ -40,6 +43,11 @@ module feps_program
     real(dp) :: time_factorization = 0.0_dp
     real(dp) :: time_solve = 0.0_dp
     integer(i8) :: matrix_nnz = 0
+    logical :: linear = .false.
+    integer :: steps = 0
+    integer :: iterations = 0
+    integer :: factorizations = 0
+    integer :: cutbacks = 0
     real(dp) :: max_displacement = 0.0_dp
     integer :: max_displacement_node = 0
     real(dp) :: bbox(3, 2) = 0.0_dp
@@ -52,19 +60,39 @@ module feps_program
 
   public :: run_feps
 
+  !> Where progress lines go (the program prints them; tests pass nothing).
+  abstract interface
+    subroutine line_sink(line)
+      character(len=*), intent(in) :: line
+    end subroutine line_sink
+  end interface
+  public :: line_sink
+
+  !> Writes the steps of a run to the results file and forwards progress lines.
+  type, extends(observer_t) :: results_observer_t
+    type(results_file_t) :: h5
+    logical :: writing = .false.
+    type(model_t), pointer :: model => null()
+    procedure(line_sink), pointer, nopass :: sink => null()
+  contains
+    procedure :: progress => observer_progress
+    procedure :: write_step => observer_write_step
+  end type results_observer_t
+
 contains
 
-  !> Read, check, solve and write one deck.
-  subroutine run_feps(options, summary, error)
+  !> Read, check, solve and write one deck; progress lines go to `sink` when given.
+  subroutine run_feps(options, summary, error, sink)
     type(run_options_t), intent(in) :: options
     type(run_summary_t), intent(out) :: summary
     type(error_t), allocatable, intent(out) :: error
-    type(model_t) :: model
-    type(linear_result_t) :: res
+    procedure(line_sink), optional :: sink
+    type(model_t), target :: model
+    type(analysis_summary_t) :: an
     type(group_kernel_t), allocatable :: kernels(:)
+    type(results_observer_t) :: obs
     character(len=:), allocatable :: solver, output
-    real(dp) :: t0, dnorm
-    integer :: n
+    real(dp) :: t0
 
     t0 = wall_clock()
     call read_deck(options%deck, model, error)
@@ -97,32 +125,151 @@ contains
     if (allocated(options%solver)) then
       if (len(options%solver) > 0) solver = options%solver
     end if
-    call run_linear(model, solver, res, error)
-    if (allocated(error)) return
-    summary%solver = res%solver
-    summary%dofs = res%neq
-    summary%unused_nodes = res%unused_nodes
-    summary%factor_nnz = res%factor_nnz
-    summary%matrix_nnz = res%matrix_nnz
-    summary%time_assembly = res%time_assembly
-    summary%time_factorization = res%time_factorization
-    summary%time_solve = res%time_solve
-    summary%flops = res%flops
-    summary%min_pivot_ratio = res%min_pivot_ratio
-    summary%max_pivot_ratio = res%max_pivot_ratio
-    summary%min_jacobian = res%min_detj
-    summary%applied_force = sum(res%external_force, dim=2)
-    summary%reaction_force = sum(res%reaction, dim=2)
-    do n = 1, model%nnode
-      dnorm = norm2(res%displacement(:, n))
-      if (dnorm > summary%max_displacement) then
-        summary%max_displacement = dnorm
-        summary%max_displacement_node = n
+    if (allocated(options%method)) then
+      if (len(options%method) > 0) then
+        call override_method(model, options%method, error)
+        if (allocated(error)) return
       end if
-    end do
+    end if
+    obs%model => model
+    if (present(sink)) obs%sink => sink
+    call obs%h5%create(output, error)
+    if (allocated(error)) return
+    obs%writing = .true.
+    call write_mesh(obs%h5, model, error)
+    if (.not. allocated(error)) call run_analysis(model, solver, obs, an, error)
+    if (allocated(error)) then
+      call obs%h5%discard()
+      return
+    end if
+    summary%solver = an%solver
+    summary%linear = an%linear
+    summary%steps = an%steps
+    summary%iterations = an%iterations
+    summary%factorizations = an%factorizations
+    summary%cutbacks = an%cutbacks
+    summary%dofs = an%neq
+    summary%unused_nodes = an%unused_nodes
+    summary%factor_nnz = an%factor_nnz
+    summary%matrix_nnz = an%matrix_nnz
+    summary%flops = an%flops
+    summary%min_pivot_ratio = an%min_pivot_ratio
+    summary%max_pivot_ratio = an%max_pivot_ratio
+    summary%min_jacobian = an%min_detj
+    summary%applied_force = an%applied_force
+    summary%reaction_force = an%reaction_force
+    summary%max_displacement = an%max_displacement
+    summary%max_displacement_node = an%max_displacement_node
+    summary%time_assembly = an%time_assembly
+    summary%time_factorization = an%time_factorization
+    summary%time_solve = an%time_solve
     summary%wall_time = wall_clock() - t0
-    if (len(output) > 0) call write_linear_results(output, model, res, summary, error)
+    call write_summary(obs%h5, model, summary, error)
+    if (.not. allocated(error)) call obs%h5%close(error)
+    if (allocated(error)) call obs%h5%discard()
   end subroutine run_feps
+
+  !> Every stage solved by one method (its preset iteration limits as in the deck reader).
+  subroutine override_method(model, name, error)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: name
+    type(error_t), allocatable, intent(out) :: error
+    integer :: m, s, method
+    method = 0
+    do m = 1, size(method_names)
+      if (name == trim(method_names(m))) method = m
+    end do
+    if (method == 0) then
+      call fatal_error(error, err_input, 'unknown method "' // name // '" (euler, modified-euler, ' // &
+                       'newton-raphson, modified-newton-raphson, initial-stiffness)')
+      return
+    end if
+    do s = 1, size(model%stages)
+      associate (c => model%stages(s)%controls)
+        c%method = method
+        select case (method)
+        case (method_euler, method_modified_euler)
+          c%max_iterations = 1
+        case (method_newton_raphson)
+          c%max_iterations = max(c%max_iterations, 50)
+        case default
+          if (c%max_iterations == 1) c%max_iterations = 10
+        end select
+      end associate
+    end do
+  end subroutine override_method
+
+  subroutine observer_progress(self, line)
+    class(results_observer_t), intent(inout) :: self
+    character(len=*), intent(in) :: line
+    if (associated(self%sink)) call self%sink(line)
+  end subroutine observer_progress
+
+  !> One step: displacement, reactions; solids: stresses and the most tensile and most
+  !! compressive principal stresses; interfaces: tractions with the point state, and the
+  !! relative displacements.
+  subroutine observer_write_step(self, res, error)
+    class(results_observer_t), intent(inout) :: self
+    type(step_result_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: extra(:, :)
+    real(dp) :: p(3)
+    integer :: g, q
+    call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
+    if (.not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', res%displacement, 'ux uy uz', error)
+    if (.not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', res%reaction, 'fx fy fz', error)
+    do g = 1, size(res%groups)
+      if (allocated(error)) return
+      associate (gr => res%groups(g), name => self%model%groups(g)%name)
+        if (gr%is_interface) then
+          allocate (extra(4, size(gr%state)))
+          extra(1:3, :) = gr%stress
+          extra(4, :) = real(gr%state, dp)
+          call self%h5%write_gauss(res%step, 'interface', name, extra, 'tau1 tau2 sigma_n state', &
+                                   gr%points_per_element, error)
+          if (.not. allocated(error)) call self%h5%write_gauss(res%step, 'interface_strain', name, gr%strain, &
+                                                               'gamma1 gamma2 eps_n', gr%points_per_element, error)
+        else
+          call self%h5%write_gauss(res%step, 'stress', name, gr%stress, 'sxx syy szz syz sxz sxy', &
+                                   gr%points_per_element, error)
+          allocate (extra(2, size(gr%stress, 2)))
+          do q = 1, size(gr%stress, 2)
+            p = principal_values(gr%stress(:, q))
+            extra(:, q) = [p(1), p(3)]
+          end do
+          if (.not. allocated(error)) call self%h5%write_gauss(res%step, 'principal', name, extra, &
+                                                               'most_tensile most_compressive', &
+                                                               gr%points_per_element, error)
+        end if
+        deallocate (extra)
+      end associate
+    end do
+  end subroutine observer_write_step
+
+  subroutine write_summary(h5, model, summary, error)
+    type(results_file_t), intent(inout) :: h5
+    type(model_t), intent(in) :: model
+    type(run_summary_t), intent(in) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    call h5%write_summary_string('program', 'feps ' // feps_version, error)
+    if (.not. allocated(error)) call h5%write_summary_string('input_file', model%deck_file, error)
+    if (.not. allocated(error)) call h5%write_summary_string('solver', summary%solver, error)
+    if (.not. allocated(error)) call h5%write_summary_real('wall_time', summary%wall_time, error)
+    if (.not. allocated(error)) call h5%write_summary_int('dofs', int(summary%dofs, i8), error)
+    if (.not. allocated(error)) call h5%write_summary_int('factor_nonzeros', summary%factor_nnz, error)
+    if (.not. allocated(error)) call h5%write_summary_real('factor_flops', summary%flops, error)
+    if (.not. allocated(error)) call h5%write_summary_int('matrix_nonzeros', summary%matrix_nnz, error)
+    if (.not. allocated(error)) call h5%write_summary_real('time_assembly', summary%time_assembly, error)
+    if (.not. allocated(error)) call h5%write_summary_real('time_factorization', summary%time_factorization, error)
+    if (.not. allocated(error)) call h5%write_summary_real('time_solve', summary%time_solve, error)
+    if (.not. allocated(error)) call h5%write_summary_real('max_displacement', summary%max_displacement, error)
+    if (.not. allocated(error)) call h5%write_summary_int('steps', int(summary%steps, i8), error)
+    if (.not. allocated(error)) call h5%write_summary_int('iterations', int(summary%iterations, i8), error)
+    if (.not. allocated(error)) call h5%write_summary_int('factorizations', int(summary%factorizations, i8), error)
+    if (.not. allocated(error)) call h5%write_summary_int('cutbacks', int(summary%cutbacks, i8), error)
+    if (.not. allocated(error)) call h5%write_summary_string('analysis', merge('linear   ', 'nonlinear', &
+                                                                                 summary%linear), error)
+  end subroutine write_summary
 
   !> The deck's name without folder and extension, with .h5, in the working directory.
   pure function default_output(deck) result(path)
@@ -164,60 +311,5 @@ contains
       if (allocated(error)) return
     end do
   end subroutine write_mesh
-
-  !> The one step of a linear run: displacement, reactions, Gauss-point stresses and the most
-  !! tensile and most compressive principal stresses.
-  subroutine write_linear_results(path, model, res, summary, error)
-    character(len=*), intent(in) :: path
-    type(model_t), intent(in) :: model
-    type(linear_result_t), intent(in) :: res
-    type(run_summary_t), intent(in) :: summary
-    type(error_t), allocatable, intent(out) :: error
-    type(results_file_t) :: h5
-    real(dp), allocatable :: principal(:, :)
-    real(dp) :: p(3)
-    integer :: g, q
-
-    call h5%create(path, error)
-    if (allocated(error)) return
-    call write_mesh(h5, model, error)
-    if (allocated(error)) then
-      call h5%discard()
-      return
-    end if
-    call h5%begin_step(1, 1.0_dp, 1, 0.0_dp, error)
-    if (.not. allocated(error)) call h5%write_nodal(1, 'displacement', res%displacement, 'ux uy uz', error)
-    if (.not. allocated(error)) call h5%write_nodal(1, 'reaction', res%reaction, 'fx fy fz', error)
-    do g = 1, size(model%groups)
-      if (allocated(error)) exit
-      associate (s => res%stresses(g))
-        call h5%write_gauss(1, 'stress', model%groups(g)%name, s%sig, 'sxx syy szz syz sxz sxy', &
-                            s%points_per_element, error)
-        if (allocated(error)) exit
-        allocate (principal(2, size(s%sig, 2)))
-        do q = 1, size(s%sig, 2)
-          p = principal_values(s%sig(:, q))
-          principal(:, q) = [p(1), p(3)]
-        end do
-        call h5%write_gauss(1, 'principal', model%groups(g)%name, principal, 'most_tensile most_compressive', &
-                            s%points_per_element, error)
-        deallocate (principal)
-      end associate
-    end do
-    if (.not. allocated(error)) call h5%write_summary_string('program', 'feps ' // feps_version, error)
-    if (.not. allocated(error)) call h5%write_summary_string('input_file', model%deck_file, error)
-    if (.not. allocated(error)) call h5%write_summary_string('solver', summary%solver, error)
-    if (.not. allocated(error)) call h5%write_summary_real('wall_time', summary%wall_time, error)
-    if (.not. allocated(error)) call h5%write_summary_int('dofs', int(summary%dofs, i8), error)
-    if (.not. allocated(error)) call h5%write_summary_int('factor_nonzeros', summary%factor_nnz, error)
-    if (.not. allocated(error)) call h5%write_summary_real('factor_flops', summary%flops, error)
-    if (.not. allocated(error)) call h5%write_summary_int('matrix_nonzeros', summary%matrix_nnz, error)
-    if (.not. allocated(error)) call h5%write_summary_real('time_assembly', summary%time_assembly, error)
-    if (.not. allocated(error)) call h5%write_summary_real('time_factorization', summary%time_factorization, error)
-    if (.not. allocated(error)) call h5%write_summary_real('time_solve', summary%time_solve, error)
-    if (.not. allocated(error)) call h5%write_summary_real('max_displacement', summary%max_displacement, error)
-    if (.not. allocated(error)) call h5%close(error)
-    if (allocated(error)) call h5%discard()
-  end subroutine write_linear_results
 
 end module feps_program

@@ -1,0 +1,178 @@
+#!/usr/bin/env python3
+"""Compare feps with the thesis and with closed forms, case by case.
+
+    python3 scripts/compare_thesis.py              # the fast cases
+    python3 scripts/compare_thesis.py --all        # every case
+    python3 scripts/compare_thesis.py sec2.3.4a    # named cases
+
+Prints one row per compared quantity (case, quantity, thesis or closed form, feps, relative
+error, verdict) and exits non-zero if any row fails. Decks live in input/verification/, named
+after the case id with '_' for '.'.
+"""
+import argparse
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PRESETS = ["euler", "modified-euler", "newton-raphson", "modified-newton-raphson", "initial-stiffness"]
+
+
+class Table:
+    def __init__(self):
+        self.rows = []
+
+    def add(self, case, quantity, reference, value, tol, kind="rel", scale=None):
+        """kind 'rel': |value - reference| <= tol * max(|reference|, scale or 0);
+        kind 'abs': |value - reference| <= tol."""
+        if value is None or not np.isfinite(value):
+            err, ok = float("nan"), False
+        else:
+            diff = abs(value - reference)
+            if kind == "abs":
+                err = diff
+                ok = diff <= tol
+            else:
+                den = max(abs(reference), scale or 0.0)
+                err = diff / den if den > 0 else diff
+                ok = err <= tol
+        self.rows.append((case, quantity, reference, value, err, kind, tol, ok))
+        return ok
+
+    def print(self):
+        head = f"{'case':<28} {'quantity':<46} {'reference':>12} {'feps':>12} {'error':>10}  verdict"
+        print(head)
+        print("-" * len(head))
+        for case, q, ref, val, err, kind, tol, ok in self.rows:
+            e = f"{err:.2e}" if np.isfinite(err) else "nan"
+            unit = "" if kind == "rel" else " abs"
+            verdict = "pass" if ok else "FAIL"
+            print(f"{case:<28} {q:<46} {ref:>12.5g} {val if val is not None else float('nan'):>12.5g} "
+                  f"{e:>10}  {verdict} (tol {tol:g}{unit})")
+        nfail = sum(1 for r in self.rows if not r[-1])
+        print(f"{len(self.rows) - nfail} passed, {nfail} failed")
+        return nfail
+
+
+def feps_executable():
+    out = subprocess.run(["fpm", "run", "--runner", "echo"], cwd=ROOT, capture_output=True, text=True)
+    lines = [l for l in out.stdout.strip().splitlines() if l.strip()]
+    if out.returncode != 0 or not lines:
+        sys.exit("compare_thesis: cannot build feps:\n" + out.stderr)
+    return os.path.join(ROOT, lines[-1].strip())
+
+
+def run_feps(feps, deck, workdir, name, *args):
+    """Run a deck; return the path of its HDF5 file (or raise with feps's error)."""
+    out = os.path.join(workdir, name + ".h5")
+    proc = subprocess.run([feps, os.path.join(ROOT, deck), "--output", out, "--quiet", *args],
+                          capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError(f"feps {deck} {' '.join(args)} failed: {proc.stderr.strip()}")
+    return out
+
+
+def interface_history(path, group="joint"):
+    """(load_factor, tractions, strains) of every written step, in step order."""
+    with h5py.File(path) as f:
+        steps = sorted(f["steps"], key=int)
+        lf = np.array([f["steps"][s].attrs["load_factor"] for s in steps])
+        tr = np.array([f["steps"][s]["interface"][group][...] for s in steps])
+        st = np.array([f["steps"][s]["interface_strain"][group][...] for s in steps])
+    return lf, tr, st
+
+
+# --------------------------------------------------------------------------------------------
+# Thesis section 2.3.4
+# --------------------------------------------------------------------------------------------
+
+def sec2_3_4a_reference(u):
+    """Closed form of SPEC section 7: tau = 1000 u to 100 MPa at u = 0.1, then
+    tau = 100 + (1000/3)(u - 0.1) with sigma_n = -2 tau (tan(phi) = 0.5, held normal)."""
+    tau = np.where(u <= 0.1, 1000.0 * u, 100.0 + (1000.0 / 3.0) * (u - 0.1))
+    sn = np.where(u <= 0.1, -200.0, -2.0 * tau)
+    return tau, sn
+
+
+def case_sec2_3_4a(table, feps, tmp):
+    case = "sec2.3.4a"
+    for preset in PRESETS:
+        h5 = run_feps(feps, "input/verification/sec2_3_4a.dat", tmp, f"a_{preset}", "--method", preset)
+        lf, tr, _ = interface_history(h5)
+        tau = np.hypot(tr[:, :, 0], tr[:, :, 1])
+        sn = tr[:, :, 2]
+        label = f"{case} [{preset}]"
+        table.add(label, "sigma_n after stage 1 (MPa)", -200.0, sn[0].mean(), 0.005)
+        stage2 = lf > 1.0
+        u = 0.2 * (lf[stage2] - 1.0)
+        tau_ref, sn_ref = sec2_3_4a_reference(u)
+        # Every step of stage 2, every point: error relative to the thesis scale (100 MPa at yield).
+        err_tau = np.max(np.abs(tau[stage2] - tau_ref[:, None])) / 100.0
+        err_sn = np.max(np.abs(sn[stage2] - sn_ref[:, None]) / np.abs(sn_ref[:, None]))
+        table.add(label, "tau, all 100 steps: max error / 100 MPa", 0.0, err_tau, 0.005, kind="abs")
+        table.add(label, "sigma_n, all 100 steps: max relative error", 0.0, err_sn, 0.005, kind="abs")
+        i01 = np.argmin(np.abs(u - 0.1))
+        table.add(label, "tau at yield, u = 0.1 mm (MPa)", 100.0, tau[stage2][i01].mean(), 0.005)
+        table.add(label, "tau at u = 0.2 mm (MPa)", 133.3, tau[-1].mean(), 0.005)
+        table.add(label, "sigma_n at u = 0.2 mm (MPa)", -266.7, sn[-1].mean(), 0.005)
+
+
+def case_sec2_3_4b(table, feps, tmp):
+    case = "sec2.3.4b"
+    kn = 2000.0
+    for preset in PRESETS:
+        h5 = run_feps(feps, "input/verification/sec2_3_4b.dat", tmp, f"b_{preset}", "--method", preset)
+        lf, tr, st = interface_history(h5)
+        eps_n = st[:, :, 2]
+        expected = np.where(eps_n < 0.0, kn * eps_n, 0.0)
+        label = f"{case} [{preset}]"
+        table.add(label, "max |sigma_n - Kn eps_n (closed)| (MPa)", 0.0,
+                  float(np.max(np.abs(tr[:, :, 2] - expected))), 1e-6, kind="abs")
+        table.add(label, "max |tau| (MPa)", 0.0, float(np.max(np.hypot(tr[:, :, 0], tr[:, :, 1]))), 1e-6,
+                  kind="abs")
+        opened = int(np.sum(tr[len(tr) // 2 - 1, :, 3] == 2))
+        closed_end = int(np.sum(tr[-1, :, 3] != 2))
+        table.add(label, "points open at the end of stage 1", 4.0, float(opened), 0.0, kind="abs")
+        table.add(label, "points closed at the end of stage 2", 8.0, float(closed_end), 0.0, kind="abs")
+
+
+CASES = {
+    # id: (function, fast)
+    "sec2.3.4a": (case_sec2_3_4a, True),
+    "sec2.3.4b": (case_sec2_3_4b, True),
+}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("cases", nargs="*", help="case ids (default: the fast cases)")
+    parser.add_argument("--all", action="store_true", help="run every case")
+    parser.add_argument("--list", action="store_true", help="list the case ids")
+    args = parser.parse_args()
+    if args.list:
+        for cid, (_, fast) in CASES.items():
+            print(cid, "(fast)" if fast else "")
+        return 0
+    unknown = [c for c in args.cases if c not in CASES]
+    if unknown:
+        sys.exit(f"compare_thesis: unknown case ids {unknown}; known: {list(CASES)}")
+    ids = args.cases or [c for c, (_, fast) in CASES.items() if fast or args.all]
+    feps = feps_executable()
+    table = Table()
+    with tempfile.TemporaryDirectory() as tmp:
+        for cid in ids:
+            try:
+                CASES[cid][0](table, feps, tmp)
+            except RuntimeError as exc:
+                table.add(cid, f"run failed: {exc}"[:46], 0.0, None, 0.0)
+    nfail = table.print()
+    return 1 if nfail else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,768 @@
+!> Staged incremental analysis by the thesis's modified Newton-Raphson family (section 2.6):
+!! Euler, modified Euler, Newton-Raphson (tangent each step), modified Newton-Raphson
+!! (refactorize when the residual at the end of a step exceeds delta3/delta4) and initial
+!! stiffness. Residual formulation: R = P - F_int with stresses updated from the start of the
+!! step (eq. 2.3.21), so the unbalanced force of a step is carried into the next (eq. 2.6.4)
+!! except by Euler, which drops it. Steps that diverge are cut back (halved) up to a bound; a
+!! model that is linear (all materials elastic, no interfaces) is solved with one
+!! factorization and one solve per stage whatever the deck asks.
+module feps_incremental_analysis
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t, fatal_error, err_model, err_solver, str
+  use feps_model, only: model_t, stage_t, controls_t, method_names, method_euler, method_modified_euler, &
+                        method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness
+  use feps_dof_map, only: dof_map_t, build_dof_map
+  use feps_sparse_matrix, only: csr_matrix_t
+  use feps_assembly, only: group_kernel_t, build_kernels, build_materials, build_pattern, check_jacobians, &
+                           element_dofs, element_stiffness, element_strains, element_internal_force, &
+                           scatter_element_matrix, rotate_matrix
+  use feps_loads, only: resolve_face_sets, nodal_load_vector, to_equations
+  use feps_material, only: material_slot_t, state_open
+  use feps_linear_solver, only: linear_solver_t
+  use feps_solver_factory, only: new_linear_solver
+  use feps_observer, only: observer_t, step_result_t, group_result_t
+  implicit none
+  private
+
+  !> Totals of a run, for the summary.
+  type, public :: analysis_summary_t
+    logical :: linear = .false.
+    integer :: neq = 0
+    integer :: unused_nodes = 0
+    integer :: steps = 0
+    integer :: iterations = 0
+    integer :: factorizations = 0
+    integer :: cutbacks = 0
+    integer(i8) :: matrix_nnz = 0
+    integer(i8) :: factor_nnz = 0
+    real(dp) :: flops = 0.0_dp
+    real(dp) :: min_pivot_ratio = 0.0_dp
+    real(dp) :: max_pivot_ratio = 0.0_dp
+    real(dp) :: min_detj = 0.0_dp
+    real(dp) :: time_assembly = 0.0_dp
+    real(dp) :: time_factorization = 0.0_dp
+    real(dp) :: time_solve = 0.0_dp
+    real(dp) :: time_update = 0.0_dp
+    real(dp) :: max_displacement = 0.0_dp
+    integer :: max_displacement_node = 0
+    real(dp) :: applied_force(3) = 0.0_dp
+    real(dp) :: reaction_force(3) = 0.0_dp
+    character(len=:), allocatable :: solver
+  end type analysis_summary_t
+
+  !> Point states of one group: committed (end of the last step) and trial.
+  type :: group_state_t
+    real(dp), allocatable :: sig(:, :), eps(:, :)
+    integer, allocatable :: state(:)
+    real(dp), allocatable :: sig_t(:, :), eps_t(:, :)
+    integer, allocatable :: state_t(:)
+    real(dp), allocatable :: dtan(:, :, :), dtan_t(:, :, :)   !! nonlinear groups only
+    logical :: nonlinear = .false.
+  end type group_state_t
+
+  !> Everything the analysis works on.
+  type :: analysis_t
+    type(group_kernel_t), allocatable :: kernels(:)
+    type(material_slot_t), allocatable :: materials(:)
+    type(dof_map_t) :: map
+    type(csr_matrix_t) :: a
+    class(linear_solver_t), allocatable :: solver
+    type(group_state_t), allocatable :: states(:)
+    real(dp), allocatable :: u(:, :), u_t(:, :)        !! committed and trial displacements (global)
+    real(dp), allocatable :: fint(:, :)                !! internal forces of the trial state (global)
+    real(dp), allocatable :: f_ref(:, :)               !! reference (stage-0) loads (global)
+    real(dp), allocatable :: f_applied(:, :)           !! external load applied so far (global)
+    real(dp), allocatable :: uc(:, :)                  !! constrained values reached (nodal systems)
+    logical :: symmetrized = .false.
+  end type analysis_t
+
+  public :: run_analysis, is_linear_model
+
+contains
+
+  real(dp) function wall_clock()
+    integer(i8) :: count, rate
+    call system_clock(count, rate)
+    wall_clock = real(count, dp) / real(rate, dp)
+  end function wall_clock
+
+  !> All materials linear and no interfaces: one factorization, one solve per stage.
+  logical function is_linear_model(model, materials)
+    type(model_t), intent(in) :: model
+    type(material_slot_t), intent(in) :: materials(:)
+    integer :: m
+    is_linear_model = .not. model%has_interfaces()
+    do m = 1, size(materials)
+      if (.not. materials(m)%m%is_linear()) is_linear_model = .false.
+    end do
+  end function is_linear_model
+
+  !> Run every stage of the model; report progress and the steps to write to `observer`.
+  subroutine run_analysis(model, solver_name, observer, summary, error)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: solver_name
+    class(observer_t), intent(inout) :: observer
+    type(analysis_summary_t), intent(out) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    type(analysis_t) :: an
+    real(dp) :: t0
+    integer :: n
+
+    t0 = wall_clock()
+    call build_kernels(model, an%kernels, error)
+    if (allocated(error)) return
+    call build_materials(model, an%materials, error)
+    if (allocated(error)) return
+    call check_jacobians(model, an%kernels, summary%min_detj, error)
+    if (allocated(error)) return
+    call resolve_face_sets(model, an%kernels, error)
+    if (allocated(error)) return
+    call build_dof_map(model, an%map, error)
+    if (allocated(error)) return
+    summary%neq = an%map%neq
+    summary%unused_nodes = an%map%unused_nodes
+    if (an%map%neq == 0) then
+      call fatal_error(error, err_model, model%deck_file // ': the model has no free degree of freedom')
+      return
+    end if
+    call build_pattern(model, an%map, an%a)
+    summary%matrix_nnz = an%a%nnz()
+    call new_linear_solver(solver_name, an%solver, error)
+    if (allocated(error)) return
+    summary%solver = an%solver%name()
+    call an%solver%analyze(an%a, error)
+    if (allocated(error)) return
+    call init_states(model, an)
+    allocate (an%f_ref(3, model%nnode), an%f_applied(3, model%nnode))
+    call nodal_load_vector(model, an%kernels, an%f_ref, error, stage=0)
+    if (allocated(error)) return
+    an%f_applied = 0.0_dp
+    summary%time_assembly = wall_clock() - t0
+
+    summary%linear = is_linear_model(model, an%materials)
+    if (summary%linear) then
+      call observer%progress('linear model (all materials elastic, no interfaces): one factorization, ' // &
+                             'one solve per stage')
+      call run_linear_stages(model, an, observer, summary, error)
+    else
+      call run_nonlinear_stages(model, an, observer, summary, error)
+    end if
+    if (allocated(error)) return
+
+    summary%factor_nnz = an%solver%factor_nnz
+    summary%flops = an%solver%flops
+    summary%min_pivot_ratio = an%solver%min_pivot_ratio
+    summary%max_pivot_ratio = an%solver%max_pivot_ratio
+    summary%applied_force = sum(an%f_applied, dim=2)
+    summary%reaction_force = 0.0_dp
+    do n = 1, model%nnode
+      if (any(an%map%constrained(:, n))) summary%reaction_force = summary%reaction_force + an%fint(:, n) - &
+                                                                  an%f_applied(:, n)
+      if (norm2(an%u(:, n)) > summary%max_displacement) then
+        summary%max_displacement = norm2(an%u(:, n))
+        summary%max_displacement_node = n
+      end if
+    end do
+  end subroutine run_analysis
+
+  subroutine init_states(model, an)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer :: g, np, nc, q
+    allocate (an%states(size(model%groups)))
+    do g = 1, size(model%groups)
+      np = an%kernels(g)%npoints * size(model%groups(g)%connectivity, 2)
+      nc = an%kernels(g)%ncomp
+      associate (s => an%states(g))
+        allocate (s%sig(nc, np), s%eps(nc, np), s%state(np), s%sig_t(nc, np), s%eps_t(nc, np), s%state_t(np))
+        s%sig = 0.0_dp
+        s%eps = 0.0_dp
+        s%state = 0
+        s%sig_t = 0.0_dp
+        s%eps_t = 0.0_dp
+        s%state_t = 0
+        s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear()
+        if (s%nonlinear) then
+          allocate (s%dtan(nc, nc, np), s%dtan_t(nc, nc, np))
+          do q = 1, np
+            call an%materials(model%groups(g)%material)%m%elastic_tangent(s%dtan(:, :, q))
+          end do
+          s%dtan_t = s%dtan
+        end if
+      end associate
+    end do
+    allocate (an%u(3, model%nnode), an%u_t(3, model%nnode), an%fint(3, model%nnode), an%uc(3, model%nnode))
+    an%u = 0.0_dp
+    an%u_t = 0.0_dp
+    an%fint = 0.0_dp
+    an%uc = 0.0_dp
+  end subroutine init_states
+
+  !> Increments of one whole stage: external forces (global) and constrained values (nodal).
+  subroutine stage_increments(model, an, s, df, duc, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: s
+    real(dp), intent(out) :: df(:, :), duc(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: c, k, n
+    real(dp) :: frac
+    call nodal_load_vector(model, an%kernels, df, error, stage=s)
+    if (allocated(error)) return
+    frac = model%stages(s)%load_fraction
+    df = df + frac * an%f_ref
+    duc = 0.0_dp
+    do c = 1, size(model%constraints)
+      associate (con => model%constraints(c))
+        if (con%stage /= 0 .and. con%stage /= s) cycle
+        do k = 1, size(model%node_sets(con%node_set)%nodes)
+          n = model%node_sets(con%node_set)%nodes(k)
+          if (con%stage == 0) then
+            duc(con%dof, n) = frac * con%value
+          else
+            duc(con%dof, n) = con%value
+          end if
+        end do
+      end associate
+    end do
+  end subroutine stage_increments
+
+  ! ---------------------------------------------------------------------------------------
+  ! Linear models
+  ! ---------------------------------------------------------------------------------------
+
+  subroutine run_linear_stages(model, an, observer, summary, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    class(observer_t), intent(inout) :: observer
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: df(:, :), duc(:, :), r(:)
+    real(dp) :: t0, rnorm, pnorm
+    integer :: s, step
+
+    call factorize_tangent(model, an, .true., summary, error)
+    if (allocated(error)) return
+    allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq))
+    step = 0
+    do s = 1, size(model%stages)
+      call stage_increments(model, an, s, df, duc, error)
+      if (allocated(error)) return
+      an%f_applied = an%f_applied + df
+      an%uc = an%uc + duc
+      ! Move the constrained DOFs, then one solve for the free ones.
+      call set_trial(model, an)
+      call update_points(model, an)
+      call residual(an, r, rnorm, pnorm)
+      t0 = wall_clock()
+      call an%solver%solve(r, error)
+      if (allocated(error)) return
+      summary%time_solve = summary%time_solve + wall_clock() - t0
+      call add_free(an, r, an%u_t)
+      call update_points(model, an)
+      call residual(an, r, rnorm, pnorm)
+      call commit(an)
+      step = step + model%stages(s)%steps
+      summary%steps = step
+      summary%iterations = summary%iterations + 1
+      call observer%progress(progress_line(s, model%stages(s)%steps, model%stages(s)%steps, real(s, dp), 1, &
+                                           rnorm / pnorm, summary%factorizations, 0))
+      call report_step(model, an, observer, step, s, model%stages(s)%steps, real(s, dp), 1, rnorm / pnorm, error)
+      if (allocated(error)) return
+    end do
+  end subroutine run_linear_stages
+
+  ! ---------------------------------------------------------------------------------------
+  ! Nonlinear models
+  ! ---------------------------------------------------------------------------------------
+
+  subroutine run_nonlinear_stages(model, an, observer, summary, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    class(observer_t), intent(inout) :: observer
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: df(:, :), duc(:, :), r(:)
+    real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
+    integer :: s, k, step, iters, cut, nfact0, iters_step
+    logical :: ok, need_factor, have_factor
+    logical, allocatable :: fully_open(:)
+
+    allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq), fully_open(size(model%groups)))
+    fully_open = .false.
+    step = 0
+    have_factor = .false.
+    rel_prev = 0.0_dp
+    abs_prev = 0.0_dp
+    do s = 1, size(model%stages)
+      associate (st => model%stages(s), c => model%stages(s)%controls)
+        call stage_increments(model, an, s, df, duc, error)
+        if (allocated(error)) return
+        call observer%progress('stage ' // st%name // ': ' // str(st%steps) // ' steps, method ' // &
+                               trim(method_names(c%method)) // ', at most ' // str(c%max_iterations) // &
+                               ' iterations per step')
+        do k = 1, st%steps
+          step = step + 1
+          done = 0.0_dp
+          h = 1.0_dp
+          cut = 0
+          iters_step = 0
+          nfact0 = an%solver%factorizations
+          do while (done < 1.0_dp - 1.0e-12_dp)
+            h = min(h, 1.0_dp - done)
+            ! Which stiffness: the method decides (thesis 2.6.3).
+            select case (c%method)
+            case (method_initial_stiffness)
+              need_factor = .not. have_factor
+            case (method_modified_newton_raphson)
+              need_factor = .not. have_factor .or. rel_prev > c%delta3 .or. abs_prev > c%delta4
+            case default
+              need_factor = .true.
+            end select
+            if (need_factor) then
+              call factorize_tangent(model, an, c%method == method_initial_stiffness .or. .not. have_factor, &
+                                     summary, error)
+              if (allocated(error)) then
+                call name_step(error, st, k, s - 1 + (k - 1 + done) / st%steps)
+                return
+              end if
+              have_factor = .true.
+            end if
+            call substep(model, an, c, df * (h / st%steps), duc * (h / st%steps), r, rnorm, pnorm, iters, ok, &
+                         summary, error)
+            if (allocated(error)) return
+            iters_step = iters_step + iters
+            if (ok) then
+              done = done + h
+              rel_prev = rnorm / pnorm
+              abs_prev = rnorm
+              call commit(an)
+              an%f_applied = an%f_applied + df * (h / st%steps)
+              an%uc = an%uc + duc * (h / st%steps)
+            else
+              cut = cut + 1
+              summary%cutbacks = summary%cutbacks + 1
+              call restore(an)
+              if (cut > c%max_cutbacks) then
+                call stop_error(model, an, r, st, k, s - 1 + (k - 1 + done + h) / st%steps, rnorm / pnorm, &
+                                cut > c%max_cutbacks, error)
+                return
+              end if
+              h = h / 2.0_dp
+              ! After a cut-back, start again from the tangent of the committed state.
+              if (c%method /= method_initial_stiffness) rel_prev = huge(1.0_dp)
+              call observer%progress('  step ' // str(k) // ' diverged: cut back to ' // str(h) // ' of a step')
+            end if
+          end do
+          summary%steps = step
+          summary%iterations = summary%iterations + iters_step
+          call observer%progress(progress_line(s, k, st%steps, s - 1 + real(k, dp) / st%steps, iters_step, &
+                                               rel_prev, summary%factorizations, an%solver%factorizations - nfact0))
+          call report_open_interfaces(model, an, observer, fully_open)
+          if (writes_step(st, k)) then
+            call report_step(model, an, observer, step, s, k, s - 1 + real(k, dp) / st%steps, iters_step, &
+                             rel_prev, error)
+            if (allocated(error)) return
+          end if
+        end do
+      end associate
+    end do
+    if (an%symmetrized) call observer%progress('note: non-associated flow (psi /= phi) makes the tangent ' // &
+                                               'non-symmetric; its symmetric part was factorized and the ' // &
+                                               'exact residual iterated on')
+  end subroutine run_nonlinear_stages
+
+  !> Say when an interface group opens completely (only the residual gap stiffness then holds
+  !! what it joined) and when it closes again.
+  subroutine report_open_interfaces(model, an, observer, fully_open)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    class(observer_t), intent(inout) :: observer
+    logical, intent(inout) :: fully_open(:)
+    integer :: g
+    logical :: now
+    do g = 1, size(model%groups)
+      if (.not. an%kernels(g)%is_interface) cycle
+      now = all(an%states(g)%state == state_open)
+      if (now .and. .not. fully_open(g)) then
+        call observer%progress('note: interface group ' // model%groups(g)%name // ' is fully open (' // &
+                               str(size(an%states(g)%state)) // ' points): only the residual gap stiffness ' // &
+                               'holds what it joined')
+      else if (fully_open(g) .and. .not. now) then
+        call observer%progress('note: interface group ' // model%groups(g)%name // ' is in contact again')
+      end if
+      fully_open(g) = now
+    end do
+  end subroutine report_open_interfaces
+
+  pure logical function writes_step(st, k)
+    type(stage_t), intent(in) :: st
+    integer, intent(in) :: k
+    if (st%output_every > 0) then
+      writes_step = mod(k, st%output_every) == 0 .or. k == st%steps
+    else
+      writes_step = k == st%steps
+    end if
+  end function writes_step
+
+  !> One (sub)step: move the constrained DOFs by duc, apply df, iterate on the residual.
+  !! ok is false when the step diverges (non-finite or growing residual, or iterations run out
+  !! far from convergence).
+  subroutine substep(model, an, c, df, duc, r, rnorm, pnorm, iters, ok, summary, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    type(controls_t), intent(in) :: c
+    real(dp), intent(in) :: df(:, :), duc(:, :)
+    real(dp), intent(inout) :: r(:)
+    real(dp), intent(out) :: rnorm, pnorm
+    integer, intent(out) :: iters
+    logical, intent(out) :: ok
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: r_carry(:)
+    real(dp) :: t0, r_first, rel, r_scale
+    integer :: m
+
+    if (c%method == method_euler) then
+      ! Euler drops the unbalanced force of the previous step (eq. 2.6.4 not applied).
+      allocate (r_carry(size(r)))
+      call committed_residual(model, an, r_carry)
+    end if
+    an%f_applied = an%f_applied + df
+    an%uc = an%uc + duc
+    call set_trial(model, an)
+    call update_points(model, an)
+    call residual(an, r, rnorm, pnorm)
+    if (allocated(r_carry)) r = r - r_carry
+    ! The out-of-balance force that starts the step is a scale too: a step driven by
+    ! displacements may end with no load, no reaction and no stress (a block lifted off).
+    r_scale = rnorm
+    ok = .true.
+    r_first = -1.0_dp
+    iters = 0
+    do m = 1, c%max_iterations
+      t0 = wall_clock()
+      call an%solver%solve(r, error)
+      if (allocated(error)) exit
+      summary%time_solve = summary%time_solve + wall_clock() - t0
+      call add_free(an, r, an%u_t)
+      t0 = wall_clock()
+      call update_points(model, an)
+      summary%time_update = summary%time_update + wall_clock() - t0
+      call residual(an, r, rnorm, pnorm)
+      pnorm = max(pnorm, r_scale)
+      iters = m
+      rel = rnorm / pnorm
+      if (.not. (rnorm <= huge(rnorm))) then
+        ok = .false.
+        exit
+      end if
+      if (r_first < 0.0_dp) r_first = rnorm
+      if (rel < c%delta1 .or. rnorm < c%delta2) exit
+      if (m > 1 .and. rnorm > 1.0e4_dp * r_first) then
+        ok = .false.
+        exit
+      end if
+    end do
+    ! Undo the step's load and constraint increments; the caller applies them on success.
+    an%f_applied = an%f_applied - df
+    an%uc = an%uc - duc
+    if (allocated(error)) return
+    if (.not. ok) return
+    rel = rnorm / pnorm
+    select case (c%method)
+    case (method_euler, method_modified_euler)
+      ok = rel < 1.0_dp                       ! an unbalanced force larger than the load itself
+    case (method_newton_raphson)
+      ok = rel < c%delta1 .or. rnorm < c%delta2
+    case default
+      ok = rel < max(1.0e3_dp * c%delta1, 1.0e-3_dp) .or. rnorm < c%delta2
+    end select
+  end subroutine substep
+
+  !> Residual of the committed state (R_n of eq. 2.6.3) on the free equations.
+  subroutine committed_residual(model, an, r)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    real(dp), intent(out) :: r(:)
+    real(dp), allocatable :: f(:, :), rf(:)
+    integer :: g, e, q0, np
+    real(dp), allocatable :: fe(:)
+    allocate (f(3, model%nnode))
+    f = 0.0_dp
+    do g = 1, size(model%groups)
+      np = an%kernels(g)%npoints
+      allocate (fe(3 * an%kernels(g)%nnodes))
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        q0 = (e - 1) * np
+        call element_internal_force(an%kernels(g), model%coords(:, model%groups(g)%connectivity(:, e)), &
+                                    an%states(g)%sig(:, q0 + 1:q0 + np), fe)
+        f(:, model%groups(g)%connectivity(:, e)) = f(:, model%groups(g)%connectivity(:, e)) + &
+                                                   reshape(fe, [3, an%kernels(g)%nnodes])
+      end do
+      deallocate (fe)
+    end do
+    allocate (rf(size(r)))
+    call to_equations(an%map, an%f_applied - f, rf)
+    r = rf
+  end subroutine committed_residual
+
+  !> Trial displacements: the committed ones with the constrained DOFs moved to their
+  !! current targets an%uc (nodal systems).
+  subroutine set_trial(model, an)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer :: n, d
+    real(dp) :: ul(3)
+    do n = 1, model%nnode
+      if (.not. any(an%map%constrained(:, n))) then
+        an%u_t(:, n) = an%u(:, n)
+        cycle
+      end if
+      ul = matmul(transpose(an%map%basis(:, :, n)), an%u(:, n))
+      do d = 1, 3
+        if (an%map%constrained(d, n)) ul(d) = an%uc(d, n)
+      end do
+      an%u_t(:, n) = matmul(an%map%basis(:, :, n), ul)
+    end do
+  end subroutine set_trial
+
+  !> u <- u + dx on the free equations (dx in nodal systems).
+  pure subroutine add_free(an, x, u)
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(inout) :: u(:, :)
+    integer :: n, d
+    real(dp) :: dl(3)
+    do n = 1, size(u, 2)
+      if (all(an%map%eq(:, n) == 0)) cycle
+      dl = 0.0_dp
+      do d = 1, 3
+        if (an%map%eq(d, n) > 0) dl(d) = x(an%map%eq(d, n))
+      end do
+      u(:, n) = u(:, n) + matmul(an%map%basis(:, :, n), dl)
+    end do
+  end subroutine add_free
+
+  !> Update every point from the committed state with the strain of u_t - u, and sum the
+  !! internal forces of the trial state.
+  subroutine update_points(model, an)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer :: g, e, q, q0, np, nn, nc
+    real(dp), allocatable :: xe(:, :), due(:), deps(:, :), fe(:), dtan(:, :)
+    an%fint = 0.0_dp
+    do g = 1, size(model%groups)
+      np = an%kernels(g)%npoints
+      nn = an%kernels(g)%nnodes
+      nc = an%kernels(g)%ncomp
+      allocate (xe(3, nn), due(3 * nn), deps(nc, np), fe(3 * nn), dtan(nc, nc))
+      associate (s => an%states(g), mat => an%materials(model%groups(g)%material)%m, &
+                 conn => model%groups(g)%connectivity)
+        do e = 1, size(conn, 2)
+          xe = model%coords(:, conn(:, e))
+          due = reshape(an%u_t(:, conn(:, e)) - an%u(:, conn(:, e)), [3 * nn])
+          call element_strains(an%kernels(g), xe, due, deps)
+          q0 = (e - 1) * np
+          do q = 1, np
+            call mat%update(s%sig(:, q0 + q), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), s%sig_t(:, q0 + q), &
+                            s%state_t(q0 + q), dtan)
+            s%eps_t(:, q0 + q) = s%eps(:, q0 + q) + deps(:, q)
+            if (s%nonlinear) s%dtan_t(:, :, q0 + q) = dtan
+          end do
+          call element_internal_force(an%kernels(g), xe, s%sig_t(:, q0 + 1:q0 + np), fe)
+          an%fint(:, conn(:, e)) = an%fint(:, conn(:, e)) + reshape(fe, [3, nn])
+        end do
+      end associate
+      deallocate (xe, due, deps, fe, dtan)
+    end do
+  end subroutine update_points
+
+  !> R = P - F_int on the free equations; |R| and the reference |P| (the larger of the applied
+  !! load and the support reactions, so displacement-driven steps have a scale too).
+  subroutine residual(an, r, rnorm, pnorm)
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(out) :: r(:)
+    real(dp), intent(out) :: rnorm, pnorm
+    real(dp), allocatable :: p(:)
+    real(dp) :: react2, fl(3)
+    integer :: n, d
+    allocate (p(size(r)))
+    call to_equations(an%map, an%f_applied - an%fint, r)
+    call to_equations(an%map, an%f_applied, p)
+    rnorm = norm2(r)
+    react2 = 0.0_dp
+    do n = 1, size(an%fint, 2)
+      if (.not. any(an%map%constrained(:, n))) cycle
+      fl = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
+      do d = 1, 3
+        if (an%map%constrained(d, n)) react2 = react2 + fl(d)**2
+      end do
+    end do
+    pnorm = max(norm2(p), sqrt(react2), tiny(1.0_dp))
+  end subroutine residual
+
+  subroutine commit(an)
+    type(analysis_t), intent(inout) :: an
+    integer :: g
+    an%u = an%u_t
+    do g = 1, size(an%states)
+      associate (s => an%states(g))
+        s%sig = s%sig_t
+        s%eps = s%eps_t
+        s%state = s%state_t
+        if (s%nonlinear) s%dtan = s%dtan_t
+      end associate
+    end do
+  end subroutine commit
+
+  !> Back to the committed state after a failed step.
+  subroutine restore(an)
+    type(analysis_t), intent(inout) :: an
+    integer :: g
+    an%u_t = an%u
+    do g = 1, size(an%states)
+      associate (s => an%states(g))
+        s%sig_t = s%sig
+        s%eps_t = s%eps
+        s%state_t = s%state
+        if (s%nonlinear) s%dtan_t = s%dtan
+      end associate
+    end do
+  end subroutine restore
+
+  !> Assemble and factorize the stiffness: elastic (initial) or the committed tangent.
+  subroutine factorize_tangent(model, an, elastic, summary, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    logical, intent(in) :: elastic
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    integer :: g, e, q, np, nn, nc, ieq, q0
+    real(dp), allocatable :: ke(:, :), d(:, :, :)
+    integer, allocatable :: dofs(:)
+    real(dp) :: t0
+    t0 = wall_clock()
+    an%a%val = 0.0_dp
+    do g = 1, size(model%groups)
+      np = an%kernels(g)%npoints
+      nn = an%kernels(g)%nnodes
+      nc = an%kernels(g)%ncomp
+      allocate (ke(3 * nn, 3 * nn), d(nc, nc, np), dofs(3 * nn))
+      associate (s => an%states(g), conn => model%groups(g)%connectivity)
+        if (elastic .or. .not. s%nonlinear) then
+          do q = 1, np
+            call an%materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, q))
+          end do
+        end if
+        do e = 1, size(conn, 2)
+          if (.not. (elastic .or. .not. s%nonlinear)) then
+            q0 = (e - 1) * np
+            do q = 1, np
+              d(:, :, q) = s%dtan(:, :, q0 + q)
+              if (any(abs(d(:, :, q) - transpose(d(:, :, q))) > 1.0e-12_dp * maxval(abs(d(:, :, q))))) then
+                d(:, :, q) = 0.5_dp * (d(:, :, q) + transpose(d(:, :, q)))
+                an%symmetrized = .true.
+              end if
+            end do
+          end if
+          call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
+          if (an%map%has_rotations()) call rotate_matrix(an%map, conn(:, e), ke)
+          call element_dofs(an%map, conn(:, e), dofs)
+          call scatter_element_matrix(dofs, ke, an%a)
+        end do
+      end associate
+      deallocate (ke, d, dofs)
+    end do
+    summary%time_assembly = summary%time_assembly + wall_clock() - t0
+    t0 = wall_clock()
+    call an%solver%factorize(an%a, error)
+    summary%time_factorization = summary%time_factorization + wall_clock() - t0
+    if (allocated(error)) then
+      ieq = error%item   ! fatal_error reallocates error: keep the item first
+      if (ieq > 0 .and. ieq <= an%map%neq) then
+        call fatal_error(error, err_model, model%deck_file // ': the stiffness matrix is singular at ' // &
+                         an%map%dof_name(ieq) // ': that DOF is not held (an unconstrained rigid-body mode ' // &
+                         'or a missing support)', item=ieq)
+      end if
+      return
+    end if
+    summary%factorizations = an%solver%factorizations
+  end subroutine factorize_tangent
+
+  subroutine name_step(error, st, k, lf)
+    type(error_t), intent(inout) :: error
+    type(stage_t), intent(in) :: st
+    integer, intent(in) :: k
+    real(dp), intent(in) :: lf
+    error%message = error%message // ' (stage ' // st%name // ', step ' // str(k) // ', load factor ' // str(lf) // ')'
+  end subroutine name_step
+
+  !> The clear stop: step, load factor, residual and the DOF where it is largest.
+  subroutine stop_error(model, an, r, st, k, lf, rel, cutbacks_exhausted, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(in) :: r(:)
+    type(stage_t), intent(in) :: st
+    integer, intent(in) :: k
+    real(dp), intent(in) :: lf, rel
+    logical, intent(in) :: cutbacks_exhausted
+    type(error_t), allocatable, intent(out) :: error
+    integer :: imax
+    character(len=:), allocatable :: why
+    imax = maxloc(abs(r), dim=1, mask=r == r)
+    if (imax < 1) imax = 1
+    if (cutbacks_exhausted) then
+      why = 'the step does not converge after ' // str(st%controls%max_cutbacks) // ' cut-backs'
+    else
+      why = 'the residual is not finite'
+    end if
+    call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
+                     ', load factor ' // str(lf) // ': ' // why // ' (relative residual ' // str(rel) // &
+                     ', largest at ' // an%map%dof_name(imax) // ')')
+  end subroutine stop_error
+
+  function progress_line(s, k, n, lf, iters, rel, nfact, nfact_step) result(line)
+    integer, intent(in) :: s, k, n, iters, nfact, nfact_step
+    real(dp), intent(in) :: lf, rel
+    character(len=:), allocatable :: line
+    character(len=160) :: buf
+    write (buf, '(a,i0,a,i0,a,i0,a,f9.5,a,i4,a,es9.2,a,i0,a,i0,a)') 'stage ', s, '  step ', k, '/', n, &
+      '  load ', lf, '  iterations ', iters, '  residual ', rel, '  refactorizations ', nfact, ' (+', nfact_step, ')'
+    line = trim(buf)
+  end function progress_line
+
+  !> Hand the step's results to the observer.
+  subroutine report_step(model, an, observer, step, s, k, lf, iters, rel, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    class(observer_t), intent(inout) :: observer
+    integer, intent(in) :: step, s, k, iters
+    real(dp), intent(in) :: lf, rel
+    type(error_t), allocatable, intent(out) :: error
+    type(step_result_t) :: res
+    integer :: g, n
+    res%step = step
+    res%stage = s
+    res%step_in_stage = k
+    res%load_factor = lf
+    res%iterations = iters
+    res%residual = rel
+    res%displacement = an%u
+    allocate (res%reaction(3, model%nnode))
+    res%reaction = 0.0_dp
+    do n = 1, model%nnode
+      if (any(an%map%constrained(:, n))) res%reaction(:, n) = an%fint(:, n) - an%f_applied(:, n)
+    end do
+    allocate (res%groups(size(model%groups)))
+    do g = 1, size(model%groups)
+      res%groups(g)%stress = an%states(g)%sig
+      res%groups(g)%strain = an%states(g)%eps
+      res%groups(g)%state = an%states(g)%state
+      res%groups(g)%points_per_element = an%kernels(g)%npoints
+      res%groups(g)%is_interface = an%kernels(g)%is_interface
+    end do
+    call observer%write_step(res, error)
+  end subroutine report_step
+
+end module feps_incremental_analysis

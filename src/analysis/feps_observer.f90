@@ -1,0 +1,54 @@
+!> What an analysis reports while it runs: progress lines and the results of the steps that
+!! are to be written. The program layer implements an observer (printing, HDF5); the
+!! analysis layer never prints or writes files itself.
+module feps_observer
+  use feps_kinds, only: dp
+  use feps_error, only: error_t
+  implicit none
+  private
+
+  !> Results of one point (Gauss or interface point) field of a group.
+  type, public :: group_result_t
+    real(dp), allocatable :: stress(:, :)    !! (ncomp, npoints): Voigt stresses or interface tractions
+    real(dp), allocatable :: strain(:, :)    !! (ncomp, npoints)
+    integer, allocatable :: state(:)         !! point states (feps_material state_*)
+    integer :: points_per_element = 0
+    logical :: is_interface = .false.
+  end type group_result_t
+
+  !> One step's results.
+  type, public :: step_result_t
+    integer :: step = 0                      !! step counter over all stages
+    integer :: stage = 0
+    integer :: step_in_stage = 0
+    real(dp) :: load_factor = 0.0_dp         !! stage - 1 + fraction of the stage applied
+    integer :: iterations = 0
+    real(dp) :: residual = 0.0_dp            !! relative residual |R| / |P| at the end of the step
+    real(dp), allocatable :: displacement(:, :)  !! (3, nnode) global Cartesian
+    real(dp), allocatable :: reaction(:, :)      !! (3, nnode) global Cartesian
+    type(group_result_t), allocatable :: groups(:)
+  end type step_result_t
+
+  type, abstract, public :: observer_t
+  contains
+    procedure(progress_interface), deferred :: progress
+    procedure(step_interface), deferred :: write_step
+  end type observer_t
+
+  abstract interface
+    !> One line of progress (step, load factor, iterations, residual, ...).
+    subroutine progress_interface(self, line)
+      import :: observer_t
+      class(observer_t), intent(inout) :: self
+      character(len=*), intent(in) :: line
+    end subroutine progress_interface
+    !> A step whose results are to be kept.
+    subroutine step_interface(self, res, error)
+      import :: observer_t, step_result_t, error_t
+      class(observer_t), intent(inout) :: self
+      type(step_result_t), intent(in) :: res
+      type(error_t), allocatable, intent(out) :: error
+    end subroutine step_interface
+  end interface
+
+end module feps_observer

@@ -1,0 +1,259 @@
+!> The incremental driver: linear scenes stay linear, contact through interfaces at extreme
+!! stiffness ratios, a fully open interface, huge steps, and the clear stop.
+module test_nonlinear
+  use feps_kinds, only: dp
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_error, only: err_solver
+  use feps_model, only: model_t, method_newton_raphson, method_modified_euler, method_initial_stiffness, &
+                        load_traction
+  use feps_deck, only: read_deck
+  use feps_incremental_analysis, only: run_analysis, analysis_summary_t
+  use feps_observer, only: observer_t, step_result_t
+  implicit none
+  private
+
+  public :: collect_nonlinear
+
+  !> Keeps the last step written and the progress lines.
+  type, extends(observer_t) :: keep_last_t
+    type(step_result_t) :: last
+    integer :: nwritten = 0
+    character(len=200), allocatable :: lines(:)
+  contains
+    procedure :: progress => keep_progress
+    procedure :: write_step => keep_step
+  end type keep_last_t
+
+contains
+
+  subroutine collect_nonlinear(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest('a linear scene does one factorization whatever the deck asks', test_linear_scene), &
+      new_unittest('contact stress equals a uniform traction, Kn 8..8e5, E 1..1e6', test_contact_uniform), &
+      new_unittest('contact stress equals a linearly varying traction', test_contact_linear), &
+      new_unittest('a fully open interface is held by its residual stiffness and reported', test_fully_open), &
+      new_unittest('one huge sliding step equals 100 small ones', test_huge_step), &
+      new_unittest('an impossible load stops with the clear message, never NaN', test_clear_stop) &
+      ]
+  end subroutine collect_nonlinear
+
+  subroutine keep_progress(self, line)
+    class(keep_last_t), intent(inout) :: self
+    character(len=*), intent(in) :: line
+    character(len=200), allocatable :: tmp(:)
+    if (.not. allocated(self%lines)) allocate (self%lines(0))
+    tmp = [character(len=200) :: self%lines, line]
+    call move_alloc(tmp, self%lines)
+  end subroutine keep_progress
+
+  subroutine keep_step(self, res, error)
+    class(keep_last_t), intent(inout) :: self
+    type(step_result_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    self%last = res
+    self%nwritten = self%nwritten + 1
+  end subroutine keep_step
+
+  logical function said(obs, piece)
+    type(keep_last_t), intent(in) :: obs
+    character(len=*), intent(in) :: piece
+    integer :: i
+    said = .false.
+    if (.not. allocated(obs%lines)) return
+    do i = 1, size(obs%lines)
+      if (index(obs%lines(i), piece) > 0) said = .true.
+    end do
+  end function said
+
+  !> The cube deck asked for 50 Newton-Raphson steps: still one factorization, exact answer.
+  subroutine test_linear_scene(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    call read_deck('test/data/cube.dat', model, error)
+    if (allocated(error)) return
+    model%stages(1)%steps = 50
+    model%stages(1)%controls%method = method_newton_raphson
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%linear, 'detected as linear')
+    if (allocated(error)) return
+    call check(error, summary%factorizations, 1, 'factorizations')
+    if (allocated(error)) return
+    call check(error, summary%iterations, 1, 'solves')
+    if (allocated(error)) return
+    call check(error, said(obs, 'linear model'), 'the detection is reported')
+    if (allocated(error)) return
+    call check(error, obs%last%groups(1)%stress(3, 1), -100.0_dp, 'szz', rel=1.0e-10_dp)
+  end subroutine test_linear_scene
+
+  !> Uniform pressure p on the upper block: every interface point carries sigma_n = -p.
+  subroutine test_contact_uniform(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: kns(5) = [8.0_dp, 80.0_dp, 800.0_dp, 8.0e3_dp, 8.0e5_dp]
+    real(dp), parameter :: es(4) = [1.0_dp, 1.0e2_dp, 1.0e4_dp, 1.0e6_dp]
+    integer :: i, j
+    do i = 1, size(kns)
+      do j = 1, size(es)
+        call contact_case(kns(i), es(j), .false., error)
+        if (allocated(error)) return
+      end do
+    end do
+  end subroutine test_contact_uniform
+
+  subroutine test_contact_linear(error)
+    type(error_t), allocatable, intent(out) :: error
+    call contact_case(8.0_dp, 1.0_dp, .true., error)
+    if (allocated(error)) return
+    call contact_case(8.0e5_dp, 1.0e6_dp, .true., error)
+    if (allocated(error)) return
+    call contact_case(8.0e5_dp, 1.0_dp, .true., error)
+  end subroutine test_contact_linear
+
+  !> p = 1 MPa uniform, or p = 0.5 + x / 20 (linear in x from 0.5 to 1.5): the linear stress
+  !! field is exact, so each interface point must carry sigma_n = -p(x) (1%), tau = 0.
+  subroutine contact_case(kn, e, linear, error)
+    real(dp), intent(in) :: kn, e
+    logical, intent(in) :: linear
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    real(dp) :: x, p, sn, tau
+    integer :: q, g
+    character(len=64) :: what
+    call read_deck('test/data/block_contact.dat', model, error)
+    if (allocated(error)) return
+    model%materials(1)%values(1) = e            ! block: E
+    model%materials(2)%values(1) = kn           ! contact: KN
+    model%materials(2)%values(2) = kn / 2.0_dp  ! contact: KS
+    if (linear) then
+      ! pressure 0.5 at x = -10 rising to 1.5 at x = 20 ... as an intensity linear in x with
+      ! zero at x = -10 and peak 1.5 at x = 20: p(x) = 1.5 (x + 10) / 30
+      model%face_loads(1)%vary_coord = 1
+      model%face_loads(1)%vary_csys = 2
+      model%face_loads(1)%zero = -10.0_dp
+      model%face_loads(1)%peak_at = 20.0_dp
+      model%face_loads(1)%value = 1.5_dp
+    end if
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    write (what, '(a,es8.1,a,es8.1)') 'Kn = ', kn, ', E = ', e
+    g = 3
+    do q = 1, size(obs%last%groups(g)%state)
+      sn = obs%last%groups(g)%stress(3, q)
+      tau = hypot(obs%last%groups(g)%stress(1, q), obs%last%groups(g)%stress(2, q))
+      x = interface_point_x(q)
+      p = 1.0_dp
+      if (linear) p = 1.5_dp * (x + 10.0_dp) / 30.0_dp
+      call check(error, sn, -p, trim(what) // ': sigma_n at a contact point', rel=0.01_dp)
+      if (allocated(error)) return
+      call check(error, tau, 0.0_dp, trim(what) // ': tau at a contact point', abs=0.01_dp * p)
+      if (allocated(error)) return
+    end do
+  end subroutine contact_case
+
+  !> x of interface point q (2x2 Gauss in each of the 2x2 elements of 10 mm, first direction
+  !! fastest, elements numbered x fastest).
+  pure real(dp) function interface_point_x(q)
+    integer, intent(in) :: q
+    integer :: e, g
+    real(dp), parameter :: a = 1.0_dp / sqrt(3.0_dp)
+    e = (q - 1) / 4 + 1
+    g = mod(q - 1, 4) + 1
+    interface_point_x = 10.0_dp * mod(e - 1, 2) + 5.0_dp + 5.0_dp * merge(-a, a, mod(g, 2) == 1)
+  end function interface_point_x
+
+  !> The upper block lifted 0.1 mm: every point open, zero stress, a regular system.
+  subroutine test_fully_open(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer :: s
+    call read_deck('test/data/sec2_3_4_lift.dat', model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, all(obs%last%groups(3)%state == 2), 'every interface point open')
+    if (allocated(error)) return
+    call check(error, maxval(abs(obs%last%groups(3)%stress)), 0.0_dp, 'zero tractions', abs=0.0_dp)
+    if (allocated(error)) return
+    call check(error, said(obs, 'fully open'), 'the open interface is reported')
+    if (allocated(error)) return
+    do s = 1, 3
+      call check(error, all(obs%last%displacement(s, :) == obs%last%displacement(s, :)), 'no NaN')
+      if (allocated(error)) return
+    end do
+    call check(error, maxval(obs%last%displacement(3, 9:16)), 0.1_dp, 'upper block lifted', rel=1.0e-9_dp)
+  end subroutine test_fully_open
+
+  !> sec2.3.4a with its 0.2 mm of sliding in one step: the closed-form return is exact for any
+  !! step, so tau = 133.33 and sigma_n = -266.67 as with 100 steps (0.1%).
+  subroutine test_huge_step(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer :: m
+    integer, parameter :: methods(3) = [method_modified_euler, method_newton_raphson, method_initial_stiffness]
+    do m = 1, size(methods)
+      call read_deck('input/verification/sec2_3_4a.dat', model, error)
+      if (allocated(error)) return
+      model%stages(2)%steps = 1
+      model%stages(2)%controls%method = methods(m)
+      model%stages(2)%controls%max_iterations = merge(1, 50, methods(m) == method_modified_euler)
+      call run_analysis(model, 'cholmod', obs, summary, error)
+      if (allocated(error)) return
+      call check(error, hypot(obs%last%groups(3)%stress(1, 1), obs%last%groups(3)%stress(2, 1)), &
+                 100.0_dp + (1000.0_dp / 3.0_dp) * 0.1_dp, 'tau after one step', rel=1.0e-3_dp)
+      if (allocated(error)) return
+      call check(error, obs%last%groups(3)%stress(3, 1), -2.0_dp * (100.0_dp + (1000.0_dp / 3.0_dp) * 0.1_dp), &
+                 'sigma_n after one step', rel=1.0e-3_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_huge_step
+
+  !> A sideways traction beyond the friction capacity: no equilibrium exists. The run must
+  !! stop with the clear message (stage, step, load factor, largest residual DOF).
+  subroutine test_clear_stop(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer :: code
+    call read_deck('test/data/block_contact.dat', model, error)
+    if (allocated(error)) return
+    ! pressure 1 MPa and a shear traction of 2 MPa (friction can carry tan 30 = 0.58 MPa)
+    model%face_loads = [model%face_loads, model%face_loads(1)]
+    model%face_loads(2)%kind = load_traction
+    model%face_loads(2)%components = [2.0_dp, 0.0_dp, 0.0_dp]
+    model%stages(1)%controls%max_cutbacks = 4
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (.not. allocated(error)) then
+      call test_failed(error, 'an impossible load did not stop the run')
+      return
+    end if
+    code = error%code   ! check_stop reallocates error
+    call check_stop(code, err_solver, 'error category', error)
+    if (allocated(error)) return
+  contains
+    subroutine check_stop(actual, expected, what, run_error)
+      integer, intent(in) :: actual, expected
+      character(len=*), intent(in) :: what
+      type(error_t), allocatable, intent(inout) :: run_error
+      character(len=:), allocatable :: msg
+      msg = run_error%message
+      deallocate (run_error)
+      if (actual /= expected) then
+        call test_failed(run_error, what // ': ' // msg)
+      else if (index(msg, 'step 1') == 0 .or. index(msg, 'load factor') == 0 .or. index(msg, 'cut-backs') == 0 &
+               .or. index(msg, 'node ') == 0 .or. index(msg, 'DOF') == 0) then
+        call test_failed(run_error, 'the stop message lacks step, load factor, cut-backs or DOF: ' // msg)
+      end if
+    end subroutine check_stop
+  end subroutine test_clear_stop
+
+end module test_nonlinear

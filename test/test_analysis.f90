@@ -4,7 +4,8 @@ module test_analysis
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_model, only: model_t, node_set_t, constraint_t
   use feps_deck, only: read_deck
-  use feps_linear_analysis, only: linear_result_t, run_linear
+  use feps_incremental_analysis, only: run_analysis, analysis_summary_t
+  use feps_observer, only: observer_t, step_result_t
   use feps_elastic, only: elastic_matrix
   use feps_program, only: run_options_t, run_summary_t, run_feps
   implicit none
@@ -12,7 +13,39 @@ module test_analysis
 
   public :: collect_analysis
 
+  !> Keeps the last step's results.
+  type, extends(observer_t) :: last_step_t
+    type(step_result_t) :: res
+  contains
+    procedure :: progress => ignore_progress
+    procedure :: write_step => keep_step
+  end type last_step_t
+
 contains
+
+  subroutine ignore_progress(self, line)
+    class(last_step_t), intent(inout) :: self
+    character(len=*), intent(in) :: line
+  end subroutine ignore_progress
+
+  subroutine keep_step(self, res, error)
+    class(last_step_t), intent(inout) :: self
+    type(step_result_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    self%res = res
+  end subroutine keep_step
+
+  !> Run a model and return its last step.
+  subroutine solve(model, solver, res, error)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: solver
+    type(step_result_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(last_step_t) :: obs
+    type(analysis_summary_t) :: summary
+    call run_analysis(model, solver, obs, summary, error)
+    if (.not. allocated(error)) res = obs%res
+  end subroutine solve
 
   subroutine collect_analysis(tests)
     type(unittest_t), allocatable, intent(out) :: tests(:)
@@ -32,19 +65,19 @@ contains
   subroutine test_cube(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
-    type(linear_result_t) :: res
+    type(step_result_t) :: res
     character(len=7), parameter :: solvers(2) = ['cholmod', 'skyline']
     integer :: s, q, n
     real(dp), parameter :: p = 100.0_dp, e = 200000.0_dp, nu = 0.3_dp, l = 10.0_dp
     do s = 1, 2
       call read_deck('test/data/cube.dat', model, error)
       if (allocated(error)) return
-      call run_linear(model, trim(solvers(s)), res, error)
+      call solve(model, trim(solvers(s)), res, error)
       if (allocated(error)) return
-      do q = 1, size(res%stresses(1)%sig, 2)
-        call check(error, res%stresses(1)%sig(3, q), -p, 'szz at a Gauss point', rel=1.0e-10_dp)
+      do q = 1, size(res%groups(1)%stress, 2)
+        call check(error, res%groups(1)%stress(3, q), -p, 'szz at a Gauss point', rel=1.0e-10_dp)
         if (allocated(error)) return
-        call check(error, maxval(abs(res%stresses(1)%sig([1, 2, 4, 5, 6], q))), 0.0_dp, 'other stresses', &
+        call check(error, maxval(abs(res%groups(1)%stress([1, 2, 4, 5, 6], q))), 0.0_dp, 'other stresses', &
                    abs=1.0e-9_dp)
         if (allocated(error)) return
       end do
@@ -75,7 +108,7 @@ contains
     real(dp), intent(in) :: amplitude
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
-    type(linear_result_t) :: res
+    type(step_result_t) :: res
     real(dp), parameter :: grad(3, 3) = reshape([1.0e-3_dp, -2.0e-4_dp, 3.0e-4_dp, 5.0e-4_dp, -7.0e-4_dp, &
                                                  1.0e-4_dp, -4.0e-4_dp, 6.0e-4_dp, 2.0e-3_dp], [3, 3])
     real(dp), parameter :: shift(3) = [0.01_dp, -0.02_dp, 0.03_dp]
@@ -109,7 +142,7 @@ contains
     end do
     model%node_sets = sets
     model%constraints = cons
-    call run_linear(model, 'cholmod', res, error)
+    call solve(model, 'cholmod', res, error)
     if (allocated(error)) return
     do n = 1, model%nnode
       u = matmul(grad, model%coords(:, n)) + shift
@@ -123,9 +156,9 @@ contains
     eps = [grad(1, 1), grad(2, 2), grad(3, 3), grad(2, 3) + grad(3, 2), grad(1, 3) + grad(3, 1), &
            grad(1, 2) + grad(2, 1)]
     sig = matmul(elastic_matrix(1000.0_dp, 0.25_dp), eps)
-    do q = 1, size(res%stresses(1)%sig, 2)
+    do q = 1, size(res%groups(1)%stress, 2)
       do d = 1, 6
-        call check(error, res%stresses(1)%sig(d, q), sig(d), 'constant stress', abs=1.0e-10_dp * maxval(abs(sig)))
+        call check(error, res%groups(1)%stress(d, q), sig(d), 'constant stress', abs=1.0e-10_dp * maxval(abs(sig)))
         if (allocated(error)) return
       end do
     end do
@@ -135,13 +168,13 @@ contains
   subroutine test_lame(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
-    type(linear_result_t) :: res
+    type(step_result_t) :: res
     real(dp), parameter :: a = 600.0_dp, b = 715.0_dp, p = 10.0_dp, e = 40000.0_dp, nu = 0.2_dp
     real(dp) :: ca, cb, r, sr, st, u_exact, x(3), hoop
     integer :: n, q, e_idx, g, checked
     call read_deck('test/data/lame_hex20.dat', model, error)
     if (allocated(error)) return
-    call run_linear(model, 'cholmod', res, error)
+    call solve(model, 'cholmod', res, error)
     if (allocated(error)) return
     ca = p * a**2 / (b**2 - a**2)
     cb = p * a**2 * b**2 / (b**2 - a**2)
@@ -167,7 +200,7 @@ contains
         q = (e_idx - 1) * 27 + g
         x = gauss_point_position(model, e_idx, g)
         r = hypot(x(1), x(2))
-        hoop = hoop_stress(res%stresses(1)%sig(:, q), x)
+        hoop = hoop_stress(res%groups(1)%stress(:, q), x)
         call check(error, hoop, ca + cb / r**2, 'hoop stress at a Gauss point near the bore', rel=0.01_dp)
         if (allocated(error)) return
       end do
@@ -206,13 +239,13 @@ contains
   subroutine test_cantilever(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
-    type(linear_result_t) :: res
+    type(step_result_t) :: res
     real(dp), parameter :: p = 100.0_dp, l = 100.0_dp, h = 10.0_dp, e = 200000.0_dp
     real(dp) :: inertia, g, delta, tip
     integer :: n, count_tip
     call read_deck('test/data/cantilever_hex20.dat', model, error)
     if (allocated(error)) return
-    call run_linear(model, model%solver, res, error)
+    call solve(model, model%solver, res, error)
     if (allocated(error)) return
     inertia = h**4 / 12.0_dp
     g = e / 2.0_dp
@@ -233,15 +266,15 @@ contains
   subroutine test_model_b_solvers(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
-    type(linear_result_t) :: res_c, res_s
+    type(step_result_t) :: res_c, res_s
     real(dp) :: diff, scale
     call read_deck('input/modelB.dat', model, error)
     if (allocated(error)) return
-    call run_linear(model, 'cholmod', res_c, error)
+    call solve(model, 'cholmod', res_c, error)
     if (allocated(error)) return
     call read_deck('input/modelB.dat', model, error)
     if (allocated(error)) return
-    call run_linear(model, 'skyline', res_s, error)
+    call solve(model, 'skyline', res_s, error)
     if (allocated(error)) return
     scale = maxval(abs(res_c%displacement))
     diff = maxval(abs(res_c%displacement - res_s%displacement))
@@ -256,23 +289,23 @@ contains
   subroutine test_model_b_load(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
-    type(linear_result_t) :: res
+    type(step_result_t) :: res
     real(dp) :: f_low, f_high, integral, r, dr, theta0, moment_fe, moment_exact, w
     integer :: n, i
     integer, parameter :: nsimpson = 2000
     call read_deck('input/modelB.dat', model, error)
     if (allocated(error)) return
-    call run_linear(model, 'cholmod', res, error)
+    call solve(model, 'cholmod', res, error)
     if (allocated(error)) return
     f_low = 0.0_dp
     f_high = 0.0_dp
     moment_fe = 0.0_dp
     do n = 1, model%nnode
       if (abs(model%coords(3, n)) < 1.0e-6_dp) then
-        f_low = f_low + res%external_force(3, n)
-        moment_fe = moment_fe + res%external_force(3, n) * model%coords(1, n)
+        f_low = f_low + res%applied_force(3, n)
+        moment_fe = moment_fe + res%applied_force(3, n) * model%coords(1, n)
       end if
-      if (abs(model%coords(3, n) - 2500.0_dp) < 1.0e-6_dp) f_high = f_high + res%external_force(3, n)
+      if (abs(model%coords(3, n) - 2500.0_dp) < 1.0e-6_dp) f_high = f_high + res%applied_force(3, n)
     end do
     call check(error, f_low, 1.0e6_dp, 'resultant at z = 0 (N)', rel=1.0e-10_dp)
     if (allocated(error)) return

@@ -9,6 +9,7 @@
 module feps_incremental_analysis
   use feps_kinds, only: dp, i8
   use feps_error, only: error_t, fatal_error, err_model, err_solver, str
+  use feps_clock, only: wall_clock
   use feps_model, only: model_t, stage_t, controls_t, method_names, method_euler, method_modified_euler, &
                         method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness
   use feps_dof_map, only: dof_map_t, build_dof_map
@@ -79,12 +80,6 @@ module feps_incremental_analysis
   public :: run_analysis, is_linear_model
 
 contains
-
-  real(dp) function wall_clock()
-    integer(i8) :: count, rate
-    call system_clock(count, rate)
-    wall_clock = real(count, dp) / real(rate, dp)
-  end function wall_clock
 
   !> All materials linear and no interfaces: one factorization, one solve per stage.
   logical function is_linear_model(model, materials)
@@ -749,6 +744,7 @@ contains
     res%iterations = iters
     res%residual = rel
     res%displacement = an%u
+    res%applied_force = an%f_applied
     allocate (res%reaction(3, model%nnode))
     res%reaction = 0.0_dp
     do n = 1, model%nnode

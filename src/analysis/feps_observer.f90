@@ -26,6 +26,7 @@ module feps_observer
     real(dp) :: residual = 0.0_dp            !! relative residual |R| / |P| at the end of the step
     real(dp), allocatable :: displacement(:, :)  !! (3, nnode) global Cartesian
     real(dp), allocatable :: reaction(:, :)      !! (3, nnode) global Cartesian
+    real(dp), allocatable :: applied_force(:, :) !! (3, nnode) external nodal forces applied so far
     type(group_result_t), allocatable :: groups(:)
   end type step_result_t
 

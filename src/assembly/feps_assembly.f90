@@ -24,14 +24,8 @@ module feps_assembly
     integer :: ncomp = 0                          !! stress components (6 solid, 3 interface)
   end type group_kernel_t
 
-  !> Gauss-point stresses of one group, (6, points_per_element * nelem), element-major.
-  type, public :: stress_field_t
-    real(dp), allocatable :: sig(:, :)
-    integer :: points_per_element = 0
-  end type stress_field_t
 
-  public :: build_kernels, build_materials, build_pattern, assemble_stiffness, element_dofs
-  public :: gather_element_displacement, compute_stresses, internal_forces, check_jacobians
+  public :: build_kernels, build_materials, build_pattern, element_dofs, check_jacobians
   public :: element_stiffness, element_strains, element_internal_force, scatter_element_matrix, rotate_matrix
 
 contains
@@ -279,59 +273,6 @@ contains
     end do
   end subroutine rotate_matrix
 
-  !> Assemble K of the free equations and the load that prescribed displacements cause
-  !! (f_presc = -K_fc u_c). The material tangent comes from each material's elastic matrix.
-  subroutine assemble_stiffness(model, map, kernels, materials, a, f_presc, error)
-    type(model_t), intent(in) :: model
-    type(dof_map_t), intent(in) :: map
-    type(group_kernel_t), intent(in) :: kernels(:)
-    type(material_slot_t), intent(in) :: materials(:)
-    type(csr_matrix_t), intent(inout) :: a
-    real(dp), intent(out) :: f_presc(:)
-    type(error_t), allocatable, intent(out) :: error
-    integer :: g, e, nen, ndof, i, ng, k
-    real(dp), allocatable :: ke(:, :), d(:, :, :), xe(:, :), ubar(:)
-    integer, allocatable :: dofs(:), nodes(:)
-    real(dp) :: min_detj
-    logical :: has_presc
-
-    a%val = 0.0_dp
-    f_presc = 0.0_dp
-    do g = 1, size(model%groups)
-      nen = kernels(g)%element%nnodes()
-      ng = kernels(g)%element%ngauss()
-      ndof = 3 * nen
-      if (allocated(ke)) deallocate (ke, d, xe, ubar, dofs, nodes)
-      allocate (ke(ndof, ndof), d(6, 6, ng), xe(3, nen), ubar(ndof), dofs(ndof), nodes(nen))
-      do k = 1, ng
-        call materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, k))
-      end do
-      do e = 1, size(model%groups(g)%connectivity, 2)
-        nodes = model%groups(g)%connectivity(:, e)
-        xe = model%coords(:, nodes)
-        call kernels(g)%element%stiffness(xe, d, ke, min_detj)
-        if (.not. (min_detj > 0.0_dp)) then
-          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'element ' // str(e) // &
-                           ' of group ' // model%groups(g)%name // ' has a non-positive Jacobian')
-          return
-        end if
-        if (map%has_rotations()) call rotate_matrix(map, nodes, ke)
-        call element_dofs(map, nodes, dofs)
-        has_presc = .false.
-        do k = 1, nen
-          ubar(3 * k - 2:3 * k) = merge(map%prescribed(:, nodes(k)), 0.0_dp, map%constrained(:, nodes(k)))
-          if (any(ubar(3 * k - 2:3 * k) /= 0.0_dp)) has_presc = .true.
-        end do
-        if (has_presc) then
-          do i = 1, ndof
-            if (dofs(i) > 0) f_presc(dofs(i)) = f_presc(dofs(i)) - dot_product(ke(i, :), ubar)
-          end do
-        end if
-        call scatter_element_matrix(dofs, ke, a)
-      end do
-    end do
-    if (a%n == 0) call fatal_error(error, err_model, 'the model has no free degree of freedom')
-  end subroutine assemble_stiffness
 
   !> Add an element matrix into the lower triangle of the free equations.
   subroutine scatter_element_matrix(dofs, ke, a)
@@ -350,76 +291,8 @@ contains
     end do
   end subroutine scatter_element_matrix
 
-  !> Element displacements in global Cartesian components from the nodal-system solution.
-  pure subroutine gather_element_displacement(u_global, nodes, ue)
-    real(dp), intent(in) :: u_global(:, :)
-    integer, intent(in) :: nodes(:)
-    real(dp), intent(out) :: ue(:)
-    integer :: k
-    do k = 1, size(nodes)
-      ue(3 * k - 2:3 * k) = u_global(:, nodes(k))
-    end do
-  end subroutine gather_element_displacement
 
-  !> Gauss-point stresses of every group, sig(6, ngauss*nelem) element-major.
-  subroutine compute_stresses(model, kernels, materials, u_global, stresses)
-    type(model_t), intent(in) :: model
-    type(group_kernel_t), intent(in) :: kernels(:)
-    type(material_slot_t), intent(in) :: materials(:)
-    real(dp), intent(in) :: u_global(:, :)
-    type(stress_field_t), allocatable, intent(out) :: stresses(:)
-    integer :: g, e, ng, nen, k
-    real(dp), allocatable :: d(:, :, :), ue(:)
-    allocate (stresses(size(model%groups)))
-    do g = 1, size(model%groups)
-      ng = kernels(g)%element%ngauss()
-      nen = kernels(g)%element%nnodes()
-      allocate (d(6, 6, ng), ue(3 * nen))
-      do k = 1, ng
-        call materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, k))
-      end do
-      allocate (stresses(g)%sig(6, ng * size(model%groups(g)%connectivity, 2)))
-      stresses(g)%points_per_element = ng
-      do e = 1, size(model%groups(g)%connectivity, 2)
-        call gather_element_displacement(u_global, model%groups(g)%connectivity(:, e), ue)
-        call kernels(g)%element%gauss_stresses(model%coords(:, model%groups(g)%connectivity(:, e)), ue, d, &
-                                               stresses(g)%sig(:, (e - 1) * ng + 1:e * ng))
-      end do
-      deallocate (d, ue)
-    end do
-  end subroutine compute_stresses
 
-  !> Internal nodal forces K u (global Cartesian, all nodes) from element stiffness.
-  subroutine internal_forces(model, kernels, materials, u_global, fint)
-    type(model_t), intent(in) :: model
-    type(group_kernel_t), intent(in) :: kernels(:)
-    type(material_slot_t), intent(in) :: materials(:)
-    real(dp), intent(in) :: u_global(:, :)
-    real(dp), intent(out) :: fint(:, :)
-    integer :: g, e, ng, nen, k
-    real(dp), allocatable :: d(:, :, :), ue(:), ke(:, :), fe(:)
-    real(dp) :: min_detj
-    fint = 0.0_dp
-    do g = 1, size(model%groups)
-      ng = kernels(g)%element%ngauss()
-      nen = kernels(g)%element%nnodes()
-      allocate (d(6, 6, ng), ue(3 * nen), ke(3 * nen, 3 * nen), fe(3 * nen))
-      do k = 1, ng
-        call materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, k))
-      end do
-      do e = 1, size(model%groups(g)%connectivity, 2)
-        call gather_element_displacement(u_global, model%groups(g)%connectivity(:, e), ue)
-        call kernels(g)%element%stiffness(model%coords(:, model%groups(g)%connectivity(:, e)), d, ke, min_detj)
-        fe = matmul(ke, ue)
-        do k = 1, nen
-          associate (n => model%groups(g)%connectivity(k, e))
-            fint(:, n) = fint(:, n) + fe(3 * k - 2:3 * k)
-          end associate
-        end do
-      end do
-      deallocate (d, ue, ke, fe)
-    end do
-  end subroutine internal_forces
 
   !> Element stiffness from material tangents at its points: d(ncomp, ncomp, npoints).
   subroutine element_stiffness(kernel, xe, d, ke)

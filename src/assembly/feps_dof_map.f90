@@ -1,4 +1,4 @@
-!> Degrees of freedom: equation numbers, prescribed values and nodal coordinate systems.
+!> Degrees of freedom: equation numbers, constrained DOFs and nodal coordinate systems.
 !! A node whose DOFs are constrained in a cylindrical (or rotated) system carries that
 !! system's basis T (columns: radial, hoop, axial); its unknowns are u_local = T^T u_global,
 !! element matrices are rotated accordingly, and results are rotated back.
@@ -16,7 +16,6 @@ module feps_dof_map
     integer :: neq = 0                       !! number of equations (free DOFs)
     integer, allocatable :: eq(:, :)         !! (3, nnode): equation, 0 if constrained or unused
     logical, allocatable :: constrained(:, :)
-    real(dp), allocatable :: prescribed(:, :) !! (3, nnode) prescribed values in the nodal system
     integer, allocatable :: node_csys(:)     !! nodal system of each node (0: global Cartesian)
     real(dp), allocatable :: basis(:, :, :)  !! (3, 3, nnode) nodal basis, identity if global
     integer, allocatable :: eq_node(:)       !! node of each equation
@@ -41,10 +40,9 @@ contains
     integer, allocatable :: csys_line(:)
 
     nn = model%nnode
-    allocate (map%eq(3, nn), map%constrained(3, nn), map%prescribed(3, nn), map%node_csys(nn))
+    allocate (map%eq(3, nn), map%constrained(3, nn), map%node_csys(nn))
     allocate (map%basis(3, 3, nn), map%used(nn), csys_line(nn))
     map%constrained = .false.
-    map%prescribed = 0.0_dp
     map%node_csys = 0
     csys_line = 0
     map%used = .false.
@@ -99,7 +97,6 @@ contains
       do k = 1, size(model%node_sets(model%constraints(c)%node_set)%nodes)
         n = model%node_sets(model%constraints(c)%node_set)%nodes(k)
         map%constrained(d, n) = .true.
-        map%prescribed(d, n) = model%constraints(c)%value   ! a later record overrides
       end do
     end do
 

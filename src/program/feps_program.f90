@@ -7,7 +7,7 @@ module feps_program
   use feps_model, only: model_t, method_names, method_euler, method_modified_euler, method_newton_raphson
   use feps_deck, only: read_deck
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
-  use feps_linear_analysis, only: wall_clock
+  use feps_clock, only: wall_clock
   use feps_incremental_analysis, only: analysis_summary_t, run_analysis
   use feps_observer, only: observer_t, step_result_t
   use feps_results_file, only: results_file_t

@@ -194,6 +194,16 @@ contains
     end do
     call check(error, checked > 10, 'bore nodes were checked')
     if (allocated(error)) return
+    ! Reactions in the nodal (r, theta, z) systems: no hoop reaction anywhere (axisymmetry);
+    ! the axial reactions on z = 0 carry sigma_zz = nu (s_r + s_theta) = 2 nu ca over the
+    ! quarter annulus: nu p a^2 pi / 2 in total.
+    call check(error, res%has_nodal_systems, 'nodal systems reported')
+    if (allocated(error)) return
+    call check(error, maxval(abs(res%reaction_nodal(2, :))), 0.0_dp, 'hoop reactions', abs=1.0e-6_dp * p * a)
+    if (allocated(error)) return
+    call check(error, abs(sum(res%reaction_nodal(3, :), mask=abs(model%coords(3, :)) < 1.0e-9_dp)), &
+               nu * p * a**2 * pi / 2.0_dp, 'axial reaction on z = 0 (N)', rel=0.01_dp)
+    if (allocated(error)) return
     ! hoop stress at every Gauss point of the elements at the bore against the exact field
     do e_idx = 1, size(model%groups(1)%connectivity, 2), 4
       do g = 1, 27

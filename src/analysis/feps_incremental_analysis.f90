@@ -745,11 +745,15 @@ contains
     res%residual = rel
     res%displacement = an%u
     res%applied_force = an%f_applied
-    allocate (res%reaction(3, model%nnode))
+    allocate (res%reaction(3, model%nnode), res%reaction_nodal(3, model%nnode))
     res%reaction = 0.0_dp
+    res%reaction_nodal = 0.0_dp
     do n = 1, model%nnode
-      if (any(an%map%constrained(:, n))) res%reaction(:, n) = an%fint(:, n) - an%f_applied(:, n)
+      if (.not. any(an%map%constrained(:, n))) cycle
+      res%reaction(:, n) = an%fint(:, n) - an%f_applied(:, n)
+      res%reaction_nodal(:, n) = matmul(transpose(an%map%basis(:, :, n)), res%reaction(:, n))
     end do
+    res%has_nodal_systems = an%map%has_rotations()
     allocate (res%groups(size(model%groups)))
     do g = 1, size(model%groups)
       res%groups(g)%stress = an%states(g)%sig

@@ -27,6 +27,8 @@ module feps_observer
     real(dp), allocatable :: displacement(:, :)  !! (3, nnode) global Cartesian
     real(dp), allocatable :: reaction(:, :)      !! (3, nnode) global Cartesian
     real(dp), allocatable :: applied_force(:, :) !! (3, nnode) external nodal forces applied so far
+    real(dp), allocatable :: reaction_nodal(:, :) !! (3, nnode) reactions in each node's nodal system
+    logical :: has_nodal_systems = .false.       !! some node has a nodal (e.g. cylindrical) system
     type(group_result_t), allocatable :: groups(:)
   end type step_result_t
 

@@ -42,10 +42,6 @@ contains
         k%is_interface = is_interface_type(grp%element_type)
         if (k%is_interface) then
           call new_interface_element(grp%element_type, k%iface, error)
-          if (.not. allocated(error)) then
-            if (k%iface%ndim() /= 3) call input_error(error, grp%file, grp%line, 'group ' // grp%name // &
-                                                      ': 2D interfaces need a plane-strain analysis')
-          end if
         else
           call new_element(grp%element_type, k%element, error)
         end if
@@ -92,7 +88,11 @@ contains
     do g = 1, size(model%groups)
       do e = 1, size(model%groups(g)%connectivity, 2)
         if (kernels(g)%is_interface) then
-          lo = kernels(g)%iface%min_jacobian(model%coords(:, model%groups(g)%connectivity(:, e)))
+          if (kernels(g)%iface%ndim() == 2) then
+            lo = kernels(g)%iface%min_jacobian(model%coords(1:2, model%groups(g)%connectivity(:, e)))
+          else
+            lo = kernels(g)%iface%min_jacobian(model%coords(:, model%groups(g)%connectivity(:, e)))
+          end if
           if (.not. (lo > 0.0_dp)) then
             call input_error(error, model%groups(g)%file, model%groups(g)%line, 'interface element ' // str(e) // &
                              ' of group ' // model%groups(g)%name // ' (nodes ' // &
@@ -295,12 +295,22 @@ contains
 
 
   !> Element stiffness from material tangents at its points: d(ncomp, ncomp, npoints).
+  !! Every element works with 3 DOFs per node; a 2D (plane-strain) interface's x-y matrix is
+  !! embedded with zero z rows and columns (uz is held in 2D models).
   subroutine element_stiffness(kernel, xe, d, ke)
     type(group_kernel_t), intent(in) :: kernel
     real(dp), intent(in) :: xe(:, :), d(:, :, :)
     real(dp), intent(out) :: ke(:, :)
     real(dp) :: min_detj
-    if (kernel%is_interface) then
+    real(dp), allocatable :: k2(:, :)
+    integer, allocatable :: map2(:)
+    if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
+      map2 = xy_dofs(kernel%nnodes)
+      allocate (k2(2 * kernel%nnodes, 2 * kernel%nnodes))
+      call kernel%iface%stiffness(xe(1:2, :), d, k2)
+      ke = 0.0_dp
+      ke(map2, map2) = k2
+    else if (kernel%is_interface) then
       call kernel%iface%stiffness(xe, d, ke)
     else
       call kernel%element%stiffness(xe, d, ke, min_detj)
@@ -313,7 +323,9 @@ contains
     type(group_kernel_t), intent(in) :: kernel
     real(dp), intent(in) :: xe(:, :), ue(:)
     real(dp), intent(out) :: eps(:, :)
-    if (kernel%is_interface) then
+    if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
+      call kernel%iface%strains(xe(1:2, :), ue(xy_dofs(kernel%nnodes)), eps)
+    else if (kernel%is_interface) then
       call kernel%iface%strains(xe, ue, eps)
     else
       call kernel%element%gauss_strains(xe, ue, eps)
@@ -327,7 +339,15 @@ contains
     real(dp), intent(out) :: fe(:)
     real(dp) :: xi(3, kernel%npoints), w(kernel%npoints), b(6, 3 * kernel%nnodes), detj
     integer :: q
-    if (kernel%is_interface) then
+    if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
+      fe = 0.0_dp
+      block
+        real(dp) :: f2(2 * kernel%nnodes)
+        call kernel%iface%internal_force(xe(1:2, :), sig, f2)
+        fe(xy_dofs(kernel%nnodes)) = f2
+      end block
+      return
+    else if (kernel%is_interface) then
       call kernel%iface%internal_force(xe, sig, fe)
       return
     end if
@@ -338,5 +358,16 @@ contains
       fe = fe + matmul(sig(:, q), b) * (w(q) * detj)
     end do
   end subroutine element_internal_force
+
+  !> Positions of the x and y DOFs of n nodes among 3 DOFs per node.
+  pure function xy_dofs(n) result(idx)
+    integer, intent(in) :: n
+    integer :: idx(2 * n)
+    integer :: k
+    do k = 1, n
+      idx(2 * k - 1) = 3 * k - 2
+      idx(2 * k) = 3 * k - 1
+    end do
+  end function xy_dofs
 
 end module feps_assembly

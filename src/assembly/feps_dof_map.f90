@@ -100,6 +100,8 @@ contains
       end do
     end do
 
+    ! Plane strain: uz = 0 everywhere.
+    if (model%plane_strain) map%constrained(3, :) = .true.
     map%neq = 0
     map%eq = 0
     do n = 1, nn

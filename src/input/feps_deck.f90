@@ -12,7 +12,7 @@ module feps_deck
   use feps_model, only: model_t, element_group_t, material_spec_t, node_set_t, face_set_t, &
                         constraint_t, nodal_load_t, face_load_t, region_t, in_region, &
                         load_pressure, load_traction, name_len, stage_t, controls_t, method_names, &
-                        method_euler, method_modified_euler, method_newton_raphson
+                        method_euler, method_modified_euler, method_newton_raphson, is_2d_type
   implicit none
   private
 
@@ -373,14 +373,10 @@ contains
     end if
     g%element_type = lower(text)
     if (nodes_of(g%element_type) == 0) then
-      if (index(g%element_type, 'interface-line') == 1) then
-        call input_error(error, rec%file, rec%line, 'element type "' // text // '" is a 2D (plane strain) ' // &
-                         'interface; 2D analyses are not available yet: use a 3D interface type', ifield)
-      else
-        call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (hex8, hex20, ' // &
-                         'hex20r, interface-quad4, interface-quad8, interface-tri3, interface-tri6, with -nodal ' // &
-                         'for nodal integration of an interface)', ifield)
-      end if
+      call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (3D: hex8, hex20, ' // &
+                       'hex20r, interface-quad4, interface-quad8, interface-tri3, interface-tri6; 2D plane ' // &
+                       'strain: tri6, tri6-6, interface-line2, interface-line3; -nodal after an interface type ' // &
+                       'for nodal integration; bars: bar2 .. bar5)', ifield)
       return
     end if
     call option_text(rec, 'MATERIAL', text, ifield, found)
@@ -883,6 +879,15 @@ contains
       call input_error(error, path, 1, 'the model has no elements')
       return
     end if
+    ! A model is plane strain when its groups are 2D types; 2D and 3D do not mix.
+    model%plane_strain = is_2d_type(model%groups(1)%element_type)
+    do g = 2, size(model%groups)
+      if (is_2d_type(model%groups(g)%element_type) .neqv. model%plane_strain) then
+        call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
+                         ' (' // model%groups(g)%element_type // ') mixes 2D (plane strain) and 3D element types')
+        return
+      end if
+    end do
     call resolve_node_sets(model, st%set_regions, st%set_node, st%set_records, error, st%set_group)
     if (allocated(error)) return
     call finish_stages(model)
@@ -1372,6 +1377,18 @@ contains
       nodes_of = 6
     case ('interface-tri6', 'interface-tri6-nodal')
       nodes_of = 12
+    case ('tri6', 'tri6-6')
+      nodes_of = 6
+    case ('interface-line2', 'interface-line2-nodal', 'bar4')
+      nodes_of = 4
+    case ('interface-line3', 'interface-line3-nodal')
+      nodes_of = 6
+    case ('bar2')
+      nodes_of = 2
+    case ('bar3')
+      nodes_of = 3
+    case ('bar5')
+      nodes_of = 5
     case default
       nodes_of = 0
     end select

@@ -152,13 +152,17 @@ module feps_model
     character(len=:), allocatable :: solver                !! 'cholmod' or 'skyline'
     character(len=:), allocatable :: output_file
     logical :: mesh_only = .false.                         !! a file holding only a DATAIN mesh
+    logical :: plane_strain = .false.                      !! a 2D model: uz = 0 at every node
   contains
     procedure :: nelem => model_nelem
     procedure :: has_interfaces
     procedure :: find_node_set, find_face_set, find_material, find_group
   end type model_t
 
-  public :: in_region
+  public :: in_region, is_2d_type
+
+  character(len=*), parameter :: types_2d(*) = [character(len=21) :: 'tri6', 'tri6-6', 'interface-line2', &
+    'interface-line3', 'interface-line2-nodal', 'interface-line3-nodal']
 
 contains
 
@@ -190,6 +194,16 @@ contains
       n = n + size(self%groups(g)%connectivity, 2)
     end do
   end function model_nelem
+
+  !> Element types of plane-strain (2D) models.
+  pure logical function is_2d_type(element_type)
+    character(len=*), intent(in) :: element_type
+    integer :: i
+    is_2d_type = .false.
+    do i = 1, size(types_2d)
+      if (element_type == trim(types_2d(i))) is_2d_type = .true.
+    end do
+  end function is_2d_type
 
   pure logical function has_interfaces(self)
     class(model_t), intent(in) :: self

@@ -214,21 +214,31 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: extra(:, :)
     real(dp) :: p(3)
-    integer :: g, q
+    integer :: g, q, nc
     call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
     if (.not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', res%displacement, 'ux uy uz', error)
     if (.not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', res%reaction, 'fx fy fz', error)
+    if (res%has_nodal_systems .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction_nodal', &
+      res%reaction_nodal, 'f1 f2 f3', error)
     do g = 1, size(res%groups)
       if (allocated(error)) return
       associate (gr => res%groups(g), name => self%model%groups(g)%name)
         if (gr%is_interface) then
-          allocate (extra(4, size(gr%state)))
-          extra(1:3, :) = gr%stress
-          extra(4, :) = real(gr%state, dp)
-          call self%h5%write_gauss(res%step, 'interface', name, extra, 'tau1 tau2 sigma_n state', &
-                                   gr%points_per_element, error)
-          if (.not. allocated(error)) call self%h5%write_gauss(res%step, 'interface_strain', name, gr%strain, &
-                                                               'gamma1 gamma2 eps_n', gr%points_per_element, error)
+          nc = size(gr%stress, 1)
+          allocate (extra(nc + 1, size(gr%state)))
+          extra(1:nc, :) = gr%stress
+          extra(nc + 1, :) = real(gr%state, dp)
+          if (nc == 3) then
+            call self%h5%write_gauss(res%step, 'interface', name, extra, 'tau1 tau2 sigma_n state', &
+                                     gr%points_per_element, error)
+            if (.not. allocated(error)) call self%h5%write_gauss(res%step, 'interface_strain', name, gr%strain, &
+                                                                 'gamma1 gamma2 eps_n', gr%points_per_element, error)
+          else
+            call self%h5%write_gauss(res%step, 'interface', name, extra, 'tau sigma_n state', &
+                                     gr%points_per_element, error)
+            if (.not. allocated(error)) call self%h5%write_gauss(res%step, 'interface_strain', name, gr%strain, &
+                                                                 'gamma eps_n', gr%points_per_element, error)
+          end if
         else
           call self%h5%write_gauss(res%step, 'stress', name, gr%stress, 'sxx syy szz syz sxz sxy', &
                                    gr%points_per_element, error)

@@ -11,6 +11,7 @@ program tester
   use test_interface_element, only: collect_interface_element
   use test_interface_mc, only: collect_interface_mc
   use test_nonlinear, only: collect_nonlinear
+  use test_tri6, only: collect_tri6
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
@@ -27,7 +28,8 @@ program tester
     new_testsuite('bad_input', collect_bad_input), &
     new_testsuite('interface_element', collect_interface_element), &
     new_testsuite('interface_mc', collect_interface_mc), &
-    new_testsuite('nonlinear', collect_nonlinear) &
+    new_testsuite('nonlinear', collect_nonlinear), &
+    new_testsuite('tri6', collect_tri6) &
     ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1

@@ -5,6 +5,7 @@ module feps_element_factory
   use feps_element, only: element_t
   use feps_hex8, only: hex8_t
   use feps_hex20, only: hex20_t
+  use feps_tri6, only: tri6_t
   implicit none
   private
 
@@ -13,7 +14,8 @@ module feps_element_factory
 contains
 
   !> Allocate `element` for `type_name` (case-insensitive, surrounding blanks ignored):
-  !! 'hex8' (2x2x2 Gauss), 'hex20' (3x3x3), 'hex20r' (hex20 with 2x2x2 reduced integration).
+  !! 'hex8' (2x2x2 Gauss), 'hex20' (3x3x3), 'hex20r' (hex20 with 2x2x2 reduced integration),
+  !! 'tri6' (plane-strain 6-node triangle, 3-point rule), 'tri6-6' (tri6 with the 6-point rule).
   !! An unknown name returns an err_input error naming it and the known names.
   subroutine new_element(type_name, element, error)
     character(len=*), intent(in) :: type_name
@@ -26,9 +28,13 @@ contains
       allocate (element, source=hex20_t(reduced=.false.))
     case ('hex20r')
       allocate (element, source=hex20_t(reduced=.true.))
+    case ('tri6')
+      allocate (element, source=tri6_t(six_point=.false.))
+    case ('tri6-6')
+      allocate (element, source=tri6_t(six_point=.true.))
     case default
       call fatal_error(error, err_input, "unknown element type '" // trim(adjustl(type_name)) // &
-                       "' (known: hex8, hex20, hex20r)")
+                       "' (known: hex8, hex20, hex20r, tri6, tri6-6)")
     end select
   end subroutine new_element
 

@@ -1,6 +1,7 @@
 !> Make a solid element from its name. Adding an element type means adding its module and one
 !! case here.
 module feps_element_factory
+  use feps_strings, only: to_lower
   use feps_error, only: error_t, fatal_error, err_input
   use feps_element, only: element_t
   use feps_hex8, only: hex8_t
@@ -21,7 +22,7 @@ contains
     character(len=*), intent(in) :: type_name
     class(element_t), allocatable, intent(out) :: element
     type(error_t), allocatable, intent(out) :: error
-    select case (lower(trim(adjustl(type_name))))
+    select case (to_lower(trim(adjustl(type_name))))
     case ('hex8')
       allocate (hex8_t :: element)
     case ('hex20')
@@ -38,15 +39,5 @@ contains
     end select
   end subroutine new_element
 
-  pure function lower(text) result(low)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: low
-    integer :: i, code
-    low = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('A') .and. code <= iachar('Z')) low(i:i) = achar(code + 32)
-    end do
-  end function lower
 
 end module feps_element_factory

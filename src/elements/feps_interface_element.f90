@@ -40,6 +40,7 @@
 !! (eqs. 2.3.8-2.3.10) with C = frame and F the shape functions; DOFs node by node
 !! (u1x, u1y[, u1z], u2x, ...). Stresses are tractions in the same frame and order.
 module feps_interface_element
+  use feps_strings, only: to_lower
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_input
   use feps_gauss, only: gauss_legendre, square_rule
@@ -141,7 +142,7 @@ contains
     logical, intent(out) :: nodal
     character(len=:), allocatable :: base
     integer :: i, nb
-    base = lower(trim(adjustl(name)))
+    base = to_lower(trim(adjustl(name)))
     nb = len(base)
     nodal = .false.
     if (nb > len(nodal_suffix)) then
@@ -156,16 +157,6 @@ contains
     end do
   end subroutine parse_name
 
-  pure function lower(text) result(low)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: low
-    integer :: i, code
-    low = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('A') .and. code <= iachar('Z')) low(i:i) = achar(code + 32)
-    end do
-  end function lower
 
   ! ------------------------------------------------------------------ sizes and names
 

@@ -3,6 +3,7 @@
 !! file, the line and, where one is at fault, the field. The reader fills the model's plain
 !! data; face sets are resolved later by the assembly layer, which knows element faces.
 module feps_deck
+  use feps_strings, only: to_upper, to_lower
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, fatal_error, err_input, str
   use feps_records, only: record_t, read_records, keyword, nfields, field_text
@@ -183,7 +184,7 @@ contains
                        str(size(model%systems) + 1) // ', got ' // str(id), 2)
       return
     end if
-    kind = upper(field_text(rec, 3))
+    kind = to_upper(field_text(rec, 3))
     select case (kind)
     case ('CYLINDRICAL')
       call require_fields(rec, 9, error)
@@ -327,7 +328,7 @@ contains
       call input_error(error, rec%file, rec%line, 'material "' // m%name // '" is defined twice', 2)
       return
     end if
-    m%kind = lower(field_text(rec, 3))
+    m%kind = to_lower(field_text(rec, 3))
     m%file = rec%file
     m%line = rec%line
     allocate (m%keys(0), m%values(0))
@@ -340,7 +341,7 @@ contains
       end if
       call parse_real(f(eq + 1:), v, error, rec, i)
       if (allocated(error)) return
-      m%keys = [character(len=name_len) :: m%keys, lower(f(:eq - 1))]
+      m%keys = [character(len=name_len) :: m%keys, to_lower(f(:eq - 1))]
       m%values = [m%values, v]
     end do
     tmp = [model%materials, m]
@@ -371,7 +372,7 @@ contains
       call input_error(error, rec%file, rec%line, 'GROUP needs TYPE=<element type>')
       return
     end if
-    g%element_type = lower(text)
+    g%element_type = to_lower(text)
     if (nodes_of(g%element_type) == 0) then
       call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (3D: hex8, hex20, ' // &
                        'hex20r, interface-quad4, interface-quad8, interface-tri3, interface-tri6; 2D plane ' // &
@@ -509,7 +510,7 @@ contains
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
     if (allocated(error)) return
     do i = 3, nfields(rec)
-      f = upper(field_text(rec, i))
+      f = to_upper(field_text(rec, i))
       if (index(f, '=') > 0) cycle
       if (f == 'ALL') then
         do dof = 1, 3
@@ -544,7 +545,7 @@ contains
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
     if (allocated(error)) return
     do i = 3, nfields(rec)
-      f = upper(field_text(rec, i))
+      f = to_upper(field_text(rec, i))
       eq = index(f, '=')
       if (eq == 0) then
         call input_error(error, rec%file, rec%line, 'expected DOF=value, got "' // f // '"', i)
@@ -583,7 +584,7 @@ contains
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
     if (allocated(error)) return
     do i = 3, nfields(rec)
-      f = upper(field_text(rec, i))
+      f = to_upper(field_text(rec, i))
       eq = index(f, '=')
       if (eq == 0) then
         call input_error(error, rec%file, rec%line, 'expected DOF=value, got "' // f // '"', i)
@@ -639,7 +640,7 @@ contains
         call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
         return
       end if
-      k = upper(f(:eq - 1))
+      k = to_upper(f(:eq - 1))
       select case (k)
       case ('CSYS', 'VARY', 'VARY_CSYS')
         cycle
@@ -695,7 +696,7 @@ contains
     call option_text(rec, 'VARY', text, ifield, found)
     if (found) then
       l%vary_csys = csys_cartesian
-      select case (upper(text))
+      select case (to_upper(text))
       case ('X')
         l%vary_coord = 1
       case ('Y')
@@ -730,7 +731,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call require_fields(rec, 2, error)
     if (allocated(error)) return
-    model%solver = lower(field_text(rec, 2))
+    model%solver = to_lower(field_text(rec, 2))
     if (model%solver /= 'cholmod' .and. model%solver /= 'skyline') then
       call input_error(error, rec%file, rec%line, 'unknown solver "' // field_text(rec, 2) // &
                        '" (skyline or cholmod)', 2)
@@ -939,13 +940,13 @@ contains
         call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
         return
       end if
-      k = upper(f(:eq - 1))
+      k = to_upper(f(:eq - 1))
       v = f(eq + 1:)
       select case (k)
       case ('METHOD')
         c%method = 0
         do m = 1, size(method_names)
-          if (lower(v) == trim(method_names(m))) c%method = m
+          if (to_lower(v) == trim(method_names(m))) c%method = m
         end do
         if (c%method == 0) then
           call input_error(error, rec%file, rec%line, 'unknown METHOD "' // v // '" (euler, modified-euler, ' // &
@@ -1015,7 +1016,7 @@ contains
         call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
         return
       end if
-      k = upper(f(:eq - 1))
+      k = to_upper(f(:eq - 1))
       select case (k)
       case ('STEPS')
         call parse_int(f(eq + 1:), st%steps, error, rec, i)
@@ -1116,7 +1117,7 @@ contains
         call input_error(error, rec%file, rec%line, 'expected COORDINATE=value or =from:to, got "' // f // '"', i)
         return
       end if
-      key = upper(f(:eq - 1))
+      key = to_upper(f(:eq - 1))
       select case (key)
       case ('CSYS', 'GROUP')
         cycle
@@ -1249,7 +1250,7 @@ contains
       f = field_text(rec, i)
       eq = index(f, '=')
       if (eq < 2) cycle
-      if (upper(f(:eq - 1)) == key) then
+      if (to_upper(f(:eq - 1)) == key) then
         text = f(eq + 1:)
         ifield = i
         found = .true.
@@ -1394,26 +1395,6 @@ contains
     end select
   end function nodes_of
 
-  pure function upper(s) result(u)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: u
-    integer :: i, c
-    u = s
-    do i = 1, len(s)
-      c = iachar(s(i:i))
-      if (c >= iachar('a') .and. c <= iachar('z')) u(i:i) = achar(c - 32)
-    end do
-  end function upper
 
-  pure function lower(s) result(u)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: u
-    integer :: i, c
-    u = s
-    do i = 1, len(s)
-      c = iachar(s(i:i))
-      if (c >= iachar('A') .and. c <= iachar('Z')) u(i:i) = achar(c + 32)
-    end do
-  end function lower
 
 end module feps_deck

@@ -13,6 +13,7 @@
 !! number counts from 1 over the whole record, continuation lines included). A missing
 !! field is reported on the record's last line, where it should have been.
 module feps_records
+  use feps_strings, only: to_upper
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, input_error, str, err_io, err_input
   implicit none
@@ -21,7 +22,7 @@ module feps_records
   public :: field_t, record_t
   public :: read_records, records_from_text
   public :: keyword, nfields, field_text, field_line, field_real, field_int, get_option
-  public :: record_error, to_upper, is_integer_text, is_real_text
+  public :: record_error, is_integer_text, is_real_text
 
   !> One field of a record: its trimmed text and the line it is on.
   type :: field_t
@@ -227,16 +228,6 @@ contains
   end subroutine get_option
 
   !> Upper-case copy of a string (ASCII letters only).
-  pure function to_upper(text) result(upper)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: upper
-    integer :: i, c
-    upper = text
-    do i = 1, len(text)
-      c = iachar(text(i:i))
-      if (c >= iachar('a') .and. c <= iachar('z')) upper(i:i) = achar(c - 32)
-    end do
-  end function to_upper
 
   !> True for [sign] digits.
   pure logical function is_integer_text(text)

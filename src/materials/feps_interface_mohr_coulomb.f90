@@ -19,6 +19,7 @@
 !! eps_n > 0; when eps_n <= 0 at the end of a step the gap closes inside the step and the
 !! stress restarts from zero by eq. 2.3.22.
 module feps_interface_mohr_coulomb
+  use feps_strings, only: to_upper
   use feps_kinds, only: dp, deg2rad
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
@@ -239,7 +240,7 @@ contains
     if (allocated(spec%keys)) then
       do i = 1, size(spec%keys)
         if (all(trim(spec%keys(i)) /= known)) then
-          call fail('unknown parameter ' // upper(trim(spec%keys(i))) // ' (expected KN, KS, C, PHI, PSI)')
+          call fail('unknown parameter ' // to_upper(trim(spec%keys(i))) // ' (expected KN, KS, C, PHI, PSI)')
           return
         end if
       end do
@@ -293,15 +294,5 @@ contains
 
   end subroutine new_interface_mohr_coulomb
 
-  pure function upper(text) result(res)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: res
-    integer :: i, code
-    res = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('a') .and. code <= iachar('z')) res(i:i) = achar(code - 32)
-    end do
-  end function upper
 
 end module feps_interface_mohr_coulomb

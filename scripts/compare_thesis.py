@@ -27,9 +27,16 @@ class Table:
     def __init__(self):
         self.rows = []
 
-    def add(self, case, quantity, reference, value, tol, kind="rel", scale=None):
+    def add(self, case, quantity, reference, value, tol, kind="rel", scale=None, erratum=None):
         """kind 'rel': |value - reference| <= tol * max(|reference|, scale or 0);
-        kind 'abs': |value - reference| <= tol."""
+        kind 'abs': |value - reference| <= tol. With erratum=(corrected, note) the thesis value is
+        shown but the corrected one is checked (docs/verification.md gives the evidence)."""
+        if erratum is not None:
+            corrected, note = erratum
+            ok = value is not None and abs(value - corrected) <= (tol if kind == "abs" else tol * abs(corrected))
+            err = abs(value - reference) if kind == "abs" else abs(value - reference) / abs(reference)
+            self.rows.append((case, quantity, reference, value, err, kind, tol, ok, f"erratum: {note}"))
+            return ok
         if value is None or not np.isfinite(value):
             err, ok = float("nan"), False
         else:
@@ -41,20 +48,20 @@ class Table:
                 den = max(abs(reference), scale or 0.0)
                 err = diff / den if den > 0 else diff
                 ok = err <= tol
-        self.rows.append((case, quantity, reference, value, err, kind, tol, ok))
+        self.rows.append((case, quantity, reference, value, err, kind, tol, ok, ""))
         return ok
 
     def print(self):
-        head = f"{'case':<28} {'quantity':<46} {'reference':>12} {'feps':>12} {'error':>10}  verdict"
+        head = f"{'case':<36} {'quantity':<46} {'reference':>12} {'feps':>12} {'error':>10}  verdict"
         print(head)
         print("-" * len(head))
-        for case, q, ref, val, err, kind, tol, ok in self.rows:
+        for case, q, ref, val, err, kind, tol, ok, note in self.rows:
             e = f"{err:.2e}" if np.isfinite(err) else "nan"
             unit = "" if kind == "rel" else " abs"
-            verdict = "pass" if ok else "FAIL"
-            print(f"{case:<28} {q:<46} {ref:>12.5g} {val if val is not None else float('nan'):>12.5g} "
+            verdict = ("pass" if ok else "FAIL") + (f" [{note}]" if note else "")
+            print(f"{case:<36} {q:<46} {ref:>12.6g} {val if val is not None else float('nan'):>12.6g} "
                   f"{e:>10}  {verdict} (tol {tol:g}{unit})")
-        nfail = sum(1 for r in self.rows if not r[-1])
+        nfail = sum(1 for r in self.rows if not r[7])
         print(f"{len(self.rows) - nfail} passed, {nfail} failed")
         return nfail
 
@@ -141,10 +148,64 @@ def case_sec2_3_4b(table, feps, tmp):
         table.add(label, "points closed at the end of stage 2", 8.0, float(closed_end), 0.0, kind="abs")
 
 
+# --------------------------------------------------------------------------------------------
+# Thesis Tables 2.2 and 2.3: curved bars on a quarter circle
+# --------------------------------------------------------------------------------------------
+
+def read_bar_table(name):
+    rows = []
+    with open(os.path.join(ROOT, "..", "shared", "benchmarks", name)) as f:
+        lines = [l.strip() for l in f if l.strip() and not l.startswith("#")]
+    for line in lines[1:]:
+        k, ne, ng, forces = line.split(",")
+        rows.append((int(k), int(ne), int(ng), [float(x) for x in forces.split()]))
+    return rows
+
+
+# Table 2.3, 4-node bars: the thesis prints 100.98 N at the outer Gauss points; the
+# discretisation gives 100.89 (two independent implementations; the middle point's 98.82
+# matches). A transposition of two digits; see docs/verification.md.
+BAR_ERRATA = {("table2_3.csv", 4, 0): 100.89, ("table2_3.csv", 4, 2): 100.89}
+
+
+def bar_case(table, feps, tmp, case, csv, nnodes):
+    for k, ne, ng, forces in read_bar_table(csv):
+        deck = f"input/verification/{csv[:-4]}_bar{k}.dat"
+        h5 = run_feps(feps, deck, tmp, f"{csv[:-4]}_bar{k}")
+        with h5py.File(h5) as f:
+            last = sorted(f["steps"], key=int)[-1]
+            n = f["steps"][last]["bar"]["ring"][:, 0]
+        label = f"{case} [bar{k}]"
+        table.add(label, "Gauss points written", float(ne * ng), float(n.size), 0.0, kind="abs")
+        per_element = n.reshape(ne, ng)
+        for g in range(ng):
+            ref = forces[g]
+            key = (csv, k, g)
+            erratum = (BAR_ERRATA[key], "thesis 100.98 for 100.89") if key in BAR_ERRATA else None
+            table.add(label, f"axial force, point {g + 1}, every element (N)", ref,
+                      float(per_element[np.argmax(np.abs(per_element[:, g] - ref)), g]), 0.01, kind="abs",
+                      erratum=erratum)
+        if k == 2:
+            delta = math.radians(90.0 / (nnodes - 1))
+            table.add(label, "2-node bars: 100 / cos(delta/2) (N)", 100.0 / math.cos(delta / 2),
+                      float(np.max(np.abs(n - 100.0 / math.cos(delta / 2))) + 100.0 / math.cos(delta / 2)),
+                      1e-6, kind="abs")
+
+
+def case_table2_2(table, feps, tmp):
+    bar_case(table, feps, tmp, "table2.2", "table2_2.csv", 9)
+
+
+def case_table2_3(table, feps, tmp):
+    bar_case(table, feps, tmp, "table2.3", "table2_3.csv", 7)
+
+
 CASES = {
     # id: (function, fast)
     "sec2.3.4a": (case_sec2_3_4a, True),
     "sec2.3.4b": (case_sec2_3_4b, True),
+    "table2.2": (case_table2_2, True),
+    "table2.3": (case_table2_3, True),
 }
 
 

@@ -12,6 +12,7 @@ program tester
   use test_interface_mc, only: collect_interface_mc
   use test_nonlinear, only: collect_nonlinear
   use test_tri6, only: collect_tri6
+  use test_bars, only: collect_bars
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
@@ -29,7 +30,8 @@ program tester
     new_testsuite('interface_element', collect_interface_element), &
     new_testsuite('interface_mc', collect_interface_mc), &
     new_testsuite('nonlinear', collect_nonlinear), &
-    new_testsuite('tri6', collect_tri6) &
+    new_testsuite('tri6', collect_tri6), &
+    new_testsuite('bars', collect_bars) &
     ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1

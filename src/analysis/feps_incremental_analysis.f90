@@ -761,6 +761,7 @@ contains
       res%groups(g)%state = an%states(g)%state
       res%groups(g)%points_per_element = an%kernels(g)%npoints
       res%groups(g)%is_interface = an%kernels(g)%is_interface
+      res%groups(g)%is_bar = an%kernels(g)%is_bar
     end do
     call observer%write_step(res, error)
   end subroutine report_step

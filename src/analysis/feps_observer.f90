@@ -14,6 +14,7 @@ module feps_observer
     integer, allocatable :: state(:)         !! point states (feps_material state_*)
     integer :: points_per_element = 0
     logical :: is_interface = .false.
+    logical :: is_bar = .false.
   end type group_result_t
 
   !> One step's results.

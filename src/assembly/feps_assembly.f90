@@ -9,6 +9,7 @@ module feps_assembly
   use feps_element, only: element_t
   use feps_element_factory, only: new_element
   use feps_interface_element, only: interface_element_t, new_interface_element, is_interface_type
+  use feps_bar_element, only: bar_element_t, new_bar_element, is_bar_type
   use feps_material, only: material_slot_t
   use feps_material_factory, only: new_material
   implicit none
@@ -17,8 +18,10 @@ module feps_assembly
   !> Element and material objects of one group, built once.
   type, public :: group_kernel_t
     logical :: is_interface = .false.
+    logical :: is_bar = .false.
     class(element_t), allocatable :: element      !! solid groups
     type(interface_element_t) :: iface            !! interface groups
+    type(bar_element_t) :: bar                    !! bar groups
     integer :: nnodes = 0                         !! nodes per element
     integer :: npoints = 0                        !! integration points per element
     integer :: ncomp = 0                          !! stress components (6 solid, 3 interface)
@@ -40,8 +43,11 @@ contains
     do g = 1, size(model%groups)
       associate (k => kernels(g), grp => model%groups(g))
         k%is_interface = is_interface_type(grp%element_type)
+        k%is_bar = is_bar_type(grp%element_type)
         if (k%is_interface) then
           call new_interface_element(grp%element_type, k%iface, error)
+        else if (k%is_bar) then
+          call new_bar_element(grp%element_type, k%bar, error)
         else
           call new_element(grp%element_type, k%element, error)
         end if
@@ -54,6 +60,10 @@ contains
           k%nnodes = k%iface%nnodes()
           k%npoints = k%iface%ngauss()
           k%ncomp = k%iface%ncomp()
+        else if (k%is_bar) then
+          k%nnodes = k%bar%nnodes()
+          k%npoints = k%bar%ngauss()
+          k%ncomp = 1
         else
           k%nnodes = k%element%nnodes()
           k%npoints = k%element%ngauss()
@@ -87,6 +97,17 @@ contains
     min_detj = huge(1.0_dp)
     do g = 1, size(model%groups)
       do e = 1, size(model%groups(g)%connectivity, 2)
+        if (kernels(g)%is_bar) then
+          lo = kernels(g)%bar%min_jacobian(model%coords(:, model%groups(g)%connectivity(:, e)))
+          if (.not. (lo > 0.0_dp)) then
+            call input_error(error, model%groups(g)%file, model%groups(g)%line, 'bar element ' // str(e) // &
+                             ' of group ' // model%groups(g)%name // ' (nodes ' // &
+                             node_list(model%groups(g)%connectivity(:, e)) // ') is folded or has coincident ' // &
+                             'nodes (Jacobian ' // str(lo) // ')')
+            return
+          end if
+          cycle
+        end if
         if (kernels(g)%is_interface) then
           if (kernels(g)%iface%ndim() == 2) then
             lo = kernels(g)%iface%min_jacobian(model%coords(1:2, model%groups(g)%connectivity(:, e)))
@@ -304,7 +325,9 @@ contains
     real(dp) :: min_detj
     real(dp), allocatable :: k2(:, :)
     integer, allocatable :: map2(:)
-    if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
+    if (kernel%is_bar) then
+      call kernel%bar%stiffness(xe, d, ke)
+    else if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
       map2 = xy_dofs(kernel%nnodes)
       allocate (k2(2 * kernel%nnodes, 2 * kernel%nnodes))
       call kernel%iface%stiffness(xe(1:2, :), d, k2)
@@ -323,7 +346,9 @@ contains
     type(group_kernel_t), intent(in) :: kernel
     real(dp), intent(in) :: xe(:, :), ue(:)
     real(dp), intent(out) :: eps(:, :)
-    if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
+    if (kernel%is_bar) then
+      call kernel%bar%strains(xe, ue, eps)
+    else if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
       call kernel%iface%strains(xe(1:2, :), ue(xy_dofs(kernel%nnodes)), eps)
     else if (kernel%is_interface) then
       call kernel%iface%strains(xe, ue, eps)
@@ -339,7 +364,10 @@ contains
     real(dp), intent(out) :: fe(:)
     real(dp) :: xi(3, kernel%npoints), w(kernel%npoints), b(6, 3 * kernel%nnodes), detj
     integer :: q
-    if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
+    if (kernel%is_bar) then
+      call kernel%bar%internal_force(xe, sig, fe)
+      return
+    else if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
       fe = 0.0_dp
       block
         real(dp) :: f2(2 * kernel%nnodes)

@@ -854,12 +854,12 @@ contains
                            model%groups(g)%material_name // '"')
           return
         end if
-        if ((index(model%groups(g)%element_type, 'interface-') == 1) .neqv. &
-            (model%materials(model%groups(g)%material)%kind == 'interface')) then
+        if (material_family(model%materials(model%groups(g)%material)%kind) /= &
+            element_family(model%groups(g)%element_type)) then
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
                            ' (' // model%groups(g)%element_type // ') cannot use material ' // &
                            model%groups(g)%material_name // ' (' // model%materials(model%groups(g)%material)%kind // &
-                           '): interface elements take INTERFACE materials, solids the others')
+                           '): interface elements take INTERFACE materials, bars BAR, solids ELASTIC or MATSUOKA')
           return
         end if
       end do
@@ -1364,6 +1364,30 @@ contains
     slash = index(base, '/', back=.true.)
     full = base(:slash) // path
   end function resolve_path
+
+  !> 'interface', 'bar' or 'solid' for an element type and for a material kind.
+  pure function element_family(element_type) result(family)
+    character(len=*), intent(in) :: element_type
+    character(len=:), allocatable :: family
+    if (index(element_type, 'interface-') == 1) then
+      family = 'interface'
+    else if (index(element_type, 'bar') == 1) then
+      family = 'bar'
+    else
+      family = 'solid'
+    end if
+  end function element_family
+
+  pure function material_family(kind) result(family)
+    character(len=*), intent(in) :: kind
+    character(len=:), allocatable :: family
+    select case (kind)
+    case ('interface', 'bar')
+      family = kind
+    case default
+      family = 'solid'
+    end select
+  end function material_family
 
   pure integer function nodes_of(element_type)
     character(len=*), intent(in) :: element_type

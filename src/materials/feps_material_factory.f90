@@ -6,6 +6,7 @@ module feps_material_factory
   use feps_material, only: material_t
   use feps_linear_elastic, only: linear_elastic_t
   use feps_interface_mohr_coulomb, only: new_interface_mohr_coulomb
+  use feps_elastic_bar, only: new_elastic_bar
   implicit none
   private
 
@@ -50,9 +51,11 @@ contains
       allocate (material, source=linear_elastic_t(name=spec%name, e=e, nu=nu))
     case ('interface')
       call new_interface_mohr_coulomb(spec, material, error)
+    case ('bar')
+      call new_elastic_bar(spec, material, error)
     case default
       call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': unknown material kind "' // &
-                       spec%kind // '" (ELASTIC, INTERFACE)')
+                       spec%kind // '" (ELASTIC, MATSUOKA, INTERFACE, BAR)')
     end select
   end subroutine new_material
 

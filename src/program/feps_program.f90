@@ -223,6 +223,10 @@ contains
     do g = 1, size(res%groups)
       if (allocated(error)) return
       associate (gr => res%groups(g), name => self%model%groups(g)%name)
+        if (gr%is_bar) then
+          call self%h5%write_gauss(res%step, 'bar', name, gr%stress, 'axial_force', gr%points_per_element, error)
+          cycle
+        end if
         if (gr%is_interface) then
           nc = size(gr%stress, 1)
           allocate (extra(nc + 1, size(gr%state)))

@@ -1,0 +1,114 @@
+!> Linear elastic bar material (thesis eq. 2.5.10): Young's modulus E and cross-section area A.
+!!
+!! One component: the "strain" is the axial strain and the "stress" is the axial force
+!! N = E A eps (tension positive), so the material matrix is d(1, 1) = E A. Units follow the
+!! model (e.g. E in MPa = N/mm^2 and A in mm^2 give N in N).
+module feps_elastic_bar
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, input_error, str
+  use feps_model, only: material_spec_t
+  use feps_material, only: material_t, state_elastic
+  implicit none
+  private
+
+  public :: new_elastic_bar
+
+  !> Elastic bar: Young's modulus `e` and cross-section area `a` (both positive).
+  type, extends(material_t), public :: elastic_bar_t
+    real(dp) :: e = 0.0_dp
+    real(dp) :: a = 0.0_dp
+  contains
+    procedure :: elastic_tangent => elastic_bar_tangent
+    procedure :: update => elastic_bar_update
+    procedure :: is_linear => elastic_bar_is_linear
+  end type elastic_bar_t
+
+contains
+
+  !> Axial stiffness: d(1, 1) = E A (any further entries of a larger `d` are zero).
+  pure subroutine elastic_bar_tangent(self, d)
+    class(elastic_bar_t), intent(in) :: self
+    real(dp), intent(out) :: d(:, :)
+    d = 0.0_dp
+    d(1, 1) = self%e * self%a
+  end subroutine elastic_bar_tangent
+
+  !> Axial force N = N0 + E A deps, state elastic, tangent E A.
+  pure subroutine elastic_bar_update(self, sig0, eps0, deps, state0, sig, state, dtan)
+    class(elastic_bar_t), intent(in) :: self
+    real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
+    integer, intent(in) :: state0
+    real(dp), intent(out) :: sig(:)
+    integer, intent(out) :: state
+    real(dp), intent(out) :: dtan(:, :)
+    call self%elastic_tangent(dtan)
+    sig = sig0 + matmul(dtan, deps)
+    state = state_elastic
+  end subroutine elastic_bar_update
+
+  pure logical function elastic_bar_is_linear(self)
+    class(elastic_bar_t), intent(in) :: self
+    elastic_bar_is_linear = .true.
+  end function elastic_bar_is_linear
+
+  !> An elastic bar from MATERIAL parameters E and A (both required, positive and finite);
+  !! unknown keys are rejected. Errors name the record's file and line and the parameter.
+  subroutine new_elastic_bar(spec, material, error)
+    type(material_spec_t), intent(in) :: spec
+    class(material_t), allocatable, intent(out) :: material
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: known(2) = ['e', 'a']
+    real(dp) :: e, a
+    logical :: found
+    integer :: i
+
+    if (allocated(spec%keys)) then
+      do i = 1, size(spec%keys)
+        if (all(trim(spec%keys(i)) /= known)) then
+          call fail('unknown parameter ' // upper(trim(spec%keys(i))) // ' (expected E, A)')
+          return
+        end if
+      end do
+    end if
+
+    call spec%get('e', e, found)
+    if (.not. found) then
+      call fail('E is missing')
+      return
+    end if
+    if (.not. (e > 0.0_dp .and. e <= huge(e))) then
+      call fail('E = ' // str(e) // ' must be positive and finite')
+      return
+    end if
+    call spec%get('a', a, found)
+    if (.not. found) then
+      call fail('A (cross-section area) is missing')
+      return
+    end if
+    if (.not. (a > 0.0_dp .and. a <= huge(a))) then
+      call fail('A = ' // str(a) // ' must be positive and finite')
+      return
+    end if
+    allocate (material, source=elastic_bar_t(name=spec%name, e=e, a=a))
+
+  contains
+
+    subroutine fail(message)
+      character(len=*), intent(in) :: message
+      call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': ' // message)
+    end subroutine fail
+
+  end subroutine new_elastic_bar
+
+  pure function upper(text) result(res)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: res
+    integer :: i, code
+    res = text
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      if (code >= iachar('a') .and. code <= iachar('z')) res(i:i) = achar(code - 32)
+    end do
+  end function upper
+
+end module feps_elastic_bar

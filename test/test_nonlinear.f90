@@ -34,7 +34,8 @@ contains
       new_unittest('contact stress equals a linearly varying traction', test_contact_linear), &
       new_unittest('a fully open interface is held by its residual stiffness and reported', test_fully_open), &
       new_unittest('one huge sliding step equals 100 small ones', test_huge_step), &
-      new_unittest('an impossible load stops with the clear message, never NaN', test_clear_stop) &
+      new_unittest('an impossible load stops with the clear message, never NaN', test_clear_stop), &
+      new_unittest('plane strain: contact through line3 interfaces, Gauss and nodal', test_contact_2d) &
       ]
   end subroutine collect_nonlinear
 
@@ -255,5 +256,31 @@ contains
       end if
     end subroutine check_stop
   end subroutine test_clear_stop
+
+  !> Two tri6 blocks pressed together through line3 interfaces: sigma_n = -p, tau = 0 at
+  !! every interface point, with Gauss and with nodal integration.
+  subroutine test_contact_2d(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    character(len=21), parameter :: types(2) = ['interface-line3      ', 'interface-line3-nodal']
+    integer :: t, q
+    do t = 1, 2
+      call read_deck('test/data/contact_2d.dat', model, error)
+      if (allocated(error)) return
+      model%groups(3)%element_type = trim(types(t))
+      call run_analysis(model, 'cholmod', obs, summary, error)
+      if (allocated(error)) return
+      call check(error, size(obs%last%groups(3)%stress, 1), 2, 'two interface components in 2D')
+      if (allocated(error)) return
+      do q = 1, size(obs%last%groups(3)%state)
+        call check(error, obs%last%groups(3)%stress(2, q), -1.0_dp, trim(types(t)) // ': sigma_n', rel=1.0e-9_dp)
+        if (allocated(error)) return
+        call check(error, obs%last%groups(3)%stress(1, q), 0.0_dp, trim(types(t)) // ': tau', abs=1.0e-9_dp)
+        if (allocated(error)) return
+      end do
+    end do
+  end subroutine test_contact_2d
 
 end module test_nonlinear

@@ -144,6 +144,7 @@ contains
   subroutine print_summary(s)
     type(run_summary_t), intent(in) :: s
     character(len=32) :: buf
+    integer :: i
     if (len(s%title) > 0) write (output_unit, '(a)') 'title            ' // s%title
     write (output_unit, '(a)') 'nodes            ' // str(s%nodes)
     write (output_unit, '(a)') 'elements         ' // str(s%elements)
@@ -177,6 +178,11 @@ contains
     if (.not. s%mesh_only) write (output_unit, '(a,3(f0.3,a))') 'times            assembly ', s%time_assembly, &
       ' s, factorization ', s%time_factorization, ' s, solve ', s%time_solve, ' s'
     write (output_unit, '(a,f0.3,a)') 'wall time        ', s%wall_time, ' s'
+    if (allocated(s%reports)) then
+      do i = 1, size(s%reports)
+        write (output_unit, '(a)') trim(s%reports(i))
+      end do
+    end if
     if (len(s%output) > 0) write (output_unit, '(a)') 'results          ' // s%output
   end subroutine print_summary
 

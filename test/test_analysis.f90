@@ -286,11 +286,11 @@ contains
     type(model_t) :: model
     type(step_result_t) :: res_c, res_s
     real(dp) :: diff, scale
-    call read_deck('input/modelB.dat', model, error)
+    call read_deck('input/modelB/SE1.dat', model, error)
     if (allocated(error)) return
     call solve(model, 'cholmod', res_c, error)
     if (allocated(error)) return
-    call read_deck('input/modelB.dat', model, error)
+    call read_deck('input/modelB/SE1.dat', model, error)
     if (allocated(error)) return
     call solve(model, 'skyline', res_s, error)
     if (allocated(error)) return
@@ -311,7 +311,7 @@ contains
     real(dp) :: f_low, f_high, integral, r, dr, theta0, moment_fe, moment_exact, w
     integer :: n, i
     integer, parameter :: nsimpson = 2000
-    call read_deck('input/modelB.dat', model, error)
+    call read_deck('input/modelB/SE1.dat', model, error)
     if (allocated(error)) return
     call solve(model, 'cholmod', res, error)
     if (allocated(error)) return

@@ -12,7 +12,7 @@ module feps_incremental_analysis
   use feps_clock, only: wall_clock
   use feps_model, only: model_t, stage_t, controls_t, method_names, method_euler, method_modified_euler, &
                         method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness
-  use feps_dof_map, only: dof_map_t, build_dof_map
+  use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
   use feps_sparse_matrix, only: csr_matrix_t
   use feps_assembly, only: group_kernel_t, build_kernels, build_materials, build_pattern, check_jacobians, &
                            element_dofs, element_stiffness, element_strains, element_internal_force, &
@@ -61,6 +61,15 @@ module feps_incremental_analysis
     logical :: nonlinear = .false.
   end type group_state_t
 
+  !> Internal forces of all linear groups as one product K_lin u (global Cartesian DOFs of
+  !! every node in an element): linear elements carry no point state at all, and their
+  !! stresses are computed only for the steps written.
+  type :: linear_part_t
+    logical :: present = .false.
+    type(dof_map_t) :: map
+    type(csr_matrix_t) :: k
+  end type linear_part_t
+
   !> Everything the analysis works on.
   type :: analysis_t
     type(group_kernel_t), allocatable :: kernels(:)
@@ -75,6 +84,7 @@ module feps_incremental_analysis
     real(dp), allocatable :: f_applied(:, :)           !! external load applied so far (global)
     real(dp), allocatable :: uc(:, :)                  !! constrained values reached (nodal systems)
     logical :: symmetrized = .false.
+    type(linear_part_t) :: lin
   end type analysis_t
 
   public :: run_analysis, is_linear_model
@@ -163,12 +173,19 @@ contains
   subroutine init_states(model, an)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
-    integer :: g, np, nc, q
+    integer :: g, np, nc, q, e
+    real(dp), allocatable :: ke(:, :), d(:, :, :)
+    integer, allocatable :: dofs(:)
     allocate (an%states(size(model%groups)))
     do g = 1, size(model%groups)
       np = an%kernels(g)%npoints * size(model%groups(g)%connectivity, 2)
       nc = an%kernels(g)%ncomp
       associate (s => an%states(g))
+        s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear()
+        if (.not. s%nonlinear) then
+          an%lin%present = .true.
+          cycle
+        end if
         allocate (s%sig(nc, np), s%eps(nc, np), s%state(np), s%sig_t(nc, np), s%eps_t(nc, np), s%state_t(np))
         s%sig = 0.0_dp
         s%eps = 0.0_dp
@@ -176,7 +193,6 @@ contains
         s%sig_t = 0.0_dp
         s%eps_t = 0.0_dp
         s%state_t = 0
-        s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear()
         if (s%nonlinear) then
           allocate (s%dtan(nc, nc, np), s%dtan_t(nc, nc, np))
           do q = 1, np
@@ -186,12 +202,63 @@ contains
         end if
       end associate
     end do
+    if (an%lin%present) then
+      ! K_lin: the elastic stiffness of the linear groups over all DOFs, global directions.
+      call build_all_dofs_map(model, an%lin%map)
+      call build_pattern(model, an%lin%map, an%lin%k, only_groups=.not. nonlinear_groups(an))
+      do g = 1, size(model%groups)
+        if (an%states(g)%nonlinear) cycle
+        np = an%kernels(g)%npoints
+        nc = an%kernels(g)%ncomp
+        allocate (ke(3 * an%kernels(g)%nnodes, 3 * an%kernels(g)%nnodes), d(nc, nc, np), dofs(3 * an%kernels(g)%nnodes))
+        do q = 1, np
+          call an%materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, q))
+        end do
+        do e = 1, size(model%groups(g)%connectivity, 2)
+          call element_stiffness(an%kernels(g), model%coords(:, model%groups(g)%connectivity(:, e)), d, ke)
+          call element_dofs(an%lin%map, model%groups(g)%connectivity(:, e), dofs)
+          call scatter_element_matrix(dofs, ke, an%lin%k)
+        end do
+        deallocate (ke, d, dofs)
+      end do
+    end if
     allocate (an%u(3, model%nnode), an%u_t(3, model%nnode), an%fint(3, model%nnode), an%uc(3, model%nnode))
     an%u = 0.0_dp
     an%u_t = 0.0_dp
     an%fint = 0.0_dp
     an%uc = 0.0_dp
   end subroutine init_states
+
+  pure function nonlinear_groups(an) result(mask)
+    type(analysis_t), intent(in) :: an
+    logical :: mask(size(an%states))
+    integer :: g
+    do g = 1, size(an%states)
+      mask(g) = an%states(g)%nonlinear
+    end do
+  end function nonlinear_groups
+
+  !> f <- f + K_lin u for the linear groups (global Cartesian components).
+  subroutine add_linear_forces(an, u, f)
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(inout) :: f(:, :)
+    real(dp), allocatable :: x(:), y(:)
+    integer :: n, d
+    if (.not. an%lin%present) return
+    allocate (x(an%lin%map%neq), y(an%lin%map%neq))
+    do n = 1, size(u, 2)
+      do d = 1, 3
+        if (an%lin%map%eq(d, n) > 0) x(an%lin%map%eq(d, n)) = u(d, n)
+      end do
+    end do
+    call an%lin%k%multiply(x, y)
+    do n = 1, size(u, 2)
+      do d = 1, 3
+        if (an%lin%map%eq(d, n) > 0) f(d, n) = f(d, n) + y(an%lin%map%eq(d, n))
+      end do
+    end do
+  end subroutine add_linear_forces
 
   !> Increments of one whole stage: external forces (global) and constrained values (nodal).
   subroutine stage_increments(model, an, s, df, duc, error)
@@ -485,7 +552,9 @@ contains
     real(dp), allocatable :: fe(:)
     allocate (f(3, model%nnode))
     f = 0.0_dp
+    call add_linear_forces(an, an%u, f)
     do g = 1, size(model%groups)
+      if (.not. an%states(g)%nonlinear) cycle
       np = an%kernels(g)%npoints
       allocate (fe(3 * an%kernels(g)%nnodes))
       do e = 1, size(model%groups(g)%connectivity, 2)
@@ -547,7 +616,9 @@ contains
     integer :: g, e, q, q0, np, nn, nc
     real(dp), allocatable :: xe(:, :), due(:), deps(:, :), fe(:), dtan(:, :)
     an%fint = 0.0_dp
+    call add_linear_forces(an, an%u_t, an%fint)
     do g = 1, size(model%groups)
+      if (.not. an%states(g)%nonlinear) cycle
       np = an%kernels(g)%npoints
       nn = an%kernels(g)%nnodes
       nc = an%kernels(g)%ncomp
@@ -563,7 +634,7 @@ contains
             call mat%update(s%sig(:, q0 + q), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), s%sig_t(:, q0 + q), &
                             s%state_t(q0 + q), dtan)
             s%eps_t(:, q0 + q) = s%eps(:, q0 + q) + deps(:, q)
-            if (s%nonlinear) s%dtan_t(:, :, q0 + q) = dtan
+            s%dtan_t(:, :, q0 + q) = dtan
           end do
           call element_internal_force(an%kernels(g), xe, s%sig_t(:, q0 + 1:q0 + np), fe)
           an%fint(:, conn(:, e)) = an%fint(:, conn(:, e)) + reshape(fe, [3, nn])
@@ -602,11 +673,12 @@ contains
     integer :: g
     an%u = an%u_t
     do g = 1, size(an%states)
+      if (.not. an%states(g)%nonlinear) cycle
       associate (s => an%states(g))
         s%sig = s%sig_t
         s%eps = s%eps_t
         s%state = s%state_t
-        if (s%nonlinear) s%dtan = s%dtan_t
+        s%dtan = s%dtan_t
       end associate
     end do
   end subroutine commit
@@ -617,11 +689,12 @@ contains
     integer :: g
     an%u_t = an%u
     do g = 1, size(an%states)
+      if (.not. an%states(g)%nonlinear) cycle
       associate (s => an%states(g))
         s%sig_t = s%sig
         s%eps_t = s%eps
         s%state_t = s%state
-        if (s%nonlinear) s%dtan_t = s%dtan
+        s%dtan_t = s%dtan
       end associate
     end do
   end subroutine restore
@@ -756,14 +829,44 @@ contains
     res%has_nodal_systems = an%map%has_rotations()
     allocate (res%groups(size(model%groups)))
     do g = 1, size(model%groups)
-      res%groups(g)%stress = an%states(g)%sig
-      res%groups(g)%strain = an%states(g)%eps
-      res%groups(g)%state = an%states(g)%state
+      if (an%states(g)%nonlinear) then
+        res%groups(g)%stress = an%states(g)%sig
+        res%groups(g)%strain = an%states(g)%eps
+        res%groups(g)%state = an%states(g)%state
+      else
+        call linear_group_results(model, an, g, res%groups(g))
+      end if
       res%groups(g)%points_per_element = an%kernels(g)%npoints
       res%groups(g)%is_interface = an%kernels(g)%is_interface
       res%groups(g)%is_bar = an%kernels(g)%is_bar
     end do
     call observer%write_step(res, error)
   end subroutine report_step
+
+  !> Strains and stresses of a linear group from the total displacements (sigma = D eps).
+  subroutine linear_group_results(model, an, g, gr)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: g
+    type(group_result_t), intent(inout) :: gr
+    integer :: e, q, np, nn, nc, q0
+    real(dp), allocatable :: d(:, :), ue(:)
+    np = an%kernels(g)%npoints
+    nn = an%kernels(g)%nnodes
+    nc = an%kernels(g)%ncomp
+    allocate (gr%stress(nc, np * size(model%groups(g)%connectivity, 2)), gr%strain(nc, size(gr%stress, 2)))
+    allocate (gr%state(size(gr%stress, 2)), d(nc, nc), ue(3 * nn))
+    gr%state = 0
+    call an%materials(model%groups(g)%material)%m%elastic_tangent(d)
+    do e = 1, size(model%groups(g)%connectivity, 2)
+      q0 = (e - 1) * np
+      ue = reshape(an%u(:, model%groups(g)%connectivity(:, e)), [3 * nn])
+      call element_strains(an%kernels(g), model%coords(:, model%groups(g)%connectivity(:, e)), ue, &
+                           gr%strain(:, q0 + 1:q0 + np))
+      do q = 1, np
+        gr%stress(:, q0 + q) = matmul(d, gr%strain(:, q0 + q))
+      end do
+    end do
+  end subroutine linear_group_results
 
 end module feps_incremental_analysis

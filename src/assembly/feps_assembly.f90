@@ -149,10 +149,11 @@ contains
   !> Compressed-row pattern (lower triangle) of the free equations: equation i couples with j
   !! when their nodes share an element. Equations are numbered node by node, so sorted
   !! neighbour nodes give sorted columns.
-  subroutine build_pattern(model, map, a)
+  subroutine build_pattern(model, map, a, only_groups)
     type(model_t), intent(in) :: model
     type(dof_map_t), intent(in) :: map
     type(csr_matrix_t), intent(out) :: a
+    logical, intent(in), optional :: only_groups(:)   !! the groups whose elements count (all if absent)
     integer, allocatable :: node_ptr(:), node_elems(:), fill(:), marker(:), nbr(:)
     integer :: nn, g, e, k, n, m, p, nnbr, d, b, ieq, jeq, id, kmax
     integer(i8) :: pos
@@ -165,6 +166,13 @@ contains
     allocate (elem_group(model%nelem()), elem_index(model%nelem()))
     id = 0
     do g = 1, size(model%groups)
+      if (present(only_groups)) then
+        if (.not. only_groups(g)) then
+          id = id + size(model%groups(g)%connectivity, 2)
+          elem_group(id - size(model%groups(g)%connectivity, 2) + 1:id) = 0
+          cycle
+        end if
+      end if
       do e = 1, size(model%groups(g)%connectivity, 2)
         id = id + 1
         elem_group(id) = g
@@ -183,6 +191,7 @@ contains
     fill = node_ptr(1:nn)
     do id = 1, size(elem_group)
       g = elem_group(id)
+      if (g == 0) cycle
       e = elem_index(id)
       do k = 1, size(model%groups(g)%connectivity, 1)
         n = model%groups(g)%connectivity(k, e)

@@ -27,7 +27,7 @@ module feps_dof_map
     procedure :: has_rotations
   end type dof_map_t
 
-  public :: build_dof_map
+  public :: build_dof_map, build_all_dofs_map
 
 contains
 
@@ -122,6 +122,43 @@ contains
       end do
     end do
   end subroutine build_dof_map
+
+  !> Every DOF of every node in an element numbered, in global Cartesian directions: the
+  !! numbering of the matrices that give internal forces of linear groups as one product.
+  subroutine build_all_dofs_map(model, map)
+    type(model_t), intent(in) :: model
+    type(dof_map_t), intent(out) :: map
+    integer :: nn, g, e, n, d
+    nn = model%nnode
+    allocate (map%eq(3, nn), map%constrained(3, nn), map%node_csys(nn), map%basis(3, 3, nn), map%used(nn))
+    map%constrained = .false.
+    map%node_csys = 0
+    map%used = .false.
+    do g = 1, size(model%groups)
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        map%used(model%groups(g)%connectivity(:, e)) = .true.
+      end do
+    end do
+    map%neq = 0
+    map%eq = 0
+    do n = 1, nn
+      map%basis(:, :, n) = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
+      if (.not. map%used(n)) cycle
+      do d = 1, 3
+        map%neq = map%neq + 1
+        map%eq(d, n) = map%neq
+      end do
+    end do
+    allocate (map%eq_node(map%neq), map%eq_dof(map%neq))
+    do n = 1, nn
+      do d = 1, 3
+        if (map%eq(d, n) > 0) then
+          map%eq_node(map%eq(d, n)) = n
+          map%eq_dof(map%eq(d, n)) = d
+        end if
+      end do
+    end do
+  end subroutine build_all_dofs_map
 
   logical function is_global(model, cs)
     type(model_t), intent(in) :: model

@@ -13,7 +13,7 @@ module feps_deck
   use feps_model, only: model_t, element_group_t, material_spec_t, node_set_t, face_set_t, &
                         constraint_t, nodal_load_t, face_load_t, region_t, in_region, &
                         load_pressure, load_traction, name_len, stage_t, controls_t, method_names, &
-                        method_euler, method_modified_euler, method_newton_raphson, is_2d_type
+                        method_euler, method_modified_euler, method_newton_raphson, is_2d_type, report_t
   implicit none
   private
 
@@ -55,7 +55,7 @@ contains
     model%output_file = ''
     model%systems = default_coordinate_systems()
     allocate (model%groups(0), model%materials(0), model%node_sets(0), model%face_sets(0))
-    allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0), model%stages(0))
+    allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0), model%stages(0), model%reports(0))
     allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0), st%set_group(0))
     allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0))
     st%mesh%nnode = 0
@@ -132,6 +132,8 @@ contains
       call read_face_load(records(pos), model, st%current_stage, error)
     case ('CONTROLS')
       call read_controls(records(pos), 2, model%controls, error)
+    case ('REPORT')
+      call read_report(records(pos), model, error)
     case ('STAGE')
       call read_stage(records(pos), model, error)
       st%current_stage = size(model%stages)
@@ -923,6 +925,77 @@ contains
       end associate
     end do
   end subroutine finish_stages
+
+  !> REPORT, ROTATION, NAME=n, GROUP=g, R=radius, Z=section [, FROM=x0, TO=x1]
+  !! [, REFERENCE=value in degrees]
+  subroutine read_report(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(report_t) :: r
+    type(report_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    r%kind = to_lower(field_text(rec, 2))
+    if (r%kind /= 'rotation') then
+      call input_error(error, rec%file, rec%line, 'unknown REPORT "' // field_text(rec, 2) // '" (ROTATION)', 2)
+      return
+    end if
+    r%file = rec%file
+    r%line = rec%line
+    call option_text(rec, 'NAME', text, ifield, found)
+    r%name = 'rotation'
+    if (found) r%name = text
+    call option_text(rec, 'GROUP', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs GROUP=<the pipe group>')
+      return
+    end if
+    r%group = model%find_group(text)
+    if (r%group == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
+      return
+    end if
+    call option_real(rec, 'R', r%r, found, error)
+    if (allocated(error)) return
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs R=<radius>')
+      return
+    end if
+    call option_real(rec, 'Z', r%z, found, error)
+    if (allocated(error)) return
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs Z=<section>')
+      return
+    end if
+    call option_real(rec, 'REFERENCE', r%reference, r%has_reference, error)
+    if (allocated(error)) return
+    call option_real(rec, 'FROM', r%x_from, r%has_span, error)
+    if (allocated(error)) return
+    call option_real(rec, 'TO', r%x_to, found, error)
+    if (allocated(error)) return
+    if (r%has_span .neqv. found .or. (found .and. r%x_from == r%x_to)) then
+      call input_error(error, rec%file, rec%line, 'REPORT, ROTATION takes both FROM= and TO= (different x), or neither')
+      return
+    end if
+    tmp = [model%reports, r]
+    call move_alloc(tmp, model%reports)
+  end subroutine read_report
+
+  subroutine option_real(rec, key, value, found, error)
+    type(record_t), intent(in) :: rec
+    character(len=*), intent(in) :: key
+    real(dp), intent(inout) :: value
+    logical, intent(out) :: found
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    call option_text(rec, key, text, ifield, found)
+    if (found) call parse_real(text, value, error, rec, ifield)
+  end subroutine option_real
 
   !> CONTROLS, METHOD=name, MAXIT=n, DELTA1..DELTA4=value, CUTBACKS=n (also inside STAGE).
   subroutine read_controls(rec, first, c, error)

@@ -134,6 +134,24 @@ module feps_model
     integer :: line = 0
   end type stage_t
 
+  !> A quantity computed after the run (thesis post-processing): 'rotation' is the rotation
+  !! of the section z = const of a pipe from the axial displacements of its nodes on r = R at
+  !! theta = 180 and 0 deg.
+  type, public :: report_t
+    character(len=:), allocatable :: name
+    character(len=:), allocatable :: kind
+    integer :: group = 0
+    real(dp) :: r = 0.0_dp
+    real(dp) :: z = 0.0_dp
+    logical :: has_span = .false.            !! FROM=/TO= x positions; else the extreme nodes
+    real(dp) :: x_from = 0.0_dp
+    real(dp) :: x_to = 0.0_dp
+    logical :: has_reference = .false.
+    real(dp) :: reference = 0.0_dp
+    character(len=:), allocatable :: file
+    integer :: line = 0
+  end type report_t
+
   type, public :: model_t
     character(len=:), allocatable :: title
     character(len=:), allocatable :: deck_file
@@ -148,6 +166,7 @@ module feps_model
     type(nodal_load_t), allocatable :: nodal_loads(:)
     type(face_load_t), allocatable :: face_loads(:)
     type(stage_t), allocatable :: stages(:)
+    type(report_t), allocatable :: reports(:)
     type(controls_t) :: controls                           !! defaults for the stages
     character(len=:), allocatable :: solver                !! 'cholmod' or 'skyline'
     character(len=:), allocatable :: output_file

@@ -2,9 +2,9 @@
 !! run it, write the HDF5 results (temporary name, renamed on success; nothing left behind
 !! on error) and return a summary for the program to print.
 module feps_program
-  use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, fatal_error, err_input, str
-  use feps_model, only: model_t, method_names, method_euler, method_modified_euler, method_newton_raphson
+  use feps_kinds, only: dp, i8, rad2deg
+  use feps_error, only: error_t, fatal_error, input_error, err_input, str
+  use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson
   use feps_deck, only: read_deck
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
   use feps_clock, only: wall_clock
@@ -56,6 +56,7 @@ module feps_program
     real(dp) :: max_pivot_ratio = 0.0_dp
     real(dp) :: applied_force(3) = 0.0_dp
     real(dp) :: reaction_force(3) = 0.0_dp
+    character(len=200), allocatable :: reports(:)   !! post-processing lines (REPORT records)
   end type run_summary_t
 
   public :: run_feps
@@ -72,6 +73,7 @@ module feps_program
   type, extends(observer_t) :: results_observer_t
     type(results_file_t) :: h5
     logical :: writing = .false.
+    real(dp), allocatable :: last_displacement(:, :)
     type(model_t), pointer :: model => null()
     procedure(line_sink), pointer, nopass :: sink => null()
   contains
@@ -163,6 +165,11 @@ contains
     summary%time_assembly = an%time_assembly
     summary%time_factorization = an%time_factorization
     summary%time_solve = an%time_solve
+    call post_process(model, obs%last_displacement, obs%h5, summary, error)
+    if (allocated(error)) then
+      call obs%h5%discard()
+      return
+    end if
     summary%wall_time = wall_clock() - t0
     call write_summary(obs%h5, model, summary, error)
     if (.not. allocated(error)) call obs%h5%close(error)
@@ -199,6 +206,100 @@ contains
     end do
   end subroutine override_method
 
+  !> REPORT records: rotations of pipe sections (thesis 7.3) from the final displacements.
+  subroutine post_process(model, u, h5, summary, error)
+    type(model_t), intent(in) :: model
+    real(dp), intent(in) :: u(:, :)
+    type(results_file_t), intent(inout) :: h5
+    type(run_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    integer :: k
+    real(dp) :: angle
+    character(len=200) :: line
+    allocate (summary%reports(size(model%reports)))
+    do k = 1, size(model%reports)
+      associate (r => model%reports(k))
+        call section_rotation(model, r, u, angle, error)
+        if (allocated(error)) return
+        write (line, '(a,f0.1,a,f0.1,a,f10.6,a)') 'rotation ' // r%name // ' (section z = ', r%z, ', r = ', r%r, &
+          '): ', angle, ' deg'
+        if (r%has_reference) write (line, '(a,a,f10.6,a,f0.1,a)') trim(line), '; thesis ', r%reference, &
+          ' deg (', 100.0_dp * (angle - r%reference) / r%reference, '%)'
+        summary%reports(k) = line
+        call h5%write_summary_real('rotation_' // r%name // '_deg', angle, error)
+        if (allocated(error)) return
+      end associate
+    end do
+  end subroutine post_process
+
+  !> Rotation (degrees) of the section z = r%z from the axial displacements w of the group's
+  !! nodes on r = R (thesis 7.3): (w(x1) - w(x0)) / (x1 - x0), with w interpolated linearly in x
+  !! between those nodes, over FROM=x0 .. TO=x1 (the loaded region for the edge load: the slope
+  !! the Australian model's linear compression has) or between the extreme nodes.
+  subroutine section_rotation(model, r, u, angle, error)
+    type(model_t), intent(in) :: model
+    type(report_t), intent(in) :: r
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(out) :: angle
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: on_ring(:)
+    integer, allocatable :: ring(:), order(:)
+    real(dp), allocatable :: xs(:), ws(:)
+    real(dp) :: tol, x0, x1
+    integer :: n, i, j, t
+    allocate (on_ring(model%nnode))
+    on_ring = .false.
+    on_ring(pack(model%groups(r%group)%connectivity, .true.)) = .true.
+    tol = 1.0e-6_dp * max(1.0_dp, r%r)
+    do n = 1, model%nnode
+      if (.not. on_ring(n)) cycle
+      on_ring(n) = abs(hypot(model%coords(1, n), model%coords(2, n)) - r%r) <= tol .and. &
+                   abs(model%coords(3, n) - r%z) <= tol
+    end do
+    ring = pack([(n, n = 1, model%nnode)], on_ring)
+    if (size(ring) < 2) then
+      call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': group ' // model%groups(r%group)%name // &
+                       ' has no two nodes on r = ' // str(r%r) // ', z = ' // str(r%z))
+      return
+    end if
+    ! nodes sorted by x (insertion sort: a ring has tens of nodes)
+    order = [(i, i = 1, size(ring))]
+    do i = 2, size(order)
+      t = order(i)
+      j = i - 1
+      do while (j >= 1)
+        if (model%coords(1, ring(order(j))) <= model%coords(1, ring(t))) exit
+        order(j + 1) = order(j)
+        j = j - 1
+      end do
+      order(j + 1) = t
+    end do
+    xs = model%coords(1, ring(order))
+    ws = u(3, ring(order))
+    x0 = xs(1)
+    x1 = xs(size(xs))
+    if (r%has_span) then
+      x0 = r%x_from
+      x1 = r%x_to
+      if (min(x0, x1) < xs(1) - tol .or. max(x0, x1) > xs(size(xs)) + tol) then
+        call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': FROM/TO lie outside the ring of nodes')
+        return
+      end if
+    end if
+    angle = atan((interpolate(x1) - interpolate(x0)) / (x1 - x0)) * rad2deg
+  contains
+    real(dp) function interpolate(x)
+      real(dp), intent(in) :: x
+      integer :: k
+      k = 1
+      do while (k < size(xs) - 1)
+        if (xs(k + 1) >= x) exit
+        k = k + 1
+      end do
+      interpolate = ws(k) + (ws(k + 1) - ws(k)) * (x - xs(k)) / max(xs(k + 1) - xs(k), tiny(1.0_dp))
+    end function interpolate
+  end subroutine section_rotation
+
   subroutine observer_progress(self, line)
     class(results_observer_t), intent(inout) :: self
     character(len=*), intent(in) :: line
@@ -215,6 +316,7 @@ contains
     real(dp), allocatable :: extra(:, :)
     real(dp) :: p(3)
     integer :: g, q, nc
+    self%last_displacement = res%displacement
     call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
     if (.not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', res%displacement, 'ux uy uz', error)
     if (.not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', res%reaction, 'fx fy fz', error)

@@ -1,0 +1,161 @@
+#!/usr/bin/env python3
+"""Write the decks of thesis model B (chapter 5): input/modelB/<case>.dat for the 18 cases
+SE1-3, SD1-3 (elastic soil), FE1-3, FD1-3 (interfaces pipe/soil), PE1-3, PD1-3 (Matsuoka soil),
+and input/modelB.dat (= FE1, the README's main job).
+
+    python3 scripts/make_model_b.py [--soil-radius 2000] [--outdir input/modelB]
+
+Geometry and loads follow SPEC section 8; the choices the thesis leaves open are written into
+each deck's comments. Case numbers: 1 typical soil (E = 144), 2 soft (14.4), 3 stiff (1440).
+"""
+import argparse
+import os
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+SOILS = {1: ("typical", 144.0, 50.0, 100.0), 2: ("soft", 14.4, 5.0, 10.0), 3: ("stiff", 1440.0, 500.0, 1000.0)}
+THESIS_EDGE_ANGLE = {1: 0.0502, 2: 0.0544, 3: 0.0370}          # Table 7.1, FE cases
+THESIS_DIAGONAL = {1: (0.2521, 0.2080), 2: (2.116, 2.071), 3: (0.0587, 0.0238)}  # Table 7.2, FD cases
+
+
+def soil_layers(r_soil):
+    """Four soil element layers from r = 715, growing outwards (715, 865, 1115, 1465, 2000 for
+    r_soil = 2000: increments 150, 250, 350, 535 scaled to the soil extent)."""
+    base = [150.0, 250.0, 350.0, 535.0]
+    scale = (r_soil - 715.0) / sum(base)
+    return [b * scale for b in base]
+
+
+def node_block(interfaces, r_soil):
+    lines = ["A, 3, 600., 0., 0.,", "%, 3, 57.5, 0., 0.,          ! pipe wall: r = 600, 657.5, 715"]
+    if interfaces:
+        lines.append("%, -1, 0., 0., 0.,           ! r = 715 again: the soil's face (coincident nodes)")
+    for d in soil_layers(r_soil):
+        lines.append(f"%, -1, {d:.4f}, 0., 0.,")
+    lines += [
+        "%, 7, 0., 10., 0.,           ! theta = 0 .. 60",
+        "%, -6, 0., 7.5, 0.,          ! theta = 105",
+        "%, -15, 0., 5., 0.,          ! theta = 180",
+        "%, 5, 0., 0., 50.,           ! z = 0 .. 200",
+        "%, -3, 0., 0., 100.,         ! z = 500",
+        "%, -5, 0., 0., 150.,         ! z = 1250",
+        "%, -5, 0., 0., 150.,         ! z = 2000",
+        "%, -3, 0., 0., 100.,         ! z = 2300",
+        "%, -4, 0., 0., 50.,          ! z = 2500",
+        "E,",
+    ]
+    return lines
+
+
+def deck(case, r_soil=2000.0):
+    kind, load, number = case[0], case[1], int(case[2])
+    name, es, ks, kn = SOILS[number]
+    interfaces = kind == "F"
+    nr = 8 if interfaces else 7                 # nodes along r
+    layer = nr * 28                             # nodes in one z layer
+    first_soil = 4 if interfaces else 3         # r index + 1 of the soil's inner face
+    edge = load == "E"
+    title = {"S": "elastic soil", "F": "interfaces pipe/soil, elastic soil", "P": "Matsuoka soil"}[kind]
+    out = [
+        f"! feps deck: numerical model B (thesis chapter 5), case {case} ({title}, {name} soil,",
+        f"! {'edge' if edge else 'diagonal'} load). Written by scripts/make_model_b.py.",
+        "! Half pipe (theta 0..180 deg, symmetry plane y = 0): r_i = 600, r_o = 715, length 2500;",
+        f"! soil from r = 715 to {r_soil:.0f} mm in 4 element layers (the thesis gives no soil extent:",
+        "! docs/verification.md shows the sensitivity). Mesh: hex8, 2 elements through the wall, theta",
+        "! 6 x 10, 6 x 7.5, 15 x 5 deg (finer on the loaded side, theta = 180), z graded 50/100/150 mm",
+        "! from each end.",
+    ]
+    if interfaces:
+        out += [f"! Pipe and soil meet through quadrilateral interfaces (Ks = {ks:g}, Kn = {kn:g} MPa/mm,",
+                "! phi = psi = 15 deg, c = 0.05 MPa, thesis 5.4); their nodes coincide at r = 715."]
+    elif kind == "P":
+        out += ["! Soil: modified Matsuoka-Nakai, phi = psi = 15 deg, c = 0.05 MPa (thesis 5.5), bonded to the pipe."]
+    else:
+        out += ["! Pipe and soil share their nodes at r = 715 (bonded)."]
+    out += [f"TITLE, Model B {case}: {title}, E_s = {es:g} MPa, {'edge' if edge else 'diagonal'} load P = 1000 kN",
+            "", "! --- nodes: r fastest, then theta (28), then z (25) ---"]
+    out += node_block(interfaces, r_soil)
+    out += ["", "GROUP, pipe, TYPE=hex8, MATERIAL=concrete",
+            f"A, 8, 1, 2, {nr + 2}, {nr + 1}, {layer + 1}, {layer + 2}, {layer + nr + 2}, {layer + nr + 1},",
+            "%, 2, *, 8, 1,", f"%, 27, *, 8, {nr},", f"%, 24, *, 8, {layer},", "E,",
+            "", "GROUP, soil, TYPE=hex8, MATERIAL=soil",
+            f"A, 8, {first_soil}, {first_soil + 1}, {first_soil + nr + 1}, {first_soil + nr}, "
+            f"{first_soil + layer}, {first_soil + layer + 1}, {first_soil + layer + nr + 1}, {first_soil + layer + nr},",
+            "%, 4, *, 8, 1,", f"%, 27, *, 8, {nr},", f"%, 24, *, 8, {layer},", "E,"]
+    if interfaces:
+        # lower layer: the pipe's outer face (theta then z: normal +r, towards the soil)
+        lo = [3, 3 + nr, 3 + nr + layer, 3 + layer]
+        up = [n + 1 for n in lo]
+        out += ["", "! lower layer = the pipe's outer face, upper = the soil's inner face",
+                "GROUP, contact, TYPE=interface-quad4, MATERIAL=pipe_soil",
+                "A, 8, " + ", ".join(str(n) for n in lo + up) + ",",
+                f"%, 27, *, 8, {nr},", f"%, 24, *, 8, {layer},", "E,"]
+    out += ["E,", "", "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2"]
+    if kind == "P":
+        out.append(f"MATERIAL, soil, MATSUOKA, E={es:g}, NU=0.2, PHI=15., PSI=15., C=0.05")
+    else:
+        out.append(f"MATERIAL, soil, ELASTIC, E={es:g}, NU=0.2")
+    if interfaces:
+        out.append(f"MATERIAL, pipe_soil, INTERFACE, KN={kn:g}, KS={ks:g}, PHI=15., PSI=15., C=0.05")
+    out += ["", "! --- supports ---",
+            f"NSET, soil_outer, CSYS=3, R={r_soil:.1f}, TOL=0.01",
+            "NSET, symmetry, CSYS=2, Y=0., TOL=0.01",
+            "! The end loads are self-equilibrated in z: one soil node on the mid-plane holds the free",
+            "! z translation (its reaction comes out zero).",
+            f"NSET, anchor, CSYS=3, R={r_soil:.1f}, THETA=0., Z=1250., TOL=0.01",
+            "FIX, soil_outer, X, Y", "FIX, symmetry, Y", "FIX, anchor, Z", "",
+            "! --- loads: P = 1000 kN on each end of the half model, linear in x from zero at 220 mm",
+            "! from the axis to its peak at the outer edge (SPEC section 8; thesis Fig. 5.2) ---",
+            "FSET, end_low, GROUP=pipe, CSYS=2, Z=0., TOL=0.01",
+            "FSET, end_high, GROUP=pipe, CSYS=2, Z=2500., TOL=0.01",
+            "PRESSURE, end_high, TOTAL=1.0e6, VARY=X, ZERO=-220., PEAK=-715."]
+    if edge:
+        out.append("PRESSURE, end_low, TOTAL=1.0e6, VARY=X, ZERO=-220., PEAK=-715.")
+    else:
+        out.append("! diagonal: the lower end's load is the upper one's rotated by 180 deg about the axis")
+        out.append("PRESSURE, end_low, TOTAL=1.0e6, VARY=X, ZERO=220., PEAK=715.")
+    steps = 400 if edge else 500
+    if kind == "S":
+        out += ["", "STAGE, load, STEPS=1"]
+    else:
+        out += ["", "! initial stiffness, at most 10 iterations per step (thesis 5.4, 5.5)",
+                f"STAGE, load, STEPS={steps}, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4"]
+    out += ["", "! --- post-processing (thesis 7.3): the deflection angle at the pipe end is the slope of the",
+            "! axial displacement w along r = 715 over the loaded region (x from -220 to -715), the slope",
+            "! the Australian model's linear compression has; the whole diameter and the mid-plane section",
+            "! give the total and the rigid rotation under the diagonal load ---"]
+    if kind == "F" and edge:
+        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715., "
+                   f"REFERENCE={THESIS_EDGE_ANGLE[number]}")
+    elif kind == "F":
+        tot, rig = THESIS_DIAGONAL[number]
+        out.append(f"REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., REFERENCE={tot}")
+        out.append(f"REPORT, ROTATION, NAME=rigid, GROUP=pipe, R=715., Z=1250., REFERENCE={rig}")
+    elif edge:
+        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715.")
+    else:
+        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500.")
+    out += ["", "SOLVER, cholmod", f"OUTPUT, modelB_{case}.h5", ""]
+    return "\n".join(out)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--soil-radius", type=float, default=2000.0)
+    ap.add_argument("--outdir", default=os.path.join(ROOT, "input", "modelB"))
+    ap.add_argument("--cases", default="", help="comma-separated case ids (default: all 18)")
+    args = ap.parse_args()
+    os.makedirs(args.outdir, exist_ok=True)
+    cases = [c for c in args.cases.split(",") if c] or [f"{k}{l}{n}" for k in "SFP" for l in "ED" for n in (1, 2, 3)]
+    for case in cases:
+        with open(os.path.join(args.outdir, f"{case}.dat"), "w") as f:
+            f.write(deck(case, args.soil_radius))
+    if not args.cases and args.soil_radius == 2000.0 and args.outdir == os.path.join(ROOT, "input", "modelB"):
+        text = deck("FE1").replace("OUTPUT, modelB_FE1.h5", "OUTPUT, modelB.h5")
+        with open(os.path.join(ROOT, "input", "modelB.dat"), "w") as f:
+            f.write(text)
+    print(f"wrote {len(cases)} decks to {args.outdir}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,737 @@
+!> Tests of the modified Matsuoka-Nakai model (thesis 2.4.2-2.4.3, SPEC section 5): the
+!! surface against Mohr-Coulomb on the meridians, the uniaxial strengths (15.71 / 6 MPa,
+!! ft/fc = 1/10 at 54.9 deg), returns onto the surface with the flow rule, the apex and the
+!! tension zone, the consistent tangent against finite differences, rotation invariance,
+!! the uniaxial strain-driven block example, the elastic range of nu, huge steps for a range
+!! of angles and the parameter checks.
+module test_matsuoka
+  use feps_kinds, only: dp, deg2rad
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_error, only: str
+  use feps_model, only: material_spec_t, name_len
+  use feps_material, only: material_t, state_elastic, state_plastic, state_tension
+  use feps_matsuoka_nakai, only: matsuoka_nakai_t, new_matsuoka_nakai, apex_from_tensile_strength, &
+                                 apex_from_cohesion, apex_stiffness_factor
+  implicit none
+  private
+
+  public :: collect_matsuoka
+
+  real(dp), parameter :: e_block = 10000.0_dp, nu_block = 0.2_dp, phi_block = 26.57_dp, ft_block = 6.0_dp
+  real(dp), parameter :: zero6(6) = 0.0_dp
+
+contains
+
+  subroutine collect_matsuoka(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest("mohr_coulomb_meridians", test_meridians), &
+      new_unittest("uniaxial_strengths", test_uniaxial_strengths), &
+      new_unittest("elastic_step_and_nu_range", test_elastic_nu), &
+      new_unittest("random_returns_on_surface", test_random_returns), &
+      new_unittest("apex_and_tension_zone", test_apex_tension), &
+      new_unittest("tangent_finite_difference", test_tangent_fd), &
+      new_unittest("rotation_invariance", test_rotation), &
+      new_unittest("uniaxial_block_path_2_4_3", test_block_path), &
+      new_unittest("angles_and_huge_steps", test_huge_steps), &
+      new_unittest("validator", test_validator) &
+      ]
+  end subroutine collect_matsuoka
+
+  ! ---------------------------------------------------------------- helpers
+
+  pure function make(phi, psi, ft, e, nu) result(m)
+    real(dp), intent(in) :: phi, psi, ft
+    real(dp), intent(in), optional :: e, nu
+    type(matsuoka_nakai_t) :: m
+    m = matsuoka_nakai_t(name='concrete', e=e_block, nu=nu_block, phi=phi, psi=psi, &
+                         apex=apex_from_tensile_strength(ft, phi))
+    if (present(e)) m%e = e
+    if (present(nu)) m%nu = nu
+  end function make
+
+  pure logical function finite(x)
+    real(dp), intent(in) :: x(:)
+    finite = all(x == x) .and. all(abs(x) <= huge(x))
+  end function finite
+
+  !> Independent isotropic elasticity (Lame form) and its inverse (engineering shears).
+  pure function d_matrix(e, nu) result(d)
+    real(dp), intent(in) :: e, nu
+    real(dp) :: d(6, 6)
+    real(dp) :: c
+    integer :: i
+    c = e / ((1.0_dp + nu) * (1.0_dp - 2.0_dp * nu))
+    d = 0.0_dp
+    d(1:3, 1:3) = c * nu
+    do i = 1, 3
+      d(i, i) = c * (1.0_dp - nu)
+      d(i + 3, i + 3) = 0.5_dp * c * (1.0_dp - 2.0_dp * nu)
+    end do
+  end function d_matrix
+
+  pure function compliance(e, nu, sig) result(eps)
+    real(dp), intent(in) :: e, nu, sig(6)
+    real(dp) :: eps(6)
+    eps(1) = (sig(1) - nu * (sig(2) + sig(3))) / e
+    eps(2) = (sig(2) - nu * (sig(1) + sig(3))) / e
+    eps(3) = (sig(3) - nu * (sig(1) + sig(2))) / e
+    eps(4:6) = 2.0_dp * (1.0_dp + nu) / e * sig(4:6)
+  end function compliance
+
+  !> The thesis cubic in compression-positive sigma* = M I - sigma, computed here from the
+  !! invariants (independent of the module), relative to |I1 I2| + zeta |I3|.
+  pure real(dp) function relative_cubic(m, sig) result(rel)
+    type(matsuoka_nakai_t), intent(in) :: m
+    real(dp), intent(in) :: sig(6)
+    real(dp) :: a(3, 3), i1, i2, i3, zeta
+    a = -reshape([sig(1), sig(6), sig(5), sig(6), sig(2), sig(4), sig(5), sig(4), sig(3)], [3, 3])
+    a(1, 1) = a(1, 1) + m%apex
+    a(2, 2) = a(2, 2) + m%apex
+    a(3, 3) = a(3, 3) + m%apex
+    zeta = 9.0_dp + 8.0_dp * tan(m%phi * deg2rad)**2
+    i1 = a(1, 1) + a(2, 2) + a(3, 3)
+    i2 = a(1, 1) * a(2, 2) - a(1, 2)**2 + a(2, 2) * a(3, 3) - a(2, 3)**2 + a(1, 1) * a(3, 3) - a(1, 3)**2
+    i3 = a(1, 1) * (a(2, 2) * a(3, 3) - a(2, 3)**2) - a(1, 2) * (a(1, 2) * a(3, 3) - a(2, 3) * a(1, 3)) &
+         + a(1, 3) * (a(1, 2) * a(2, 3) - a(2, 2) * a(1, 3))
+    rel = 0.0_dp
+    if (abs(i1 * i2) + zeta * abs(i3) > 0.0_dp) rel = (i1 * i2 - zeta * i3) / (abs(i1 * i2) + zeta * abs(i3))
+  end function relative_cubic
+
+  !> Scale of the yield value of a stress (to make |F| relative).
+  pure real(dp) function stress_scale(m, sig)
+    type(matsuoka_nakai_t), intent(in) :: m
+    real(dp), intent(in) :: sig(6)
+    stress_scale = maxval(abs(sig)) + m%apex
+  end function stress_scale
+
+  !> The t in [lo, hi] with F(base + t dir) = 0 by bisection (F(lo) < 0 < F(hi)).
+  real(dp) function surface_along(m, base, dir, lo, hi) result(t)
+    type(matsuoka_nakai_t), intent(in) :: m
+    real(dp), intent(in) :: base(6), dir(6), lo, hi
+    real(dp) :: a, b
+    integer :: i
+    a = lo
+    b = hi
+    do i = 1, 200
+      t = 0.5_dp * (a + b)
+      if (m%yield_value(base + t * dir) > 0.0_dp) then
+        b = t
+      else
+        a = t
+      end if
+      if (b - a <= 1.0e-15_dp * max(abs(a), abs(b))) exit
+    end do
+    t = 0.5_dp * (a + b)
+  end function surface_along
+
+  !> A deterministic uniform number in (0, 1) (Park-Miller minimal standard generator).
+  real(dp) function next_uniform(seed) result(u)
+    integer(kind=8), intent(inout) :: seed
+    seed = modulo(16807_8 * seed, 2147483647_8)
+    u = real(seed, dp) / 2147483647.0_dp
+  end function next_uniform
+
+  !> Voigt stress of R S R^T for S given in Voigt form.
+  pure function rotate_stress(r, sig) result(out)
+    real(dp), intent(in) :: r(3, 3), sig(6)
+    real(dp) :: out(6), s(3, 3)
+    s = reshape([sig(1), sig(6), sig(5), sig(6), sig(2), sig(4), sig(5), sig(4), sig(3)], [3, 3])
+    s = matmul(r, matmul(s, transpose(r)))
+    out = [s(1, 1), s(2, 2), s(3, 3), s(2, 3), s(1, 3), s(1, 2)]
+  end function rotate_stress
+
+  pure function rotation(a, b, c) result(r)
+    real(dp), intent(in) :: a, b, c
+    real(dp) :: r(3, 3), rx(3, 3), ry(3, 3), rz(3, 3)
+    rz = reshape([cos(a), sin(a), 0.0_dp, -sin(a), cos(a), 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
+    ry = reshape([cos(b), 0.0_dp, -sin(b), 0.0_dp, 1.0_dp, 0.0_dp, sin(b), 0.0_dp, cos(b)], [3, 3])
+    rx = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, cos(c), sin(c), 0.0_dp, -sin(c), cos(c)], [3, 3])
+    r = matmul(rz, matmul(ry, rx))
+  end function rotation
+
+  !> Update from a trial stress: sig0 = trial, no strain increment.
+  subroutine return_of(m, sig_tr, sig, state, dtan)
+    type(matsuoka_nakai_t), intent(in) :: m
+    real(dp), intent(in) :: sig_tr(6)
+    real(dp), intent(out) :: sig(6)
+    integer, intent(out) :: state
+    real(dp), intent(out) :: dtan(6, 6)
+    call m%update(sig_tr, zero6, zero6, state_elastic, sig, state, dtan)
+  end subroutine return_of
+
+  !> Central finite-difference gradient of the yield value of m at sig.
+  function fd_gradient(m, sig) result(g)
+    type(matsuoka_nakai_t), intent(in) :: m
+    real(dp), intent(in) :: sig(6)
+    real(dp) :: g(6), e(6), h
+    integer :: j
+    h = 1.0e-6_dp * stress_scale(m, sig)
+    do j = 1, 6
+      e = 0.0_dp
+      e(j) = h
+      g(j) = (m%yield_value(sig + e) - m%yield_value(sig - e)) / (2.0_dp * h)
+    end do
+  end function fd_gradient
+
+  !> Checks for one returned stress: finite; on the surface for plastic and tension states
+  !! (|F| <= 1e-12 scale, thesis cubic <= 1e-10 relative); elastic: unchanged and inside;
+  !! plastic: plastic strain D^-1 (sig_tr - sig) along the potential gradient with a positive
+  !! multiplier (potential: the cone with angle psi, FD gradient; psi = 0: the deviator);
+  !! tension: sig = alpha sig_tr with 0 < alpha <= 1.
+  subroutine check_returned(error, m, sig_tr, sig, state, dtan, what)
+    type(error_t), allocatable, intent(out) :: error
+    type(matsuoka_nakai_t), intent(in) :: m
+    real(dp), intent(in) :: sig_tr(6), sig(6), dtan(6, 6)
+    integer, intent(in) :: state
+    character(len=*), intent(in) :: what
+    type(matsuoka_nakai_t) :: pot
+    real(dp) :: ep(6), ng(6), proj, alpha, scale
+    scale = stress_scale(m, sig_tr)
+    if (.not. (finite(sig) .and. finite(reshape(dtan, [36])))) then
+      call test_failed(error, what // ': not finite')
+      return
+    end if
+    select case (state)
+    case (state_elastic)
+      call check(error, maxval(abs(sig - sig_tr)) == 0.0_dp .and. m%yield_value(sig_tr) < 0.0_dp, &
+                 what // ': elastic point unchanged and inside')
+    case (state_plastic, state_tension)
+      call check(error, m%yield_value(sig), 0.0_dp, what // ': F on the surface', abs=1.0e-12_dp * scale)
+      if (allocated(error)) return
+      ! (the relative cubic is rounding noise at the apex itself, sigma* = 0)
+      if (maxval(abs(sig - m%apex * [1, 1, 1, 0, 0, 0])) > 1.0e-10_dp * m%apex) then
+        call check(error, relative_cubic(m, sig), 0.0_dp, what // ': cubic f on the surface', abs=1.0e-10_dp)
+        if (allocated(error)) return
+      end if
+      if (state == state_plastic) then
+        ep = compliance(m%e, m%nu, sig_tr - sig)
+        if (m%psi > 0.0_dp) then
+          pot = m
+          pot%phi = m%psi
+          ng = fd_gradient(pot, sig)
+        else
+          ng = sig - sum(sig(1:3)) / 3.0_dp * [1, 1, 1, 0, 0, 0]
+          ng(4:6) = 2.0_dp * ng(4:6)
+        end if
+        proj = dot_product(ep, ng) / dot_product(ng, ng)
+        call check(error, proj > 0.0_dp, what // ': positive plastic multiplier')
+        if (allocated(error)) return
+        call check(error, norm2(ep - proj * ng), 0.0_dp, what // ': plastic strain along dg/dsigma', &
+                   abs=1.0e-7_dp * norm2(ep))
+      else
+        alpha = dot_product(sig, sig_tr) / dot_product(sig_tr, sig_tr)
+        call check(error, alpha > 0.0_dp .and. alpha <= 1.0_dp + 1.0e-14_dp, what // ': 0 < alpha <= 1')
+        if (allocated(error)) return
+        call check(error, maxval(abs(sig - alpha * sig_tr)), 0.0_dp, what // ': proportional', abs=1.0e-12_dp * scale)
+      end if
+    case default
+      call test_failed(error, what // ': unexpected state ' // str(state))
+    end select
+  end subroutine check_returned
+
+  ! ---------------------------------------------------------------- tests
+
+  !> On the triaxial compression (sigma_2 = sigma_3) and extension (sigma_1 = sigma_2)
+  !! meridians the surface is the Mohr-Coulomb one, sigma_1 = sigma_3 (1+sin)/(1-sin) +
+  !! 2 c cos/(1-sin) (compression positive, sigma_1 major), for three angles and several
+  !! confinements; the surface point is found by bisection on F and checked on the cubic.
+  subroutine test_meridians(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: angles(3) = [15.0_dp, 26.57_dp, 54.9_dp], confinement(4) = [0.0_dp, 1.0_dp, 5.0_dp, 40.0_dp]
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: sn, c, s3, expected, t, sig(6)
+    integer :: i, k
+    do i = 1, size(angles)
+      m = make(angles(i), angles(i), 2.0_dp)
+      sn = sin(angles(i) * deg2rad)
+      c = m%apex * tan(angles(i) * deg2rad)
+      call check(error, apex_from_cohesion(c, angles(i)), m%apex, 'apex from c and from ft', rel=1.0e-13_dp)
+      if (allocated(error)) return
+      do k = 1, size(confinement)
+        s3 = confinement(k) * c
+        expected = s3 * (1.0_dp + sn) / (1.0_dp - sn) + 2.0_dp * c * cos(angles(i) * deg2rad) / (1.0_dp - sn)
+        ! compression meridian: (sigma_1, sigma_3, sigma_3) compression positive, sigma_1 in z
+        t = surface_along(m, -s3 * [1, 1, 0, 0, 0, 0] * 1.0_dp, [0, 0, -1, 0, 0, 0] * 1.0_dp, s3, 100.0_dp * expected)
+        call check(error, t, expected, 'compression meridian phi ' // str(angles(i)) // ' s3 ' // str(s3), &
+                   rel=1.0e-8_dp)
+        if (allocated(error)) return
+        sig = -[s3, s3, expected, 0.0_dp, 0.0_dp, 0.0_dp]
+        call check(error, relative_cubic(m, sig), 0.0_dp, 'cubic zero on the compression meridian', abs=1.0e-10_dp)
+        if (allocated(error)) return
+        ! extension meridian: (sigma_1, sigma_1, sigma_3)
+        t = surface_along(m, -s3 * [0, 0, 1, 0, 0, 0] * 1.0_dp, [-1, -1, 0, 0, 0, 0] * 1.0_dp, s3, 100.0_dp * expected)
+        call check(error, t, expected, 'extension meridian phi ' // str(angles(i)) // ' s3 ' // str(s3), &
+                   rel=1.0e-8_dp)
+        if (allocated(error)) return
+        sig = -[expected, expected, s3, 0.0_dp, 0.0_dp, 0.0_dp]
+        call check(error, relative_cubic(m, sig), 0.0_dp, 'cubic zero on the extension meridian', abs=1.0e-10_dp)
+        if (allocated(error)) return
+        ! off the meridians (Lode angle between) the surface lies outside Mohr-Coulomb
+        t = surface_along(m, -[s3, 0.5_dp * (s3 + expected), 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], &
+                          [0, 0, -1, 0, 0, 0] * 1.0_dp, 0.5_dp * (s3 + expected), 100.0_dp * expected)
+        call check(error, t > expected * (1.0_dp + 1.0e-6_dp), 'between the meridians outside Mohr-Coulomb')
+        if (allocated(error)) return
+      end do
+    end do
+  end subroutine test_meridians
+
+  !> Thesis 2.4.3: E = 10000, nu = 0.2, phi = psi = 26.57, ft = 6: fc = 15.71 (0.1%), uniaxial
+  !! tension strength 6 on the surface; chapter 9: phi = 54.9 gives ft/fc = 1/10 (1%).
+  subroutine test_uniaxial_strengths(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: fc, ft, sn
+    m = make(phi_block, phi_block, ft_block)
+    fc = surface_along(m, zero6, [-1, 0, 0, 0, 0, 0] * 1.0_dp, 0.0_dp, 1000.0_dp)
+    call check(error, fc, 15.71_dp, 'uniaxial compression strength fc', rel=1.0e-3_dp)
+    if (allocated(error)) return
+    sn = sin(phi_block * deg2rad)
+    call check(error, fc, ft_block * (1.0_dp + sn) / (1.0_dp - sn), 'fc = ft (1+sin)/(1-sin)', rel=1.0e-10_dp)
+    if (allocated(error)) return
+    ft = surface_along(m, zero6, [0, 1, 0, 0, 0, 0] * 1.0_dp, 0.0_dp, 1000.0_dp)
+    call check(error, ft, ft_block, 'uniaxial tension strength ft', rel=1.0e-10_dp)
+    if (allocated(error)) return
+    call check(error, m%yield_value([0.0_dp, 0.0_dp, ft_block, 0.0_dp, 0.0_dp, 0.0_dp]), 0.0_dp, &
+               'F(ft on z) = 0', abs=1.0e-12_dp * ft_block)
+    if (allocated(error)) return
+    m = make(54.9_dp, 54.9_dp, 1.0_dp)
+    fc = surface_along(m, zero6, [0, 0, -1, 0, 0, 0] * 1.0_dp, 0.0_dp, 1000.0_dp)
+    ft = surface_along(m, zero6, [0, 0, 1, 0, 0, 0] * 1.0_dp, 0.0_dp, 1000.0_dp)
+    call check(error, ft / fc, 0.1_dp, 'ft/fc at phi = 54.9', rel=1.0e-2_dp)
+  end subroutine test_uniaxial_strengths
+
+  !> Elastic steps for nu in [-0.9, 0.499]: sig = sig0 + D deps with D the isotropic matrix
+  !! (checked against the compliance: D^-1 D = I), tangent D, state elastic; and
+  !! elastic_tangent, is_linear, symmetric_tangent.
+  subroutine test_elastic_nu(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: nus(7) = [-0.9_dp, -0.5_dp, 0.0_dp, 0.2_dp, 0.3_dp, 0.45_dp, 0.499_dp]
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: d(6, 6), dt(6, 6), sig(6), sig0(6), deps(6), col(6), eye(6)
+    integer :: i, j, st
+    sig0 = [-5.0_dp, -4.0_dp, -6.0_dp, 0.3_dp, -0.2_dp, 0.1_dp]
+    do i = 1, size(nus)
+      m = make(30.0_dp, 10.0_dp, 3.0_dp, e=20000.0_dp, nu=nus(i))
+      call m%elastic_tangent(d)
+      do j = 1, 6
+        col = compliance(m%e, m%nu, d(:, j))
+        eye = 0.0_dp
+        eye(j) = 1.0_dp
+        call check(error, maxval(abs(col - eye)), 0.0_dp, 'D^-1 D = I, nu = ' // str(nus(i)), abs=1.0e-10_dp)
+        if (allocated(error)) return
+      end do
+      call check(error, maxval(abs(d - d_matrix(m%e, m%nu))), 0.0_dp, 'D', abs=1.0e-9_dp * maxval(abs(d)))
+      if (allocated(error)) return
+      deps = 1.0e-6_dp * [1.0_dp, -2.0_dp, 0.5_dp, 3.0_dp, -1.0_dp, 2.0_dp]
+      call m%update(sig0, zero6, deps, state_elastic, sig, st, dt)
+      call check(error, st, state_elastic, 'elastic state')
+      if (allocated(error)) return
+      call check(error, maxval(abs(sig - sig0 - matmul(d_matrix(m%e, m%nu), deps))), 0.0_dp, 'elastic stress', &
+                 abs=1.0e-12_dp * maxval(abs(sig0)))
+      if (allocated(error)) return
+      call check(error, maxval(abs(dt - d)), 0.0_dp, 'elastic tangent', abs=0.0_dp)
+      if (allocated(error)) return
+    end do
+    call check(error, .not. m%is_linear(), 'not linear')
+    if (allocated(error)) return
+    call check(error, .not. m%symmetric_tangent(), 'psi < phi: non-symmetric tangent')
+    if (allocated(error)) return
+    m%psi = m%phi
+    call check(error, m%symmetric_tangent(), 'psi = phi: symmetric tangent')
+  end subroutine test_elastic_nu
+
+  !> 300 random trial stresses (fixed seed) for phi = 15, 26.57, 40, 54.9 (nu = 0.2, -0.9,
+  !! 0.499, 0) and psi = 0, phi/2, phi: every result passes check_returned; each kind of result occurs.
+  subroutine test_random_returns(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: angles(4) = [15.0_dp, 26.57_dp, 40.0_dp, 54.9_dp]
+    real(dp), parameter :: nus(4) = [0.2_dp, -0.9_dp, 0.499_dp, 0.0_dp]
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: sig_tr(6), sig(6), dt(6, 6), psi
+    integer(kind=8) :: seed
+    integer :: i, j, k, n, st, counts(0:3)
+    seed = 20240917_8
+    counts = 0
+    do i = 1, size(angles)
+      do j = 0, 2
+        psi = 0.5_dp * j * angles(i)
+        m = make(angles(i), psi, 4.0_dp, nu=nus(i))
+        do n = 1, 300
+          do k = 1, 6
+            sig_tr(k) = m%apex * (6.0_dp * next_uniform(seed) - 4.5_dp)
+          end do
+          sig_tr(4:6) = 0.5_dp * sig_tr(4:6)
+          call return_of(m, sig_tr, sig, st, dt)
+          call check_returned(error, m, sig_tr, sig, st, dt, 'phi ' // str(angles(i)) // ' psi ' // str(psi) // &
+                              ' trial ' // str(n))
+          if (allocated(error)) return
+          counts(st) = counts(st) + 1
+        end do
+      end do
+    end do
+    call check(error, counts(state_elastic) > 100 .and. counts(state_plastic) > 1000 .and. &
+               counts(state_tension) > 100, 'elastic, plastic and tension results all occur: ' // &
+               str(counts(0)) // ' ' // str(counts(1)) // ' ' // str(counts(3)))
+  end subroutine test_random_returns
+
+  !> The apex M I for hydrostatic tension beyond it and for a trial exactly at it; uniaxial
+  !! tension beyond M returns proportionally to (ft, 0, 0); uniaxial tension below M (but
+  !! beyond ft) by the closest-point return; points exactly on the surface stay; trial paths
+  !! through the apex and along the hydrostatic axis give finite stresses on or inside the
+  !! surface.
+  subroutine test_apex_tension(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: sig(6), dt(6, 6), apex(6), trial(6), dir(6), t, k
+    integer :: st, i, j
+    do j = 0, 1
+      m = make(phi_block, j * phi_block, ft_block)
+      apex = m%apex * [1, 1, 1, 0, 0, 0]
+      k = m%e / (3.0_dp * (1.0_dp - 2.0_dp * m%nu))
+      ! hydrostatic tension twice the apex
+      call return_of(m, 2.0_dp * apex, sig, st, dt)
+      call check(error, st, state_tension, 'hydrostatic beyond apex: tension state')
+      if (allocated(error)) return
+      call check(error, maxval(abs(sig - apex)), 0.0_dp, 'hydrostatic beyond apex: the apex', abs=1.0e-12_dp * m%apex)
+      if (allocated(error)) return
+      call check(error, dt(1, 1) + 2.0_dp * dt(1, 2), 3.0_dp * apex_stiffness_factor * k, &
+                 'apex: volumetric residual stiffness', rel=1.0e-10_dp)
+      if (allocated(error)) return
+      call check(error, dt(4, 4), 0.25_dp * m%e / (1.0_dp + m%nu), 'apex: shear stiffness alpha G, alpha = 1/2', &
+                 rel=1.0e-10_dp)
+      if (allocated(error)) return
+      ! exactly at the apex
+      call return_of(m, apex, sig, st, dt)
+      call check(error, maxval(abs(sig - apex)) == 0.0_dp .and. finite(reshape(dt, [36])), 'trial at the apex stays')
+      if (allocated(error)) return
+      ! uniaxial tension 2 ft > M: proportional return to ft
+      call check(error, 2.0_dp * ft_block > m%apex, 'test premise: 2 ft beyond the apex')
+      if (allocated(error)) return
+      call return_of(m, [0.0_dp, 2.0_dp * ft_block, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], sig, st, dt)
+      call check(error, st, state_tension, 'uniaxial 2 ft: tension state')
+      if (allocated(error)) return
+      call check(error, maxval(abs(sig - [0.0_dp, ft_block, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])), 0.0_dp, &
+                 'uniaxial 2 ft: back to ft', abs=1.0e-12_dp * ft_block)
+      if (allocated(error)) return
+      ! uniaxial tension 1.2 ft < M: closest point
+      trial = [0.0_dp, 0.0_dp, 1.2_dp * ft_block, 0.0_dp, 0.0_dp, 0.0_dp]
+      call return_of(m, trial, sig, st, dt)
+      call check(error, st, state_plastic, 'uniaxial 1.2 ft: closest-point return')
+      if (allocated(error)) return
+      call check_returned(error, m, trial, sig, st, dt, 'uniaxial 1.2 ft')
+      if (allocated(error)) return
+      ! a point on the surface (uniaxial ft) stays, plastic
+      trial = [ft_block, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+      call return_of(m, trial, sig, st, dt)
+      call check(error, st == state_plastic .and. all(sig == trial) .and. finite(reshape(dt, [36])), &
+                 'on the surface: unchanged, plastic')
+      if (allocated(error)) return
+      ! paths through the apex in several directions
+      do i = 1, 3
+        select case (i)
+        case (1)
+          dir = [1.0_dp, -0.5_dp, -0.5_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+        case (2)
+          dir = [0.3_dp, 0.2_dp, -0.1_dp, 0.4_dp, -0.2_dp, 0.1_dp]
+        case default
+          dir = [1.0_dp, 1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+        end select
+        t = -2.0_dp
+        do while (t <= 2.0_dp + 1.0e-12_dp)
+          trial = apex + t * m%apex * dir
+          call return_of(m, trial, sig, st, dt)
+          call check_returned(error, m, trial, sig, st, dt, 'path ' // str(i) // ' t ' // str(t))
+          if (allocated(error)) return
+          if (abs(t) < 1.0e-12_dp) then
+            call check(error, maxval(abs(sig - apex)), 0.0_dp, 'path at the apex', abs=1.0e-12_dp * m%apex)
+            if (allocated(error)) return
+          end if
+          t = t + 0.125_dp
+        end do
+      end do
+    end do
+  end subroutine test_apex_tension
+
+  !> The consistent tangent against a central finite-difference derivative of the update
+  !! (1e-5 relative to the largest entry) for associated and non-associated flow at several
+  !! trial stresses outside the surface (generic Lode angles, near the meridians, near the
+  !! apex); associated tangents are symmetric.
+  subroutine test_tangent_fd(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: psis(4) = [26.57_dp, 15.0_dp, 5.0_dp, 0.0_dp]
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: sig0(6), deps(6), sig(6), dt(6, 6), dfd(6, 6), sp(6), sm(6), dd(6, 6), e(6), h
+    integer :: i, k, j, st, stp, stm
+    do i = 1, size(psis)
+      m = make(26.57_dp, psis(i), ft_block, nu=0.25_dp)
+      do k = 1, 5
+        sig0 = [-8.0_dp, -4.0_dp, -2.0_dp, 0.5_dp, -0.3_dp, 0.2_dp]
+        select case (k)
+        case (1)
+          deps = 3.0e-3_dp * [0.3_dp, -0.5_dp, 0.1_dp, 0.8_dp, -0.4_dp, 0.6_dp]
+        case (2)
+          deps = 1.0e-3_dp * [-3.0_dp, 0.4_dp, 0.3_dp, 0.1_dp, 0.0_dp, 0.05_dp]
+        case (3)
+          sig0 = [-3.0_dp, -3.0_dp, -12.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+          deps = 1.0e-3_dp * [0.5_dp, 0.5_dp, -2.0_dp, 0.01_dp, 0.0_dp, 0.0_dp]
+        case (4)
+          sig0 = m%apex * [0.8_dp, 0.8_dp, 0.8_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+          deps = 2.0e-3_dp * [-0.3_dp, 0.1_dp, -0.1_dp, 0.25_dp, 0.1_dp, -0.15_dp]
+        case default
+          sig0 = [-30.0_dp, -10.0_dp, -20.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+          deps = 1.0e-2_dp * [-2.0_dp, -1.0_dp, 0.5_dp, 1.5_dp, -1.0_dp, 1.0_dp]
+        end select
+        call m%update(sig0, zero6, deps, state_elastic, sig, st, dt)
+        call check(error, st, state_plastic, 'tangent psi ' // str(psis(i)) // ' case ' // str(k) // ' plastic')
+        if (allocated(error)) return
+        h = 1.0e-6_dp * maxval(abs(deps))
+        do j = 1, 6
+          e = 0.0_dp
+          e(j) = h
+          call m%update(sig0, zero6, deps + e, state_elastic, sp, stp, dd)
+          call m%update(sig0, zero6, deps - e, state_elastic, sm, stm, dd)
+          dfd(:, j) = (sp - sm) / (2.0_dp * h)
+        end do
+        call check(error, maxval(abs(dt - dfd)), 0.0_dp, 'tangent vs FD, psi ' // str(psis(i)) // ' case ' // &
+                   str(k), abs=1.0e-5_dp * maxval(abs(dfd)))
+        if (allocated(error)) return
+        if (m%symmetric_tangent()) then
+          call check(error, maxval(abs(dt - transpose(dt))), 0.0_dp, 'associated: symmetric', abs=0.0_dp)
+          if (allocated(error)) return
+        else
+          call check(error, maxval(abs(dt - transpose(dt))) > 1.0e-6_dp * maxval(abs(dt)), &
+                     'non-associated: not symmetric')
+          if (allocated(error)) return
+        end if
+      end do
+    end do
+  end subroutine test_tangent_fd
+
+  !> Rotating the trial stress, updating and rotating back gives the same stress (1e-10
+  !! relative) for elastic, plastic and tension-zone trials.
+  subroutine test_rotation(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: r(3, 3), rt(3, 3), trial(6), sig(6), sig_r(6), dt(6, 6), back(6)
+    integer(kind=8) :: seed
+    integer :: i, j, k, st, st_r
+    seed = 77_8
+    do j = 0, 1
+      m = make(35.0_dp, j * 35.0_dp, 3.0_dp)
+      do i = 1, 60
+        do k = 1, 6
+          trial(k) = m%apex * (6.0_dp * next_uniform(seed) - 4.5_dp)
+        end do
+        if (i == 1) trial = [2.0_dp * m%apex, -1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp, 0.0_dp]   ! on a principal frame
+        if (i == 2) trial = [-40.0_dp, -1.0_dp, -1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]          ! on a meridian
+        r = rotation(0.3_dp * i, 0.7_dp - 0.05_dp * i, 1.1_dp + 0.2_dp * i)
+        call return_of(m, trial, sig, st, dt)
+        call return_of(m, rotate_stress(r, trial), sig_r, st_r, dt)
+        rt = transpose(r)
+        back = rotate_stress(rt, sig_r)
+        call check(error, st_r, st, 'rotated: same state, trial ' // str(i))
+        if (allocated(error)) return
+        call check(error, maxval(abs(back - sig)), 0.0_dp, 'rotated back: same stress, trial ' // str(i), &
+                   abs=1.0e-10_dp * stress_scale(m, trial))
+        if (allocated(error)) return
+      end do
+    end do
+  end subroutine test_rotation
+
+  !> The block example of thesis 2.4.3 at one material point: eps_z imposed in 200 equal
+  !! steps, the lateral stresses kept zero by Newton iteration on the lateral strains with the
+  !! tangent. sigma_z rises with slope E and stays at -15.71 in compression and +6 in tension
+  !! (0.2%), never beyond.
+  subroutine test_block_path(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: sig0(6), eps0(6), deps(6), sig(6), dt(6, 6), target, ezmax, a(2, 2), r(2), det, peak
+    integer :: dir, step, iter, st, st0
+    m = make(phi_block, phi_block, ft_block)
+    do dir = -1, 1, 2
+      if (dir < 0) then
+        target = -15.71_dp
+      else
+        target = ft_block
+      end if
+      ezmax = 3.0_dp * target / m%e
+      sig0 = 0.0_dp
+      eps0 = 0.0_dp
+      st0 = state_elastic
+      peak = 0.0_dp
+      do step = 1, 200
+        deps = 0.0_dp
+        deps(3) = ezmax / 200.0_dp
+        deps(1:2) = -m%nu * deps(3)
+        do iter = 1, 50
+          call m%update(sig0, eps0, deps, st0, sig, st, dt)
+          r = sig(1:2)
+          if (maxval(abs(r)) <= 1.0e-10_dp * abs(target)) exit
+          a = dt(1:2, 1:2)
+          det = a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)
+          deps(1) = deps(1) - (a(2, 2) * r(1) - a(1, 2) * r(2)) / det
+          deps(2) = deps(2) - (a(1, 1) * r(2) - a(2, 1) * r(1)) / det
+        end do
+        call check(error, maxval(abs(sig(1:2))) <= 1.0e-10_dp * abs(target), 'lateral stress free, step ' // str(step))
+        if (allocated(error)) return
+        if (step == 10) then
+          call check(error, sig(3), m%e * 10.0_dp * ezmax / 200.0_dp, 'elastic slope E', rel=1.0e-12_dp)
+          if (allocated(error)) return
+        end if
+        peak = max(peak, abs(sig(3)))
+        sig0 = sig
+        eps0 = eps0 + deps
+        st0 = st
+      end do
+      call check(error, st0, state_plastic, 'plateau reached')
+      if (allocated(error)) return
+      call check(error, sig0(3), target, 'plateau sigma_z', rel=2.0e-3_dp)
+      if (allocated(error)) return
+      call check(error, peak, abs(target), 'no overshoot', rel=2.0e-3_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_block_path
+
+  !> phi = 5..60 deg (and the extremes 1 and 80 deg) with psi = 0 and psi = phi: single
+  !! steps from zero stress reaching 100 and 1e6 times the elastic limit in shear, uniaxial
+  !! compression, mixed, uniaxial-strain tension and volumetric expansion directions give
+  !! finite stresses on the surface (check_returned).
+  subroutine test_huge_steps(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: factors(2) = [100.0_dp, 1.0e6_dp]
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: dirs(6, 5), d(6, 6), sig(6), dt(6, 6), t, phi, angles(14)
+    integer :: i, j, k, n, st
+    dirs(:, 1) = [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
+    dirs(:, 2) = [0.3_dp, 0.3_dp, -1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]   ! uniaxial compression stress (nu = 0.3)
+    dirs(:, 3) = [-0.3_dp, 0.6_dp, -0.3_dp, 0.5_dp, -0.4_dp, 0.2_dp]
+    dirs(:, 4) = [0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+    dirs(:, 5) = [1.0_dp, 1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+    angles(1:12) = [(5.0_dp * i, i = 1, 12)]
+    angles(13:14) = [1.0_dp, 80.0_dp]
+    do i = 1, size(angles)
+      phi = angles(i)
+      do j = 0, 1
+        m = make(phi, j * phi, 2.0_dp, nu=0.3_dp)
+        d = d_matrix(m%e, m%nu)
+        do k = 1, size(dirs, 2)
+          t = surface_along(m, zero6, matmul(d, dirs(:, k)), 0.0_dp, 1.0e3_dp * m%apex / m%e)
+          call check(error, t < 0.99_dp * 1.0e3_dp * m%apex / m%e, 'test premise: direction ' // str(k) // ' yields')
+          if (allocated(error)) return
+          do n = 1, size(factors)
+            call m%update(zero6, zero6, factors(n) * t * dirs(:, k), state_elastic, sig, st, dt)
+            call check_returned(error, m, matmul(d, factors(n) * t * dirs(:, k)), sig, st, dt, &
+                                'huge step phi ' // str(phi) // ' psi ' // str(m%psi) // ' dir ' // str(k) // &
+                                ' factor ' // str(factors(n)))
+            if (allocated(error)) return
+            call check(error, st /= state_elastic, 'huge step yields')
+            if (allocated(error)) return
+          end do
+        end do
+      end do
+    end do
+  end subroutine test_huge_steps
+
+  function spec_of(keys, values) result(spec)
+    character(len=*), intent(in) :: keys(:)
+    real(dp), intent(in) :: values(:)
+    type(material_spec_t) :: spec
+    integer :: i
+    spec%name = 'concrete'
+    spec%kind = 'matsuoka'
+    spec%file = 'deck.inp'
+    spec%line = 23
+    allocate (spec%keys(size(keys)))
+    do i = 1, size(keys)
+      spec%keys(i) = keys(i)
+    end do
+    spec%values = values
+  end function spec_of
+
+  !> The validator must fail naming `what` and the record's place.
+  subroutine expect_rejected(error, keys, values, what)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in) :: keys(:)
+    real(dp), intent(in) :: values(:)
+    character(len=*), intent(in) :: what
+    class(material_t), allocatable :: mat
+    type(error_t), allocatable :: err
+    call new_matsuoka_nakai(spec_of(keys, values), mat, err)
+    if (.not. allocated(err)) then
+      call test_failed(error, 'accepted bad parameters (expected an error about ' // what // ')')
+      return
+    end if
+    call check(error, index(err%message, what) > 0 .and. index(err%message, 'deck.inp:23:') == 1 .and. &
+               index(err%message, 'concrete') > 0, 'message "' // err%message // '" names ' // what)
+  end subroutine expect_rejected
+
+  !> Accepts E, NU, PHI, PSI with FT or C (apex eq. 2.4.5); rejects missing, out-of-range,
+  !! doubly given and unknown parameters, naming them.
+  subroutine test_validator(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(material_t), allocatable :: mat
+    type(error_t), allocatable :: err
+    character(len=name_len), parameter :: kft(5) = [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft']
+    character(len=name_len), parameter :: kc(5) = [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'c']
+    character(len=name_len), parameter :: k6(6) = [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'c']
+    real(dp) :: sn
+    call new_matsuoka_nakai(spec_of(kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp]), mat, err)
+    if (allocated(err)) then
+      call test_failed(error, 'valid parameters rejected: ' // err%message)
+      return
+    end if
+    select type (mat)
+    type is (matsuoka_nakai_t)
+      sn = 0.5_dp
+      call check(error, mat%e == 1.0e4_dp .and. mat%nu == 0.2_dp .and. mat%phi == 30.0_dp .and. &
+                 mat%psi == 10.0_dp .and. mat%name == 'concrete', 'parameters stored')
+      if (allocated(error)) return
+      call check(error, mat%apex, 3.0_dp * (1.0_dp + 1.0_dp / sn), 'apex from ft', rel=1.0e-14_dp)
+    class default
+      call test_failed(error, 'wrong material type')
+    end select
+    if (allocated(error)) return
+    call new_matsuoka_nakai(spec_of(kc, [1.0e4_dp, 0.2_dp, 45.0_dp, 0.0_dp, 5.0_dp]), mat, err)
+    if (allocated(err)) then
+      call test_failed(error, 'valid parameters (C) rejected: ' // err%message)
+      return
+    end if
+    select type (mat)
+    type is (matsuoka_nakai_t)
+      call check(error, mat%apex, 5.0_dp, 'apex from c', rel=1.0e-14_dp)
+    class default
+      call test_failed(error, 'wrong material type')
+    end select
+    if (allocated(error)) return
+    call expect_rejected(error, kft, [0.0_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E = ')
+    if (allocated(error)) return
+    call expect_rejected(error, kft(2:5), [0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E is missing')
+    if (allocated(error)) return
+    call expect_rejected(error, kft, [1.0e4_dp, 0.5_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU')
+    if (allocated(error)) return
+    call expect_rejected(error, kft, [1.0e4_dp, -1.0_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU')
+    if (allocated(error)) return
+    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 0.0_dp, 0.0_dp, 6.0_dp], 'PHI')
+    if (allocated(error)) return
+    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 90.0_dp, 10.0_dp, 6.0_dp], 'PHI')
+    if (allocated(error)) return
+    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 31.0_dp, 6.0_dp], 'PSI')
+    if (allocated(error)) return
+    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 30.0_dp, -1.0_dp, 6.0_dp], 'PSI')
+    if (allocated(error)) return
+    call expect_rejected(error, [kft(1:3), kft(5)], [1.0e4_dp, 0.2_dp, 30.0_dp, 6.0_dp], 'PSI is missing')
+    if (allocated(error)) return
+    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 0.0_dp], 'FT')
+    if (allocated(error)) return
+    call expect_rejected(error, kc, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, -2.0_dp], 'C = ')
+    if (allocated(error)) return
+    call expect_rejected(error, k6, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 3.0_dp], 'only one of FT and C')
+    if (allocated(error)) return
+    call expect_rejected(error, kft(1:4), [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp], 'FT or C is missing')
+    if (allocated(error)) return
+    call expect_rejected(error, [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'kn'], &
+                         [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp], 'unknown parameter KN')
+  end subroutine test_validator
+
+end module test_matsuoka

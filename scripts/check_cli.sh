@@ -52,14 +52,19 @@ for deck in test/data/bad/*.dat; do
   fi
 done
 
-# The main job with both solvers: results file, XDMF beside it, quiet mode prints nothing.
+# Model B SE1 (linear) with both solvers: results file, XDMF beside it, quiet mode prints nothing.
 for solver in cholmod skyline; do
-  expect_status "model B with $solver" 0 "$feps" input/modelB.dat --solver "$solver" --output "$tmp/b_$solver.h5"
+  expect_status "model B SE1 with $solver" 0 "$feps" input/modelB/SE1.dat --solver "$solver" --output "$tmp/b_$solver.h5"
   [ -s "$tmp/b_$solver.h5" ] && [ -s "$tmp/b_$solver.xmf" ] && ok "model B $solver wrote .h5 and .xmf" \
     || bad "model B $solver wrote .h5 and .xmf"
 done
-"$feps" input/modelB.dat --quiet --output "$tmp/q.h5" >"$tmp/out" 2>&1
+"$feps" input/modelB/SE1.dat --quiet --output "$tmp/q.h5" >"$tmp/out" 2>&1
 [ ! -s "$tmp/out" ] && ok "--quiet prints nothing" || bad "--quiet prints nothing"
+# The main job (FE1): progress lines and the deflection angle beside the thesis's value.
+expect_status "main job input/modelB.dat" 0 "$feps" input/modelB.dat --output "$tmp/main.h5"
+grep -q "step 400/400" "$tmp/out" && ok "progress lines shown" || bad "progress lines shown"
+grep -q "rotation deflection .*thesis   0.050200 deg" "$tmp/out" && ok "deflection angle printed beside the thesis" \
+  || bad "deflection angle printed beside the thesis"
 python3 - "$tmp/b_cholmod.h5" "$tmp/b_skyline.h5" <<'PY' && ok "HDF5 layout (SPEC 10) and solvers agree" || bad "HDF5 layout (SPEC 10) and solvers agree"
 import sys, h5py, numpy as np
 a, b = (h5py.File(p) for p in sys.argv[1:3])

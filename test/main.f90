@@ -13,6 +13,8 @@ program tester
   use test_nonlinear, only: collect_nonlinear
   use test_tri6, only: collect_tri6
   use test_bars, only: collect_bars
+  use test_matsuoka, only: collect_matsuoka
+  use test_joint_models, only: collect_joint_models
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
@@ -31,7 +33,9 @@ program tester
     new_testsuite('interface_mc', collect_interface_mc), &
     new_testsuite('nonlinear', collect_nonlinear), &
     new_testsuite('tri6', collect_tri6), &
-    new_testsuite('bars', collect_bars) &
+    new_testsuite('bars', collect_bars), &
+    new_testsuite('matsuoka', collect_matsuoka), &
+    new_testsuite('joint_models', collect_joint_models) &
     ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1

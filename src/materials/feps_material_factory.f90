@@ -7,6 +7,7 @@ module feps_material_factory
   use feps_linear_elastic, only: linear_elastic_t
   use feps_interface_mohr_coulomb, only: new_interface_mohr_coulomb
   use feps_elastic_bar, only: new_elastic_bar
+  use feps_matsuoka_nakai, only: new_matsuoka_nakai
   implicit none
   private
 
@@ -53,6 +54,8 @@ contains
       call new_interface_mohr_coulomb(spec, material, error)
     case ('bar')
       call new_elastic_bar(spec, material, error)
+    case ('matsuoka')
+      call new_matsuoka_nakai(spec, material, error)
     case default
       call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': unknown material kind "' // &
                        spec%kind // '" (ELASTIC, MATSUOKA, INTERFACE, BAR)')

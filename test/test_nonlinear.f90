@@ -5,7 +5,7 @@ module test_nonlinear
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_error, only: err_solver
   use feps_model, only: model_t, method_newton_raphson, method_modified_euler, method_initial_stiffness, &
-                        load_traction
+                        method_modified_newton_raphson, load_traction
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
   use feps_observer, only: observer_t, step_result_t
@@ -35,7 +35,8 @@ contains
       new_unittest('a fully open interface is held by its residual stiffness and reported', test_fully_open), &
       new_unittest('one huge sliding step equals 100 small ones', test_huge_step), &
       new_unittest('an impossible load stops with the clear message, never NaN', test_clear_stop), &
-      new_unittest('plane strain: contact through line3 interfaces, Gauss and nodal', test_contact_2d) &
+      new_unittest('plane strain: contact through line3 interfaces, Gauss and nodal', test_contact_2d), &
+      new_unittest('Matsuoka block: one step 100 times past yield, every preset', test_matsuoka_huge_step) &
       ]
   end subroutine collect_nonlinear
 
@@ -282,5 +283,39 @@ contains
       end do
     end do
   end subroutine test_contact_2d
+
+  !> The sec2.4.3 compression block driven to 100 times its yield displacement in one step:
+  !! each iterative preset ends on the plateau (or stops with the clear message), never with
+  !! NaN; modified Euler (one iteration, nothing to carry the residual into) must stay finite.
+  subroutine test_matsuoka_huge_step(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer :: m
+    integer, parameter :: methods(4) = [method_modified_euler, method_newton_raphson, &
+                                        method_modified_newton_raphson, method_initial_stiffness]
+    do m = 1, size(methods)
+      call read_deck('input/verification/sec2_4_3_compression.dat', model, error)
+      if (allocated(error)) return
+      model%stages(1)%steps = 1
+      model%stages(1)%controls%method = methods(m)
+      model%stages(1)%controls%max_iterations = merge(1, 100, methods(m) == method_modified_euler)
+      model%constraints(size(model%constraints))%value = -100.0_dp * 15.71_dp / 10000.0_dp * 10.0_dp
+      call run_analysis(model, 'cholmod', obs, summary, error)
+      if (allocated(error)) then
+        ! the clear stop is acceptable; NaN never is
+        if (index(error%message, 'NaN') > 0 .or. index(error%message, 'step 1') == 0) return
+        deallocate (error)
+        cycle
+      end if
+      call check(error, all(obs%last%groups(1)%stress == obs%last%groups(1)%stress), 'no NaN')
+      if (allocated(error)) return
+      if (methods(m) == method_modified_euler) cycle
+      call check(error, maxval(abs(obs%last%groups(1)%stress(3, :) + 15.7112_dp)), 0.0_dp, &
+                 'sigma_z on the plateau after one huge step', abs=0.02_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_matsuoka_huge_step
 
 end module test_nonlinear

@@ -1039,7 +1039,7 @@ contains
         else
           c%max_cutbacks = m
         end if
-      case ('DELTA1', 'DELTA2', 'DELTA3', 'DELTA4')
+      case ('DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE')
         call parse_real(v, x, error, rec, i)
         if (allocated(error)) return
         if (x < 0.0_dp) then
@@ -1055,11 +1055,13 @@ contains
           c%delta3 = x
         case ('DELTA4')
           c%delta4 = x
+        case ('DIVERGENCE')
+          c%divergence = x
         end select
       case default
         if (first == 2) then
           call input_error(error, rec%file, rec%line, 'unknown CONTROLS option "' // k // &
-                           '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, CUTBACKS)', i)
+                           '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS)', i)
           return
         end if
       end select
@@ -1108,10 +1110,10 @@ contains
           call input_error(error, rec%file, rec%line, 'OUTPUT (every k steps) must not be negative', i)
           return
         end if
-      case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4')
+      case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE')
       case default
         call input_error(error, rec%file, rec%line, 'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
-                         'METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, CUTBACKS)', i)
+                         'METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS)', i)
         return
       end select
     end do

@@ -170,6 +170,10 @@ contains
       write (output_unit, '(a)') 'factor nonzeros  ' // trim(buf)
       write (output_unit, '(a,es10.3)') 'factor flops     ', s%flops
       write (output_unit, '(a,es10.3,a,es10.3)') 'pivot ratio      ', s%min_pivot_ratio, ' .. ', s%max_pivot_ratio
+      if (s%min_pivot_ratio > 0.0_dp) write (output_unit, '(a,es10.3,a)') 'condition est.   ', &
+        s%max_pivot_ratio / s%min_pivot_ratio, ' (max/min pivot ratio)'
+      if (s%condition_warning) write (error_unit, '(a)') 'feps: warning: the max/min pivot ratio exceeded 1e12: ' // &
+        'the stiffness is ill-conditioned (stiffness contrast or a nearly free part); results may have lost digits'
       write (output_unit, '(a,3(1x,es12.5))') 'applied force   ', s%applied_force
       write (output_unit, '(a,3(1x,es12.5))') 'reaction force  ', s%reaction_force
       write (output_unit, '(a,es12.5,a)') 'max displacement ', s%max_displacement, ' at node ' // &

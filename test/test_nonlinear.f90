@@ -36,7 +36,8 @@ contains
       new_unittest('one huge sliding step equals 100 small ones', test_huge_step), &
       new_unittest('an impossible load stops with the clear message, never NaN', test_clear_stop), &
       new_unittest('plane strain: contact through line3 interfaces, Gauss and nodal', test_contact_2d), &
-      new_unittest('Matsuoka block: one step 100 times past yield, every preset', test_matsuoka_huge_step) &
+      new_unittest('Matsuoka block: one step 100 times past yield, every preset', test_matsuoka_huge_step), &
+      new_unittest('stiffness contrast 1e11 : 1.44 in one model, condition warning', test_stiffness_contrast) &
       ]
   end subroutine collect_nonlinear
 
@@ -317,5 +318,43 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_matsuoka_huge_step
+
+  !> The contact test with the upper block at E = 1e11 and the lower one at 1.44 MPa (and
+  !! Kn = 8e5). The stiff block's sideways motion is held only through the soft one, so the
+  !! system is singular to within double precision (pivot ratios ~1e-11, like those roundoff
+  !! leaves in a truly singular model). Either it converges with the exact linear stress field
+  !! (1%) and the condition estimate shows the contrast, or it stops with the clear message
+  !! naming the node and DOF; never NaN.
+  subroutine test_stiffness_contrast(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer :: q
+    call read_deck('test/data/block_contact.dat', model, error)
+    if (allocated(error)) return
+    model%materials = [model%materials, model%materials(1)]
+    model%materials(3)%name = 'stiff'
+    model%materials(1)%values(1) = 1.44_dp       ! lower block
+    model%materials(3)%values(1) = 1.0e11_dp     ! upper block
+    model%groups(2)%material = 3
+    model%materials(2)%values(1) = 8.0e5_dp
+    model%materials(2)%values(2) = 4.0e5_dp
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) then
+      if (index(error%message, 'singular at node') > 0 .and. index(error%message, 'DOF') > 0 .and. &
+          index(error%message, 'double precision') > 0) deallocate (error)
+      return
+    end if
+    do q = 1, size(obs%last%groups(3)%state)
+      call check(error, obs%last%groups(3)%stress(3, q), -1.0_dp, 'sigma_n with a contrast of 7e10', rel=0.01_dp)
+      if (allocated(error)) return
+    end do
+    call check(error, summary%max_pivot_ratio / summary%min_pivot_ratio > 1.0e9_dp, &
+               'the condition estimate shows the contrast')
+    if (allocated(error)) return
+    call check(error, summary%condition_warning .eqv. &
+               (summary%max_pivot_ratio / summary%min_pivot_ratio > 1.0e12_dp), 'warning exactly above 1e12')
+  end subroutine test_stiffness_contrast
 
 end module test_nonlinear

@@ -49,7 +49,11 @@ module feps_incremental_analysis
     real(dp) :: applied_force(3) = 0.0_dp
     real(dp) :: reaction_force(3) = 0.0_dp
     character(len=:), allocatable :: solver
+    logical :: condition_warning = .false.   !! max/min pivot ratio passed condition_warning
   end type analysis_summary_t
+
+  !> Above this max/min pivot ratio the results may have lost digits: say so.
+  real(dp), parameter, public :: condition_warning = 1.0e12_dp
 
   !> Point states of one group: committed (end of the last step) and trial.
   type :: group_state_t
@@ -84,6 +88,7 @@ module feps_incremental_analysis
     real(dp), allocatable :: f_applied(:, :)           !! external load applied so far (global)
     real(dp), allocatable :: uc(:, :)                  !! constrained values reached (nodal systems)
     logical :: symmetrized = .false.
+    logical :: warned_condition = .false.
     type(linear_part_t) :: lin
   end type analysis_t
 
@@ -756,11 +761,18 @@ contains
       if (ieq > 0 .and. ieq <= an%map%neq) then
         call fatal_error(error, err_model, model%deck_file // ': the stiffness matrix is singular at ' // &
                          an%map%dof_name(ieq) // ': that DOF is not held (an unconstrained rigid-body mode ' // &
-                         'or a missing support)', item=ieq)
+                         'or a missing support), or held only through a stiffness contrast beyond double ' // &
+                         'precision (pivot below 1e-11 of its diagonal)', item=ieq)
       end if
       return
     end if
     summary%factorizations = an%solver%factorizations
+    if (.not. an%warned_condition .and. an%solver%min_pivot_ratio > 0.0_dp) then
+      if (an%solver%max_pivot_ratio / an%solver%min_pivot_ratio > condition_warning) then
+        an%warned_condition = .true.
+        summary%condition_warning = .true.
+      end if
+    end if
   end subroutine factorize_tangent
 
   subroutine name_step(error, st, k, lf)

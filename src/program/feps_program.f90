@@ -54,6 +54,7 @@ module feps_program
     real(dp) :: min_jacobian = 0.0_dp
     real(dp) :: min_pivot_ratio = 0.0_dp
     real(dp) :: max_pivot_ratio = 0.0_dp
+    logical :: condition_warning = .false.
     real(dp) :: applied_force(3) = 0.0_dp
     real(dp) :: reaction_force(3) = 0.0_dp
     character(len=200), allocatable :: reports(:)   !! post-processing lines (REPORT records)
@@ -158,6 +159,7 @@ contains
     summary%min_pivot_ratio = an%min_pivot_ratio
     summary%max_pivot_ratio = an%max_pivot_ratio
     summary%min_jacobian = an%min_detj
+    summary%condition_warning = an%condition_warning
     summary%applied_force = an%applied_force
     summary%reaction_force = an%reaction_force
     summary%max_displacement = an%max_displacement
@@ -379,6 +381,8 @@ contains
     if (.not. allocated(error)) call h5%write_summary_real('time_factorization', summary%time_factorization, error)
     if (.not. allocated(error)) call h5%write_summary_real('time_solve', summary%time_solve, error)
     if (.not. allocated(error)) call h5%write_summary_real('max_displacement', summary%max_displacement, error)
+    if (.not. allocated(error) .and. summary%min_pivot_ratio > 0.0_dp) call h5%write_summary_real( &
+      'condition_estimate', summary%max_pivot_ratio / summary%min_pivot_ratio, error)
     if (.not. allocated(error)) call h5%write_summary_int('steps', int(summary%steps, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('iterations', int(summary%iterations, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('factorizations', int(summary%factorizations, i8), error)

@@ -58,7 +58,9 @@ contains
       new_unittest('model B: skyline equals CHOLMOD', test_model_b_solvers), &
       new_unittest('model B: edge load integrates to 1000 kN', test_model_b_load), &
       new_unittest('Table 2.1 read as a mesh-only input', test_mesh_only), &
-      new_unittest('plane strain: tri6 strip under pressure, both rules', test_plane_strain) &
+      new_unittest('plane strain: tri6 strip under pressure, both rules', test_plane_strain), &
+      new_unittest('patch test on a distorted hex8b (B-bar) mesh', test_patch_hex8b), &
+      new_unittest('Lame cylinder near incompressibility and at negative nu: locking and B-bar', test_locking) &
       ]
   end subroutine collect_analysis
 
@@ -97,6 +99,11 @@ contains
     call patch_test('test/data/patch_hex8.dat', 0.12_dp, error)
   end subroutine test_patch_hex8
 
+  subroutine test_patch_hex8b(error)
+    type(error_t), allocatable, intent(out) :: error
+    call patch_test('test/data/patch_hex8.dat', 0.12_dp, error, 'hex8b')
+  end subroutine test_patch_hex8b
+
   subroutine test_patch_hex20(error)
     type(error_t), allocatable, intent(out) :: error
     call patch_test('test/data/patch_hex20.dat', 0.05_dp, error)
@@ -104,10 +111,11 @@ contains
 
   !> Distort every node but the cube's, prescribe u = A x + c on the boundary nodes, solve:
   !! the interior displacements and every Gauss-point stress must be exact (1e-10).
-  subroutine patch_test(deck, amplitude, error)
+  subroutine patch_test(deck, amplitude, error, element_type)
     character(len=*), intent(in) :: deck
     real(dp), intent(in) :: amplitude
     type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: element_type
     type(model_t) :: model
     type(step_result_t) :: res
     real(dp), parameter :: grad(3, 3) = reshape([1.0e-3_dp, -2.0e-4_dp, 3.0e-4_dp, 5.0e-4_dp, -7.0e-4_dp, &
@@ -121,6 +129,7 @@ contains
 
     call read_deck(deck, model, error)
     if (allocated(error)) return
+    if (present(element_type)) model%groups(1)%element_type = element_type
     allocate (boundary(model%nnode))
     do n = 1, model%nnode
       x = model%coords(:, n)
@@ -406,5 +415,67 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_plane_strain
+
+  !> Radial displacement at the bore of the plane-strain Lame cylinder against the closed form:
+  !! hex20 and the B-bar hex8 within 1% for nu = 0.49 .. 0.4999 and -0.3, -0.9; plain hex8
+  !! locks (more than 5% too stiff at nu = 0.4999), which is why hex8b exists.
+  subroutine test_locking(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: nus(5) = [0.49_dp, 0.499_dp, 0.4999_dp, -0.3_dp, -0.9_dp]
+    character(len=5), parameter :: types(3) = ['hex8 ', 'hex8b', 'hex20']
+    integer :: i, t
+    real(dp) :: err
+    character(len=40) :: what
+    do t = 1, 3
+      do i = 1, size(nus)
+        call lame_error(trim(types(t)), nus(i), err, error)
+        if (allocated(error)) return
+        write (what, '(a,a,f7.4)') trim(types(t)), ', nu = ', nus(i)
+        if (trim(types(t)) == 'hex8') then
+          if (nus(i) > 0.4998_dp) then
+            call check(error, err < -0.05_dp, trim(what) // ': plain hex8 locks (error below -5%)')
+            if (allocated(error)) return
+          end if
+        else
+          call check(error, err, 0.0_dp, trim(what) // ': relative error of u(a)', abs=0.01_dp)
+          if (allocated(error)) return
+        end if
+      end do
+    end do
+  end subroutine test_locking
+
+  subroutine lame_error(element_type, nu, err, error)
+    character(len=*), intent(in) :: element_type
+    real(dp), intent(in) :: nu
+    real(dp), intent(out) :: err
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(step_result_t) :: res
+    real(dp), parameter :: a = 600.0_dp, b = 715.0_dp, p = 10.0_dp, e = 40000.0_dp
+    real(dp) :: ca, cb, u_exact, total, x(3)
+    integer :: n, count
+    if (element_type == 'hex20') then
+      call read_deck('test/data/lame_hex20.dat', model, error)
+    else
+      call read_deck('test/data/lame_hex8.dat', model, error)
+    end if
+    if (allocated(error)) return
+    model%groups(1)%element_type = element_type
+    model%materials(1)%values(2) = nu
+    call solve(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    ca = p * a**2 / (b**2 - a**2)
+    cb = p * a**2 * b**2 / (b**2 - a**2)
+    u_exact = a * ((1.0_dp - nu**2) * (ca + cb / a**2) - nu * (1.0_dp + nu) * (ca - cb / a**2)) / e
+    total = 0.0_dp
+    count = 0
+    do n = 1, model%nnode
+      x = model%coords(:, n)
+      if (abs(hypot(x(1), x(2)) - a) > 1.0e-6_dp .or. all(res%displacement(:, n) == 0.0_dp)) cycle
+      total = total + dot_product(res%displacement(1:2, n), x(1:2)) / a
+      count = count + 1
+    end do
+    err = (total / count - u_exact) / u_exact
+  end subroutine lame_error
 
 end module test_analysis

@@ -7,6 +7,7 @@ module feps_element_factory
   use feps_hex8, only: hex8_t
   use feps_hex20, only: hex20_t
   use feps_tri6, only: tri6_t
+  use feps_hex8_bbar, only: hex8_bbar_t
   implicit none
   private
 
@@ -25,6 +26,8 @@ contains
     select case (to_lower(trim(adjustl(type_name))))
     case ('hex8')
       allocate (hex8_t :: element)
+    case ('hex8b')
+      allocate (hex8_bbar_t :: element)
     case ('hex20')
       allocate (element, source=hex20_t(reduced=.false.))
     case ('hex20r')
@@ -35,7 +38,7 @@ contains
       allocate (element, source=tri6_t(six_point=.true.))
     case default
       call fatal_error(error, err_input, "unknown element type '" // trim(adjustl(type_name)) // &
-                       "' (known: hex8, hex20, hex20r, tri6, tri6-6)")
+                       "' (known: hex8, hex8b, hex20, hex20r, tri6, tri6-6)")
     end select
   end subroutine new_element
 

@@ -1467,7 +1467,7 @@ contains
   pure integer function nodes_of(element_type)
     character(len=*), intent(in) :: element_type
     select case (element_type)
-    case ('hex8', 'interface-quad4', 'interface-quad4-nodal')
+    case ('hex8', 'hex8b', 'interface-quad4', 'interface-quad4-nodal')
       nodes_of = 8
     case ('hex20', 'hex20r')
       nodes_of = 20

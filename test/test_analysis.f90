@@ -60,7 +60,8 @@ contains
       new_unittest('Table 2.1 read as a mesh-only input', test_mesh_only), &
       new_unittest('plane strain: tri6 strip under pressure, both rules', test_plane_strain), &
       new_unittest('patch test on a distorted hex8b (B-bar) mesh', test_patch_hex8b), &
-      new_unittest('Lame cylinder near incompressibility and at negative nu: locking and B-bar', test_locking) &
+      new_unittest('Lame cylinder near incompressibility and at negative nu: locking and B-bar', test_locking), &
+      new_unittest('model B: the symmetric half equals the full 360-degree model', test_symmetry) &
       ]
   end subroutine collect_analysis
 
@@ -415,6 +416,39 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_plane_strain
+
+  !> The half model with its y = 0 symmetry plane and the full ring under the doubled load:
+  !! the same displacements at every node of the half (1e-6 of the largest).
+  subroutine test_symmetry(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: half, full
+    type(step_result_t) :: rh, rf
+    integer :: n, m, match
+    real(dp) :: diff, scale
+    call read_deck('test/data/symmetry_half.dat', half, error)
+    if (allocated(error)) return
+    call solve(half, 'cholmod', rh, error)
+    if (allocated(error)) return
+    call read_deck('test/data/symmetry_full.dat', full, error)
+    if (allocated(error)) return
+    call solve(full, 'cholmod', rf, error)
+    if (allocated(error)) return
+    scale = maxval(abs(rh%displacement))
+    diff = 0.0_dp
+    do n = 1, half%nnode
+      match = 0
+      do m = 1, full%nnode     ! first node at the same place (the full ring's theta = 360 copies are unused)
+        if (all(abs(full%coords(:, m) - half%coords(:, n)) < 1.0e-6_dp)) then
+          match = m
+          exit
+        end if
+      end do
+      call check(error, match > 0, 'every node of the half is in the full model')
+      if (allocated(error)) return
+      diff = max(diff, maxval(abs(rh%displacement(:, n) - rf%displacement(:, match))))
+    end do
+    call check(error, diff / scale, 0.0_dp, 'max |u_half - u_full| / max |u|', abs=1.0e-6_dp)
+  end subroutine test_symmetry
 
   !> Radial displacement at the bore of the plane-strain Lame cylinder against the closed form:
   !! hex20 and the B-bar hex8 within 1% for nu = 0.49 .. 0.4999 and -0.3, -0.9; plain hex8

@@ -37,7 +37,8 @@ contains
       new_unittest('an impossible load stops with the clear message, never NaN', test_clear_stop), &
       new_unittest('plane strain: contact through line3 interfaces, Gauss and nodal', test_contact_2d), &
       new_unittest('Matsuoka block: one step 100 times past yield, every preset', test_matsuoka_huge_step), &
-      new_unittest('stiffness contrast 1e11 : 1.44 in one model, condition warning', test_stiffness_contrast) &
+      new_unittest('stiffness contrast 1e11 : 1.44 in one model, condition warning', test_stiffness_contrast), &
+      new_unittest('initial stiffness factorizes once; elastic groups carry no point state', test_initial_stiffness_once) &
       ]
   end subroutine collect_nonlinear
 
@@ -356,5 +357,26 @@ contains
     call check(error, summary%condition_warning .eqv. &
                (summary%max_pivot_ratio / summary%min_pivot_ratio > 1.0e12_dp), 'warning exactly above 1e12')
   end subroutine test_stiffness_contrast
+
+  !> Sliding through interfaces by initial stiffness: one factorization for all steps.
+  subroutine test_initial_stiffness_once(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    call read_deck('input/verification/sec2_3_4a.dat', model, error)
+    if (allocated(error)) return
+    model%stages(1)%controls%method = method_initial_stiffness
+    model%stages(2)%controls%method = method_initial_stiffness
+    model%stages(2)%controls%max_iterations = 50
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%factorizations, 1, 'factorizations in 101 steps')
+    if (allocated(error)) return
+    call check(error, summary%iterations > summary%steps, 'it iterates instead')
+    if (allocated(error)) return
+    call check(error, hypot(obs%last%groups(3)%stress(1, 1), obs%last%groups(3)%stress(2, 1)), &
+               100.0_dp + (1000.0_dp / 3.0_dp) * 0.1_dp, 'tau at u = 0.2', rel=1.0e-3_dp)
+  end subroutine test_initial_stiffness_once
 
 end module test_nonlinear

@@ -1,0 +1,157 @@
+#!/usr/bin/env bash
+# Run a campaign of feps decks in parallel and gather one CSV.
+#
+#   scripts/campaign.sh NAME DECK...
+#
+# Each deck runs in results/NAME/<deck stem>/ (from the repository root) as
+#   feps DECK --output <stem>.h5 > log.txt 2>&1
+# as many at once as JOBS (default: the number of cores). Resumable: a case whose log.txt ends
+# with the summary line 'results ...' and whose <stem>.h5 exists is not run again; any other case
+# (never run, failed, interrupted) is run from the start. Then results/NAME/summary.csv gets one
+# row per case (those of this call, then any other case folder of the campaign): case, status,
+# exit code, wall time, steps, iterations, factorizations, cut-backs, load factor reached, every
+# /summary attribute rotation_*_deg, and the peak most tensile principal stress (MPa, over all
+# Gauss points of the last step) of group pipe (PEAK_GROUP).
+#
+# Environment:
+#   FEPS        the feps executable (default: built with fpm in the repository, copied to
+#               results/NAME/feps so that rebuilds during the campaign do not disturb it)
+#   JOBS        cases at once (default: nproc)
+#   TIMEOUT     seconds a case may run (default: no limit); a case stopped by it has status timeout
+#   FEPS_ARGS   extra feps options for every case, e.g. "--method initial-stiffness"
+#   PEAK_GROUP  the group whose peak principal stress goes into the CSV (default pipe)
+#   RERUN=1     run every case again
+set -euo pipefail
+
+usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+[[ $# -ge 2 ]] || usage
+case "$1" in -h|--help) usage ;; esac
+
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+NAME=$1
+shift
+[[ $NAME =~ ^[A-Za-z0-9._-]+$ ]] || { echo "campaign: NAME must be letters, digits, . _ -" >&2; exit 2; }
+CAMPAIGN=$ROOT/results/$NAME
+mkdir -p "$CAMPAIGN"
+
+# decks as absolute paths; stems must be unique (one folder per case)
+declare -A seen=()
+DECKS=()
+for deck in "$@"; do
+    [[ -f $deck ]] || { echo "campaign: no deck $deck" >&2; exit 2; }
+    abs=$(cd "$(dirname "$deck")" && pwd)/$(basename "$deck")
+    stem=$(basename "$deck"); stem=${stem%.*}
+    [[ -z ${seen[$stem]:-} ]] || { echo "campaign: two decks named $stem ($deck, ${seen[$stem]})" >&2; exit 2; }
+    seen[$stem]=$deck
+    DECKS+=("$abs")
+done
+
+if [[ -z ${FEPS:-} ]]; then
+    (cd "$ROOT" && fpm build > "$CAMPAIGN/build.log" 2>&1) ||
+        { cat "$CAMPAIGN/build.log" >&2; echo "campaign: fpm build failed" >&2; exit 1; }
+    built=$(cd "$ROOT" && fpm run --runner echo 2>/dev/null | tail -n1)
+    cp "$ROOT/$built" "$CAMPAIGN/feps"
+    FEPS=$CAMPAIGN/feps
+fi
+[[ -x $FEPS ]] || { echo "campaign: FEPS=$FEPS is not executable" >&2; exit 2; }
+FEPS=$(cd "$(dirname "$FEPS")" && pwd)/$(basename "$FEPS")
+JOBS=${JOBS:-$(nproc)}
+export FEPS CAMPAIGN TIMEOUT="${TIMEOUT:-}" FEPS_ARGS="${FEPS_ARGS:-}" RERUN="${RERUN:-}"
+
+finished() {   # finished CASEDIR STEM: the log ends with the summary line and the HDF5 exists
+    [[ -f $1/$2.h5 && -f $1/log.txt ]] && tail -n 1 "$1/log.txt" | grep -q '^results '
+}
+
+run_case() {
+    local deck=$1 stem dir start rc ms
+    stem=$(basename "$deck"); stem=${stem%.*}
+    dir=$CAMPAIGN/$stem
+    if [[ -z $RERUN ]] && finished "$dir" "$stem"; then
+        echo "skip   $stem (finished)"
+        return 0
+    fi
+    mkdir -p "$dir"
+    rm -f "$dir/$stem.h5" "$dir/$stem.h5.part" "$dir/$stem.xmf" "$dir/exit_status.txt"
+    echo "run    $stem"
+    start=$(date +%s%N)
+    rc=0
+    # shellcheck disable=SC2086  # FEPS_ARGS is a list of options
+    (cd "$dir" && if [[ -n $TIMEOUT ]]; then
+         exec timeout --signal=TERM "$TIMEOUT" "$FEPS" "$deck" --output "$stem.h5" $FEPS_ARGS
+     else
+         exec "$FEPS" "$deck" --output "$stem.h5" $FEPS_ARGS
+     fi) > "$dir/log.txt" 2>&1 || rc=$?
+    # exit code and elapsed seconds, for the CSV (the HDF5 holds the wall time of a finished run)
+    ms=$(( ($(date +%s%N) - start) / 1000000 ))
+    printf '%s %d.%03d\n' "$rc" $((ms / 1000)) $((ms % 1000)) > "$dir/exit_status.txt"
+    echo "done   $stem (exit $rc)"
+}
+export -f run_case finished
+
+printf '%s\0' "${DECKS[@]}" | xargs -0 -n 1 -P "$JOBS" bash -c 'run_case "$1"' _ || true
+
+# ------------------------------------------------------------------------------------- gather
+# the cases of this call, then those of earlier calls of the same campaign (folders with a log)
+STEMS=()
+for deck in "${DECKS[@]}"; do s=$(basename "$deck"); STEMS+=("${s%.*}"); done
+for log in "$CAMPAIGN"/*/log.txt; do
+    [[ -f $log ]] || continue
+    s=$(basename "$(dirname "$log")")
+    [[ -n ${seen[$s]:-} ]] || STEMS+=("$s")
+done
+python3 - "$CAMPAIGN" "${PEAK_GROUP:-pipe}" "${STEMS[@]}" <<'PYTHON'
+import csv, os, sys
+import h5py
+import numpy as np
+
+campaign, peak_group, stems = sys.argv[1], sys.argv[2], sys.argv[3:]
+rows, rotations = [], []
+for stem in stems:
+    folder = os.path.join(campaign, stem)
+    h5 = os.path.join(folder, stem + ".h5")
+    log = os.path.join(folder, "log.txt")
+    row = {"case": stem}
+    last = ""
+    if os.path.exists(log):
+        with open(log, errors="replace") as fh:
+            lines = [l.strip() for l in fh if l.strip()]
+        last = lines[-1] if lines else ""
+    code, elapsed = "", ""
+    status_file = os.path.join(folder, "exit_status.txt")
+    if os.path.exists(status_file):
+        code, elapsed = (open(status_file).read().split() + ["", ""])[:2]
+    if os.path.exists(h5) and last.startswith("results "):
+        row["status"] = "ok"
+        with h5py.File(h5, "r") as f:
+            s = f["summary"].attrs
+            row["wall_time_s"] = f"{float(s['wall_time']):.3f}"
+            for key in ("steps", "iterations", "factorizations", "cutbacks"):
+                row[key] = int(s[key]) if key in s else ""
+            for key in sorted(s):
+                if key.startswith("rotation_") and key.endswith("_deg"):
+                    row[key] = f"{float(s[key]):.6g}"
+                    if key not in rotations:
+                        rotations.append(key)
+            steps = sorted(f["steps"]) if "steps" in f else []
+            if steps:
+                row["load_factor"] = f"{float(f['steps/' + steps[-1]].attrs['load_factor']):.6g}"
+                path = f"steps/{steps[-1]}/principal/{peak_group}"
+                if path in f:
+                    row[f"peak_tensile_{peak_group}_MPa"] = f"{float(np.max(f[path][:, 0])):.6g}"
+    else:
+        row["status"] = ("not run" if not os.path.exists(log) else
+                         "timeout" if code == "124" else "failed" if code not in ("", "0") else "incomplete")
+        row["wall_time_s"] = elapsed
+        row["last_log_line"] = last[:160]
+    row["exit_code"] = code
+    rows.append(row)
+
+columns = (["case", "status", "exit_code", "wall_time_s", "steps", "iterations", "factorizations", "cutbacks",
+            "load_factor"] + sorted(rotations) + [f"peak_tensile_{peak_group}_MPa", "last_log_line"])
+out = os.path.join(campaign, "summary.csv")
+with open(out, "w", newline="") as fh:
+    writer = csv.DictWriter(fh, fieldnames=columns, restval="")
+    writer.writeheader()
+    writer.writerows(rows)
+print(f"{out}: {sum(r['status'] == 'ok' for r in rows)} of {len(rows)} cases finished")
+PYTHON

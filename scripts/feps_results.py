@@ -1,0 +1,221 @@
+#!/usr/bin/env python3
+"""Reading feps HDF5 results for the plotting and campaign scripts (docs/output-format.md).
+
+    import feps_results as fr
+    with fr.open_result("SE1.h5") as f:
+        step = fr.last_step(f)                             # "0001"
+        xg = fr.gauss_points(f, "pipe")                    # (npoints, 3), same rows as stress/pipe
+        s1 = f[f"steps/{step}/principal/pipe"][:, 0]
+
+Integration-point positions are not stored in the file; they follow here from the mesh and the
+rules feps uses (src/elements): hex8 2x2x2 and hex20 3x3x3 (hex20r 2x2x2) Gauss, the first
+natural coordinate fastest; interface elements by their own rules on the LOWER layer (the first
+half of the nodes), listed as feps lists them (quad: first natural direction fastest; '-nodal':
+at the nodes of one layer, quad8-nodal adds the centre).
+"""
+import math
+import os
+
+import h5py
+import numpy as np
+
+_G2 = np.array([-1.0, 1.0]) / math.sqrt(3.0)
+_G3 = np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
+
+# hex20 natural coordinates in feps order: corners as hex8, mid-edges 9-12 (bottom), 13-16 (top), 17-20 (vertical)
+_HEX8_XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
+                     [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], dtype=float)
+_HEX20_XI = np.vstack([_HEX8_XI, np.array([
+    [0, -1, -1], [1, 0, -1], [0, 1, -1], [-1, 0, -1],
+    [0, -1, 1], [1, 0, 1], [0, 1, 1], [-1, 0, 1],
+    [-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=float)])
+_QUAD_S = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1], [0, -1], [1, 0], [0, 1], [-1, 0]], dtype=float)
+_TRI_A = 0.44594849091596488631832925388305
+_TRI_B = 0.091576213509770743459571463402202
+
+
+def open_result(path):
+    return h5py.File(path, "r")
+
+
+def text(value):
+    """An HDF5 string attribute as a stripped str."""
+    if isinstance(value, bytes):
+        value = value.decode()
+    elif isinstance(value, np.ndarray):
+        value = value.item()
+        value = value.decode() if isinstance(value, bytes) else str(value)
+    return str(value).strip()
+
+
+def steps(f):
+    """Names of the stored steps ('0001', ...), in order."""
+    return sorted(f["steps"].keys()) if "steps" in f else []
+
+
+def last_step(f):
+    names = steps(f)
+    if not names:
+        raise ValueError(f"{f.filename}: no /steps (a mesh-only run?)")
+    return names[-1]
+
+
+def pick_step(f, step=None):
+    """'NNNN' from an int, a string or None (= the last step)."""
+    if step is None:
+        return last_step(f)
+    name = f"{int(step):04d}"
+    if name not in f["steps"]:
+        raise ValueError(f"{f.filename}: no step {name} (stored: {', '.join(steps(f))})")
+    return name
+
+
+def case_name(f):
+    """The case: the stem of /summary input_file, else of the file name."""
+    if "summary" in f and "input_file" in f["summary"].attrs:
+        return os.path.splitext(os.path.basename(text(f["summary"].attrs["input_file"])))[0]
+    return os.path.splitext(os.path.basename(f.filename))[0]
+
+
+def element_type(f, group):
+    return text(f[f"mesh/groups/{group}"].attrs["element_type"]).lower()
+
+
+def connectivity(f, group):
+    """(nelem, k) 0-based node indices."""
+    return f[f"mesh/groups/{group}/connectivity"][...].astype(np.int64) - 1
+
+
+def coordinates(f):
+    return f["mesh/coordinates"][...]
+
+
+def cylindrical(x):
+    """(r, theta in degrees in [0, 360), z) of points x (n, 3) about the global z axis."""
+    r = np.hypot(x[:, 0], x[:, 1])
+    theta = np.degrees(np.arctan2(x[:, 1], x[:, 0])) % 360.0
+    # keep 180 on the negative x axis (y = -0.0 would give -180 -> 180 anyway)
+    return r, theta, x[:, 2]
+
+
+# ---------------------------------------------------------------------------------------- shapes
+
+def _hex8_shape(xi):
+    """(npts, 8) trilinear shape functions at natural points xi (npts, 3)."""
+    return np.prod(1.0 + xi[:, None, :] * _HEX8_XI[None, :, :], axis=2) / 8.0
+
+
+def _hex20_shape(xi):
+    """(npts, 20) serendipity shape functions."""
+    n = np.empty((xi.shape[0], 20))
+    for a, xa in enumerate(_HEX20_XI):
+        f = 1.0 + xi * xa
+        if a < 8:
+            n[:, a] = np.prod(f, axis=1) * (xi @ xa - 2.0) / 8.0
+        else:
+            zero = int(np.flatnonzero(xa == 0.0)[0])
+            others = [d for d in range(3) if d != zero]
+            n[:, a] = (1.0 - xi[:, zero] ** 2) * f[:, others[0]] * f[:, others[1]] / 4.0
+    return n
+
+
+def _quad_shape(s, nodes):
+    """(npts, 4 | 8) bilinear or serendipity shape functions at s (npts, 2)."""
+    n = np.empty((s.shape[0], nodes))
+    for a in range(nodes):
+        sa = _QUAD_S[a]
+        f = 1.0 + s * sa
+        if nodes == 4:
+            n[:, a] = f[:, 0] * f[:, 1] / 4.0
+        elif a < 4:
+            n[:, a] = f[:, 0] * f[:, 1] * (f[:, 0] + f[:, 1] - 3.0) / 4.0
+        elif sa[0] == 0.0:
+            n[:, a] = (1.0 - s[:, 0] ** 2) * f[:, 1] / 2.0
+        else:
+            n[:, a] = (1.0 - s[:, 1] ** 2) * f[:, 0] / 2.0
+    return n
+
+
+def _tri_shape(s, nodes):
+    l2, l3 = s[:, 0], s[:, 1]
+    l1 = 1.0 - l2 - l3
+    if nodes == 3:
+        return np.column_stack([l1, l2, l3])
+    return np.column_stack([l1 * (2 * l1 - 1), l2 * (2 * l2 - 1), l3 * (2 * l3 - 1),
+                            4 * l1 * l2, 4 * l2 * l3, 4 * l3 * l1])
+
+
+def _tensor_points(g, dims):
+    """Tensor-product points, the first coordinate fastest."""
+    grids = np.meshgrid(*([g] * dims), indexing="ij")
+    return np.column_stack([grid.ravel(order="F") for grid in grids])
+
+
+def integration_shapes(etype, points_per_element=None):
+    """(shape matrix (npts, nodes used), number of nodes used) of the rule feps uses for etype.
+    Interface elements use their lower layer (the first nodes)."""
+    etype = etype.lower()
+    if etype == "hex8":
+        return _hex8_shape(_tensor_points(_G2, 3)), 8
+    if etype in ("hex20", "hex20r"):
+        reduced = etype == "hex20r" or points_per_element == 8
+        return _hex20_shape(_tensor_points(_G2 if reduced else _G3, 3)), 20
+    if etype.startswith("interface-"):
+        nodal = etype.endswith("-nodal")
+        shape = etype[len("interface-"):].replace("-nodal", "")
+        if shape == "quad4":
+            s = _QUAD_S[:4] if nodal else _tensor_points(_G2, 2)
+            return _quad_shape(s, 4), 4
+        if shape == "quad8":
+            s = np.vstack([_QUAD_S, [0.0, 0.0]]) if nodal else _tensor_points(_G3, 2)
+            return _quad_shape(s, 8), 8
+        if shape == "tri3":
+            s = np.array([[0, 0], [1, 0], [0, 1]], float) if nodal else \
+                np.array([[1, 1], [4, 1], [1, 4]], float) / 6.0
+            return _tri_shape(s, 3), 3
+        if shape == "tri6":
+            a, b = _TRI_A, _TRI_B
+            s = np.array([[0.5, 0], [0.5, 0.5], [0, 0.5]]) if nodal else \
+                np.array([[a, a], [1 - 2 * a, a], [a, 1 - 2 * a], [b, b], [1 - 2 * b, b], [b, 1 - 2 * b]])
+            return _tri_shape(s, 6), 6
+    raise ValueError(f"no integration rule known here for element type '{etype}'")
+
+
+def gauss_points(f, group, dataset=None):
+    """Global coordinates (nelem * npts, 3) of the integration points of a group, in the row order of
+    its Gauss-point datasets. `dataset` (an h5py dataset of that group) checks the point count."""
+    etype = element_type(f, group)
+    conn = connectivity(f, group)
+    ppe = int(dataset.attrs["points_per_element"]) if dataset is not None else None
+    shapes, nodes_used = integration_shapes(etype, ppe)
+    if ppe is not None and ppe != shapes.shape[0]:
+        raise ValueError(f"group {group} ({etype}): {ppe} points per element in the file, "
+                         f"{shapes.shape[0]} in the rule assumed here")
+    x = coordinates(f)[conn[:, :nodes_used]]            # (nelem, nodes, 3)
+    return np.einsum("gn,enk->egk", shapes, x).reshape(-1, 3)
+
+
+def element_of_point(f, group, dataset):
+    """Element index (0-based) of each row of a Gauss-point dataset."""
+    ppe = int(dataset.attrs["points_per_element"])
+    return np.repeat(np.arange(dataset.shape[0] // ppe), ppe)
+
+
+def group_nodes(f, group):
+    """Sorted 0-based indices of the nodes a group's elements use."""
+    return np.unique(connectivity(f, group))
+
+
+def summary(f):
+    """/summary attributes as a dict of plain Python values."""
+    out = {}
+    if "summary" not in f:
+        return out
+    for key, value in f["summary"].attrs.items():
+        if isinstance(value, (bytes, np.bytes_, str)):
+            out[key] = text(value)
+        elif np.ndim(value) == 0:
+            out[key] = value.item() if hasattr(value, "item") else value
+        else:
+            out[key] = np.asarray(value).tolist()
+    return out

@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+"""Axial displacement w along r = R at a pipe end section against x (thesis Figures 7.3-7.6), for one
+or more feps results, with the analytical lines of the Australian model and Haslem's flexible pipe
+model (scripts/joint_models.py).
+
+    python3 scripts/plot_joint_deformation.py --h5 FE1.h5 FE2.h5 FE3.h5 \\
+        --labels "typical soil" "soft soil" "stiff soil" --out results/figures/fig7_3.png
+
+Numerical curves: w (uz of the chosen step) of the group's nodes on r = R (default: the group's
+largest nodal radius, 715 in model B) at z = Z (default: the group's largest z, the top pipe end),
+sorted by x = r cos(theta).
+
+Analytical lines (thesis 7.2-7.3), defaults = thesis Table 7.1 (model B edge load): P = 2000 kN on
+the full pipe, contact width Z = 495 mm (load from x = -220 to -715), a = 0 (no packing),
+L = 1250 mm (half the pipe: both ends are loaded, the mid-section does not rotate), E_c = 40000 MPa.
+- Australian model: the loaded part of the pipe compresses as independent columns, so w is linear in
+  the loaded region, zero at its inner boundary (x = -220) and -tan(beta_A) * Z = -sigma_max L / E_c at
+  the loaded edge, and zero elsewhere (no stress, no compression).
+- Haslem: the pipe bends as a beam, plane sections stay plane: w is linear over the whole end,
+  w = tan(beta_H) x. The thesis says only "linearly distributed over the pipe end"; the beam's
+  rotation M L / (E_c I_c) is about its neutral axis, the pipe axis x = 0 (no uniform shortening is in
+  the model), so the line is drawn through w = 0 at x = 0 (--haslem-pivot moves that point).
+The lines' sign is that of the compressed end: w < 0 at the top end (largest z), w > 0 at the bottom.
+--edge +1 puts the loaded edge at x = +R (model C's bottom pipe).
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import feps_results as fr  # noqa: E402
+import joint_models as jm  # noqa: E402
+
+TABLE7_1 = dict(P=2.0e6, Z=495.0, a=0.0, L=1250.0, Ec=40000.0, Ep=1.0, R=715.0, r=600.0)
+
+
+def ring_displacement(f, group, step, radius=None, z=None, tol=None):
+    """(x, w, radius, z, top) of the group's nodes on r = radius, z = z, sorted by x; top is True when
+    z is the group's largest z (the compressed end moves towards -z)."""
+    x = fr.coordinates(f)
+    nodes = fr.group_nodes(f, group)
+    r, _, zz = fr.cylindrical(x[nodes])
+    radius = float(r.max()) if radius is None else radius
+    z = float(zz.max()) if z is None else z
+    tol = 1e-6 * max(1.0, radius) if tol is None else tol
+    on = (np.abs(r - radius) <= tol) & (np.abs(zz - z) <= tol)
+    if on.sum() < 2:
+        raise ValueError(f"{f.filename}: group {group} has fewer than 2 nodes on r = {radius:g}, z = {z:g}")
+    ring = nodes[on]
+    u = f[f"steps/{step}/displacement"][...]
+    order = np.argsort(x[ring, 0])
+    top = abs(z - zz.max()) <= abs(z - zz.min())
+    return x[ring[order], 0], u[ring[order], 2], radius, z, top
+
+
+def slope_angle(x, w, x0, x1):
+    """atan of the slope of w between x0 and x1 (w interpolated linearly in x), in degrees: the angle
+    REPORT ROTATION gives."""
+    return np.degrees(np.arctan((np.interp(x1, x, w) - np.interp(x0, x, w)) / (x1 - x0)))
+
+
+def analytical_lines(params, edge, top, pivot, npts=400):
+    """{label: (x, w)} for the Australian and Haslem models."""
+    R, Z = params["R"], params["Z"]
+    kw = {k: params[k] for k in ("Z", "P", "a", "L", "Ec", "Ep", "R", "r")}
+    aus, has = jm.australian(**kw), jm.haslem(**kw)
+    x = np.linspace(-R, R, npts)
+    s = edge * x                           # distance towards the loaded edge
+    inner = R - Z                          # loaded where s > inner
+    sign = -1.0 if top else 1.0            # compression moves the top end down
+    w_aus = sign * np.tan(np.radians(aus.beta)) * np.clip(s - inner, 0.0, None)
+    w_has = sign * np.tan(np.radians(has.beta)) * (s - edge * pivot)
+    return {f"Australian model (beta = {aus.beta:.4f} deg)": (x, w_aus),
+            f"Haslem (1996) (beta = {has.beta:.4f} deg)": (x, w_has)}, aus, has
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--h5", nargs="+", required=True, help="feps result files")
+    ap.add_argument("--labels", nargs="+", help="legend labels, one per file (default: the case names)")
+    ap.add_argument("--group", default="pipe")
+    ap.add_argument("--radius", type=float, help="ring radius R (default: the group's largest radius)")
+    ap.add_argument("--z", type=float, help="section z (default: the group's largest z, the top end)")
+    ap.add_argument("--step", help="step number (default the last stored)")
+    ap.add_argument("--no-analytical", action="store_true", help="numerical curves only")
+    ap.add_argument("--edge", type=int, choices=[-1, 1], default=-1, help="loaded edge at x = edge * R (default -1)")
+    ap.add_argument("--haslem-pivot", type=float, default=0.0, help="x where Haslem's line is zero (default 0)")
+    for key, value in TABLE7_1.items():
+        ap.add_argument(f"--{key}", type=float, default=value,
+                        help=f"joint model parameter {key} (default {value:g}, thesis Table 7.1)")
+    ap.add_argument("--title", help="title")
+    ap.add_argument("--dpi", type=int, default=110)
+    ap.add_argument("--out", required=True, help="PNG file")
+    args = ap.parse_args(argv)
+    if args.labels and len(args.labels) != len(args.h5):
+        ap.error("give one label per --h5 file")
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    params = {k: getattr(args, k) for k in TABLE7_1}
+    x0, x1 = args.edge * (params["R"] - params["Z"]), args.edge * params["R"]   # the loaded region
+    fig, ax = plt.subplots(figsize=(7.2, 4.8))
+    top = True
+    markers = "osd^v<>p"
+    for k, path in enumerate(args.h5):
+        with fr.open_result(path) as f:
+            step = fr.pick_step(f, args.step)
+            x, w, radius, z, top = ring_displacement(f, args.group, step, args.radius, args.z)
+            label = args.labels[k] if args.labels else fr.case_name(f)
+            # positive when the loaded edge is compressed (as REPORT ROTATION for the model B top end)
+            angle = slope_angle(x, w, x0, x1) * (1.0 if top else -1.0) * -args.edge
+        ax.plot(x, w, marker=markers[k % len(markers)], ms=3.5, lw=1.4,
+                label=f"{label} (beta = {angle:.4f} deg)")
+        print(f"{path}: {label}: {len(x)} nodes on r = {radius:g}, z = {z:g}; w from {w.min():.4f} to {w.max():.4f} mm; "
+              f"deflection angle over x = {x0:g} .. {x1:g}: {angle:.5f} deg")
+    if not args.no_analytical:
+        lines, aus, has = analytical_lines(params, args.edge, top, args.haslem_pivot)
+        for (label, (xa, wa)), style in zip(lines.items(), ["--", ":"]):
+            ax.plot(xa, wa, "k" + style, lw=1.5, label=label)
+        print(f"Australian: beta = {aus.beta:.5f} deg, sigma_max = {aus.sigma_max:.3f} MPa; "
+              f"Haslem: beta = {has.beta:.5f} deg")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.axvline(x0, color="0.6", lw=0.6, ls="-.")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("w (mm)")
+    ax.set_xlim(-params["R"], params["R"])
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right" if (top and args.edge < 0) else "best")
+    ax.set_title(args.title or f"Axial displacement w along r = {radius:g} mm at the pipe end z = {z:g} mm",
+                 fontsize=10)
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    fig.savefig(args.out, dpi=args.dpi)
+    plt.close(fig)
+    print(f"-> {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

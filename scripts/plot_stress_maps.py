@@ -1,0 +1,241 @@
+#!/usr/bin/env python3
+"""Normalised principal-stress map on an unfolded cylinder surface r = const (thesis Figures
+5.3-5.19, 6.6-6.17): theta (deg) across, z (mm) up, filled contours of sigma / q.
+
+    python3 scripts/plot_stress_maps.py --h5 SE1.h5 --group pipe --surface inner --field tensile \\
+        --norm 4.21 --out results/figures/SE1_tensile_inner.png
+
+--surface inner | outer | r=VALUE: the group's smallest or largest nodal radius (about the global z
+axis), or a given radius. Values come from the Gauss points of the elements that reach the
+surface, the layer of points nearest to it in each element (--source gauss, default), from the
+element averages of those elements at their centroids (--source cell), or at the surface nodes
+(--source nodes: each element's Gauss-point stress tensors extrapolated to its nodes by the inverse
+of its shape functions, averaged over the elements sharing the node; the principal value of that
+tensor; reaches the pipe ends, and smooths the jumps between elements). Points that coincide in
+(theta, z) (an r = VALUE between two element layers) are averaged. The map covers the points'
+extent: Gauss points sit inside the elements, so it stops short of the pipe ends by the distance
+of the first point from the end (about 0.21 of the end element's length for 2x2x2 Gauss).
+The plot is drawn with true proportions (arc length r theta against z).
+Prints the peak value and where it is.
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import feps_results as fr  # noqa: E402
+
+Q_MODEL_B = 4.21   # MPa: P = 1000 kN over the half annulus (thesis 5.3)
+SOURCES = {"gauss": "Gauss points", "cell": "element averages", "nodes": "nodal"}
+FIELDS = {"tensile": (0, "most tensile principal stress"), "compressive": (1, "most compressive principal stress")}
+
+
+def surface_radius(f, group, surface):
+    """Radius of 'inner', 'outer' or 'r=VALUE' for a group."""
+    r, _, _ = fr.cylindrical(fr.coordinates(f)[fr.group_nodes(f, group)])
+    if surface == "inner":
+        return float(r.min())
+    if surface == "outer":
+        return float(r.max())
+    if surface.lower().startswith("r="):
+        return float(surface[2:])
+    raise ValueError(f"--surface: inner, outer or r=VALUE, not '{surface}'")
+
+
+def elements_reaching(f, group, radius, tol):
+    """Boolean mask of the elements whose nodal radii span `radius` (within tol)."""
+    r, _, _ = fr.cylindrical(fr.coordinates(f))
+    rn = r[fr.connectivity(f, group)]
+    return (rn.min(axis=1) <= radius + tol) & (rn.max(axis=1) >= radius - tol)
+
+
+def nearest_layer(r_points, radius, ppe):
+    """Mask of each element's points in the layer nearest to `radius`: within a quarter of the
+    element's spread of distances from the nearest one (2 layers of 2x2x2 Gauss points, 3 of 3x3x3)."""
+    d = np.abs(r_points - radius).reshape(-1, ppe)
+    dmin = d.min(axis=1, keepdims=True)
+    spread = d.max(axis=1, keepdims=True) - dmin
+    return (d <= dmin + 0.25 * spread + 1e-9).ravel()
+
+
+def merge_coincident(theta, z, values, radius):
+    """Average the values of points closer than 1e-6 of the radius in (arc length, z)."""
+    scale = 1e-6 * radius
+    keys = np.round(np.column_stack([np.radians(theta) * radius, z]) / scale).astype(np.int64)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    inverse = inverse.ravel()
+    sums = np.zeros(len(first))
+    np.add.at(sums, inverse, values)
+    counts = np.bincount(inverse, minlength=len(first))
+    return theta[first], z[first], sums / counts
+
+
+def surface_values(f, group, step, column, radius, source="gauss", tol=None, kind="principal"):
+    """(theta deg, z, values) on the surface r = radius from the Gauss-point dataset
+    /steps/step/<kind>/<group> (column) or its element averages (source='cell')."""
+    tol = 1e-3 * radius if tol is None else tol
+    reach = elements_reaching(f, group, radius, tol)
+    if not reach.any():
+        raise ValueError(f"group {group}: no element reaches r = {radius:g}")
+    if source == "nodes":
+        theta, z, values = nodal_principal(f, group, step, column, radius, tol)
+    elif source == "cell":
+        data = f[f"steps/{step}/cell/{kind}/{group}"][:, column]
+        conn = fr.connectivity(f, group)[reach]
+        xc = fr.coordinates(f)[conn].mean(axis=1)
+        _, theta, z = fr.cylindrical(xc)
+        values = data[reach]
+    else:
+        ds = f[f"steps/{step}/{kind}/{group}"]
+        ppe = int(ds.attrs["points_per_element"])
+        xg = fr.gauss_points(f, group, ds).reshape(-1, ppe, 3)[reach].reshape(-1, 3)
+        vals = ds[...][:, column].reshape(-1, ppe)[reach].ravel()
+        rg, theta, z = fr.cylindrical(xg)
+        keep = nearest_layer(rg, radius, ppe)
+        theta, z, values = theta[keep], z[keep], vals[keep]
+    return merge_coincident(theta, z, values, radius)
+
+
+def extrapolation_matrix(etype, ppe):
+    """(nodes, points) matrix taking Gauss-point values of one element to its nodes: the inverse of
+    the shape functions at the points (hex8; least squares for hex20 with 27 points); for hex20 with
+    2x2x2 points the corners come from the trilinear fit and each mid-edge node is the mean of its
+    edge's corners."""
+    shapes, nodes = fr.integration_shapes(etype, ppe)
+    if etype == "hex8" or (nodes == 20 and ppe == 27):
+        return np.linalg.pinv(shapes)
+    if nodes == 20 and ppe == 8:
+        corners = np.linalg.inv(fr.integration_shapes("hex8")[0])
+        edges = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+        return np.vstack([corners] + [0.5 * (corners[a] + corners[b])[None, :] for a, b in edges])
+    raise ValueError(f"--source nodes: no extrapolation for {etype} with {ppe} points")
+
+
+def principal_values(stress, column):
+    """Most tensile (column 0) or most compressive (1) principal stress of rows sxx syy szz syz sxz sxy."""
+    t = np.zeros((len(stress), 3, 3))
+    t[:, 0, 0], t[:, 1, 1], t[:, 2, 2] = stress[:, 0], stress[:, 1], stress[:, 2]
+    t[:, 1, 2] = t[:, 2, 1] = stress[:, 3]
+    t[:, 0, 2] = t[:, 2, 0] = stress[:, 4]
+    t[:, 0, 1] = t[:, 1, 0] = stress[:, 5]
+    eig = np.linalg.eigvalsh(t)
+    return eig[:, 2] if column == 0 else eig[:, 0]
+
+
+def nodal_principal(f, group, step, column, radius, tol):
+    """(theta, z, principal stress) at the group's nodes on r = radius: each element's Gauss-point stress
+    tensors extrapolated to its nodes, averaged over the elements sharing a node, then the principal
+    value of the averaged tensor."""
+    ds = f[f"steps/{step}/stress/{group}"]
+    ppe = int(ds.attrs["points_per_element"])
+    conn = fr.connectivity(f, group)
+    ext = extrapolation_matrix(fr.element_type(f, group), ppe)
+    conn = conn[:, :ext.shape[0]]
+    x = fr.coordinates(f)
+    r, theta, z = fr.cylindrical(x)
+    on = np.abs(r - radius) <= tol
+    touching = on[conn].any(axis=1)
+    if not touching.any():
+        raise ValueError(f"group {group}: no node on r = {radius:g} (--source nodes needs a node layer there)")
+    gauss = ds[...].reshape(-1, ppe, 6)[touching]
+    nodal = np.einsum("ng,egc->enc", ext, gauss)           # (elements, nodes, 6)
+    ids = conn[touching].ravel()
+    sums = np.zeros((x.shape[0], 6))
+    np.add.at(sums, ids, nodal.reshape(-1, 6))
+    counts = np.bincount(ids, minlength=x.shape[0])
+    nodes = np.flatnonzero(on & (counts > 0))
+    values = principal_values(sums[nodes] / counts[nodes, None], column)
+    return theta[nodes], z[nodes], values
+
+
+def unfolded_contour(ax, theta, z, values, radius, levels=12, cmap="turbo", zero_line=False):
+    """Filled contours on (theta, z) triangulated in true proportions (arc length, z)."""
+    import matplotlib.tri as mtri
+    import matplotlib.pyplot as plt
+    flat = mtri.Triangulation(np.radians(theta) * radius, z)
+    tri = mtri.Triangulation(theta, z, triangles=flat.triangles)
+    vmin, vmax = float(values.min()), float(values.max())
+    if vmax - vmin < 1e-12 * max(1.0, abs(vmax)):
+        vmin, vmax = vmin - 0.5, vmax + 0.5
+    lv = np.linspace(vmin, vmax, levels + 1)
+    cs = ax.tricontourf(tri, values, levels=lv, cmap=plt.get_cmap(cmap))
+    if zero_line and vmin < 0.0 < vmax:
+        ax.tricontour(tri, values, levels=[0.0], colors="k", linewidths=0.7, linestyles="--")
+    ax.set_aspect(180.0 / (np.pi * radius))    # 1 deg of theta drawn as long as r pi / 180 mm of z
+    ax.set_xlim(theta.min(), theta.max())
+    ax.set_ylim(z.min(), z.max())
+    ax.set_xlabel(r"$\theta$ (deg)")
+    ax.set_ylabel("z (mm)")
+    return cs
+
+
+def mark_peak(ax, theta, z, values, use_max):
+    """Cross at the largest (use_max) or smallest value; returns its index."""
+    i = int(np.argmax(values) if use_max else np.argmin(values))
+    ax.plot(theta[i], z[i], marker="x", color="k", markersize=9, mew=2, clip_on=False)
+    return i
+
+
+def peak_text(theta, z, values, i):
+    return f"peak {values[i]:.2f} at theta = {theta[i]:.0f} deg, z = {z[i]:.0f} mm (x)"
+
+
+def step_label(f, step):
+    lf = f[f"steps/{step}"].attrs.get("load_factor")
+    return f"step {step}" + (f", load factor {float(lf):.3g}" if lf is not None else "")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--h5", required=True, help="feps result file")
+    ap.add_argument("--group", default="pipe", help="solid element group (default pipe)")
+    ap.add_argument("--surface", default="inner", help="inner, outer or r=VALUE (default inner)")
+    ap.add_argument("--field", choices=sorted(FIELDS), default="tensile")
+    ap.add_argument("--norm", type=float, default=Q_MODEL_B,
+                    help="mean pressure q (MPa) the stresses are divided by (default 4.21, model B)")
+    ap.add_argument("--step", help="step number (default the last stored)")
+    ap.add_argument("--source", choices=["gauss", "cell", "nodes"], default="gauss",
+                    help="Gauss points nearest the surface (default), element averages, or nodal values "
+                         "(Gauss-point stresses extrapolated to the nodes and averaged)")
+    ap.add_argument("--levels", type=int, default=12, help="number of contour bands (default 12)")
+    ap.add_argument("--zero-line", action="store_true", help="draw the zero contour (dashed)")
+    ap.add_argument("--title", help="title (default: case, field and surface)")
+    ap.add_argument("--dpi", type=int, default=110)
+    ap.add_argument("--out", required=True, help="PNG file")
+    args = ap.parse_args(argv)
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    column, field_name = FIELDS[args.field]
+    with fr.open_result(args.h5) as f:
+        step = fr.pick_step(f, args.step)
+        radius = surface_radius(f, args.group, args.surface)
+        theta, z, values = surface_values(f, args.group, step, column, radius, args.source)
+        values = values / args.norm
+        case = fr.case_name(f)
+        where = {"inner": "inner surface", "outer": "outer surface"}.get(args.surface, "surface")
+        title = args.title or (f"{case}: {field_name} / q (q = {args.norm:g} MPa)\n"
+                               f"{args.group}, {where} r = {radius:g} mm, {step_label(f, step)}, {SOURCES[args.source]}")
+
+    fig, ax = plt.subplots(figsize=(6.4, 6.6))
+    cs = unfolded_contour(ax, theta, z, values, radius, args.levels,
+                          cmap="turbo" if args.field == "tensile" else "turbo_r", zero_line=args.zero_line)
+    i = mark_peak(ax, theta, z, values, use_max=args.field == "tensile")
+    ax.set_title(title + "\n" + peak_text(theta, z, values, i), fontsize=9.5)
+    cb = fig.colorbar(cs, ax=ax, shrink=0.9, format="%.2f")
+    cb.set_label(r"$\sigma_1 / q$" if args.field == "tensile" else r"$\sigma_3 / q$")
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    fig.savefig(args.out, dpi=args.dpi)
+    plt.close(fig)
+    print(f"{case} {args.field} {where} r={radius:g}: peak {values[i]:.4f} q = {values[i] * args.norm:.4g} MPa "
+          f"at theta={theta[i]:.1f} deg, z={z[i]:.1f} mm ({len(values)} points) -> {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -7,6 +7,7 @@ module feps_elastic_bar
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
+  use feps_material_params, only: check_known_keys, get_parameter
   use feps_material, only: material_t, state_elastic
   implicit none
   private
@@ -59,56 +60,11 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(len=*), parameter :: known(2) = ['e', 'a']
     real(dp) :: e, a
-    logical :: found
-    integer :: i
-
-    if (allocated(spec%keys)) then
-      do i = 1, size(spec%keys)
-        if (all(trim(spec%keys(i)) /= known)) then
-          call fail('unknown parameter ' // upper(trim(spec%keys(i))) // ' (expected E, A)')
-          return
-        end if
-      end do
-    end if
-
-    call spec%get('e', e, found)
-    if (.not. found) then
-      call fail('E is missing')
-      return
-    end if
-    if (.not. (e > 0.0_dp .and. e <= huge(e))) then
-      call fail('E = ' // str(e) // ' must be positive and finite')
-      return
-    end if
-    call spec%get('a', a, found)
-    if (.not. found) then
-      call fail('A (cross-section area) is missing')
-      return
-    end if
-    if (.not. (a > 0.0_dp .and. a <= huge(a))) then
-      call fail('A = ' // str(a) // ' must be positive and finite')
-      return
-    end if
-    allocate (material, source=elastic_bar_t(name=spec%name, e=e, a=a))
-
-  contains
-
-    subroutine fail(message)
-      character(len=*), intent(in) :: message
-      call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': ' // message)
-    end subroutine fail
-
+    call check_known_keys(spec, known, error)
+    if (.not. allocated(error)) call get_parameter(spec, 'e', e, error, positive=.true.)
+    if (.not. allocated(error)) call get_parameter(spec, 'a', a, error, positive=.true.)
+    if (.not. allocated(error)) allocate (material, source=elastic_bar_t(name=spec%name, e=e, a=a))
   end subroutine new_elastic_bar
 
-  pure function upper(text) result(res)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: res
-    integer :: i, code
-    res = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('a') .and. code <= iachar('z')) res(i:i) = achar(code - 32)
-    end do
-  end function upper
 
 end module feps_elastic_bar

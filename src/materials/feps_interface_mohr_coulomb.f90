@@ -19,10 +19,10 @@
 !! eps_n > 0; when eps_n <= 0 at the end of a step the gap closes inside the step and the
 !! stress restarts from zero by eq. 2.3.22.
 module feps_interface_mohr_coulomb
-  use feps_strings, only: to_upper
   use feps_kinds, only: dp, deg2rad
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
+  use feps_material_params, only: check_known_keys, get_parameter, material_error
   use feps_material, only: material_t, state_elastic, state_plastic, state_open
   implicit none
   private
@@ -234,64 +234,24 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(len=*), parameter :: known(5) = ['kn ', 'ks ', 'c  ', 'phi', 'psi']
     real(dp) :: kn, ks, c, phi, psi
-    logical :: found
-    integer :: i
 
-    if (allocated(spec%keys)) then
-      do i = 1, size(spec%keys)
-        if (all(trim(spec%keys(i)) /= known)) then
-          call fail('unknown parameter ' // to_upper(trim(spec%keys(i))) // ' (expected KN, KS, C, PHI, PSI)')
-          return
-        end if
-      end do
-    end if
-
-    call spec%get('kn', kn, found)
-    if (.not. found) then
-      call fail('KN is missing')
-      return
-    end if
-    if (.not. (kn > 0.0_dp .and. kn <= huge(kn))) then
-      call fail('KN = ' // str(kn) // ' must be positive and finite')
-      return
-    end if
-    call spec%get('ks', ks, found)
-    if (.not. found) then
-      call fail('KS is missing')
-      return
-    end if
-    if (.not. (ks > 0.0_dp .and. ks <= huge(ks))) then
-      call fail('KS = ' // str(ks) // ' must be positive and finite')
-      return
-    end if
-    call spec%get('c', c, found)
+    call check_known_keys(spec, known, error)
+    if (.not. allocated(error)) call get_parameter(spec, 'kn', kn, error, positive=.true.)
+    if (.not. allocated(error)) call get_parameter(spec, 'ks', ks, error, positive=.true.)
+    if (.not. allocated(error)) call get_parameter(spec, 'c', c, error, default=0.0_dp)
+    if (.not. allocated(error)) call get_parameter(spec, 'phi', phi, error)
+    if (.not. allocated(error)) call get_parameter(spec, 'psi', psi, error, default=0.0_dp)
+    if (allocated(error)) return
     if (.not. (c >= 0.0_dp .and. c <= huge(c))) then
-      call fail('C = ' // str(c) // ' must be non-negative and finite')
-      return
+      call material_error(error, spec, 'C = ' // str(c) // ' must be non-negative and finite')
+    else if (.not. (phi >= 0.0_dp .and. phi < 90.0_dp)) then
+      call material_error(error, spec, 'PHI = ' // str(phi) // ' must lie in [0, 90) degrees')
+    else if (.not. (psi >= 0.0_dp .and. psi <= phi)) then
+      call material_error(error, spec, 'PSI = ' // str(psi) // ' must lie in [0, PHI] = [0, ' // str(phi) // &
+                          '] degrees')
+    else
+      allocate (material, source=interface_mohr_coulomb_t(name=spec%name, kn=kn, ks=ks, c=c, phi=phi, psi=psi))
     end if
-    call spec%get('phi', phi, found)
-    if (.not. found) then
-      call fail('PHI is missing')
-      return
-    end if
-    if (.not. (phi >= 0.0_dp .and. phi < 90.0_dp)) then
-      call fail('PHI = ' // str(phi) // ' must lie in [0, 90) degrees')
-      return
-    end if
-    call spec%get('psi', psi, found)
-    if (.not. (psi >= 0.0_dp .and. psi <= phi)) then
-      call fail('PSI = ' // str(psi) // ' must lie in [0, PHI] = [0, ' // str(phi) // '] degrees')
-      return
-    end if
-    allocate (material, source=interface_mohr_coulomb_t(name=spec%name, kn=kn, ks=ks, c=c, phi=phi, psi=psi))
-
-  contains
-
-    subroutine fail(message)
-      character(len=*), intent(in) :: message
-      call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': ' // message)
-    end subroutine fail
-
   end subroutine new_interface_mohr_coulomb
 
 

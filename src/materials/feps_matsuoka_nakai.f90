@@ -62,6 +62,7 @@ module feps_matsuoka_nakai
   use feps_kinds, only: dp, deg2rad, pi
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
+  use feps_material_params, only: check_known_keys, get_parameter, material_error
   use feps_material, only: material_t, state_elastic, state_plastic, state_tension
   use feps_elastic, only: elastic_matrix
   implicit none
@@ -571,96 +572,55 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(len=*), parameter :: known(6) = ['e  ', 'nu ', 'phi', 'psi', 'ft ', 'c  ']
     real(dp) :: e, nu, phi, psi, ft, c, m
-    logical :: found, has_ft, has_c
-    integer :: i
+    logical :: has_ft, has_c
 
-    if (allocated(spec%keys)) then
-      do i = 1, size(spec%keys)
-        if (all(trim(spec%keys(i)) /= known)) then
-          call fail('unknown parameter ' // upper(trim(spec%keys(i))) // ' (expected E, NU, PHI, PSI, FT or C)')
-          return
-        end if
-      end do
-    end if
-
-    call spec%get('e', e, found)
-    if (.not. found) then
-      call fail('E is missing')
-      return
-    end if
-    if (.not. (e > 0.0_dp .and. e <= huge(e))) then
-      call fail('E = ' // str(e) // ' must be positive and finite')
-      return
-    end if
-    call spec%get('nu', nu, found)
-    if (.not. found) then
-      call fail('NU is missing')
-      return
-    end if
+    call check_known_keys(spec, known, error)
+    if (.not. allocated(error)) call get_parameter(spec, 'e', e, error, positive=.true.)
+    if (allocated(error)) return
+    call get_parameter(spec, 'nu', nu, error)
+    if (allocated(error)) return
     if (.not. (nu > -1.0_dp .and. nu < 0.5_dp)) then
-      call fail('NU = ' // str(nu) // ' is outside (-1, 0.5): the material would not be positive definite')
+      call material_error(error, spec, 'NU = ' // str(nu) // ' is outside (-1, 0.5): the material would not be positive definite')
       return
     end if
-    call spec%get('phi', phi, found)
-    if (.not. found) then
-      call fail('PHI is missing')
-      return
-    end if
+    call get_parameter(spec, 'phi', phi, error)
+    if (allocated(error)) return
     if (.not. (phi > 0.0_dp .and. phi < 90.0_dp)) then
-      call fail('PHI = ' // str(phi) // ' must lie in (0, 90) degrees')
+      call material_error(error, spec, 'PHI = ' // str(phi) // ' must lie in (0, 90) degrees')
       return
     end if
-    call spec%get('psi', psi, found)
-    if (.not. found) then
-      call fail('PSI is missing')
-      return
-    end if
+    call get_parameter(spec, 'psi', psi, error)
+    if (allocated(error)) return
     if (.not. (psi >= 0.0_dp .and. psi <= phi)) then
-      call fail('PSI = ' // str(psi) // ' must lie in [0, PHI] = [0, ' // str(phi) // '] degrees')
+      call material_error(error, spec, 'PSI = ' // str(psi) // ' must lie in [0, PHI] = [0, ' // str(phi) // '] degrees')
       return
     end if
     call spec%get('ft', ft, has_ft)
     call spec%get('c', c, has_c)
     if (has_ft .and. has_c) then
-      call fail('give only one of FT and C (they determine the same apex M)')
+      call material_error(error, spec, 'give only one of FT and C (they determine the same apex M)')
       return
     end if
     if (has_ft) then
       if (.not. (ft > 0.0_dp .and. ft <= huge(ft))) then
-        call fail('FT = ' // str(ft) // ' must be positive and finite')
+        call material_error(error, spec, 'FT = ' // str(ft) // ' must be positive and finite')
         return
       end if
       m = apex_from_tensile_strength(ft, phi)
     else if (has_c) then
       if (.not. (c > 0.0_dp .and. c <= huge(c))) then
-        call fail('C = ' // str(c) // ' must be positive and finite')
+        call material_error(error, spec, 'C = ' // str(c) // ' must be positive and finite')
         return
       end if
       m = apex_from_cohesion(c, phi)
     else
-      call fail('FT or C is missing')
+      call material_error(error, spec, 'FT or C is missing')
       return
     end if
     allocate (material, source=matsuoka_nakai_t(name=spec%name, e=e, nu=nu, phi=phi, psi=psi, apex=m))
 
-  contains
-
-    subroutine fail(message)
-      character(len=*), intent(in) :: message
-      call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': ' // message)
-    end subroutine fail
 
   end subroutine new_matsuoka_nakai
 
-  pure function upper(text) result(res)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: res
-    integer :: i, code
-    res = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('a') .and. code <= iachar('z')) res(i:i) = achar(code - 32)
-    end do
-  end function upper
 
 end module feps_matsuoka_nakai

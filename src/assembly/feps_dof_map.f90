@@ -22,6 +22,7 @@ module feps_dof_map
     integer, allocatable :: eq_dof(:)        !! direction (1..3) of each equation
     logical, allocatable :: used(:)          !! node belongs to some element
     integer :: unused_nodes = 0
+    logical :: rotated = .false.             !! some node has a nodal system (set once, read per element)
   contains
     procedure :: dof_name                    !! 'node 12, DOF uy' for messages
     procedure :: has_rotations
@@ -100,6 +101,7 @@ contains
       end do
     end do
 
+    map%rotated = any(map%node_csys /= 0)
     ! Plane strain: uz = 0 everywhere.
     if (model%plane_strain) map%constrained(3, :) = .true.
     map%neq = 0
@@ -185,7 +187,7 @@ contains
 
   pure logical function has_rotations(self)
     class(dof_map_t), intent(in) :: self
-    has_rotations = any(self%node_csys /= 0)
+    has_rotations = self%rotated
   end function has_rotations
 
 end module feps_dof_map

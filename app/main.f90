@@ -162,7 +162,8 @@ contains
       else
         write (output_unit, '(a)') 'analysis         nonlinear: ' // str(s%steps) // ' steps, ' // &
           str(s%iterations) // ' iterations, ' // str(s%factorizations) // ' factorizations, ' // &
-          str(s%cutbacks) // ' cut-backs'
+          str(s%cutbacks) // ' cut-backs, ' // str(s%unconverged_steps) // &
+          ' steps not converged (residual carried on)'
       end if
       write (buf, '(i0)') s%matrix_nnz
       write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'

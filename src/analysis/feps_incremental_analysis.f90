@@ -34,6 +34,7 @@ module feps_incremental_analysis
     integer :: iterations = 0
     integer :: factorizations = 0
     integer :: cutbacks = 0
+    integer :: unconverged_steps = 0         !! steps accepted with |R| / |P| above delta1 (carried on)
     integer(i8) :: matrix_nnz = 0
     integer(i8) :: factor_nnz = 0
     real(dp) :: flops = 0.0_dp
@@ -352,7 +353,7 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
     integer :: s, k, step, iters, cut, nfact0, iters_step
-    logical :: ok, need_factor, have_factor
+    logical :: ok, need_factor, have_factor, step_unconverged
     logical, allocatable :: fully_open(:)
 
     allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq), fully_open(size(model%groups)))
@@ -375,6 +376,7 @@ contains
           cut = 0
           iters_step = 0
           nfact0 = an%solver%factorizations
+          step_unconverged = .false.
           do while (done < 1.0_dp - 1.0e-12_dp)
             h = min(h, 1.0_dp - done)
             ! Which stiffness: the method decides (thesis 2.6.3).
@@ -403,6 +405,7 @@ contains
               done = done + h
               rel_prev = rnorm / pnorm
               abs_prev = rnorm
+              if (.not. (rel_prev < c%delta1 .or. rnorm < c%delta2)) step_unconverged = .true.
               call commit(an)
               an%f_applied = an%f_applied + df * (h / st%steps)
               an%uc = an%uc + duc * (h / st%steps)
@@ -423,8 +426,11 @@ contains
           end do
           summary%steps = step
           summary%iterations = summary%iterations + iters_step
+          if (step_unconverged) summary%unconverged_steps = summary%unconverged_steps + 1
           call observer%progress(progress_line(s, k, st%steps, s - 1 + real(k, dp) / st%steps, iters_step, &
-                                               rel_prev, summary%factorizations, an%solver%factorizations - nfact0))
+                                               rel_prev, summary%factorizations, an%solver%factorizations - nfact0) &
+                                 // trim(merge('  (not converged: carried) ', '                           ', &
+                                                step_unconverged)))
           call report_open_interfaces(model, an, observer, fully_open)
           if (writes_step(st, k)) then
             call report_step(model, an, observer, step, s, k, s - 1 + real(k, dp) / st%steps, iters_step, &

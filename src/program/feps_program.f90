@@ -48,6 +48,7 @@ module feps_program
     integer :: iterations = 0
     integer :: factorizations = 0
     integer :: cutbacks = 0
+    integer :: unconverged_steps = 0
     real(dp) :: max_displacement = 0.0_dp
     integer :: max_displacement_node = 0
     real(dp) :: bbox(3, 2) = 0.0_dp
@@ -151,6 +152,7 @@ contains
     summary%iterations = an%iterations
     summary%factorizations = an%factorizations
     summary%cutbacks = an%cutbacks
+    summary%unconverged_steps = an%unconverged_steps
     summary%dofs = an%neq
     summary%unused_nodes = an%unused_nodes
     summary%factor_nnz = an%factor_nnz
@@ -387,6 +389,8 @@ contains
     if (.not. allocated(error)) call h5%write_summary_int('iterations', int(summary%iterations, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('factorizations', int(summary%factorizations, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('cutbacks', int(summary%cutbacks, i8), error)
+    if (.not. allocated(error)) call h5%write_summary_int('unconverged_steps', int(summary%unconverged_steps, i8), &
+                                                          error)
     if (.not. allocated(error)) call h5%write_summary_string('analysis', merge('linear   ', 'nonlinear', &
                                                                                  summary%linear), error)
   end subroutine write_summary

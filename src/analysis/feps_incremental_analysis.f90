@@ -440,9 +440,10 @@ contains
         end do
       end associate
     end do
-    if (an%symmetrized) call observer%progress('note: non-associated flow (psi /= phi) makes the tangent ' // &
-                                               'non-symmetric; its symmetric part was factorized and the ' // &
-                                               'exact residual iterated on')
+    if (an%symmetrized) call observer%progress('note: the tangent was non-symmetric at some points (non-' // &
+                                               'associated flow, psi /= phi, or a gap closing within a step); ' // &
+                                               'its symmetric part was factorized and the exact residual ' // &
+                                               'iterated on')
   end subroutine run_nonlinear_stages
 
   !> Say when an interface group opens completely (only the residual gap stiffness then holds

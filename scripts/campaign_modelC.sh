@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Run the 12 cases of thesis model C (chapter 6) and gather Tables 7.3 / 7.4 into one CSV.
+#
+#   scripts/campaign_modelC.sh [-j JOBS] [-o RESULTS_DIR] [--feps PATH] [--regenerate]
+#                              [--cases "C_G300_nu0.1_b0.09 ..."] [-- extra feps options]
+#
+# Each case runs in RESULTS_DIR/<case>/ (default results/modelC) with its HDF5 file and log.txt.
+# Resumable: a case whose HDF5 exists and whose log ends with feps's "results" line is not rerun
+# (feps writes the HDF5 under a temporary name and renames it only when the run ends well).
+# JOBS (default `nproc`) cases run at once; each gets OPENBLAS_NUM_THREADS = nproc / JOBS.
+# Extra options after `--` go to every feps run (e.g. -- --method modified-newton-raphson).
+# Then scripts/postprocess_model_c.py writes RESULTS_DIR/table.csv (beta*, beta_bar, Z, sigma_max
+# per case, with the thesis values beside) and the campaign's wall time is printed.
+set -u
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+JOBS="$(nproc)"
+OUT="$ROOT/results/modelC"
+FEPS=""
+REGEN=0
+CASES=""
+EXTRA=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    -j) JOBS="$2"; shift 2 ;;
+    -o) OUT="$2"; shift 2 ;;
+    --feps) FEPS="$2"; shift 2 ;;
+    --regenerate) REGEN=1; shift ;;
+    --cases) CASES="$2"; shift 2 ;;
+    --) shift; EXTRA=("$@"); break ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    *) echo "campaign_modelC: unknown option $1" >&2; exit 2 ;;
+  esac
+done
+mkdir -p "$OUT"
+OUT="$(cd "$OUT" && pwd)"
+
+if [ -z "$FEPS" ]; then
+  FEPS="$ROOT/$(cd "$ROOT" && fpm run --runner echo 2>/dev/null | tail -n1)"
+fi
+[ -x "$FEPS" ] || { echo "campaign_modelC: no feps executable at $FEPS" >&2; exit 1; }
+
+DECKS="$ROOT/input/modelC"
+if [ "$REGEN" = 1 ] || [ ! -d "$DECKS" ]; then
+  python3 "$ROOT/scripts/make_model_c.py" --outdir "$DECKS" || exit 1
+fi
+if [ -z "$CASES" ]; then
+  CASES="$(cd "$DECKS" && ls C_*.dat | sed 's/\.dat$//')"
+fi
+
+THREADS=$(( $(nproc) / JOBS ))
+[ "$THREADS" -ge 1 ] || THREADS=1
+
+done_ok() {   # the case's HDF5 exists and its log ends well
+  local dir="$OUT/$1"
+  [ -f "$dir/$1.h5" ] && [ -f "$dir/log.txt" ] && tail -n 1 "$dir/log.txt" | grep -q '^results '
+}
+
+run_case() {
+  local case="$1" dir="$OUT/$1" t0 t1 rc
+  mkdir -p "$dir"
+  t0=$(date +%s.%N)
+  ( cd "$dir" && OPENBLAS_NUM_THREADS=$THREADS OMP_NUM_THREADS=$THREADS \
+      "$FEPS" "$DECKS/$case.dat" --output "$case.h5" "${EXTRA[@]}" > log.txt 2>&1 )
+  rc=$?
+  t1=$(date +%s.%N)
+  printf '%s %.1f s exit %d\n' "$case" "$(echo "$t1 - $t0" | bc)" "$rc" | tee "$dir/time.txt"
+  if [ "$rc" -ne 0 ]; then
+    echo "  $case failed: $(tail -n 2 "$dir/log.txt" | tr '\n' ' ')"
+  fi
+}
+
+START=$(date +%s.%N)
+echo "model C campaign: $(echo $CASES | wc -w) cases, $JOBS at once ($THREADS BLAS threads each), feps $FEPS"
+for case in $CASES; do
+  if done_ok "$case"; then
+    echo "$case: done already (skipped)"
+    continue
+  fi
+  while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do
+    wait -n
+  done
+  run_case "$case" &
+done
+wait
+END=$(date +%s.%N)
+printf 'campaign wall time %.1f s\n' "$(echo "$END - $START" | bc)"
+
+python3 "$ROOT/scripts/postprocess_model_c.py" --table "$OUT" --csv "$OUT/table.csv"
+nfail=0
+for case in $CASES; do done_ok "$case" || { echo "missing or failed: $case"; nfail=$((nfail + 1)); }; done
+exit $(( nfail > 0 ))

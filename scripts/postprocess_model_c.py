@@ -1,0 +1,358 @@
+#!/usr/bin/env python3
+"""Post-processing of thesis model C (section 7.4): beta*, beta_bar, Z and sigma_max of a case.
+
+    python3 scripts/postprocess_model_c.py results/modelC/C_G300_nu0.1_b0.09/C_G300_nu0.1_b0.09.h5
+    python3 scripts/postprocess_model_c.py --table results/modelC      # every case, thesis beside
+
+From the last step of a model C run (decks by scripts/make_model_c.py):
+
+- beta* (eq. 7.4.2): tan(beta*) = (delta - delta_b) / L, L = 2500, delta the x displacement of the
+  top end (read from the result), delta_b the x displacement of "the centre of the bottom end of
+  the top pipe": the area-weighted mean ux over the top pipe's end face z = 1265 (the rigid
+  translation of that section; the face is a ring and has no node at its centre). The mean ux of
+  that face's nodes on x = 0 (theta = 90) is printed as a variant.
+- beta_bar (7.4.2): the total joint deformation along r = 715 is the axial displacement w of the
+  top pipe's mid-length section A-A (z = 2515; w = 0 on the symmetry plane z = 0 of the bottom
+  pipe) less the deformation of the interface (the nodal jump uz(packing) - uz(bottom pipe) at
+  z = 1250, from the displacements of the coincident node pairs): D(x) = -(w_AA - jump), positive
+  in compression. tan(beta_bar) is the least-squares slope dD/dx over the nodes with x >= 250 mm.
+  Variants printed: the secant slope between x = 250 and 715 (linear interpolation), and the
+  slope of D averaged over the three radii of the wall.
+- Z (7.4.3): on each of the four lines of interface Gauss points across the wall (2x2 Gauss per
+  quad, the first natural direction, along r, fastest; positions from the lower-layer nodes), the
+  front of the contact zone is where sigma_n reaches zero going from x = +715 towards x = -715:
+  linear interpolation between the last compressive point and the next one; when that next point
+  is open (gap zone, sigma_n = 0 exactly) the line through the last two compressive points is
+  extended to zero instead (kept between the two points). A line without any non-compressive
+  point has no gap: the zero of the least-squares line sigma_n(x) through all its points
+  ("interpolating linearly the stresses to a zero point"). Z = 715 - x_zero, averaged over the
+  four lines ("the average value of Z is used").
+- sigma_max (7.4.3): the element-centre normal stresses (mean of the 4 Gauss points) of the
+  interface elements with theta < 6 deg (4 elements: 2 in theta x 2 through the wall), fitted by
+  a least-squares line in x (element centre x) and evaluated at x = 715; reported as a positive
+  compression.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BENCH = "/work/shared/benchmarks"
+R_IN, R_OUT = 600.0, 715.0
+Z_JOINT = 1250.0
+Z_TOP_BOTTOM = 1265.0
+Z_SECTION_AA = 2515.0
+Z_TOP_END = 3765.0
+L_PIPE = 2500.0
+X_REGION = 250.0      # beta_bar from the deformation in x > 250 mm (thesis 7.4.2)
+EDGE_THETA = 6.0      # sigma_max from the elements with theta < 6 deg (thesis 7.4.3)
+TOL = 1e-3
+GAUSS = 1.0 / math.sqrt(3.0)
+# 2x2 Gauss points, first natural coordinate fastest (feps square_rule), and the quad4 corners
+GAUSS_POINTS = [(-GAUSS, -GAUSS), (GAUSS, -GAUSS), (-GAUSS, GAUSS), (GAUSS, GAUSS)]
+CORNERS = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+
+
+def last_step(f):
+    return f["steps"][sorted(f["steps"], key=int)[-1]]
+
+
+def _lsq_line(x, y):
+    """(intercept, slope) of the least-squares line y = a + b x."""
+    b, a = np.polyfit(np.asarray(x, float), np.asarray(y, float), 1)
+    return a, b
+
+
+def beta_star(coords, conn_top, u):
+    """beta* of eq. 7.4.2 (deg), delta, delta_b (area-weighted) and the x = 0 variant."""
+    top_end = np.abs(coords[:, 2] - Z_TOP_END) < TOL
+    delta = float(u[top_end, 0].mean())
+    weights = np.zeros(len(coords))
+    for elem in conn_top - 1:
+        face = elem[:4]                          # hex8 bottom face (counter-clockwise)
+        if not np.all(np.abs(coords[face, 2] - Z_TOP_BOTTOM) < TOL):
+            continue
+        p = coords[face, :2]
+        d1, d2 = p[2] - p[0], p[3] - p[1]
+        area = 0.5 * abs(d1[0] * d2[1] - d1[1] * d2[0])
+        weights[face] += area / 4.0
+    delta_b = float(np.sum(weights * u[:, 0]) / np.sum(weights))
+    on_face = weights > 0
+    axis_nodes = on_face & (np.abs(coords[:, 0]) < TOL)
+    delta_b_x0 = float(u[axis_nodes, 0].mean())
+    beta = math.degrees(math.atan((delta - delta_b) / L_PIPE))
+    beta_x0 = math.degrees(math.atan((delta - delta_b_x0) / L_PIPE))
+    return beta, delta, delta_b, beta_x0, float(np.sum(weights))
+
+
+def joint_pairs(conn_joint):
+    """Map lower node -> upper node of the interface's coincident pairs (0-based)."""
+    pairs = {}
+    for elem in conn_joint - 1:
+        for a in range(4):
+            pairs[int(elem[a])] = int(elem[4 + a])
+    return pairs
+
+
+def joint_deformation(coords, conn_top, conn_joint, u, radius, subtract_interface=True):
+    """x and the total joint deformation D = -(w_AA - jump) (mm, compression positive) along r = radius
+    (D = -w_AA when subtract_interface is false)."""
+    radii = np.hypot(coords[:, 0], coords[:, 1])
+    top_nodes = np.unique(conn_top - 1)
+    aa = top_nodes[(np.abs(radii[top_nodes] - radius) < TOL) & (np.abs(coords[top_nodes, 2] - Z_SECTION_AA) < TOL)]
+    pairs = joint_pairs(conn_joint)
+    lower = np.array([n for n in pairs if abs(radii[n] - radius) < TOL])
+    jump_at = {}
+    for n in lower:
+        key = round(float(coords[n, 0]), 3), round(float(coords[n, 1]), 3)
+        jump_at[key] = u[pairs[n], 2] - u[n, 2]
+    xs, ds = [], []
+    for n in aa:
+        key = round(float(coords[n, 0]), 3), round(float(coords[n, 1]), 3)
+        xs.append(coords[n, 0])
+        ds.append(-(u[n, 2] - (jump_at[key] if subtract_interface else 0.0)))
+    order = np.argsort(xs)
+    return np.array(xs)[order], np.array(ds)[order]
+
+
+def beta_bar(coords, conn_top, conn_joint, u):
+    """beta_bar (deg): least-squares slope of D over x >= 250 on r = 715; with the variants."""
+    x, d = joint_deformation(coords, conn_top, conn_joint, u, R_OUT)
+    sel = x >= X_REGION - TOL
+    slope = _lsq_line(x[sel], d[sel])[1]
+    secant = (np.interp(R_OUT, x, d) - np.interp(X_REGION, x, d)) / (R_OUT - X_REGION)
+    # every radius of the wall: D(theta) averaged over r, x taken on the mid radius
+    ds = []
+    for radius in (R_IN, 0.5 * (R_IN + R_OUT), R_OUT):
+        xr, dr = joint_deformation(coords, conn_top, conn_joint, u, radius)
+        ds.append((xr / radius, dr))
+    cos_t = ds[0][0]
+    d_mean = np.mean([dr for _, dr in ds], axis=0)
+    x_mid = cos_t * 0.5 * (R_IN + R_OUT)
+    sel_m = x_mid >= X_REGION - TOL
+    slope_mean = _lsq_line(x_mid[sel_m], d_mean[sel_m])[1]
+    xr, dr = joint_deformation(coords, conn_top, conn_joint, u, R_OUT, subtract_interface=False)
+    sel_r = xr >= X_REGION - TOL
+    slope_raw = _lsq_line(xr[sel_r], dr[sel_r])[1]
+    deg = lambda s: math.degrees(math.atan(s))
+    return deg(slope), deg(secant), deg(slope_mean), deg(slope_raw), x, d
+
+
+def gauss_points(coords, conn_joint):
+    """Global positions (nelem*4, 3) of the interface Gauss points on the lower layer, element-major."""
+    out = np.zeros((len(conn_joint) * 4, 3))
+    for e, elem in enumerate(conn_joint - 1):
+        xe = coords[elem[:4]]
+        for g, (s1, s2) in enumerate(GAUSS_POINTS):
+            n = np.array([0.25 * (1 + s1 * a) * (1 + s2 * b) for a, b in CORNERS])
+            out[4 * e + g] = n @ xe
+    return out
+
+
+def contact_width(coords, conn_joint, traction):
+    """Z (mm, thesis 7.4.3) and the per-line zero positions / kinds."""
+    xg = gauss_points(coords, conn_joint)
+    sn = traction[:, 2]
+    state = traction[:, 3]
+    theta = np.degrees(np.arctan2(xg[:, 1], xg[:, 0]))
+    # line id: the element's inner radius (rounded) and the Gauss point's first index
+    r_node = np.round(np.hypot(coords[conn_joint[:, 0] - 1, 0], coords[conn_joint[:, 0] - 1, 1]), 1)
+    line_of = [(float(r_node[p // 4]), (p % 4) % 2) for p in range(len(xg))]
+    lines = sorted(set(line_of))
+    zeros = []
+    for key in lines:
+        idx = np.array([p for p in range(len(xg)) if line_of[p] == key])
+        idx = idx[np.argsort(theta[idx])]             # from x = +r (theta 0) towards x = -r
+        x, s, st = xg[idx, 0], sn[idx], state[idx]
+        nonneg = np.nonzero(s >= 0.0)[0]
+        if len(nonneg) == 0:
+            a, b = _lsq_line(x, s)
+            zeros.append((-a / b, "extrapolated (no gap)"))
+            continue
+        k = nonneg[0]
+        if k == 0:
+            zeros.append((x[0], "open at the edge"))
+            continue
+        if st[k] >= 2 and k >= 2:
+            # the next point is open (sigma_n = 0 exactly): extend the last two compressive points
+            x1, x2, s1, s2 = x[k - 2], x[k - 1], s[k - 2], s[k - 1]
+            xz = x2 - s2 * (x2 - x1) / (s2 - s1) if s2 != s1 else x2
+            xz = min(max(xz, x[k]), x[k - 1])
+            zeros.append((xz, "gap front (extrapolated, clipped)"))
+        else:
+            xz = x[k - 1] + s[k - 1] / (s[k - 1] - s[k]) * (x[k] - x[k - 1])
+            zeros.append((xz, "gap front (interpolated)"))
+    z_lines = [R_OUT - xz for xz, _ in zeros]
+    return float(np.mean(z_lines)), lines, zeros
+
+
+def edge_stress(coords, conn_joint, traction):
+    """sigma_max (MPa, compression positive) at x = 715 from the elements with theta < 6 deg."""
+    sn = traction[:, 2].reshape(-1, 4)
+    xs, ss = [], []
+    for e, elem in enumerate(conn_joint - 1):
+        p = coords[elem[:4]]
+        th = np.degrees(np.arctan2(p[:, 1], p[:, 0]))
+        if th.max() <= EDGE_THETA + 1e-6:
+            xs.append(p[:, 0].mean())
+            ss.append(sn[e].mean())
+    a, b = _lsq_line(xs, ss)
+    return -(a + b * R_OUT), len(xs)
+
+
+def _quantities(coords, conn_top, conn_joint, u, traction):
+    bstar, delta, delta_b, bstar_x0, _ = beta_star(coords, conn_top, u)
+    bbar, bbar_secant, bbar_mean, bbar_raw, _, _ = beta_bar(coords, conn_top, conn_joint, u)
+    z, _, zeros = contact_width(coords, conn_joint, traction)
+    smax, nedge = edge_stress(coords, conn_joint, traction)
+    return {"beta_star": bstar, "beta_bar": bbar, "Z": z, "sigma_max": smax, "delta": delta, "delta_b": delta_b,
+            "beta_star_x0": bstar_x0, "beta_bar_secant": bbar_secant, "beta_bar_wall_mean": bbar_mean,
+            "beta_bar_raw": bbar_raw, "Z_lines": [R_OUT - xz for xz, _ in zeros],
+            "Z_kinds": [k for _, k in zeros], "n_edge_elements": nedge,
+            "open_fraction": float(np.mean(traction[:, 3] >= 2)),
+            "sliding_fraction": float(np.mean(traction[:, 3] == 1))}
+
+
+def postprocess(h5path, verbose=True):
+    """Compute beta*, beta_bar, Z and sigma_max of a model C result at its last step (the end of
+    the equilibrium stage s3) and, as 's2_*' entries, at the end of stage 2 (load factor 2) when
+    that is a different step; print one line per quantity; return a dict."""
+    with h5py.File(h5path, "r") as f:
+        coords = f["mesh/coordinates"][...]
+        conn_top = f["mesh/groups/top_pipe/connectivity"][...]
+        conn_joint = f["mesh/groups/joint/connectivity"][...]
+        names = sorted(f["steps"], key=int)
+        step = f["steps"][names[-1]]
+        res = _quantities(coords, conn_top, conn_joint, step["displacement"][...], step["interface/joint"][...])
+        res["load_factor"] = float(step.attrs["load_factor"])
+        res["residual"] = float(step.attrs["residual"])
+        s2 = [n for n in names[:-1] if abs(float(f["steps"][n].attrs["load_factor"]) - 2.0) < 1e-9]
+        if s2:
+            st2 = f["steps"][s2[-1]]
+            q2 = _quantities(coords, conn_top, conn_joint, st2["displacement"][...], st2["interface/joint"][...])
+            for k in ("beta_star", "beta_bar", "Z", "sigma_max", "beta_bar_raw"):
+                res["s2_" + k] = q2[k]
+            res["s2_residual"] = float(st2.attrs["residual"])
+        summ = f["summary"].attrs
+        for k in ("wall_time", "iterations", "cutbacks", "steps"):
+            if k in summ:
+                res[k] = float(summ[k])
+    if verbose:
+        print(f"{os.path.basename(h5path)}: last step load factor {res['load_factor']:g}, residual "
+              f"{res['residual']:.2e}; interface points open {100 * res['open_fraction']:.1f}%, sliding "
+              f"{100 * res['sliding_fraction']:.1f}%")
+        print(f"beta_star  {res['beta_star']:.4f} deg   (delta {res['delta']:.4f}, delta_b {res['delta_b']:.4f} mm "
+              f"area-weighted over z = 1265; with delta_b at x = 0: {res['beta_star_x0']:.4f} deg)")
+        print(f"beta_bar   {res['beta_bar']:.4f} deg   (least squares over x >= 250 on r = 715; secant 250..715: "
+              f"{res['beta_bar_secant']:.4f}; wall-averaged: {res['beta_bar_wall_mean']:.4f}; without taking out "
+              f"the interface: {res['beta_bar_raw']:.4f})")
+        print(f"Z          {res['Z']:.1f} mm   (per Gauss line across the wall: " +
+              ", ".join(f"{z:.0f}" for z in res["Z_lines"]) + f"; {res['Z_kinds'][0]})")
+        print(f"sigma_max  {res['sigma_max']:.2f} MPa  ({res['n_edge_elements']} interface elements with theta < "
+              f"{EDGE_THETA:g} deg, line in x to x = 715)")
+        if "s2_beta_star" in res:
+            print(f"end of stage 2 (residual {res['s2_residual']:.2e}): beta_star {res['s2_beta_star']:.4f}, "
+                  f"beta_bar {res['s2_beta_bar']:.4f}, Z {res['s2_Z']:.1f}, sigma_max {res['s2_sigma_max']:.2f}")
+    return res
+
+
+# ------------------------------------------------------------------------------------------
+# thesis tables
+# ------------------------------------------------------------------------------------------
+
+def case_name(G, nu, beta):
+    return f"C_G{G:g}_nu{nu:g}_b{beta:g}"
+
+
+def _rows(name):
+    with open(os.path.join(BENCH, name)) as f:
+        return list(csv.DictReader(l for l in f if not l.startswith("#")))
+
+
+def thesis_values():
+    """case -> dict(beta_star, beta_bar, Z, sigma_max) from Tables 7.3 and 7.4 (same row order)."""
+    t3, t4 = _rows("table7_3.csv"), _rows("table7_4.csv")
+    out = {}
+    for a, b in zip(t3, t4):
+        assert abs(float(a["beta_bar_deg"]) - float(b["beta_bar_deg"])) < 1e-9
+        case = case_name(float(a["G_p_MPa"]), float(a["mu_p"]), float(a["applied_beta_deg"]))
+        out[case] = {"beta_star": float(a["beta_star_deg"]), "beta_bar": float(a["beta_bar_deg"]),
+                     "Z": float(b["modelC_Z_mm"]), "sigma_max": float(b["modelC_smax_MPa"])}
+    return out
+
+
+def case_h5(results_dir, case):
+    return os.path.join(results_dir, case, case + ".h5")
+
+
+def compare_rows(results_dir):
+    """Rows (case, quantity, thesis, feps, tolerance) for Tables 7.3 and 7.4 (model C columns).
+
+    Tolerances are relative; tolerance None marks a row reported only (beta*). A case whose
+    HDF5 file is missing gives feps = None. Case ids read 'table7.3 [C_G300_nu0.1_b0.09]'."""
+    rows = []
+    for case, ref in thesis_values().items():
+        path = case_h5(results_dir, case)
+        res = postprocess(path, verbose=False) if os.path.exists(path) else None
+        get = (lambda k: res[k]) if res else (lambda k: None)
+        rows.append((f"table7.3 [{case}]", "beta_bar, computed angle (deg)", ref["beta_bar"], get("beta_bar"), 0.03))
+        rows.append((f"table7.3 [{case}]", "beta*, actual applied angle (deg)", ref["beta_star"], get("beta_star"),
+                     None))
+        rows.append((f"table7.4 [{case}]", "Z, diametrical contact width (mm)", ref["Z"], get("Z"), 0.05))
+        rows.append((f"table7.4 [{case}]", "sigma_max, max joint stress (MPa)", ref["sigma_max"], get("sigma_max"),
+                     0.05))
+    return rows
+
+
+def table(results_dir, csv_out=None):
+    """Post-process every case found; print thesis beside feps; optionally write a CSV."""
+    ref = thesis_values()
+    out = []
+    print(f"{'case':<22} {'beta*':>8} {'thesis':>8} {'beta_bar':>8} {'thesis':>8} {'Z':>7} {'thesis':>7} "
+          f"{'s_max':>7} {'thesis':>7}")
+    for case, t in ref.items():
+        path = case_h5(results_dir, case)
+        if not os.path.exists(path):
+            print(f"{case:<22} (no result)")
+            continue
+        r = postprocess(path, verbose=False)
+        out.append((case, r))
+        print(f"{case:<22} {r['beta_star']:8.4f} {t['beta_star']:8.4f} {r['beta_bar']:8.4f} {t['beta_bar']:8.4f} "
+              f"{r['Z']:7.0f} {t['Z']:7.0f} {r['sigma_max']:7.2f} {t['sigma_max']:7.2f}")
+    if csv_out:
+        keys = ["beta_star", "beta_bar", "Z", "sigma_max", "beta_star_x0", "beta_bar_secant", "beta_bar_wall_mean",
+                "beta_bar_raw", "delta_b", "open_fraction", "sliding_fraction", "residual", "s2_beta_star",
+                "s2_beta_bar", "s2_Z", "s2_sigma_max", "s2_residual", "wall_time", "iterations", "cutbacks"]
+        with open(csv_out, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["case"] + keys + ["thesis_beta_star", "thesis_beta_bar", "thesis_Z", "thesis_sigma_max"])
+            for case, r in out:
+                t = ref[case]
+                w.writerow([case] + [f"{r[k]:.6g}" if k in r else "" for k in keys] +
+                           [t["beta_star"], t["beta_bar"], t["Z"], t["sigma_max"]])
+        print(f"wrote {csv_out}")
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("h5", nargs="?", help="a model C result file")
+    ap.add_argument("--table", metavar="RESULTS_DIR", help="post-process every case under RESULTS_DIR/<case>/")
+    ap.add_argument("--csv", help="with --table: write this CSV")
+    args = ap.parse_args(argv)
+    if args.table:
+        table(args.table, args.csv)
+    elif args.h5:
+        postprocess(args.h5)
+    else:
+        ap.error("give a result file or --table RESULTS_DIR")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -202,7 +202,7 @@ def edge_stress(coords, conn_joint, traction):
             xs.append(p[:, 0].mean())
             ss.append(sn[e].mean())
     a, b = _lsq_line(xs, ss)
-    return -(a + b * R_OUT), len(xs)
+    return float(-(a + b * R_OUT)), len(xs)
 
 
 def _quantities(coords, conn_top, conn_joint, u, traction):
@@ -290,16 +290,19 @@ def case_h5(results_dir, case):
     return os.path.join(results_dir, case, case + ".h5")
 
 
-def compare_rows(results_dir):
+def compare_rows(results_dir, state="final"):
     """Rows (case, quantity, thesis, feps, tolerance) for Tables 7.3 and 7.4 (model C columns).
 
     Tolerances are relative; tolerance None marks a row reported only (beta*). A case whose
-    HDF5 file is missing gives feps = None. Case ids read 'table7.3 [C_G300_nu0.1_b0.09]'."""
+    HDF5 file is missing gives feps = None. Case ids read 'table7.3 [C_G300_nu0.1_b0.09]'.
+    state 'final': the equilibrated end of stage s3 (default); 's2': the end of stage 2, which
+    still carries the unbalanced force of the initial-stiffness steps (as the thesis's runs did)."""
     rows = []
+    prefix = "" if state == "final" else "s2_"
     for case, ref in thesis_values().items():
         path = case_h5(results_dir, case)
         res = postprocess(path, verbose=False) if os.path.exists(path) else None
-        get = (lambda k: res[k]) if res else (lambda k: None)
+        get = (lambda k: None if res.get(prefix + k) is None else float(res[prefix + k])) if res else (lambda k: None)
         rows.append((f"table7.3 [{case}]", "beta_bar, computed angle (deg)", ref["beta_bar"], get("beta_bar"), 0.03))
         rows.append((f"table7.3 [{case}]", "beta*, actual applied angle (deg)", ref["beta_star"], get("beta_star"),
                      None))

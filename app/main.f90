@@ -2,7 +2,7 @@
 program feps_main
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int
-  use feps_kinds, only: dp
+  use feps_kinds, only: dp, i8
   use feps_error, only: error_t, err_input, err_model, str
   use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version
   implicit none
@@ -180,6 +180,7 @@ contains
       write (output_unit, '(a,es12.5,a)') 'max displacement ', s%max_displacement, ' at node ' // &
         str(s%max_displacement_node)
     end if
+    if (allocated(s%state_bytes)) call print_state_memory(s)
     if (.not. s%mesh_only) write (output_unit, '(a,3(f0.3,a))') 'times            assembly ', s%time_assembly, &
       ' s, factorization ', s%time_factorization, ' s, solve ', s%time_solve, ' s'
     write (output_unit, '(a,f0.3,a)') 'wall time        ', s%wall_time, ' s'
@@ -190,5 +191,18 @@ contains
     end if
     if (len(s%output) > 0) write (output_unit, '(a)') 'results          ' // s%output
   end subroutine print_summary
+
+  !> Memory kept for point states: nonlinear groups only (elastic groups keep none).
+  subroutine print_state_memory(s)
+    type(run_summary_t), intent(in) :: s
+    character(len=:), allocatable :: line
+    integer :: g
+    line = 'point state      ' // str(sum(s%state_bytes)) // ' bytes'
+    do g = 1, size(s%state_bytes)
+      line = line // merge(' (', ', ', g == 1) // trim(s%group_names(g)) // ' ' // &
+             str(s%state_bytes(g) / max(1_i8, int(s%group_elements(g), i8))) // ' per element'
+    end do
+    write (output_unit, '(a)') line // ')'
+  end subroutine print_state_memory
 
 end program feps_main

@@ -61,7 +61,8 @@ contains
       new_unittest('plane strain: tri6 strip under pressure, both rules', test_plane_strain), &
       new_unittest('patch test on a distorted hex8b (B-bar) mesh', test_patch_hex8b), &
       new_unittest('Lame cylinder near incompressibility and at negative nu: locking and B-bar', test_locking), &
-      new_unittest('model B: the symmetric half equals the full 360-degree model', test_symmetry) &
+      new_unittest('model B: the symmetric half equals the full 360-degree model', test_symmetry), &
+      new_unittest('fields not asked for are not computed; elastic groups keep no point state', test_fields) &
       ]
   end subroutine collect_analysis
 
@@ -94,6 +95,50 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_cube
+
+  !> FIELDS without stresses: the displacements are unchanged (closed form) and no stress is
+  !! recovered; in the block-contact deck only the interface group keeps point state, 2 x (3
+  !! tractions + 3 strains + 9 tangent entries) reals and 2 flags per point (committed, trial).
+  subroutine test_fields(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(step_result_t) :: res
+    type(analysis_summary_t) :: summary
+    type(last_step_t) :: obs
+    real(dp), parameter :: p = 100.0_dp, e = 200000.0_dp, l = 10.0_dp
+    integer :: g, np
+    call read_deck('test/data/cube.dat', model, error)
+    if (allocated(error)) return
+    model%fields%stress = .false.
+    model%fields%principal = .false.
+    call solve(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    call check(error, .not. allocated(res%groups(1)%stress), 'no stresses recovered')
+    if (allocated(error)) return
+    call check(error, res%displacement(3, 27), -p * l / e, 'uz at the top', rel=1.0e-10_dp)
+    if (allocated(error)) return
+
+    call read_deck('test/data/block_contact.dat', model, error)
+    if (allocated(error)) return
+    model%fields%stress = .false.
+    model%fields%principal = .false.
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    do g = 1, size(model%groups)
+      np = obs%res%groups(g)%points_per_element * size(model%groups(g)%connectivity, 2)
+      if (obs%res%groups(g)%is_interface) then
+        call check(error, allocated(obs%res%groups(g)%stress), 'interface tractions kept')
+        if (allocated(error)) return
+        call check(error, real(summary%state_bytes(g), dp), real(np * (2 * (3 + 3 + 9) * 8 + 2 * 4), dp), &
+                   'interface point state bytes', rel=0.0_dp)
+      else
+        call check(error, .not. allocated(obs%res%groups(g)%stress), 'no solid stresses recovered')
+        if (allocated(error)) return
+        call check(error, real(summary%state_bytes(g), dp), 0.0_dp, 'elastic group keeps no state', abs=0.0_dp)
+      end if
+      if (allocated(error)) return
+    end do
+  end subroutine test_fields
 
   subroutine test_patch_hex8(error)
     type(error_t), allocatable, intent(out) :: error

@@ -31,7 +31,8 @@ contains
       new_unittest('undefined material', test_undefined_material), &
       new_unittest('nu = 0.5 rejected', test_nu_half), &
       new_unittest('nu = -1 rejected', test_nu_minus_one), &
-      new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode) &
+      new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
+      new_unittest('unknown result field name', test_unknown_field) &
       ]
   end subroutine collect_bad_input
 
@@ -114,6 +115,12 @@ contains
     call expect_failure('test/data/bad/unknown_keyword.dat', err_input, &
                         [character(len=40) :: 'unknown_keyword.dat:3:', 'FROB'], error)
   end subroutine test_unknown_keyword
+
+  subroutine test_unknown_field(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/unknown_field.dat', err_input, &
+                        [character(len=40) :: 'unknown_field.dat:24:', 'field 3', 'stresses'], error)
+  end subroutine test_unknown_field
 
   subroutine test_unknown_record(error)
     type(error_t), allocatable, intent(out) :: error

@@ -10,7 +10,7 @@ module feps_incremental_analysis
   use feps_kinds, only: dp, i8
   use feps_error, only: error_t, fatal_error, err_model, err_solver, str
   use feps_clock, only: wall_clock
-  use feps_model, only: model_t, stage_t, controls_t, method_names, method_euler, method_modified_euler, &
+  use feps_model, only: model_t, stage_t, controls_t, output_fields_t, method_names, method_euler, method_modified_euler, &
                         method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
   use feps_sparse_matrix, only: csr_matrix_t
@@ -51,6 +51,7 @@ module feps_incremental_analysis
     real(dp) :: reaction_force(3) = 0.0_dp
     character(len=:), allocatable :: solver
     logical :: condition_warning = .false.   !! max/min pivot ratio passed condition_warning
+    integer(i8), allocatable :: state_bytes(:)  !! per group: bytes of point state (0: elastic, none kept)
   end type analysis_summary_t
 
   !> Above this max/min pivot ratio the results may have lost digits: say so.
@@ -144,6 +145,7 @@ contains
     call an%solver%analyze(an%a, error)
     if (allocated(error)) return
     call init_states(model, an)
+    summary%state_bytes = state_bytes(an%states)
     allocate (an%f_ref(3, model%nnode), an%f_applied(3, model%nnode))
     call nodal_load_vector(model, an%kernels, an%f_ref, error, stage=0)
     if (allocated(error)) return
@@ -234,6 +236,23 @@ contains
     an%fint = 0.0_dp
     an%uc = 0.0_dp
   end subroutine init_states
+
+  !> Memory held per group for point states (stresses, strains, flags, tangents; committed
+  !! and trial), to show that elastic groups keep none.
+  pure function state_bytes(states) result(bytes)
+    type(group_state_t), intent(in) :: states(:)
+    integer(i8) :: bytes(size(states))
+    integer :: g
+    bytes = 0
+    do g = 1, size(states)
+      associate (s => states(g))
+        if (allocated(s%sig)) bytes(g) = bytes(g) + 2 * storage_size(s%sig, i8) / 8 * size(s%sig, kind=i8)
+        if (allocated(s%eps)) bytes(g) = bytes(g) + 2 * storage_size(s%eps, i8) / 8 * size(s%eps, kind=i8)
+        if (allocated(s%state)) bytes(g) = bytes(g) + 2 * storage_size(s%state, i8) / 8 * size(s%state, kind=i8)
+        if (allocated(s%dtan)) bytes(g) = bytes(g) + 2 * storage_size(s%dtan, i8) / 8 * size(s%dtan, kind=i8)
+      end associate
+    end do
+  end function state_bytes
 
   pure function nonlinear_groups(an) result(mask)
     type(analysis_t), intent(in) :: an
@@ -853,6 +872,11 @@ contains
     res%has_nodal_systems = an%map%has_rotations()
     allocate (res%groups(size(model%groups)))
     do g = 1, size(model%groups)
+      res%groups(g)%points_per_element = an%kernels(g)%npoints
+      res%groups(g)%is_interface = an%kernels(g)%is_interface
+      res%groups(g)%is_bar = an%kernels(g)%is_bar
+      ! Fields not asked for are not computed (stress recovery is most of a linear step's output cost).
+      if (.not. group_output_wanted(model%fields, an%kernels(g))) cycle
       if (an%states(g)%nonlinear) then
         res%groups(g)%stress = an%states(g)%sig
         res%groups(g)%strain = an%states(g)%eps
@@ -860,12 +884,22 @@ contains
       else
         call linear_group_results(model, an, g, res%groups(g))
       end if
-      res%groups(g)%points_per_element = an%kernels(g)%npoints
-      res%groups(g)%is_interface = an%kernels(g)%is_interface
-      res%groups(g)%is_bar = an%kernels(g)%is_bar
     end do
     call observer%write_step(res, error)
   end subroutine report_step
+
+  !> Does any requested field need the point results of a group of this kernel's kind?
+  pure logical function group_output_wanted(fields, kernel)
+    type(output_fields_t), intent(in) :: fields
+    type(group_kernel_t), intent(in) :: kernel
+    if (kernel%is_bar) then
+      group_output_wanted = fields%bar
+    else if (kernel%is_interface) then
+      group_output_wanted = fields%interface .or. fields%interface_strain
+    else
+      group_output_wanted = fields%stress .or. fields%principal
+    end if
+  end function group_output_wanted
 
   !> Strains and stresses of a linear group from the total displacements (sigma = D eps).
   subroutine linear_group_results(model, an, g, gr)

@@ -22,7 +22,7 @@ module feps_error
 
   !> Short text for numbers in messages.
   interface str
-    module procedure str_int, str_real
+    module procedure str_int, str_int8, str_real
   end interface str
 
 contains
@@ -60,6 +60,15 @@ contains
     write (buf, '(i0)') i
     s = trim(buf)
   end function str_int
+
+  pure function str_int8(i) result(s)
+    use feps_kinds, only: i8
+    integer(i8), intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function str_int8
 
   pure function str_real(x) result(s)
     use feps_kinds, only: dp

@@ -13,7 +13,8 @@ module feps_deck
   use feps_model, only: model_t, element_group_t, material_spec_t, node_set_t, face_set_t, &
                         constraint_t, nodal_load_t, face_load_t, region_t, in_region, &
                         load_pressure, load_traction, name_len, stage_t, controls_t, method_names, &
-                        method_euler, method_modified_euler, method_newton_raphson, is_2d_type, report_t
+                        method_euler, method_modified_euler, method_newton_raphson, is_2d_type, report_t, &
+                        output_fields_t, field_names
   implicit none
   private
 
@@ -34,6 +35,7 @@ module feps_deck
     character(len=name_len), allocatable :: set_group(:)  !! NSET restricted to a group's nodes ('' if not)
     type(record_t), allocatable :: set_records(:)
     integer :: current_stage = 0                 !! stage that loads and displacements belong to
+    logical :: fields_given = .false.            !! a FIELDS record came: only what it names
   end type deck_state_t
 
 contains
@@ -139,6 +141,8 @@ contains
       st%current_stage = size(model%stages)
     case ('SOLVER')
       call read_solver(records(pos), model, error)
+    case ('FIELDS')
+      call read_fields(records(pos), model, st, error)
     case ('OUTPUT')
       call require_fields(records(pos), 2, error)
       if (.not. allocated(error)) model%output_file = field_text(records(pos), 2)   ! relative to the working directory
@@ -739,6 +743,36 @@ contains
                        '" (skyline or cholmod)', 2)
     end if
   end subroutine read_solver
+
+  !> FIELDS, name [, name ...]: write only the named result fields (several records add up).
+  subroutine read_fields(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i, k
+    logical :: known
+    character(len=:), allocatable :: list
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    if (.not. st%fields_given) then
+      model%fields = output_fields_t(displacement=.false., reaction=.false., stress=.false., principal=.false., &
+                                     interface=.false., interface_strain=.false., bar=.false.)
+      st%fields_given = .true.
+    end if
+    do i = 2, nfields(rec)
+      call model%fields%select(to_lower(field_text(rec, i)), known)
+      if (.not. known) then
+        list = trim(field_names(1))
+        do k = 2, size(field_names)
+          list = list // ', ' // trim(field_names(k))
+        end do
+        call input_error(error, rec%file, rec%line, 'unknown field "' // field_text(rec, i) // '" (' // &
+                         list // ')', i)
+        return
+      end if
+    end do
+  end subroutine read_fields
 
   ! ---------------------------------------------------------------------------------------
   ! After the last record: nodes, groups, node sets

@@ -153,6 +153,26 @@ module feps_model
     integer :: line = 0
   end type report_t
 
+  !> Which result fields a run writes (deck keyword FIELDS; default: all). A field not asked
+  !! for is not computed either where that saves work (stress recovery of elastic groups,
+  !! principal stresses).
+  type, public :: output_fields_t
+    logical :: displacement = .true.      !! /steps/N/displacement
+    logical :: reaction = .true.          !! /steps/N/reaction (and reaction_nodal)
+    logical :: stress = .true.            !! /steps/N/stress/<solid group>
+    logical :: principal = .true.         !! /steps/N/principal/<solid group>
+    logical :: interface = .true.         !! /steps/N/interface/<group> (tractions and state)
+    logical :: interface_strain = .true.  !! /steps/N/interface_strain/<group>
+    logical :: bar = .true.               !! /steps/N/bar/<group>
+  contains
+    procedure :: select => fields_select
+    procedure :: names => fields_names
+  end type output_fields_t
+
+  !> The names FIELDS accepts, in output order.
+  character(len=*), parameter, public :: field_names(*) = [character(len=16) :: 'displacement', 'reaction', &
+    'stress', 'principal', 'interface', 'interface_strain', 'bar']
+
   type, public :: model_t
     character(len=:), allocatable :: title
     character(len=:), allocatable :: deck_file
@@ -171,6 +191,7 @@ module feps_model
     type(controls_t) :: controls                           !! defaults for the stages
     character(len=:), allocatable :: solver                !! 'cholmod' or 'skyline'
     character(len=:), allocatable :: output_file
+    type(output_fields_t) :: fields                        !! result fields to write
     logical :: mesh_only = .false.                         !! a file holding only a DATAIN mesh
     logical :: plane_strain = .false.                      !! a 2D model: uz = 0 at every node
   contains
@@ -185,6 +206,48 @@ module feps_model
     'interface-line3', 'interface-line2-nodal', 'interface-line3-nodal']
 
 contains
+
+  !> Turn on the field called `name` (one of `field_names`); `known` false if there is none.
+  pure subroutine fields_select(self, name, known)
+    class(output_fields_t), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    logical, intent(out) :: known
+    known = .true.
+    select case (name)
+    case ('displacement')
+      self%displacement = .true.
+    case ('reaction')
+      self%reaction = .true.
+    case ('stress')
+      self%stress = .true.
+    case ('principal')
+      self%principal = .true.
+    case ('interface')
+      self%interface = .true.
+    case ('interface_strain')
+      self%interface_strain = .true.
+    case ('bar')
+      self%bar = .true.
+    case default
+      known = .false.
+    end select
+  end subroutine fields_select
+
+  !> The selected fields as one space-separated list (for the results file's summary).
+  pure function fields_names(self) result(list)
+    class(output_fields_t), intent(in) :: self
+    character(len=:), allocatable :: list
+    logical :: on(size(field_names))
+    integer :: i
+    on = [self%displacement, self%reaction, self%stress, self%principal, self%interface, &
+          self%interface_strain, self%bar]
+    list = ''
+    do i = 1, size(field_names)
+      if (.not. on(i)) cycle
+      if (len(list) > 0) list = list // ' '
+      list = list // trim(field_names(i))
+    end do
+  end function fields_names
 
   !> Value of parameter `key` (case as stored: lower case); `found` false if absent.
   pure subroutine material_get(self, key, value, found)

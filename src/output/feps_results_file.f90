@@ -49,6 +49,7 @@ module feps_results_file
     procedure :: write_summary_string
     procedure :: write_summary_real
     procedure :: write_summary_int
+    procedure :: write_group_int
     procedure :: close => close_file
     procedure :: discard
   end type results_file_t
@@ -361,13 +362,48 @@ contains
     character(len=*), intent(in) :: key
     integer(i8), intent(in) :: value
     type(error_t), allocatable, intent(out) :: error
-    integer(hid_t) :: group_id, space_id, attribute_id
+    integer(hid_t) :: group_id
+    integer :: hdferr2
+
+    call open_summary(self, key, group_id, error)
+    if (allocated(error)) return
+    call write_int8_attribute(group_id, key, value, error)
+    call h5gclose_f(group_id, hdferr2)
+    if (allocated(error)) error%message = 'cannot write attribute /summary/' // key
+  end subroutine write_summary_int
+
+  !> Integer attribute `key` on `/mesh/groups/<name>` (a group written before).
+  subroutine write_group_int(self, name, key, value, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: name, key
+    integer(i8), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id
+    integer :: hdferr, hdferr2
+
+    call require_open(self, error)
+    if (allocated(error)) return
+    call h5gopen_f(self%file_id, '/mesh/groups/' // name, group_id, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot open /mesh/groups/' // name // ' in ' // self%part_path)
+      return
+    end if
+    call write_int8_attribute(group_id, key, value, error)
+    call h5gclose_f(group_id, hdferr2)
+    if (allocated(error)) error%message = 'cannot write attribute /mesh/groups/' // name // '/' // key
+  end subroutine write_group_int
+
+  !> A scalar 64-bit integer attribute on an open group.
+  subroutine write_int8_attribute(group_id, key, value, error)
+    integer(hid_t), intent(in) :: group_id
+    character(len=*), intent(in) :: key
+    integer(i8), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: space_id, attribute_id
     integer :: hdferr, hdferr2
     integer(i8), target :: buffer
     type(c_ptr) :: pointer
 
-    call open_summary(self, key, group_id, error)
-    if (allocated(error)) return
     buffer = value
     pointer = c_loc(buffer)
     call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
@@ -379,9 +415,8 @@ contains
       end if
       call h5sclose_f(space_id, hdferr2)
     end if
-    call h5gclose_f(group_id, hdferr2)
-    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute /summary/' // key)
-  end subroutine write_summary_int
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute ' // key)
+  end subroutine write_int8_attribute
 
   !> Close the HDF5 file, write the XDMF file beside it and rename `<path>.part` to `<path>`.
   !! On an error the caller should `discard`.

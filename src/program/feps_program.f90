@@ -59,6 +59,10 @@ module feps_program
     real(dp) :: applied_force(3) = 0.0_dp
     real(dp) :: reaction_force(3) = 0.0_dp
     character(len=200), allocatable :: reports(:)   !! post-processing lines (REPORT records)
+    character(len=:), allocatable :: fields         !! result fields written (FIELDS)
+    character(len=32), allocatable :: group_names(:)
+    integer, allocatable :: group_elements(:)
+    integer(i8), allocatable :: state_bytes(:)      !! per group: bytes of point state kept
   end type run_summary_t
 
   public :: run_feps
@@ -97,6 +101,7 @@ contains
     type(results_observer_t) :: obs
     character(len=:), allocatable :: solver, output
     real(dp) :: t0
+    integer :: g
 
     t0 = wall_clock()
     call read_deck(options%deck, model, error)
@@ -169,6 +174,13 @@ contains
     summary%time_assembly = an%time_assembly
     summary%time_factorization = an%time_factorization
     summary%time_solve = an%time_solve
+    summary%fields = model%fields%names()
+    summary%state_bytes = an%state_bytes
+    allocate (summary%group_names(size(model%groups)), summary%group_elements(size(model%groups)))
+    do g = 1, size(model%groups)
+      summary%group_names(g) = model%groups(g)%name
+      summary%group_elements(g) = size(model%groups(g)%connectivity, 2)
+    end do
     call post_process(model, obs%last_displacement, obs%h5, summary, error)
     if (allocated(error)) then
       call obs%h5%discard()
@@ -321,49 +333,51 @@ contains
     real(dp) :: p(3)
     integer :: g, q, nc
     self%last_displacement = res%displacement
-    call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
-    if (.not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', res%displacement, 'ux uy uz', error)
-    if (.not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', res%reaction, 'fx fy fz', error)
-    if (res%has_nodal_systems .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction_nodal', &
-      res%reaction_nodal, 'f1 f2 f3', error)
-    do g = 1, size(res%groups)
-      if (allocated(error)) return
-      associate (gr => res%groups(g), name => self%model%groups(g)%name)
-        if (gr%is_bar) then
-          call self%h5%write_gauss(res%step, 'bar', name, gr%stress, 'axial_force', gr%points_per_element, error)
-          cycle
-        end if
-        if (gr%is_interface) then
-          nc = size(gr%stress, 1)
-          allocate (extra(nc + 1, size(gr%state)))
-          extra(1:nc, :) = gr%stress
-          extra(nc + 1, :) = real(gr%state, dp)
-          if (nc == 3) then
-            call self%h5%write_gauss(res%step, 'interface', name, extra, 'tau1 tau2 sigma_n state', &
-                                     gr%points_per_element, error)
-            if (.not. allocated(error)) call self%h5%write_gauss(res%step, 'interface_strain', name, gr%strain, &
-                                                                 'gamma1 gamma2 eps_n', gr%points_per_element, error)
+    associate (f => self%model%fields)
+      call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
+      if (f%displacement .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', &
+        res%displacement, 'ux uy uz', error)
+      if (f%reaction .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', res%reaction, &
+        'fx fy fz', error)
+      if (f%reaction .and. res%has_nodal_systems .and. .not. allocated(error)) call self%h5%write_nodal(res%step, &
+        'reaction_nodal', res%reaction_nodal, 'f1 f2 f3', error)
+      do g = 1, size(res%groups)
+        if (allocated(error)) return
+        associate (gr => res%groups(g), name => self%model%groups(g)%name)
+          if (.not. allocated(gr%stress)) cycle      ! no field of this group was asked for
+          if (gr%is_bar) then
+            call self%h5%write_gauss(res%step, 'bar', name, gr%stress, 'axial_force', gr%points_per_element, error)
+          else if (gr%is_interface) then
+            nc = size(gr%stress, 1)
+            if (f%interface) then
+              allocate (extra(nc + 1, size(gr%state)))
+              extra(1:nc, :) = gr%stress
+              extra(nc + 1, :) = real(gr%state, dp)
+              call self%h5%write_gauss(res%step, 'interface', name, extra, &
+                                       trim(merge('tau1 tau2 sigma_n state', 'tau sigma_n state      ', nc == 3)), &
+                                       gr%points_per_element, error)
+              deallocate (extra)
+            end if
+            if (f%interface_strain .and. .not. allocated(error)) call self%h5%write_gauss(res%step, &
+              'interface_strain', name, gr%strain, trim(merge('gamma1 gamma2 eps_n', 'gamma eps_n        ', nc == 3)), &
+              gr%points_per_element, error)
           else
-            call self%h5%write_gauss(res%step, 'interface', name, extra, 'tau sigma_n state', &
-                                     gr%points_per_element, error)
-            if (.not. allocated(error)) call self%h5%write_gauss(res%step, 'interface_strain', name, gr%strain, &
-                                                                 'gamma eps_n', gr%points_per_element, error)
+            if (f%stress) call self%h5%write_gauss(res%step, 'stress', name, gr%stress, 'sxx syy szz syz sxz sxy', &
+                                                   gr%points_per_element, error)
+            if (f%principal .and. .not. allocated(error)) then
+              allocate (extra(2, size(gr%stress, 2)))
+              do q = 1, size(gr%stress, 2)
+                p = principal_values(gr%stress(:, q))
+                extra(:, q) = [p(1), p(3)]
+              end do
+              call self%h5%write_gauss(res%step, 'principal', name, extra, 'most_tensile most_compressive', &
+                                       gr%points_per_element, error)
+              deallocate (extra)
+            end if
           end if
-        else
-          call self%h5%write_gauss(res%step, 'stress', name, gr%stress, 'sxx syy szz syz sxz sxy', &
-                                   gr%points_per_element, error)
-          allocate (extra(2, size(gr%stress, 2)))
-          do q = 1, size(gr%stress, 2)
-            p = principal_values(gr%stress(:, q))
-            extra(:, q) = [p(1), p(3)]
-          end do
-          if (.not. allocated(error)) call self%h5%write_gauss(res%step, 'principal', name, extra, &
-                                                               'most_tensile most_compressive', &
-                                                               gr%points_per_element, error)
-        end if
-        deallocate (extra)
-      end associate
-    end do
+        end associate
+      end do
+    end associate
   end subroutine observer_write_step
 
   subroutine write_summary(h5, model, summary, error)
@@ -371,6 +385,7 @@ contains
     type(model_t), intent(in) :: model
     type(run_summary_t), intent(in) :: summary
     type(error_t), allocatable, intent(out) :: error
+    integer :: g
     call h5%write_summary_string('program', 'feps ' // feps_version, error)
     if (.not. allocated(error)) call h5%write_summary_string('input_file', model%deck_file, error)
     if (.not. allocated(error)) call h5%write_summary_string('solver', summary%solver, error)
@@ -393,6 +408,14 @@ contains
                                                           error)
     if (.not. allocated(error)) call h5%write_summary_string('analysis', merge('linear   ', 'nonlinear', &
                                                                                  summary%linear), error)
+    if (.not. allocated(error)) call h5%write_summary_string('fields', summary%fields, error)
+    if (.not. allocated(error)) call h5%write_summary_int('point_state_bytes', sum(summary%state_bytes), error)
+    do g = 1, size(summary%state_bytes)
+      if (allocated(error)) return
+      call h5%write_group_int(model%groups(g)%name, 'point_state_bytes', summary%state_bytes(g), error)
+      if (.not. allocated(error)) call h5%write_group_int(model%groups(g)%name, 'point_state_bytes_per_element', &
+        summary%state_bytes(g) / max(1_i8, int(summary%group_elements(g), i8)), error)
+    end do
   end subroutine write_summary
 
   !> The deck's name without folder and extension, with .h5, in the working directory.

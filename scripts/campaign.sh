@@ -14,7 +14,7 @@
 # Gauss points of the last step) of group pipe (PEAK_GROUP).
 #
 # Environment:
-#   FEPS        the feps executable (default: built with fpm in the repository, copied to
+#   FEPS        the feps executable (default: fpm's release build of the repository, copied to
 #               results/NAME/feps so that rebuilds during the campaign do not disturb it)
 #   JOBS        cases at once (default: nproc)
 #   TIMEOUT     seconds a case may run (default: no limit); a case stopped by it has status timeout
@@ -47,9 +47,9 @@ for deck in "$@"; do
 done
 
 if [[ -z ${FEPS:-} ]]; then
-    (cd "$ROOT" && fpm build > "$CAMPAIGN/build.log" 2>&1) ||
+    (cd "$ROOT" && fpm build --profile release > "$CAMPAIGN/build.log" 2>&1) ||
         { cat "$CAMPAIGN/build.log" >&2; echo "campaign: fpm build failed" >&2; exit 1; }
-    built=$(cd "$ROOT" && fpm run --runner echo 2>/dev/null | tail -n1)
+    built=$(cd "$ROOT" && fpm run --profile release --runner echo 2>/dev/null | tail -n1)
     cp "$ROOT/$built" "$CAMPAIGN/feps"
     FEPS=$CAMPAIGN/feps
 fi

@@ -4,6 +4,7 @@
 #   scripts/campaign_modelC.sh [-j JOBS] [-o RESULTS_DIR] [--feps PATH] [--regenerate]
 #                              [--cases "C_G300_nu0.1_b0.09 ..."] [-- extra feps options]
 #
+# feps is fpm's release build unless --feps names one.
 # Each case runs in RESULTS_DIR/<case>/ (default results/modelC) with its HDF5 file and log.txt.
 # Resumable: a case whose HDF5 exists and whose log ends with feps's "results" line is not rerun
 # (feps writes the HDF5 under a temporary name and renames it only when the run ends well).
@@ -35,7 +36,9 @@ mkdir -p "$OUT"
 OUT="$(cd "$OUT" && pwd)"
 
 if [ -z "$FEPS" ]; then
-  FEPS="$ROOT/$(cd "$ROOT" && fpm run --runner echo 2>/dev/null | tail -n1)"
+  # the release build (-O3): 2-3x faster than fpm's default debug build (bounds checks, -O0)
+  (cd "$ROOT" && fpm build --profile release > /dev/null 2>&1) || { echo "campaign_modelC: fpm build failed" >&2; exit 1; }
+  FEPS="$ROOT/$(cd "$ROOT" && fpm run --profile release --runner echo 2>/dev/null | tail -n1)"
 fi
 [ -x "$FEPS" ] || { echo "campaign_modelC: no feps executable at $FEPS" >&2; exit 1; }
 

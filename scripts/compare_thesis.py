@@ -81,8 +81,12 @@ class Table:
         return nfail
 
 
-def feps_executable():
-    out = subprocess.run(["fpm", "run", "--runner", "echo"], cwd=ROOT, capture_output=True, text=True)
+def feps_executable(profile="debug"):
+    """fpm's build of feps: the default (debug) profile for the fast set, release for --all."""
+    if profile != "debug":
+        subprocess.run(["fpm", "build", "--profile", profile], cwd=ROOT, capture_output=True, text=True)
+    out = subprocess.run(["fpm", "run", "--profile", profile, "--runner", "echo"], cwd=ROOT,
+                         capture_output=True, text=True)
     lines = [l for l in out.stdout.strip().splitlines() if l.strip()]
     if out.returncode != 0 or not lines:
         sys.exit("compare_thesis: cannot build feps:\n" + out.stderr)
@@ -418,6 +422,8 @@ def main():
     parser.add_argument("cases", nargs="*", help="case ids (default: the fast cases)")
     parser.add_argument("--all", action="store_true", help="run every case")
     parser.add_argument("--list", action="store_true", help="list the case ids")
+    parser.add_argument("--profile", default=None,
+                        help="fpm build profile of feps (default: debug; release with --all)")
     args = parser.parse_args()
     if args.list:
         for cid, (_, fast) in CASES.items():
@@ -427,7 +433,7 @@ def main():
     if unknown:
         sys.exit(f"compare_thesis: unknown case ids {unknown}; known: {list(CASES)}")
     ids = args.cases or [c for c, (_, fast) in CASES.items() if fast or args.all]
-    feps = feps_executable()
+    feps = feps_executable(args.profile or ("release" if args.all else "debug"))
     table = Table()
     with tempfile.TemporaryDirectory() as tmp:
         for cid in ids:

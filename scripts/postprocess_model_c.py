@@ -342,13 +342,81 @@ def table(results_dir, csv_out=None):
     return out
 
 
+E_CONCRETE, NU_CONCRETE, Q_TOP = 40000.0, 0.2, 10.0
+
+
+def top_pipe_statics(h5path):
+    """Why beta_bar < beta*: the top pipe is a beam loaded by the eccentric joint reaction.
+
+    The top end carries the pressure q (resultant on the axis) and the imposed x displacement,
+    whose reaction H is the only horizontal force on the pipe besides the joint's friction;
+    moment equilibrium about the joint gives H L = P e (e: the eccentricity of the joint's
+    contact resultant), so H cannot vanish while the joint stress is not uniform. The pipe
+    bends under M(s) = H (L - s) and shears by gamma = H / (kappa G A). From the measured H
+    (the sum of the top-end reactions, half pipe), Euler-Bernoulli and Timoshenko beam theory
+    predict the section rotations along the pipe and beta* - theta(A-A); this returns the
+    measured and predicted values (deg) for comparison."""
+    with h5py.File(h5path, "r") as f:
+        X = f["mesh/coordinates"][...]
+        step = f["steps"][sorted(f["steps"], key=int)[-1]]
+        u, reac = step["displacement"][...], step["reaction"][...]
+        top = np.unique(f["mesh/groups/top_pipe/connectivity"][...] - 1)
+    def theta(z):      # section rotation: least-squares slope of w over every node of the section
+        m = top[np.abs(X[top, 2] - z) < TOL]
+        return math.degrees(-np.polyfit(X[m, 0], u[m, 2], 1)[0])
+    end = top[np.abs(X[top, 2] - Z_TOP_END) < TOL]
+    H = float(reac[end, 0].sum())                       # half pipe (y >= 0)
+    area = 0.5 * math.pi * (R_OUT ** 2 - R_IN ** 2)
+    inertia = 0.5 * math.pi / 4.0 * (R_OUT ** 4 - R_IN ** 4)
+    m2 = (R_IN / R_OUT) ** 2                            # Cowper's shear coefficient of a tube
+    kappa = 6 * (1 + NU_CONCRETE) * (1 + m2) ** 2 / ((7 + 6 * NU_CONCRETE) * (1 + m2) ** 2 +
+                                                      (20 + 12 * NU_CONCRETE) * m2)
+    G = E_CONCRETE / (2 * (1 + NU_CONCRETE))
+    EI, L, s = E_CONCRETE * inertia, L_PIPE, Z_SECTION_AA - Z_TOP_BOTTOM
+    rad = math.degrees
+    th_b, th_aa, th_t = theta(Z_TOP_BOTTOM), theta(Z_SECTION_AA), theta(Z_TOP_END)
+    res = {"H": H, "e": H * L / (Q_TOP * area), "theta_bottom": th_b, "theta_AA": th_aa, "theta_top": th_t,
+           "dtheta_AA_fe": th_aa - th_b, "dtheta_AA_beam": rad(H / EI * (L * s - s * s / 2)),
+           "dtheta_top_fe": th_t - th_b, "dtheta_top_beam": rad(H * L * L / (2 * EI)),
+           "gamma": rad(H / (kappa * G * area)),
+           "pred_gap": rad(H / (kappa * G * area)) + rad(H / EI * (L * L / 3 - (L * s - s * s / 2)))}
+    bstar = beta_star(X, f_conn_top(h5path), u)[0]
+    res["beta_star"] = bstar
+    res["gap_fe"] = bstar - th_aa
+    return res
+
+
+def f_conn_top(h5path):
+    with h5py.File(h5path, "r") as f:
+        return f["mesh/groups/top_pipe/connectivity"][...]
+
+
+def statics_table(results_dir):
+    """top_pipe_statics for every case found, one line each."""
+    print(f"{'case':<22} {'H (kN)':>7} {'e (mm)':>6} {'th(1265)':>8} {'th(A-A)':>8} {'th(3765)':>8} "
+          f"{'dth_AA fe/beam':>15} {'dth_top fe/beam':>16} {'gamma':>7} {'b*-th_AA fe/pred':>17}")
+    for case in thesis_values():
+        path = case_h5(results_dir, case)
+        if not os.path.exists(path):
+            continue
+        r = top_pipe_statics(path)
+        print(f"{case:<22} {r['H'] / 1e3:7.1f} {r['e']:6.0f} {r['theta_bottom']:8.4f} {r['theta_AA']:8.4f} "
+              f"{r['theta_top']:8.4f} {r['dtheta_AA_fe']:7.4f}/{r['dtheta_AA_beam']:.4f} "
+              f"{r['dtheta_top_fe']:8.4f}/{r['dtheta_top_beam']:.4f} {r['gamma']:7.4f} "
+              f"{r['gap_fe']:8.4f}/{r['pred_gap']:.4f}")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("h5", nargs="?", help="a model C result file")
     ap.add_argument("--table", metavar="RESULTS_DIR", help="post-process every case under RESULTS_DIR/<case>/")
     ap.add_argument("--csv", help="with --table: write this CSV")
+    ap.add_argument("--statics", metavar="RESULTS_DIR",
+                    help="the top pipe as a beam: measured section rotations against beam theory")
     args = ap.parse_args(argv)
-    if args.table:
+    if args.statics:
+        statics_table(args.statics)
+    elif args.table:
         table(args.table, args.csv)
     elif args.h5:
         postprocess(args.h5)

@@ -15,6 +15,7 @@ program tester
   use test_bars, only: collect_bars
   use test_matsuoka, only: collect_matsuoka
   use test_joint_models, only: collect_joint_models
+  use test_activation, only: collect_activation
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
@@ -35,7 +36,8 @@ program tester
     new_testsuite('tri6', collect_tri6), &
     new_testsuite('bars', collect_bars), &
     new_testsuite('matsuoka', collect_matsuoka), &
-    new_testsuite('joint_models', collect_joint_models) &
+    new_testsuite('joint_models', collect_joint_models), &
+    new_testsuite('activation', collect_activation) &
     ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1

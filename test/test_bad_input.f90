@@ -32,7 +32,10 @@ contains
       new_unittest('nu = 0.5 rejected', test_nu_half), &
       new_unittest('nu = -1 rejected', test_nu_minus_one), &
       new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
-      new_unittest('unknown result field name', test_unknown_field) &
+      new_unittest('unknown result field name', test_unknown_field), &
+      new_unittest('ACTIVATE of an undefined group', test_activate_unknown), &
+      new_unittest('ACTIVATE of a group twice', test_activate_twice), &
+      new_unittest('node carried only by an unborn group names node and DOF', test_activate_orphan) &
       ]
   end subroutine collect_bad_input
 
@@ -202,5 +205,24 @@ contains
     call expect_failure('test/data/bad/rigid_body_mode.dat', err_model, &
                         [character(len=40) :: 'rigid_body_mode.dat', 'node ', 'DOF u'], error)
   end subroutine test_rigid_body_mode
+
+  subroutine test_activate_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/activate_unknown_group.dat', err_input, &
+                        [character(len=40) :: 'activate_unknown_group.dat:15:', 'field 4', 'nosuch'], error)
+  end subroutine test_activate_unknown
+
+  subroutine test_activate_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/activate_twice.dat', err_input, &
+                        [character(len=40) :: 'activate_twice.dat:19:', 'field 5', 'twice', 'second'], error)
+  end subroutine test_activate_twice
+
+  subroutine test_activate_orphan(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/activate_orphan_node.dat', err_model, &
+                        [character(len=40) :: 'activate_orphan_node.dat', 'stage first', 'node 3', 'DOF ux', &
+                         'group new'], error)
+  end subroutine test_activate_orphan
 
 end module test_bad_input

@@ -64,6 +64,8 @@ module feps_incremental_analysis
     real(dp), allocatable :: sig_t(:, :), eps_t(:, :)
     integer, allocatable :: state_t(:)
     real(dp), allocatable :: dtan(:, :, :), dtan_t(:, :, :)   !! nonlinear groups only
+    !> Carries point state: a nonlinear material, or a group born in a later stage (whose
+    !! strains count from its activation, so it cannot join the total-strain linear part).
     logical :: nonlinear = .false.
   end type group_state_t
 
@@ -92,6 +94,7 @@ module feps_incremental_analysis
     logical :: symmetrized = .false.
     logical :: warned_condition = .false.
     type(linear_part_t) :: lin
+    logical, allocatable :: active(:)                  !! groups active in the current stage
   end type analysis_t
 
   public :: run_analysis, is_linear_model
@@ -189,7 +192,8 @@ contains
       np = an%kernels(g)%npoints * size(model%groups(g)%connectivity, 2)
       nc = an%kernels(g)%ncomp
       associate (s => an%states(g))
-        s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear()
+        s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear() .or. &
+                      model%groups(g)%activate_stage > 1
         if (.not. s%nonlinear) then
           an%lin%present = .true.
           cycle
@@ -230,6 +234,8 @@ contains
         deallocate (ke, d, dofs)
       end do
     end if
+    allocate (an%active(size(model%groups)))
+    an%active = model%groups(:)%activate_stage <= 1
     allocate (an%u(3, model%nnode), an%u_t(3, model%nnode), an%fint(3, model%nnode), an%uc(3, model%nnode))
     an%u = 0.0_dp
     an%u_t = 0.0_dp
@@ -285,6 +291,56 @@ contains
     end do
   end subroutine add_linear_forces
 
+  !> Activate the groups born in stage s (true if there are any). Their point states are still
+  !! zero, so their strains count from the displacement at the start of the stage.
+  subroutine activate_groups(model, an, s, any_born)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer, intent(in) :: s
+    logical, intent(out) :: any_born
+    integer :: g
+    any_born = .false.
+    do g = 1, size(model%groups)
+      if (model%groups(g)%activate_stage /= s .or. s == 1) cycle
+      an%active(g) = .true.
+      any_born = .true.
+    end do
+  end subroutine activate_groups
+
+  !> A free DOF whose node touches no active element has no stiffness: name it (and the group
+  !! that will bring it) rather than let the factorization find a zero pivot.
+  subroutine check_born_nodes(model, an, s, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: s
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: carried(:)
+    integer :: g, n, d, later
+    if (all(an%active)) return
+    allocate (carried(model%nnode))
+    carried = .false.
+    do g = 1, size(model%groups)
+      if (an%active(g)) carried(pack(model%groups(g)%connectivity, .true.)) = .true.
+    end do
+    do n = 1, model%nnode
+      if (carried(n)) cycle
+      do d = 1, 3
+        if (an%map%eq(d, n) == 0) cycle
+        later = 0
+        do g = 1, size(model%groups)
+          if (.not. an%active(g) .and. any(model%groups(g)%connectivity == n)) later = g
+        end do
+        if (later == 0) cycle   ! a node of no element at all: the DOF map does not number it
+        call fatal_error(error, err_model, model%deck_file // ': stage ' // model%stages(s)%name // ': ' // &
+                         an%map%dof_name(an%map%eq(d, n)) // ' has no stiffness: its node belongs only to ' // &
+                         'elements not yet active (group ' // model%groups(later)%name // ', ACTIVATE in stage ' // &
+                         model%stages(model%groups(later)%activate_stage)%name // '); hold it (FIX, DISPLACE) ' // &
+                         'or activate its elements earlier', item=an%map%eq(d, n))
+        return
+      end do
+    end do
+  end subroutine check_born_nodes
+
   !> Increments of one whole stage: external forces (global) and constrained values (nodal).
   subroutine stage_increments(model, an, s, df, duc, error)
     type(model_t), intent(in) :: model
@@ -327,12 +383,18 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: t0, rnorm, pnorm
     integer :: s, step
+    logical :: born
 
-    call factorize_tangent(model, an, .true., summary, error)
-    if (allocated(error)) return
     allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq))
     step = 0
     do s = 1, size(model%stages)
+      call activate_groups(model, an, s, born)
+      if (s == 1 .or. born) then
+        call check_born_nodes(model, an, s, error)
+        if (allocated(error)) return
+        call factorize_tangent(model, an, .true., summary, error)
+        if (allocated(error)) return
+      end if
       call stage_increments(model, an, s, df, duc, error)
       if (allocated(error)) return
       an%f_applied = an%f_applied + df
@@ -372,7 +434,7 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
     integer :: s, k, step, iters, cut, nfact0, iters_step
-    logical :: ok, need_factor, have_factor, step_unconverged
+    logical :: ok, need_factor, have_factor, step_unconverged, born
     logical, allocatable :: fully_open(:)
 
     allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq), fully_open(size(model%groups)))
@@ -383,6 +445,15 @@ contains
     abs_prev = 0.0_dp
     do s = 1, size(model%stages)
       associate (st => model%stages(s), c => model%stages(s)%controls)
+        call activate_groups(model, an, s, born)
+        if (s == 1 .or. born) then
+          call check_born_nodes(model, an, s, error)
+          if (allocated(error)) return
+          ! New elements change the stiffness: refactorize (the tangent, or the initial
+          ! stiffness for that method) before the stage's first step.
+          if (s > 1 .and. c%method == method_initial_stiffness) have_factor = .false.
+          if (s > 1) rel_prev = huge(1.0_dp)
+        end if
         call stage_increments(model, an, s, df, duc, error)
         if (allocated(error)) return
         call observer%progress('stage ' // st%name // ': ' // str(st%steps) // ' steps, method ' // &
@@ -654,7 +725,7 @@ contains
     an%fint = 0.0_dp
     call add_linear_forces(an, an%u_t, an%fint)
     do g = 1, size(model%groups)
-      if (.not. an%states(g)%nonlinear) cycle
+      if (.not. an%states(g)%nonlinear .or. .not. an%active(g)) cycle
       np = an%kernels(g)%npoints
       nn = an%kernels(g)%nnodes
       nc = an%kernels(g)%ncomp
@@ -749,6 +820,7 @@ contains
     t0 = wall_clock()
     an%a%val = 0.0_dp
     do g = 1, size(model%groups)
+      if (.not. an%active(g)) cycle   ! not yet born: no stiffness
       np = an%kernels(g)%npoints
       nn = an%kernels(g)%nnodes
       nc = an%kernels(g)%ncomp

@@ -928,7 +928,36 @@ contains
     call resolve_node_sets(model, st%set_regions, st%set_node, st%set_records, error, st%set_group)
     if (allocated(error)) return
     call finish_stages(model)
+    call resolve_activations(model, error)
   end subroutine finish_model
+
+  !> Each group named by a stage's ACTIVATE is born in that stage: it must exist and be
+  !! activated once only.
+  subroutine resolve_activations(model, error)
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer :: s, i, g
+    do s = 1, size(model%stages)
+      if (.not. allocated(model%stages(s)%activate)) cycle
+      associate (stg => model%stages(s))
+        do i = 1, size(stg%activate)
+          g = model%find_group(trim(stg%activate(i)))
+          if (g == 0) then
+            call input_error(error, stg%file, stg%line, 'ACTIVATE: undefined element group "' // &
+                             trim(stg%activate(i)) // '"', stg%activate_field(i))
+            return
+          end if
+          if (model%groups(g)%activate_stage /= 0) then
+            call input_error(error, stg%file, stg%line, 'ACTIVATE: group "' // trim(stg%activate(i)) // &
+                             '" is activated twice (already in stage ' // &
+                             model%stages(model%groups(g)%activate_stage)%name // ')', stg%activate_field(i))
+            return
+          end if
+          model%groups(g)%activate_stage = s
+        end do
+      end associate
+    end do
+  end subroutine resolve_activations
 
   !> Without STAGE records the deck is one stage of one step applying everything; with them,
   !! LOAD= defaults to 1 for a single stage and 0 otherwise. Method presets fix the iteration
@@ -1102,15 +1131,16 @@ contains
     end do
   end subroutine read_controls
 
-  !> STAGE, name, STEPS=n, LOAD=fraction, OUTPUT=k, and any CONTROLS option.
+  !> STAGE, name, STEPS=n, LOAD=fraction, OUTPUT=k, ACTIVATE=g1[:g2...], and any CONTROLS
+  !! option. ACTIVATE may be repeated; the group names are resolved once all groups are known.
   subroutine read_stage(rec, model, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
     type(error_t), allocatable, intent(out) :: error
     type(stage_t) :: st
     type(stage_t), allocatable :: tmp(:)
-    integer :: i, eq
-    character(len=:), allocatable :: f, k
+    integer :: i, eq, colon
+    character(len=:), allocatable :: f, k, names
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     st%name = field_text(rec, 2)
@@ -1118,6 +1148,7 @@ contains
     st%line = rec%line
     st%load_fraction = -1.0_dp    ! default decided once all stages are known
     st%controls = model%controls
+    allocate (st%activate(0), st%activate_field(0))
     do i = 3, nfields(rec)
       f = field_text(rec, i)
       eq = index(f, '=')
@@ -1144,10 +1175,25 @@ contains
           call input_error(error, rec%file, rec%line, 'OUTPUT (every k steps) must not be negative', i)
           return
         end if
+      case ('ACTIVATE')
+        names = f(eq + 1:)
+        do
+          colon = index(names, ':')
+          if (colon == 0) colon = len(names) + 1
+          if (len_trim(names(:colon - 1)) == 0 .or. colon - 1 > name_len) then
+            call input_error(error, rec%file, rec%line, 'ACTIVATE takes group names separated by ":", got "' // &
+                             f(eq + 1:) // '"', i)
+            return
+          end if
+          st%activate = [character(len=name_len) :: st%activate, names(:colon - 1)]
+          st%activate_field = [st%activate_field, i]
+          if (colon > len(names)) exit
+          names = names(colon + 1:)
+        end do
       case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE')
       case default
         call input_error(error, rec%file, rec%line, 'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
-                         'METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS)', i)
+                         'ACTIVATE, METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS)', i)
         return
       end select
     end do

@@ -29,6 +29,7 @@ module feps_model
     integer :: material = 0                         !! index into model%materials
     integer, allocatable :: connectivity(:, :)      !! (nodes per element, nelem), 1-based
     integer, allocatable :: blocks(:)               !! DATAIN element blocks it holds
+    integer :: activate_stage = 0                   !! 0: active from the start; s: born in stage s
     character(len=:), allocatable :: file
     integer :: line = 0
   end type element_group_t
@@ -131,6 +132,8 @@ module feps_model
     real(dp) :: load_fraction = 1.0_dp
     integer :: output_every = 0              !! write every k steps (0: the stage's last step)
     type(controls_t) :: controls
+    character(len=name_len), allocatable :: activate(:)  !! groups born at the start of this stage
+    integer, allocatable :: activate_field(:)            !! their fields in the STAGE record
     character(len=:), allocatable :: file
     integer :: line = 0
   end type stage_t

@@ -1,0 +1,174 @@
+!> Element activation per stage (STAGE ..., ACTIVATE=group): a group born in stage k carries
+!! nothing before k and is stress-free at the start of k, so it takes only its share of the
+!! later increments. Checked against two-springs-in-parallel closed forms, on the linear path
+!! (bars) and on the nonlinear path (solids and interfaces, a model with interfaces).
+module test_activation
+  use feps_kinds, only: dp
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_model, only: model_t
+  use feps_deck, only: read_deck
+  use feps_incremental_analysis, only: run_analysis, analysis_summary_t
+  use feps_observer, only: observer_t, step_result_t
+  implicit none
+  private
+
+  public :: collect_activation
+
+  !> Keeps every step written (the last step of each stage by default).
+  type, extends(observer_t) :: all_steps_t
+    type(step_result_t), allocatable :: steps(:)
+  contains
+    procedure :: progress => ignore_progress
+    procedure :: write_step => keep_step
+  end type all_steps_t
+
+contains
+
+  subroutine collect_activation(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest("bars_in_parallel_born_in_stage_2", test_bars), &
+      new_unittest("block_and_interface_born_in_stage_2", test_block), &
+      new_unittest("deck_records_activation_stage", test_deck) &
+      ]
+  end subroutine collect_activation
+
+  subroutine ignore_progress(self, line)
+    class(all_steps_t), intent(inout) :: self
+    character(len=*), intent(in) :: line
+  end subroutine ignore_progress
+
+  subroutine keep_step(self, res, error)
+    class(all_steps_t), intent(inout) :: self
+    type(step_result_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    if (.not. allocated(self%steps)) allocate (self%steps(0))
+    self%steps = [self%steps, res]
+  end subroutine keep_step
+
+  !> Run a deck; the written steps (one per stage here) are returned in obs.
+  subroutine run_deck(path, obs, error)
+    character(len=*), intent(in) :: path
+    type(all_steps_t), intent(out) :: obs
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(analysis_summary_t) :: summary
+    call read_deck(path, model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+  end subroutine run_deck
+
+  !> Check every point of component `comp` of group g against `expected`.
+  subroutine check_group(error, res, g, comp, expected, what, strain)
+    type(error_t), allocatable, intent(out) :: error
+    type(step_result_t), intent(in) :: res
+    integer, intent(in) :: g, comp
+    real(dp), intent(in) :: expected
+    character(len=*), intent(in) :: what
+    logical, intent(in), optional :: strain
+    integer :: q
+    logical :: use_strain
+    use_strain = .false.
+    if (present(strain)) use_strain = strain
+    do q = 1, size(res%groups(g)%stress, 2)
+      if (use_strain) then
+        call check(error, res%groups(g)%strain(comp, q), expected, what, rel=1.0e-7_dp, abs=1.0e-12_dp)
+      else
+        call check(error, res%groups(g)%stress(comp, q), expected, what, rel=1.0e-7_dp, abs=1.0e-9_dp)
+      end if
+      if (allocated(error)) return
+    end do
+  end subroutine check_group
+
+  !> Bars old (k = EA/L = 100 N/mm) and new (300 N/mm) between a fixed node and node 2.
+  !! Stage 1, F1 = 50 N: u = 0.5, N_old = 50, N_new = 0 (not born). Stage 2, F2 = 40 N on both:
+  !! du = 40 / 400 = 0.1, N_old = 50 + 10 = 60, N_new = 30 (its strain is du / L only).
+  subroutine test_bars(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(all_steps_t) :: obs
+    call run_deck('test/data/activate_bars.dat', obs, error)
+    if (allocated(error)) return
+    call check(error, size(obs%steps), 2, 'one written step per stage')
+    if (allocated(error)) return
+    call check(error, obs%steps(1)%displacement(1, 2), 0.5_dp, 'stage 1: u = F1 / k_old', rel=1.0e-10_dp)
+    if (allocated(error)) return
+    call check_group(error, obs%steps(1), 1, 1, 50.0_dp, 'stage 1: N_old = F1')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(1), 2, 1, 0.0_dp, 'stage 1: the unborn bar carries nothing')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(1), 2, 1, 0.0_dp, 'stage 1: the unborn bar has no strain', strain=.true.)
+    if (allocated(error)) return
+    call check(error, obs%steps(2)%displacement(1, 2), 0.6_dp, 'stage 2: u = F1/k_old + F2/(k_old + k_new)', &
+               rel=1.0e-10_dp)
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), 1, 1, 60.0_dp, 'stage 2: N_old = F1 + F2 k_old / (k_old + k_new)')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), 2, 1, 30.0_dp, 'stage 2: N_new = F2 k_new / (k_old + k_new)')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), 2, 1, 0.1_dp / 100.0_dp, 'stage 2: strain of new = du / L', strain=.true.)
+    if (allocated(error)) return
+    call check(error, obs%steps(2)%reaction(1, 1), -90.0_dp, 'reaction = -(F1 + F2)', rel=1.0e-10_dp)
+  end subroutine test_bars
+
+  !> Blocks of E = 1000 (10 mm high, nu = 0) pressed through a joint of Kn = 800; born in
+  !! stage 2: upper2 (E = 3000) over the upper block's nodes and joint2 (Kn = 200) over the
+  !! joint's nodes. Stage 1, p1 = 1: sigma_zz = -1 everywhere, born groups zero. Stage 2,
+  !! p2 = 2 more: lower -3; upper -1 - 2 (1000/4000) = -1.5, upper2 -2 (3000/4000) = -1.5
+  !! (strain -5e-4, counted from its birth); joint -1 - 2 (800/1000) = -2.6, joint2 -0.4.
+  !! Top: uz = -3 (10/1000) - (1/800 + 2/1000) - (10/1000 + 2 (10/4000)) = -0.04825.
+  subroutine test_block(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(all_steps_t) :: obs
+    integer, parameter :: lower = 1, upper = 2, joint = 3, upper2 = 4, joint2 = 5
+    integer :: top
+    call run_deck('test/data/activate_block.dat', obs, error)
+    if (allocated(error)) return
+    call check(error, size(obs%steps), 2, 'one written step per stage')
+    if (allocated(error)) return
+    top = size(obs%steps(1)%displacement, 2)    ! the last node: a top corner (z = 20)
+    ! end of stage 1
+    call check_group(error, obs%steps(1), lower, 3, -1.0_dp, 'stage 1: lower sigma_zz')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(1), upper, 3, -1.0_dp, 'stage 1: upper sigma_zz')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(1), joint, 3, -1.0_dp, 'stage 1: joint sigma_n')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(1), upper2, 3, 0.0_dp, 'stage 1: unborn upper2 sigma_zz')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(1), joint2, 3, 0.0_dp, 'stage 1: unborn joint2 sigma_n')
+    if (allocated(error)) return
+    call check(error, obs%steps(1)%displacement(3, top), -0.02125_dp, 'stage 1: top uz', rel=1.0e-6_dp)
+    if (allocated(error)) return
+    ! end of stage 2
+    call check_group(error, obs%steps(2), lower, 3, -3.0_dp, 'stage 2: lower sigma_zz')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), upper, 3, -1.5_dp, 'stage 2: upper sigma_zz')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), upper2, 3, -1.5_dp, 'stage 2: upper2 sigma_zz (share of p2 only)')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), upper2, 3, -5.0e-4_dp, 'stage 2: upper2 strain from its birth', &
+                     strain=.true.)
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), upper2, 1, 0.0_dp, 'stage 2: upper2 sigma_xx')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), joint, 3, -2.6_dp, 'stage 2: joint sigma_n')
+    if (allocated(error)) return
+    call check_group(error, obs%steps(2), joint2, 3, -0.4_dp, 'stage 2: joint2 sigma_n (share of p2 only)')
+    if (allocated(error)) return
+    call check(error, obs%steps(2)%displacement(3, top), -0.04825_dp, 'stage 2: top uz', rel=1.0e-6_dp)
+  end subroutine test_block
+
+  !> The reader keeps each group's birth stage: 0 for the groups present from the start.
+  subroutine test_deck(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    call read_deck('test/data/activate_block.dat', model, error)
+    if (allocated(error)) return
+    call check(error, model%groups(model%find_group('upper2'))%activate_stage, 2, 'upper2 born in stage 2')
+    if (allocated(error)) return
+    call check(error, model%groups(model%find_group('joint2'))%activate_stage, 2, 'joint2 born in stage 2')
+    if (allocated(error)) return
+    call check(error, model%groups(model%find_group('joint'))%activate_stage, 0, 'joint present from the start')
+  end subroutine test_deck
+
+end module test_activation

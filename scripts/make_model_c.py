@@ -157,7 +157,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None):
         f"!   and delta together in {nsteps} steps (thesis 6.3/6.4), initial stiffness, at most 10 iterations;",
         "!   stage 3: equilibrium iterations (see the solution controls below).",
         "! - mesh: hex8, 2 elements through the wall; theta 4 x 3 deg at the loaded edge (theta = 0,",
-        "!   x = +715: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then 28 x 6 deg;",
+        "!   x = +715: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then " + f"{len(THETA_STEPS) - 4} x {THETA_STEPS[-1]:g} deg;",
         "!   z graded 150/100/50/25/12.5 mm towards the joint on both sides; a node layer at z = 2515, the",
         "!   top pipe's mid-length section A-A of thesis Fig. 7.7.",
         "! The misalignment rotation is about +y: the joint closes at x = +715 (theta = 0) and may open",
@@ -266,7 +266,14 @@ def main():
     ap.add_argument("--cases", default="", help="comma-separated case names (default: all 12)")
     ap.add_argument("--steps", type=int, default=None, help="stage-2 steps (default: the thesis's)")
     ap.add_argument("--soil-radius", type=float, default=2000.0)
+    ap.add_argument("--theta-step", type=float, default=None,
+                    help="mesh sensitivity: this element size (deg) from theta = 12 to 180 instead of 6")
     args = ap.parse_args()
+    if args.theta_step:
+        n = round(168.0 / args.theta_step)
+        if abs(n * args.theta_step - 168.0) > 1e-9:
+            ap.error("--theta-step must divide 168 deg")
+        THETA_STEPS[4:] = [args.theta_step] * n
     os.makedirs(args.outdir, exist_ok=True)
     names = [c for c in args.cases.split(",") if c] or [case_name(*c) for c in all_cases()]
     for name in names:

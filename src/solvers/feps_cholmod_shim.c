@@ -58,6 +58,12 @@ void *feps_chol_create(void)
     c->method[0].ordering = CHOLMOD_METIS;
     c->postorder = 1;
     c->final_ll = 1;            /* supernodal factors are LL' anyway; keep simplicial ones LL' too */
+    /* Merge more small supernodes than CHOLMOD's 4/16/48 (zrelax kept at 0.8/0.1/0.05): at 200k
+     * DOFs the factor grows by 1.4% but BLAS works on bigger blocks, and the one-thread
+     * factorization took 0.82-1.03x the CPU time in 10 alternating pairs (median 0.9x). */
+    c->nrelax[0] = 8;
+    c->nrelax[1] = 32;
+    c->nrelax[2] = 64;
     return h;
 }
 

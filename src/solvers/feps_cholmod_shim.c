@@ -5,6 +5,10 @@
  * 1-based compressed rows; read as compressed columns this is the upper triangle, which
  * CHOLMOD takes as a symmetric matrix with stype = +1.
  *
+ * Ordering: METIS on the graph of supervariables (equations with identical pattern, such as
+ * the DOFs of one node), given to CHOLMOD through cholmod_l_analyze_p; CHOLMOD's own METIS
+ * ordering of the full graph is the fallback (see analyze_node_graph).
+ *
  * Return codes of analyze/factorize/solve: see FEPS_CHOL_* below (0 = success).
  * Column numbers handed back to Fortran are original (unpermuted) and 1-based.
  */

@@ -5,7 +5,8 @@ module test_cholmod
   use feps_error, only: err_model, err_internal, str
   use feps_sparse_matrix, only: csr_matrix_t
   use feps_lapack, only: dposv, dgemm
-  use feps_cholmod_solver, only: cholmod_solver_t
+  use feps_cholmod_solver, only: cholmod_solver_t, count_supervariables
+  use feps_skyline_solver, only: skyline_solver_t
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   implicit none
   private
@@ -25,7 +26,9 @@ contains
       new_unittest("negative diagonal names its equation", test_indefinite), &
       new_unittest("pivot ratios of a nearly dependent pair", test_pivot_ratios), &
       new_unittest("factor statistics of a dense matrix", test_statistics), &
-      new_unittest("solve before factorize fails", test_solve_unfactorized) &
+      new_unittest("solve before factorize fails", test_solve_unfactorized), &
+      new_unittest("supervariables of known patterns", test_supervariable_counts), &
+      new_unittest("node-graph ordering equals skyline", test_node_ordering_vs_skyline) &
     ]
   end subroutine collect_cholmod
 
@@ -382,5 +385,171 @@ contains
       call test_failed(error, 'expected err_internal, got ' // str(got%code) // ': ' // got%message)
     end if
   end subroutine test_solve_unfactorized
+
+  !> Lower triangle of a quad mesh of mx x my elements with 3 DOFs per node, the third held at
+  !! the nodes of the first column (2 DOFs there). Each element adds B^T B with a random 12 x 12
+  !! B, so A is SPD and every entry coupling two nodes of one element is in the pattern, zero or
+  !! not. Node by node numbering, or all first DOFs, then all second, then all third DOFs.
+  function quad_mesh_matrix(mx, my, by_node) result(a)
+    integer, intent(in) :: mx, my
+    logical, intent(in) :: by_node
+    type(csr_matrix_t) :: a
+    integer, parameter :: dofs_per_node = 3
+    integer :: equation(dofs_per_node, (mx + 1) * (my + 1))
+    real(dp), allocatable :: dense(:, :)
+    logical, allocatable :: coupled(:, :)
+    real(dp) :: b(12, 12), ke(12, 12)
+    integer :: ex, ey, node, d, i, j, n, corner(4), element_eq(12)
+    integer(i8) :: seed, pos
+
+    n = 0
+    equation = 0
+    do d = 1, dofs_per_node
+      do node = 1, size(equation, 2)
+        if (d == 3 .and. modulo(node - 1, mx + 1) == 0) cycle   ! held DOF
+        if (by_node) cycle
+        n = n + 1
+        equation(d, node) = n
+      end do
+    end do
+    if (by_node) then
+      do node = 1, size(equation, 2)
+        do d = 1, dofs_per_node
+          if (d == 3 .and. modulo(node - 1, mx + 1) == 0) cycle
+          n = n + 1
+          equation(d, node) = n
+        end do
+      end do
+    end if
+
+    allocate (dense(n, n), coupled(n, n))
+    dense = 0.0_dp
+    coupled = .false.
+    seed = 77
+    do ey = 1, my
+      do ex = 1, mx
+        node = (ey - 1) * (mx + 1) + ex
+        corner = [node, node + 1, node + mx + 2, node + mx + 1]
+        element_eq = reshape(equation(:, corner), [12])
+        do j = 1, 12
+          call fill_random(b(:, j), seed)
+        end do
+        ke = matmul(transpose(b - 0.5_dp), b - 0.5_dp)
+        do j = 1, 12
+          if (element_eq(j) == 0) cycle
+          do i = 1, 12
+            if (element_eq(i) == 0) cycle
+            dense(element_eq(i), element_eq(j)) = dense(element_eq(i), element_eq(j)) + ke(i, j)
+            coupled(element_eq(i), element_eq(j)) = .true.
+          end do
+        end do
+      end do
+    end do
+    ! Exact zeros in the pattern, as an assembled matrix can have them.
+    dense(equation(1, 1), equation(2, 2)) = 0.0_dp
+    dense(equation(2, 2), equation(1, 1)) = 0.0_dp
+
+    a%n = n
+    allocate (a%row_ptr(n + 1), a%col(count(coupled)), a%val(count(coupled)))
+    pos = 1
+    do i = 1, n
+      a%row_ptr(i) = pos
+      do j = 1, i
+        if (.not. coupled(i, j)) cycle
+        a%col(pos) = j
+        a%val(pos) = dense(i, j)
+        pos = pos + 1
+      end do
+    end do
+    a%row_ptr(n + 1) = pos
+    a%col = a%col(1:pos - 1)
+    a%val = a%val(1:pos - 1)
+  end function quad_mesh_matrix
+
+  !> Supervariables (equations with identical pattern): 1 for a dense matrix, n for a diagonal
+  !! or tridiagonal one, m*m for the 5-point Laplacian, and one per node for a mesh whatever the
+  !! DOF numbering (30 nodes, 80 equations).
+  subroutine test_supervariable_counts(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(csr_matrix_t) :: a
+    real(dp) :: dense(7, 7)
+    integer(i8) :: count
+    integer :: k
+    dense = 1.0_dp
+    call count_supervariables(dense_to_csr(dense), count, error)
+    if (allocated(error)) return
+    call check(error, int(count), 1, 'dense 7 x 7')
+    if (allocated(error)) return
+    call count_supervariables(tridiagonal([(2.0_dp, k = 1, 5)], [(0.0_dp, k = 1, 4)]), count, error)
+    if (allocated(error)) return
+    call check(error, int(count), 5, 'tridiagonal 5 x 5')
+    if (allocated(error)) return
+    a = tridiagonal([(2.0_dp, k = 1, 1)], [(0.0_dp, k = 1, 0)])
+    call count_supervariables(a, count, error)
+    if (allocated(error)) return
+    call check(error, int(count), 1, 'one equation')
+    if (allocated(error)) return
+    call count_supervariables(laplacian_2d(6), count, error)
+    if (allocated(error)) return
+    call check(error, int(count), 36, '5-point Laplacian 6 x 6')
+    if (allocated(error)) return
+    a = quad_mesh_matrix(5, 4, by_node=.true.)
+    call check(error, a%n, 3 * 30 - 5, 'equations of the 5 x 4 mesh')
+    if (allocated(error)) return
+    call count_supervariables(a, count, error)
+    if (allocated(error)) return
+    call check(error, int(count), 30, 'mesh numbered node by node')
+    if (allocated(error)) return
+    call count_supervariables(quad_mesh_matrix(5, 4, by_node=.false.), count, error)
+    if (allocated(error)) return
+    call check(error, int(count), 30, 'mesh numbered DOF by DOF')
+    if (allocated(error)) return
+    ! A diagonal entry missing from a row is rejected, not miscounted.
+    a = laplacian_2d(3)
+    a%col(a%row_ptr(2) - 1) = 0
+    block
+      type(error_t), allocatable :: got
+      call count_supervariables(a, count, got)
+      call check(error, allocated(got), 'invalid pattern rejected')
+    end block
+  end subroutine test_supervariable_counts
+
+  !> On a mesh with 2- and 3-DOF nodes, numbered both ways, the CHOLMOD solution (METIS on the
+  !! 30-vertex node graph) equals the skyline solution to 1e-10 relative, and both equal x_true.
+  subroutine test_node_ordering_vs_skyline(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(cholmod_solver_t) :: cholmod
+    type(skyline_solver_t) :: skyline
+    type(csr_matrix_t) :: a
+    real(dp), allocatable :: x_true(:), b(:), x_cholmod(:), x_skyline(:)
+    integer :: k, numbering
+    do numbering = 1, 2
+      a = quad_mesh_matrix(5, 4, by_node=numbering == 1)
+      x_true = [(cos(0.7_dp * k) + 0.1_dp * k, k = 1, a%n)]
+      allocate (b(a%n))
+      call a%multiply(x_true, b)
+      call analyze_and_factorize(cholmod, a, error)
+      if (allocated(error)) return
+      call check(error, int(cholmod%supervariables()), 30, 'vertices METIS ordered')
+      if (allocated(error)) return
+      x_cholmod = b
+      call cholmod%solve(x_cholmod, error)
+      if (allocated(error)) return
+      call skyline%analyze(a, error)
+      if (allocated(error)) return
+      call skyline%factorize(a, error)
+      if (allocated(error)) return
+      x_skyline = b
+      call skyline%solve(x_skyline, error)
+      if (allocated(error)) return
+      call check(error, maxval(abs(x_cholmod - x_skyline)) / maxval(abs(x_skyline)), 0.0_dp, &
+                 'cholmod against skyline, numbering ' // str(numbering), abs=1.0e-10_dp)
+      if (allocated(error)) return
+      call check(error, maxval(abs(x_cholmod - x_true)) / maxval(abs(x_true)), 0.0_dp, &
+                 'cholmod against x_true, numbering ' // str(numbering), abs=1.0e-10_dp)
+      if (allocated(error)) return
+      deallocate (b)
+    end do
+  end subroutine test_node_ordering_vs_skyline
 
 end module test_cholmod

@@ -9,6 +9,7 @@ module feps_cholmod_bindings
   public :: feps_chol_create, feps_chol_free, feps_chol_analyze, feps_chol_factorize, feps_chol_solve
   public :: feps_chol_flops, feps_chol_lnz, feps_chol_status, feps_chol_failed_column
   public :: feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column
+  public :: feps_chol_supervariables, feps_chol_count_supervariables
 
   !> Return codes of analyze, factorize and solve (must match the enum in the shim).
   integer(c_int), parameter, public :: chol_ok = 0            !! success
@@ -18,7 +19,7 @@ module feps_cholmod_bindings
   integer(c_int), parameter, public :: chol_not_ready = 4     !! no analysis or no valid factor
 
   interface
-    !> New handle (supernodal, METIS ordering, silent); c_null_ptr if out of memory.
+    !> New handle (supernodal, METIS ordering of the supervariable graph, silent); c_null_ptr if out of memory.
     function feps_chol_create() result(handle) bind(C, name="feps_chol_create")
       import :: c_ptr
       type(c_ptr) :: handle
@@ -105,6 +106,25 @@ module feps_cholmod_bindings
       type(c_ptr), value :: handle
       integer(c_int64_t) :: column
     end function feps_chol_min_ratio_column
+
+    !> Vertices of the supervariable graph METIS ordered in the last analysis; 0 when the
+    !! analysis fell back to CHOLMOD's own METIS ordering of the full graph.
+    function feps_chol_supervariables(handle) result(count) bind(C, name="feps_chol_supervariables")
+      import :: c_ptr, c_int64_t
+      type(c_ptr), value :: handle
+      integer(c_int64_t) :: count
+    end function feps_chol_supervariables
+
+    !> Number of groups of equations with identical pattern (row and column, diagonal included)
+    !! of a lower triangle CSR pattern; -1 if the pattern is invalid, -2 if out of memory.
+    function feps_chol_count_supervariables(n, row_ptr, col) result(count) &
+        bind(C, name="feps_chol_count_supervariables")
+      import :: c_int32_t, c_int64_t
+      integer(c_int64_t), value :: n
+      integer(c_int64_t), intent(in) :: row_ptr(*)
+      integer(c_int32_t), intent(in) :: col(*)
+      integer(c_int64_t) :: count
+    end function feps_chol_count_supervariables
   end interface
 
 end module feps_cholmod_bindings

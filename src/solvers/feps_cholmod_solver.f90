@@ -1,4 +1,6 @@
 !> Sparse Cholesky solver using CHOLMOD (supernodal, METIS ordering) through the C shim.
+!! METIS orders the graph of supervariables (equations with identical pattern, such as the
+!! DOFs of one node), and CHOLMOD's own METIS ordering is the fallback.
 !! The CHOLMOD state lives behind a C handle that the finalizer frees; do not copy a
 !! cholmod_solver_t after analysis (the copy would share, and later free, the same handle).
 module feps_cholmod_solver
@@ -10,9 +12,11 @@ module feps_cholmod_solver
   use feps_cholmod_bindings, only: feps_chol_create, feps_chol_free, feps_chol_analyze, &
     feps_chol_factorize, feps_chol_solve, feps_chol_flops, feps_chol_lnz, feps_chol_status, &
     feps_chol_failed_column, feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column, &
-    chol_ok, chol_bad_input, chol_not_posdef, chol_not_ready
+    feps_chol_supervariables, feps_chol_count_supervariables, chol_ok, chol_bad_input, chol_not_posdef, chol_not_ready
   implicit none
   private
+
+  public :: count_supervariables
 
   !> CHOLMOD LL' solver: analyze once per pattern, factorize per set of values, solve many times.
   type, extends(linear_solver_t), public :: cholmod_solver_t
@@ -21,11 +25,13 @@ module feps_cholmod_solver
     integer :: n = 0                 !! equations of the analysed pattern
     integer(i8) :: nnz = 0           !! stored entries of the analysed pattern
     logical :: factorized = .false.  !! a valid factor is available for solve
+    integer(i8) :: graph_vertices = 0 !! supervariables METIS ordered; 0 for the fallback
   contains
     procedure :: analyze => cholmod_analyze
     procedure :: factorize => cholmod_factorize
     procedure :: solve => cholmod_solve
     procedure :: name => cholmod_name
+    procedure :: supervariables => cholmod_supervariables
     final :: cholmod_finalize
   end type cholmod_solver_t
 
@@ -41,6 +47,7 @@ contains
     self%factorized = .false.
     self%n = 0
     self%nnz = 0
+    self%graph_vertices = 0
     if (a%n <= 0 .or. .not. allocated(a%row_ptr) .or. .not. allocated(a%col)) then
       call fatal_error(error, err_internal, 'cholmod: analyze called with an empty matrix')
       return
@@ -71,6 +78,7 @@ contains
     self%nnz = a%nnz()
     self%factor_nnz = feps_chol_lnz(self%handle)
     self%flops = feps_chol_flops(self%handle)
+    self%graph_vertices = feps_chol_supervariables(self%handle)
   end subroutine cholmod_analyze
 
   !> Numerical LL' factorization. Fails with err_model, naming the equation in error%item,
@@ -156,6 +164,38 @@ contains
     character(len=:), allocatable :: name
     name = 'cholmod'
   end function cholmod_name
+
+  !> Vertices of the graph METIS ordered in the last analysis: the supervariables (groups of
+  !! equations with identical pattern), or 0 if CHOLMOD's own ordering of the full graph was used.
+  pure function cholmod_supervariables(self) result(count)
+    class(cholmod_solver_t), intent(in) :: self
+    integer(i8) :: count
+    count = self%graph_vertices
+  end function cholmod_supervariables
+
+  !> Number of supervariables of the pattern of `a`: groups of equations whose rows and columns
+  !! (diagonal included) have the same pattern, such as the free DOFs of one node.
+  subroutine count_supervariables(a, count, error)
+    type(csr_matrix_t), intent(in) :: a
+    integer(i8), intent(out) :: count
+    type(error_t), allocatable, intent(out) :: error
+    count = 0
+    if (a%n <= 0 .or. .not. allocated(a%row_ptr) .or. .not. allocated(a%col)) then
+      call fatal_error(error, err_internal, 'cholmod: supervariables of an empty matrix')
+      return
+    end if
+    if (size(a%row_ptr, kind=i8) /= a%n + 1_i8 .or. size(a%col, kind=i8) < a%nnz()) then
+      call fatal_error(error, err_internal, 'cholmod: matrix arrays do not match its size')
+      return
+    end if
+    count = feps_chol_count_supervariables(int(a%n, c_int64_t), a%row_ptr, a%col)
+    if (count == -1) then
+      call fatal_error(error, err_internal, 'cholmod: pattern is not a sorted lower triangle ' // &
+                       'with the diagonal last in each row')
+    else if (count < 0) then
+      call fatal_error(error, err_solver, 'cholmod: out of memory while grouping equations')
+    end if
+  end subroutine count_supervariables
 
   !> Release the CHOLMOD handle and everything it holds.
   subroutine cholmod_finalize(self)

@@ -38,7 +38,8 @@ contains
       new_unittest('plane strain: contact through line3 interfaces, Gauss and nodal', test_contact_2d), &
       new_unittest('Matsuoka block: one step 100 times past yield, every preset', test_matsuoka_huge_step), &
       new_unittest('stiffness contrast 1e11 : 1.44 in one model, condition warning', test_stiffness_contrast), &
-      new_unittest('initial stiffness factorizes once; elastic groups carry no point state', test_initial_stiffness_once) &
+      new_unittest('initial stiffness factorizes once; elastic groups carry no point state', test_initial_stiffness_once), &
+      new_unittest('BFGS: a stiff interface sliding on soft blocks converges in 10 iterations', test_bfgs_sliding) &
       ]
   end subroutine collect_nonlinear
 
@@ -378,5 +379,51 @@ contains
     call check(error, hypot(obs%last%groups(3)%stress(1, 1), obs%last%groups(3)%stress(2, 1)), &
                100.0_dp + (1000.0_dp / 3.0_dp) * 0.1_dp, 'tau at u = 0.2', rel=1.0e-3_dp)
   end subroutine test_initial_stiffness_once
+
+  !> A stiff interface (Ks = 400) sliding between soft blocks (G / h = 0.5), the model B FD
+  !! situation: plain initial stiffness converges at about 0.999 per iteration and stops after
+  !! its cut-backs; with ACCELERATION=bfgs the step converges within MAXIT = 10, and the base
+  !! reactions satisfy the friction law of every sliding point summed: Rx / Rz = tan 30.
+  subroutine test_bfgs_sliding(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    real(dp) :: rx, rz
+    integer :: n
+    call read_deck('test/data/block_shear.dat', model, error)
+    if (allocated(error)) return
+    call check(error, model%stages(2)%controls%bfgs, 'ACCELERATION=bfgs read')
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%unconverged_steps, 0, 'steps left unconverged')
+    if (allocated(error)) return
+    call check(error, summary%cutbacks, 0, 'cut-backs')
+    if (allocated(error)) return
+    call check(error, all(obs%last%groups(3)%state == 1), 'every interface point slides')
+    if (allocated(error)) return
+    rx = 0.0_dp
+    rz = 0.0_dp
+    do n = 1, size(model%coords, 2)
+      if (abs(model%coords(3, n)) > 1.0e-9_dp) cycle
+      rx = rx + obs%last%reaction(1, n)
+      rz = rz + obs%last%reaction(3, n)
+    end do
+    call check(error, rx / rz, tan(30.0_dp * atan(1.0_dp) / 45.0_dp), 'base Rx / Rz = tan phi', rel=1.0e-8_dp)
+    if (allocated(error)) return
+    ! The same step without the updates: the residual is still above DIVERGENCE after 10
+    ! iterations at every cut-back, and the run stops.
+    call read_deck('test/data/block_shear.dat', model, error)
+    if (allocated(error)) return
+    model%stages(2)%controls%bfgs = .false.
+    model%stages(2)%controls%max_cutbacks = 2
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (.not. allocated(error)) then
+      call test_failed(error, 'plain initial stiffness converged: the test no longer shows slow convergence')
+      return
+    end if
+    deallocate (error)
+  end subroutine test_bfgs_sliding
 
 end module test_nonlinear

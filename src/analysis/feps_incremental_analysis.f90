@@ -585,7 +585,9 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: r_carry(:)
     real(dp) :: t0, r_first, rel, r_scale
-    integer :: m
+    integer :: m, npairs
+    logical :: use_bfgs
+    real(dp), allocatable :: s_hist(:, :), y_hist(:, :), rho(:), r_old(:)
 
     if (c%method == method_euler) then
       ! Euler drops the unbalanced force of the previous step (eq. 2.6.4 not applied).
@@ -602,16 +604,29 @@ contains
     ok = .true.
     r_first = -1.0_dp
     iters = 0
+    use_bfgs = c%bfgs .and. c%max_iterations > 1
+    if (use_bfgs) then
+      allocate (s_hist(size(r), c%max_iterations), y_hist(size(r), c%max_iterations), rho(c%max_iterations), &
+                r_old(size(r)))
+      npairs = 0
+    end if
     do m = 1, c%max_iterations
       t0 = wall_clock()
-      call an%solver%solve(r, error)
+      if (use_bfgs) then
+        r_old = r
+        call bfgs_direction(an, s_hist(:, 1:npairs), y_hist(:, 1:npairs), rho(1:npairs), r, error)
+      else
+        call an%solver%solve(r, error)
+      end if
       if (allocated(error)) exit
       summary%time_solve = summary%time_solve + wall_clock() - t0
       call add_free(an, r, an%u_t)
+      if (use_bfgs) s_hist(:, npairs + 1) = r
       t0 = wall_clock()
       call update_points(model, an)
       summary%time_update = summary%time_update + wall_clock() - t0
       call residual(an, r, rnorm, pnorm)
+      if (use_bfgs) call bfgs_add_pair(s_hist, y_hist, rho, npairs, r_old, r)
       ! The step's initial out-of-balance force is the scale only when load and reactions
       ! vanish (a block lifted off: no load, no reaction, no stress).
       if (pnorm <= 1.0e-8_dp * r_scale) pnorm = r_scale
@@ -648,6 +663,49 @@ contains
       ok = rel < max(c%divergence, c%delta1) .or. rnorm < c%delta2
     end select
   end subroutine substep
+
+  !> Quasi-Newton direction d = H r by the two-loop recursion of the BFGS inverse update
+  !! (Matthies and Strang 1979) with the factorized stiffness K as H0 = K^-1; r is overwritten by
+  !! d. Pairs of the step's earlier iterations: s (displacement change), y (change of the
+  !! internal forces, = -change of the residual), rho = 1 / (s . y) > 0. With no pair this is
+  !! the plain solve.
+  subroutine bfgs_direction(an, s_hist, y_hist, rho, r, error)
+    type(analysis_t), intent(inout) :: an
+    real(dp), intent(in) :: s_hist(:, :), y_hist(:, :), rho(:)
+    real(dp), intent(inout) :: r(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: alpha(size(rho)), beta
+    integer :: i
+    do i = size(rho), 1, -1
+      alpha(i) = rho(i) * dot_product(s_hist(:, i), r)
+      r = r - alpha(i) * y_hist(:, i)
+    end do
+    call an%solver%solve(r, error)
+    if (allocated(error)) return
+    do i = 1, size(rho)
+      beta = rho(i) * dot_product(y_hist(:, i), r)
+      r = r + (alpha(i) - beta) * s_hist(:, i)
+    end do
+  end subroutine bfgs_direction
+
+  !> Keep the secant pair of the iteration just done (s already in column npairs + 1) when it
+  !! has positive curvature. When the residual grew (a gap opened or a point started to slide:
+  !! the pairs describe a response that no longer holds) drop every pair and start again from
+  !! the factorized stiffness.
+  pure subroutine bfgs_add_pair(s_hist, y_hist, rho, npairs, r_old, r)
+    real(dp), intent(inout) :: s_hist(:, :), y_hist(:, :), rho(:)
+    integer, intent(inout) :: npairs
+    real(dp), intent(in) :: r_old(:), r(:)
+    real(dp) :: sy
+    y_hist(:, npairs + 1) = r_old - r
+    sy = dot_product(s_hist(:, npairs + 1), y_hist(:, npairs + 1))
+    if (norm2(r) > norm2(r_old)) then
+      npairs = 0
+    else if (sy > 1.0e-10_dp * norm2(s_hist(:, npairs + 1)) * norm2(y_hist(:, npairs + 1))) then
+      npairs = npairs + 1
+      rho(npairs) = 1.0_dp / sy
+    end if
+  end subroutine bfgs_add_pair
 
   !> Residual of the committed state (R_n of eq. 2.6.3) on the free equations.
   subroutine committed_residual(model, an, r)

@@ -1102,6 +1102,16 @@ contains
         else
           c%max_cutbacks = m
         end if
+      case ('ACCELERATION')
+        select case (to_lower(v))
+        case ('bfgs')
+          c%bfgs = .true.
+        case ('none')
+          c%bfgs = .false.
+        case default
+          call input_error(error, rec%file, rec%line, 'unknown ACCELERATION "' // v // '" (none, bfgs)', i)
+          return
+        end select
       case ('DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE')
         call parse_real(v, x, error, rec, i)
         if (allocated(error)) return
@@ -1124,7 +1134,7 @@ contains
       case default
         if (first == 2) then
           call input_error(error, rec%file, rec%line, 'unknown CONTROLS option "' // k // &
-                           '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS)', i)
+                           '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ACCELERATION)', i)
           return
         end if
       end select
@@ -1190,10 +1200,11 @@ contains
           if (colon > len(names)) exit
           names = names(colon + 1:)
         end do
-      case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE')
+      case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE', 'ACCELERATION')
       case default
         call input_error(error, rec%file, rec%line, 'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
-                         'ACTIVATE, METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS)', i)
+                         'ACTIVATE, METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ' // &
+                         'ACCELERATION)', i)
         return
       end select
     end do

@@ -121,6 +121,7 @@ module feps_model
     real(dp) :: delta4 = huge(1.0_dp)        !! ... or |R| > delta4 at the end of a step
     integer :: max_cutbacks = 10             !! halvings of a step that diverges
     real(dp) :: divergence = 1.0e-2_dp       !! a step ending with |R| / |P| above this diverged
+    logical :: bfgs = .false.                !! quasi-Newton (BFGS) updates of the factorized stiffness
     logical :: max_iterations_set = .false.
   end type controls_t
 

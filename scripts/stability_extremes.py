@@ -13,7 +13,7 @@ Cases (variants of the thesis decks, written into OUT/<name>/deck.dat):
   kn8, kn8e5    model B FE1 with the interface stiffness Kn = 8 / 8e5 MPa/mm (Ks = Kn / 2):
                 deflection angle at 100 steps against 400 steps, tolerance 1%
   phi54_psi0    chapter 9 CR (Matsuoka phi = 54.9 deg) with psi = 0 and with psi = phi: largest
-  phi54_psi54   principal stress at 100 steps against 400, tolerance 2%
+  phi54_psi54   principal stress at the deck's 400 steps against 1000, tolerance 2%
   giant_step    model B PE1 (Matsuoka soil): one load step (Newton-Raphson, up to 200
                 iterations) against 1000 steps, deflection angle, tolerance 1%
 
@@ -110,10 +110,10 @@ CASES = {
                   subs=[(r"KN=100, KS=50", "KN=8e5, KS=4e5")], coarse=[steps_sub("load", 100)], fine=[],
                   what="deflection (deg)"),
     "phi54_psi0": dict(deck="input/chapter9/CR.dat", quantity=q_max_s1, tol=0.02,
-                       subs=[(r"PSI=54\.9", "PSI=0")], coarse=[steps_sub("load", 100)], fine=[],
+                       subs=[(r"PSI=54\.9", "PSI=0")], coarse=[], fine=[steps_sub("load", 1000)],
                        what="max s1 (MPa)"),
     "phi54_psi54": dict(deck="input/chapter9/CR.dat", quantity=q_max_s1, tol=0.02, subs=[],
-                        coarse=[steps_sub("load", 100)], fine=[], what="max s1 (MPa)"),
+                        coarse=[], fine=[steps_sub("load", 1000)], what="max s1 (MPa)"),
     "giant_step": dict(deck="input/modelB/PE1.dat", quantity=q_deflection, tol=0.01, subs=[],
                        coarse=[(r"^STAGE, load, STEPS=400, METHOD=initial-stiffness, MAXIT=10",
                                 "STAGE, load, STEPS=1, METHOD=newton-raphson, MAXIT=200")],

@@ -597,22 +597,14 @@ contains
     character(len=*), intent(in) :: components
     type(error_t), allocatable, intent(out) :: error
     integer(hid_t), intent(out), optional :: dataset_id
-    integer(hid_t) :: space_id, id
+    integer(hid_t) :: id
     integer(hsize_t) :: dims(2)
     integer :: hdferr, ignored
 
     dims = shape(values, kind=hsize_t)
-    call h5screate_simple_f(2, dims, space_id, hdferr)
-    if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot create dataspace for ' // path)
-      return
-    end if
-    call h5dcreate_f(self%file_id, path, H5T_NATIVE_DOUBLE, space_id, id, hdferr, lcpl_id=self%link_plist)
-    call h5sclose_f(space_id, ignored)
-    if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot create dataset ' // path // ' in ' // self%part_path)
-      return
-    end if
+    call create_dataset_2d(self, path, H5T_NATIVE_DOUBLE, dims, id, error)
+    if (allocated(error)) return
+    hdferr = 0
     if (size(values) > 0) call h5dwrite_f(id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
     if (hdferr < 0) then
       call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path)
@@ -627,28 +619,42 @@ contains
     end if
   end subroutine write_real_dataset
 
+  !> Create the 2D dataset `path` of HDF5 type `type_id` and shape `dims`; `id` stays open.
+  subroutine create_dataset_2d(self, path, type_id, dims, id, error)
+    type(results_file_t), intent(in) :: self
+    character(len=*), intent(in) :: path
+    integer(hid_t), intent(in) :: type_id
+    integer(hsize_t), intent(in) :: dims(2)
+    integer(hid_t), intent(out) :: id
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: space_id
+    integer :: hdferr, ignored
+
+    id = -1
+    call h5screate_simple_f(2, dims, space_id, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create dataspace for ' // path)
+      return
+    end if
+    call h5dcreate_f(self%file_id, path, type_id, space_id, id, hdferr, lcpl_id=self%link_plist)
+    call h5sclose_f(space_id, ignored)
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot create dataset ' // path // ' in ' // self%part_path)
+  end subroutine create_dataset_2d
+
   !> Dataset of default integers, values(k, n) (h5py: n x k).
   subroutine write_int_dataset(self, path, values, error)
     type(results_file_t), intent(in) :: self
     character(len=*), intent(in) :: path
     integer, intent(in) :: values(:, :)
     type(error_t), allocatable, intent(out) :: error
-    integer(hid_t) :: space_id, id
+    integer(hid_t) :: id
     integer(hsize_t) :: dims(2)
     integer :: hdferr, ignored
 
     dims = shape(values, kind=hsize_t)
-    call h5screate_simple_f(2, dims, space_id, hdferr)
-    if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot create dataspace for ' // path)
-      return
-    end if
-    call h5dcreate_f(self%file_id, path, H5T_NATIVE_INTEGER, space_id, id, hdferr, lcpl_id=self%link_plist)
-    call h5sclose_f(space_id, ignored)
-    if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot create dataset ' // path // ' in ' // self%part_path)
-      return
-    end if
+    call create_dataset_2d(self, path, H5T_NATIVE_INTEGER, dims, id, error)
+    if (allocated(error)) return
+    hdferr = 0
     if (size(values) > 0) call h5dwrite_f(id, H5T_NATIVE_INTEGER, values, dims, hdferr)
     call h5dclose_f(id, ignored)
     if (hdferr < 0) call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path)

@@ -62,7 +62,8 @@ contains
       new_unittest('patch test on a distorted hex8b (B-bar) mesh', test_patch_hex8b), &
       new_unittest('Lame cylinder near incompressibility and at negative nu: locking and B-bar', test_locking), &
       new_unittest('model B: the symmetric half equals the full 360-degree model', test_symmetry), &
-      new_unittest('fields not asked for are not computed; elastic groups keep no point state', test_fields) &
+      new_unittest('fields not asked for are not computed; elastic groups keep no point state', test_fields), &
+      new_unittest('REPORT, TILT: axis tilt of a cantilever column against Timoshenko', test_tilt_report) &
       ]
   end subroutine collect_analysis
 
@@ -334,6 +335,40 @@ contains
     if (allocated(error)) return
     call check(error, sum(res%reaction(2, :)), p, 'shear reaction at the clamp', rel=1.0e-9_dp)
   end subroutine test_cantilever
+
+  !> REPORT, TILT on the cantilever turned onto the z axis: the axis tilt between clamp and tip
+  !! is atan(delta / L) with the Timoshenko tip deflection (within 1%), and REPORT, ROTATION of
+  !! the tip section gives P L^2 / (2 E I) (within 1%) with the same sign.
+  subroutine test_tilt_report(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    real(dp), parameter :: p = 100.0_dp, l = 100.0_dp, h = 10.0_dp, e = 200000.0_dp
+    real(dp) :: inertia, delta, tilt, rotation
+    inertia = h**4 / 12.0_dp
+    delta = p * l**3 / (3.0_dp * e * inertia) + p * l / (5.0_dp / 6.0_dp * e / 2.0_dp * h * h)
+    opt%deck = 'test/data/column_tilt.dat'
+    opt%output = 'build/test_tilt.h5'
+    opt%solver = ''
+    call run_feps(opt, summary, error)
+    if (allocated(error)) return
+    call check(error, size(summary%reports), 2, 'two report lines')
+    if (allocated(error)) return
+    tilt = angle_of(summary%reports(1))
+    rotation = angle_of(summary%reports(2))
+    call check(error, tilt, atan(delta / l) * 180.0_dp / pi, 'axis tilt (deg)', rel=0.01_dp)
+    if (allocated(error)) return
+    call check(error, rotation, p * l**2 / (2.0_dp * e * inertia) * 180.0_dp / pi, 'tip section rotation (deg)', &
+               rel=0.01_dp)
+  contains
+    !> The angle printed after '):' in a report line.
+    real(dp) function angle_of(line)
+      character(len=*), intent(in) :: line
+      integer :: k
+      k = index(line, '):')
+      read (line(k + 2:), *) angle_of
+    end function angle_of
+  end subroutine test_tilt_report
 
   !> The two solvers on the model B deck: displacements equal to 1e-9 relative.
   subroutine test_model_b_solvers(error)

@@ -33,6 +33,7 @@ contains
       new_unittest('nu = -1 rejected', test_nu_minus_one), &
       new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
       new_unittest('unknown result field name', test_unknown_field), &
+      new_unittest('REPORT, TILT without two sections', test_tilt_no_span), &
       new_unittest('ACTIVATE of an undefined group', test_activate_unknown), &
       new_unittest('ACTIVATE of a group twice', test_activate_twice), &
       new_unittest('node carried only by an unborn group names node and DOF', test_activate_orphan) &
@@ -118,6 +119,12 @@ contains
     call expect_failure('test/data/bad/unknown_keyword.dat', err_input, &
                         [character(len=40) :: 'unknown_keyword.dat:3:', 'FROB'], error)
   end subroutine test_unknown_keyword
+
+  subroutine test_tilt_no_span(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/tilt_no_span.dat', err_input, &
+                        [character(len=40) :: 'tilt_no_span.dat:21:', 'FROM= and TO='], error)
+  end subroutine test_tilt_no_span
 
   subroutine test_unknown_field(error)
     type(error_t), allocatable, intent(out) :: error

@@ -1003,8 +1003,15 @@ contains
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     r%kind = to_lower(field_text(rec, 2))
-    if (r%kind /= 'rotation') then
-      call input_error(error, rec%file, rec%line, 'unknown REPORT "' // field_text(rec, 2) // '" (ROTATION)', 2)
+    if (r%kind /= 'rotation' .and. r%kind /= 'tilt') then
+      call input_error(error, rec%file, rec%line, 'unknown REPORT "' // field_text(rec, 2) // '" (ROTATION, TILT)', 2)
+      return
+    end if
+    if (r%kind == 'tilt') then
+      call read_tilt_report(rec, model, r, error)
+      if (allocated(error)) return
+      tmp = [model%reports, r]
+      call move_alloc(tmp, model%reports)
       return
     end if
     r%file = rec%file
@@ -1047,6 +1054,43 @@ contains
     tmp = [model%reports, r]
     call move_alloc(tmp, model%reports)
   end subroutine read_report
+
+  !> REPORT, TILT, NAME=n, GROUP=g, FROM=z0, TO=z1 [, REFERENCE=deg]: the tilt of the group's
+  !! axis between the sections z0 and z1 (the rigid-body rotation of a pipe, thesis Table 7.2).
+  subroutine read_tilt_report(rec, model, r, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(report_t), intent(inout) :: r
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    r%file = rec%file
+    r%line = rec%line
+    call option_text(rec, 'NAME', text, ifield, found)
+    r%name = 'tilt'
+    if (found) r%name = text
+    call option_text(rec, 'GROUP', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'REPORT, TILT needs GROUP=<the pipe group>')
+      return
+    end if
+    r%group = model%find_group(text)
+    if (r%group == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
+      return
+    end if
+    call option_real(rec, 'REFERENCE', r%reference, r%has_reference, error)
+    if (allocated(error)) return
+    call option_real(rec, 'FROM', r%x_from, r%has_span, error)
+    if (allocated(error)) return
+    call option_real(rec, 'TO', r%x_to, found, error)
+    if (allocated(error)) return
+    if (.not. (r%has_span .and. found) .or. r%x_from == r%x_to) then
+      call input_error(error, rec%file, rec%line, 'REPORT, TILT needs FROM= and TO= (two different sections z)')
+      return
+    end if
+  end subroutine read_tilt_report
 
   subroutine option_real(rec, key, value, found, error)
     type(record_t), intent(in) :: rec

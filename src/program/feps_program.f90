@@ -235,10 +235,17 @@ contains
     allocate (summary%reports(size(model%reports)))
     do k = 1, size(model%reports)
       associate (r => model%reports(k))
-        call section_rotation(model, r, u, angle, error)
-        if (allocated(error)) return
-        write (line, '(a,f0.1,a,f0.1,a,f10.6,a)') 'rotation ' // r%name // ' (section z = ', r%z, ', r = ', r%r, &
-          '): ', angle, ' deg'
+        if (r%kind == 'tilt') then
+          call axis_tilt(model, r, u, angle, error)
+          if (allocated(error)) return
+          write (line, '(a,f0.1,a,f0.1,a,f10.6,a)') 'tilt ' // r%name // ' (axis from z = ', r%x_from, ' to z = ', &
+            r%x_to, '): ', angle, ' deg'
+        else
+          call section_rotation(model, r, u, angle, error)
+          if (allocated(error)) return
+          write (line, '(a,f0.1,a,f0.1,a,f10.6,a)') 'rotation ' // r%name // ' (section z = ', r%z, ', r = ', &
+            r%r, '): ', angle, ' deg'
+        end if
         if (r%has_reference) write (line, '(a,a,f10.6,a,f0.1,a)') trim(line), '; thesis ', r%reference, &
           ' deg (', 100.0_dp * (angle - r%reference) / r%reference, '%)'
         summary%reports(k) = line
@@ -315,6 +322,49 @@ contains
       interpolate = ws(k) + (ws(k + 1) - ws(k)) * (x - xs(k)) / max(xs(k + 1) - xs(k), tiny(1.0_dp))
     end function interpolate
   end subroutine section_rotation
+
+  !> Tilt (degrees) of a group's axis between the sections z = FROM and z = TO: the mean ux of
+  !! the group's nodes on each section, -atan(d ux / d z), so that a rigid rotation of the
+  !! group gives the same angle as REPORT, ROTATION does from the slope of w (thesis 7.3: the
+  !! rigid-body rotation of the pipe in the soil).
+  subroutine axis_tilt(model, r, u, angle, error)
+    type(model_t), intent(in) :: model
+    type(report_t), intent(in) :: r
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(out) :: angle
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: ux0, ux1
+    call section_mean_ux(r%x_from, ux0)
+    if (allocated(error)) return
+    call section_mean_ux(r%x_to, ux1)
+    if (allocated(error)) return
+    angle = -atan((ux1 - ux0) / (r%x_to - r%x_from)) * rad2deg
+  contains
+    subroutine section_mean_ux(z, ux)
+      real(dp), intent(in) :: z
+      real(dp), intent(out) :: ux
+      logical, allocatable :: in_group(:)
+      real(dp) :: tol
+      integer :: n, count
+      allocate (in_group(model%nnode))
+      in_group = .false.
+      in_group(pack(model%groups(r%group)%connectivity, .true.)) = .true.
+      tol = 1.0e-6_dp * max(1.0_dp, abs(z))
+      ux = 0.0_dp
+      count = 0
+      do n = 1, model%nnode
+        if (.not. in_group(n) .or. abs(model%coords(3, n) - z) > tol) cycle
+        ux = ux + u(1, n)
+        count = count + 1
+      end do
+      if (count == 0) then
+        call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': group ' // &
+                         model%groups(r%group)%name // ' has no node on the section z = ' // str(z))
+        return
+      end if
+      ux = ux / count
+    end subroutine section_mean_ux
+  end subroutine axis_tilt
 
   subroutine observer_progress(self, line)
     class(results_observer_t), intent(inout) :: self

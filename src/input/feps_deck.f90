@@ -1014,21 +1014,8 @@ contains
       call move_alloc(tmp, model%reports)
       return
     end if
-    r%file = rec%file
-    r%line = rec%line
-    call option_text(rec, 'NAME', text, ifield, found)
-    r%name = 'rotation'
-    if (found) r%name = text
-    call option_text(rec, 'GROUP', text, ifield, found)
-    if (.not. found) then
-      call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs GROUP=<the pipe group>')
-      return
-    end if
-    r%group = model%find_group(text)
-    if (r%group == 0) then
-      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
-      return
-    end if
+    call read_report_target(rec, model, 'ROTATION', r, error)
+    if (allocated(error)) return
     call option_real(rec, 'R', r%r, found, error)
     if (allocated(error)) return
     if (.not. found) then
@@ -1055,11 +1042,12 @@ contains
     call move_alloc(tmp, model%reports)
   end subroutine read_report
 
-  !> REPORT, TILT, NAME=n, GROUP=g, FROM=z0, TO=z1 [, REFERENCE=deg]: the tilt of the group's
-  !! axis between the sections z0 and z1 (the rigid-body rotation of a pipe, thesis Table 7.2).
-  subroutine read_tilt_report(rec, model, r, error)
+  !> What every REPORT names: where it comes from, NAME= (default: the kind in lower case) and
+  !! GROUP= (required, an element group defined before).
+  subroutine read_report_target(rec, model, kind, r, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: kind
     type(report_t), intent(inout) :: r
     type(error_t), allocatable, intent(out) :: error
     character(len=:), allocatable :: text
@@ -1068,18 +1056,27 @@ contains
     r%file = rec%file
     r%line = rec%line
     call option_text(rec, 'NAME', text, ifield, found)
-    r%name = 'tilt'
+    r%name = to_lower(kind)
     if (found) r%name = text
     call option_text(rec, 'GROUP', text, ifield, found)
     if (.not. found) then
-      call input_error(error, rec%file, rec%line, 'REPORT, TILT needs GROUP=<the pipe group>')
+      call input_error(error, rec%file, rec%line, 'REPORT, ' // kind // ' needs GROUP=<the pipe group>')
       return
     end if
     r%group = model%find_group(text)
-    if (r%group == 0) then
-      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
-      return
-    end if
+    if (r%group == 0) call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
+  end subroutine read_report_target
+
+  !> REPORT, TILT, NAME=n, GROUP=g, FROM=z0, TO=z1 [, REFERENCE=deg]: the tilt of the group's
+  !! axis between the sections z0 and z1 (the rigid-body rotation of a pipe, thesis Table 7.2).
+  subroutine read_tilt_report(rec, model, r, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(report_t), intent(inout) :: r
+    type(error_t), allocatable, intent(out) :: error
+    logical :: found
+    call read_report_target(rec, model, 'TILT', r, error)
+    if (allocated(error)) return
     call option_real(rec, 'REFERENCE', r%reference, r%has_reference, error)
     if (allocated(error)) return
     call option_real(rec, 'FROM', r%x_from, r%has_span, error)

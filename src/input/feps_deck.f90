@@ -997,8 +997,6 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(report_t) :: r
     type(report_t), allocatable :: tmp(:)
-    character(len=:), allocatable :: text
-    integer :: ifield
     logical :: found
     call require_fields(rec, 2, error)
     if (allocated(error)) return

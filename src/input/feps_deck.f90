@@ -990,14 +990,17 @@ contains
   end subroutine finish_stages
 
   !> REPORT, ROTATION, NAME=n, GROUP=g, R=radius, Z=section [, FROM=x0, TO=x1]
-  !! [, REFERENCE=value in degrees]
+  !! [, REFERENCE=value in degrees], or REPORT, TILT, NAME=n, GROUP=g, FROM=z0, TO=z1
+  !! [, REFERENCE=...]: the tilt of the group's axis between two sections (thesis Table 7.2).
   subroutine read_report(rec, model, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
     type(error_t), allocatable, intent(out) :: error
     type(report_t) :: r
     type(report_t), allocatable :: tmp(:)
-    logical :: found
+    character(len=:), allocatable :: text, kind
+    integer :: ifield
+    logical :: found, has_to
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     r%kind = to_lower(field_text(rec, 2))
@@ -1005,56 +1008,11 @@ contains
       call input_error(error, rec%file, rec%line, 'unknown REPORT "' // field_text(rec, 2) // '" (ROTATION, TILT)', 2)
       return
     end if
-    if (r%kind == 'tilt') then
-      call read_tilt_report(rec, model, r, error)
-      if (allocated(error)) return
-      tmp = [model%reports, r]
-      call move_alloc(tmp, model%reports)
-      return
-    end if
-    call read_report_target(rec, model, 'ROTATION', r, error)
-    if (allocated(error)) return
-    call option_real(rec, 'R', r%r, found, error)
-    if (allocated(error)) return
-    if (.not. found) then
-      call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs R=<radius>')
-      return
-    end if
-    call option_real(rec, 'Z', r%z, found, error)
-    if (allocated(error)) return
-    if (.not. found) then
-      call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs Z=<section>')
-      return
-    end if
-    call option_real(rec, 'REFERENCE', r%reference, r%has_reference, error)
-    if (allocated(error)) return
-    call option_real(rec, 'FROM', r%x_from, r%has_span, error)
-    if (allocated(error)) return
-    call option_real(rec, 'TO', r%x_to, found, error)
-    if (allocated(error)) return
-    if (r%has_span .neqv. found .or. (found .and. r%x_from == r%x_to)) then
-      call input_error(error, rec%file, rec%line, 'REPORT, ROTATION takes both FROM= and TO= (different x), or neither')
-      return
-    end if
-    tmp = [model%reports, r]
-    call move_alloc(tmp, model%reports)
-  end subroutine read_report
-
-  !> What every REPORT names: where it comes from, NAME= (default: the kind in lower case) and
-  !! GROUP= (required, an element group defined before).
-  subroutine read_report_target(rec, model, kind, r, error)
-    type(record_t), intent(in) :: rec
-    type(model_t), intent(in) :: model
-    character(len=*), intent(in) :: kind
-    type(report_t), intent(inout) :: r
-    type(error_t), allocatable, intent(out) :: error
-    character(len=:), allocatable :: text
-    integer :: ifield
-    logical :: found
+    kind = to_upper(r%kind)
     r%file = rec%file
     r%line = rec%line
     call option_text(rec, 'NAME', text, ifield, found)
-    r%name = to_lower(kind)
+    r%name = r%kind
     if (found) r%name = text
     call option_text(rec, 'GROUP', text, ifield, found)
     if (.not. found) then
@@ -1062,30 +1020,45 @@ contains
       return
     end if
     r%group = model%find_group(text)
-    if (r%group == 0) call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
-  end subroutine read_report_target
-
-  !> REPORT, TILT, NAME=n, GROUP=g, FROM=z0, TO=z1 [, REFERENCE=deg]: the tilt of the group's
-  !! axis between the sections z0 and z1 (the rigid-body rotation of a pipe, thesis Table 7.2).
-  subroutine read_tilt_report(rec, model, r, error)
-    type(record_t), intent(in) :: rec
-    type(model_t), intent(in) :: model
-    type(report_t), intent(inout) :: r
-    type(error_t), allocatable, intent(out) :: error
-    logical :: found
-    call read_report_target(rec, model, 'TILT', r, error)
-    if (allocated(error)) return
+    if (r%group == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
+      return
+    end if
     call option_real(rec, 'REFERENCE', r%reference, r%has_reference, error)
     if (allocated(error)) return
     call option_real(rec, 'FROM', r%x_from, r%has_span, error)
     if (allocated(error)) return
-    call option_real(rec, 'TO', r%x_to, found, error)
+    call option_real(rec, 'TO', r%x_to, has_to, error)
     if (allocated(error)) return
-    if (.not. (r%has_span .and. found) .or. r%x_from == r%x_to) then
-      call input_error(error, rec%file, rec%line, 'REPORT, TILT needs FROM= and TO= (two different sections z)')
-      return
+
+    if (r%kind == 'tilt') then
+      ! FROM= and TO= are the two sections z whose mean ux give the axis tilt.
+      if (.not. (r%has_span .and. has_to) .or. r%x_from == r%x_to) then
+        call input_error(error, rec%file, rec%line, 'REPORT, TILT needs FROM= and TO= (two different sections z)')
+        return
+      end if
+    else
+      call option_real(rec, 'R', r%r, found, error)
+      if (allocated(error)) return
+      if (.not. found) then
+        call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs R=<radius>')
+        return
+      end if
+      call option_real(rec, 'Z', r%z, found, error)
+      if (allocated(error)) return
+      if (.not. found) then
+        call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs Z=<section>')
+        return
+      end if
+      if (r%has_span .neqv. has_to .or. (has_to .and. r%x_from == r%x_to)) then
+        call input_error(error, rec%file, rec%line, 'REPORT, ROTATION takes both FROM= and TO= (different x), ' // &
+                         'or neither')
+        return
+      end if
     end if
-  end subroutine read_tilt_report
+    tmp = [model%reports, r]
+    call move_alloc(tmp, model%reports)
+  end subroutine read_report
 
   subroutine option_real(rec, key, value, found, error)
     type(record_t), intent(in) :: rec

@@ -334,6 +334,10 @@ contains
     real(dp), intent(out) :: angle
     type(error_t), allocatable, intent(out) :: error
     real(dp) :: ux0, ux1
+    logical, allocatable :: in_group(:)
+    allocate (in_group(model%nnode))
+    in_group = .false.
+    in_group(pack(model%groups(r%group)%connectivity, .true.)) = .true.
     call section_mean_ux(r%x_from, ux0)
     if (allocated(error)) return
     call section_mean_ux(r%x_to, ux1)
@@ -343,12 +347,8 @@ contains
     subroutine section_mean_ux(z, ux)
       real(dp), intent(in) :: z
       real(dp), intent(out) :: ux
-      logical, allocatable :: in_group(:)
       real(dp) :: tol
       integer :: n, count
-      allocate (in_group(model%nnode))
-      in_group = .false.
-      in_group(pack(model%groups(r%group)%connectivity, .true.)) = .true.
       tol = 1.0e-6_dp * max(1.0_dp, abs(z))
       ux = 0.0_dp
       count = 0

@@ -48,14 +48,8 @@ contains
     self%n = 0
     self%nnz = 0
     self%graph_vertices = 0
-    if (a%n <= 0 .or. .not. allocated(a%row_ptr) .or. .not. allocated(a%col)) then
-      call fatal_error(error, err_internal, 'cholmod: analyze called with an empty matrix')
-      return
-    end if
-    if (size(a%row_ptr, kind=i8) /= a%n + 1_i8 .or. size(a%col, kind=i8) < a%nnz()) then
-      call fatal_error(error, err_internal, 'cholmod: matrix arrays do not match its size')
-      return
-    end if
+    call check_arrays(a, 'analyze', error)
+    if (allocated(error)) return
     if (.not. c_associated(self%handle)) self%handle = feps_chol_create()
     if (.not. c_associated(self%handle)) then
       call fatal_error(error, err_solver, 'cholmod: cannot start CHOLMOD (out of memory)')
@@ -180,14 +174,8 @@ contains
     integer(i8), intent(out) :: count
     type(error_t), allocatable, intent(out) :: error
     count = 0
-    if (a%n <= 0 .or. .not. allocated(a%row_ptr) .or. .not. allocated(a%col)) then
-      call fatal_error(error, err_internal, 'cholmod: supervariables of an empty matrix')
-      return
-    end if
-    if (size(a%row_ptr, kind=i8) /= a%n + 1_i8 .or. size(a%col, kind=i8) < a%nnz()) then
-      call fatal_error(error, err_internal, 'cholmod: matrix arrays do not match its size')
-      return
-    end if
+    call check_arrays(a, 'count_supervariables', error)
+    if (allocated(error)) return
     count = feps_chol_count_supervariables(int(a%n, c_int64_t), a%row_ptr, a%col)
     if (count == -1) then
       call fatal_error(error, err_internal, 'cholmod: pattern is not a sorted lower triangle ' // &
@@ -196,6 +184,18 @@ contains
       call fatal_error(error, err_solver, 'cholmod: out of memory while grouping equations')
     end if
   end subroutine count_supervariables
+
+  !> The pattern arrays the C shim reads must exist and match the matrix's size.
+  subroutine check_arrays(a, caller, error)
+    type(csr_matrix_t), intent(in) :: a
+    character(len=*), intent(in) :: caller
+    type(error_t), allocatable, intent(out) :: error
+    if (a%n <= 0 .or. .not. allocated(a%row_ptr) .or. .not. allocated(a%col)) then
+      call fatal_error(error, err_internal, 'cholmod: ' // caller // ' called with an empty matrix')
+    else if (size(a%row_ptr, kind=i8) /= a%n + 1_i8 .or. size(a%col, kind=i8) < a%nnz()) then
+      call fatal_error(error, err_internal, 'cholmod: ' // caller // ': matrix arrays do not match its size')
+    end if
+  end subroutine check_arrays
 
   !> Release the CHOLMOD handle and everything it holds.
   subroutine cholmod_finalize(self)

@@ -33,6 +33,7 @@ contains
       new_unittest("cohesion", test_cohesion), &
       new_unittest("trial_on_yield_surface", test_trial_on_surface), &
       new_unittest("apex_and_zero_shear", test_apex), &
+      new_unittest("update_continuous_across_gap_zone", test_gap_continuity), &
       new_unittest("oblique_slip_3d", test_oblique_slip), &
       new_unittest("tangent_finite_difference", test_tangent_fd), &
       new_unittest("tangent_eq_2_3_18", test_tangent_continuum), &
@@ -428,13 +429,35 @@ contains
     if (allocated(error)) return
     call check_vector(error, sig, [0.0_dp, 0.0_dp, 0.0_dp], 'apex, pure opening: sig', 0.0_dp)
     if (allocated(error)) return
-    ! pure shear at zero normal stress: no friction, opens
+    ! pure shear at zero normal stress with the normal displacement held: the dilatant slip
+    ! (psi = 20) presses the layers together, tau = tau_tr kn tan phi tan psi / h and
+    ! sigma_n = -kn tan psi tau_tr / h, on the cone tau = -sigma_n tan phi (constant normal
+    ! displacement direct shear of a cohesionless joint)
     call m%update([0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, 0.0_dp], [1.0e-3_dp, 0.0_dp, 0.0_dp], &
                   state_elastic, sig, st, dt)
-    call check(error, st == state_open .and. all(sig == 0.0_dp), 'apex, pure shear: open, zero stress')
+    block
+      real(dp) :: tphi, tpsi, h
+      tphi = tan(30.0_dp * deg2rad)
+      tpsi = tan(20.0_dp * deg2rad)
+      h = 1000.0_dp + 2000.0_dp * tphi * tpsi
+      call check(error, st, state_plastic, 'apex, pure shear, psi = 20: slides in contact')
+      if (allocated(error)) return
+      call check_vector(error, sig, [2000.0_dp * tphi * tpsi / h, 0.0_dp, -2000.0_dp * tpsi / h], &
+                        'apex, pure shear, psi = 20: sig', 1.0e-14_dp)
+      if (allocated(error)) return
+      call check(error, sig(1), -sig(3) * tphi, 'apex, pure shear, psi = 20: on the cone', rel=1.0e-13_dp)
+      if (allocated(error)) return
+    end block
+    ! without dilation nothing holds the layers together: open
+    m = make(2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 0.0_dp)
+    call m%update([0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, 0.0_dp], [1.0e-3_dp, 0.0_dp, 0.0_dp], &
+                  state_elastic, sig, st, dt)
+    call check(error, st == state_open .and. all(sig == 0.0_dp), 'apex, pure shear, psi = 0: open, zero stress')
     if (allocated(error)) return
     ! closing from the apex state
-    call m%update(sig, [0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, -1.0e-3_dp], state_open, sig, st, dt)
+    m = make(2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 20.0_dp)
+    call m%update([0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, -1.0e-3_dp], state_open, &
+                  sig, st, dt)
     call check(error, st, state_elastic, 'closed from apex')
     if (allocated(error)) return
     call check_vector(error, sig, [0.0_dp, 0.0_dp, -2.0_dp], 'closed from apex: sig', 1.0e-14_dp)
@@ -462,6 +485,45 @@ contains
     if (allocated(error)) return
     call check(error, dt(3, 3), m%kn, 'frictionless: normal stiffness kept')
   end subroutine test_apex
+
+  !> The stress update is continuous in the trial stress, but for the brittle loss of the
+  !! tensile strength c / tan phi where a point opens: along sigma_n_tr from -10 to +10 at fixed
+  !! tau_tr = 4 (phi = 30; c = 0 and 0.5; psi = 20 and 0; 2001 points, spacing 0.01) no two
+  !! neighbouring results differ by more than the Lipschitz bound 2 x spacing x (1 + kn/ks) plus,
+  !! for c > 0, c / tan phi. Testing the trial stress itself against the gap zone
+  !! c - sigma_n tan phi <= 0 made the stress jump from the cone to zero there, by about
+  !! tau_tr kn tan phi tan psi / h (1.7 MPa here) when psi > 0; the thesis's integration along
+  !! the strain path enters the gap only where the return reaches the apex.
+  subroutine test_gap_continuity(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(interface_mohr_coulomb_t) :: m
+    real(dp) :: sig(3), prev(3), dt(3, 3), sn, worst, bound
+    integer :: st, k, ipsi, ic, nopen
+    real(dp), parameter :: psis(2) = [20.0_dp, 0.0_dp], cs(2) = [0.0_dp, 0.5_dp], spacing = 0.01_dp
+    character(len=:), allocatable :: what
+    do ic = 1, 2
+      do ipsi = 1, 2
+        m = make(2000.0_dp, 1000.0_dp, cs(ic), 30.0_dp, psis(ipsi))
+        what = 'c = ' // str(cs(ic)) // ', psi = ' // str(psis(ipsi))
+        bound = 2.0_dp * spacing * (1.0_dp + 2000.0_dp / 1000.0_dp) + cs(ic) / tan(30.0_dp * deg2rad)
+        worst = 0.0_dp
+        nopen = 0
+        do k = 0, 2000
+          sn = -10.0_dp + spacing * k
+          call m%update([4.0_dp, 0.0_dp, sn], [0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, 0.0_dp], state_elastic, &
+                        sig, st, dt)
+          if (st == state_open) nopen = nopen + 1
+          if (k > 0) worst = max(worst, norm2(sig - prev))
+          prev = sig
+        end do
+        call check(error, nopen > 0 .and. nopen < 2000, what // ': the sweep crosses into the gap')
+        if (allocated(error)) return
+        call check(error, worst <= bound, what // ': largest jump between neighbours ' // str(worst) // &
+                   ' MPa, bound ' // str(bound))
+        if (allocated(error)) return
+      end do
+    end do
+  end subroutine test_gap_continuity
 
   !> 3D slip along (0.6, 0.8) with c = 5, phi = 30, psi = 10: the shear keeps its direction,
   !! tau = tau_tr - ks dlambda and sigma_n = sigma_n_tr - kn tan psi dlambda land on the surface.

@@ -13,9 +13,11 @@
 !!   dlambda = F(trial) / (ks + kn tan phi tan psi),
 !!   tau = tau_tr - ks dlambda (same shear direction), sigma_n = sigma_n_tr - kn tan psi dlambda.
 !!
-!! Gap zone: c - sigma_n tan phi <= 0 (at or beyond the apex). A trial stress there opens the
-!! point: the stress is exactly zero and the tangent is `gap_factor` * D (a small residual
-!! stiffness for numerical stability; default 1e-6). An open point stays open while
+!! Gap zone: c - sigma_n tan phi <= 0 (at or beyond the apex). A point opens where the return
+!! reaches the apex (a trial stress in the gap zone with little shear; with psi = 0 every trial
+!! stress there): the stress is exactly zero and the tangent is `gap_factor` * D (a small residual
+!! stiffness for numerical stability; default 1e-6). The update is then continuous in the trial
+!! stress but for the loss of the tensile strength c / tan phi on opening. An open point stays open while
 !! eps_n > 0; when eps_n <= 0 at the end of a step the gap closes inside the step and the
 !! stress restarts from zero by eq. 2.3.22.
 module feps_interface_mohr_coulomb
@@ -157,16 +159,22 @@ contains
     sn_tr = sig_tr(n)
     amat = 0.0_dp
 
-    ! Gap zone c - sigma_n tan phi <= 0. The extra sigma_n >= 0 is implied when phi > 0 (the
-    ! apex is at sigma_n = c / tan phi >= 0); it keeps a frictionless, cohesionless interface
-    ! (phi = c = 0) in contact under compression instead of treating every state as open.
-    strength = self%c - sn_tr * tan_phi
-    if (strength <= 0.0_dp .and. sn_tr >= 0.0_dp) then
+    ! Gap: the return along D dG/dsigma reaches the apex (tau <= 0 after it), i.e.
+    ! ks (sigma_n_tr tan phi - c) >= tau_tr kn tan phi tan psi. This is where the thesis's
+    ! integration along the strain path enters the gap zone c - sigma_n tan phi <= 0: a trial
+    ! stress in that zone whose shear is large enough slides along the cone instead, its
+    ! dilation keeping it in contact; with psi = 0 the two tests are the same. Testing the
+    ! trial stress itself against the gap zone would make the stress jump from the cone to
+    ! zero across sigma_n_tr = c / tan phi (Newton iterations then cycle). The extra
+    ! sigma_n >= 0 keeps a frictionless, cohesionless interface (phi = c = 0) in contact under
+    ! compression instead of treating every state as open.
+    if (sn_tr >= 0.0_dp .and. self%ks * (sn_tr * tan_phi - self%c) >= tau_tr * self%kn * tan_phi * tan_psi) then
       sig = 0.0_dp
       state = state_open
       return
     end if
 
+    strength = self%c - sn_tr * tan_phi
     f_lin = tau_tr - strength
     if (f_lin < -yield_tolerance * (tau_tr + abs(sn_tr) * tan_phi + self%c)) then
       sig = sig_tr
@@ -174,15 +182,6 @@ contains
       do i = 1, n
         amat(i, i) = 1.0_dp
       end do
-      return
-    end if
-
-    ! Returning past the apex (tau < 0 after the return) needs
-    ! ks (sigma_n_tr tan phi - c) > tau_tr kn tan phi tan psi, i.e. a trial stress in the gap
-    ! zone, already handled; the test is kept, in this rounding-free form, as a safeguard.
-    if (self%ks * (sn_tr * tan_phi - self%c) > tau_tr * self%kn * tan_phi * tan_psi) then
-      sig = 0.0_dp
-      state = state_open
       return
     end if
 

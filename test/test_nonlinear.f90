@@ -3,9 +3,10 @@
 module test_nonlinear
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
-  use feps_error, only: err_solver
+  use feps_error, only: err_solver, str
+  use feps_material, only: state_plastic
   use feps_model, only: model_t, method_newton_raphson, method_modified_euler, method_initial_stiffness, &
-                        method_modified_newton_raphson, load_traction
+                        method_modified_newton_raphson, method_full_newton_raphson, load_traction
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
   use feps_observer, only: observer_t, step_result_t
@@ -24,6 +25,18 @@ module test_nonlinear
     procedure :: write_step => keep_step
   end type keep_last_t
 
+  !> Keeps the interface stresses of every written step.
+  type, extends(observer_t) :: keep_interface_t
+    integer :: group = 0
+    real(dp) :: stress(2, 1000, 8) = 0.0_dp
+    integer :: state(1000, 8) = 0
+    integer :: npoints = 0
+    integer :: nwritten = 0
+  contains
+    procedure :: progress => ignore_progress
+    procedure :: write_step => keep_interface_step
+  end type keep_interface_t
+
 contains
 
   subroutine collect_nonlinear(tests)
@@ -39,7 +52,9 @@ contains
       new_unittest('Matsuoka block: one step 100 times past yield, every preset', test_matsuoka_huge_step), &
       new_unittest('stiffness contrast 1e11 : 1.44 in one model, condition warning', test_stiffness_contrast), &
       new_unittest('initial stiffness factorizes once; elastic groups carry no point state', test_initial_stiffness_once), &
-      new_unittest('BFGS: a stiff interface sliding on soft blocks converges in 10 iterations', test_bfgs_sliding) &
+      new_unittest('BFGS: a stiff interface sliding on soft blocks converges in 10 iterations', test_bfgs_sliding), &
+      new_unittest('cohesionless dilatant joint from zero: full Newton converges, solution scales with load', &
+                   test_cohesionless_from_zero) &
       ]
   end subroutine collect_nonlinear
 
@@ -59,6 +74,24 @@ contains
     self%last = res
     self%nwritten = self%nwritten + 1
   end subroutine keep_step
+
+  subroutine ignore_progress(self, line)
+    class(keep_interface_t), intent(inout) :: self
+    character(len=*), intent(in) :: line
+  end subroutine ignore_progress
+
+  subroutine keep_interface_step(self, res, error)
+    class(keep_interface_t), intent(inout) :: self
+    type(step_result_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    self%nwritten = self%nwritten + 1
+    if (self%nwritten > size(self%stress, 3)) return
+    associate (g => res%groups(self%group))
+      self%npoints = size(g%stress, 2)
+      self%stress(:, 1:self%npoints, self%nwritten) = g%stress(1:2, :)
+      self%state(1:self%npoints, self%nwritten) = g%state
+    end associate
+  end subroutine keep_interface_step
 
   logical function said(obs, piece)
     type(keep_last_t), intent(in) :: obs
@@ -425,5 +458,53 @@ contains
     end if
     deallocate (error)
   end subroutine test_bfgs_sliding
+
+  !> The chapter 3 joint with a cohesionless (c = 0), dilatant (psi = phi = 20) interface,
+  !! pressure and shear displacement applied together from zero (test/data/joint_c0.dat). No
+  !! strength at zero load makes every step as nonlinear as the whole run; it used to stop in
+  !! every method (the gap test on the trial stress made the update jump, Newton cycled).
+  !! Full Newton must converge every step, in one iteration once the sliding set has settled,
+  !! and since the problem is homogeneous of degree one the step 2 stresses must be half those
+  !! of step 4 (1e-9); modified Euler in 40 steps must end on the same stresses (1e-6).
+  subroutine test_cohesionless_from_zero(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_interface_t) :: newton, euler
+    type(analysis_summary_t) :: summary
+    integer :: np
+    real(dp) :: scale
+    call read_deck('test/data/joint_c0.dat', model, error)
+    if (allocated(error)) return
+    newton%group = 5
+    call check(error, trim(model%groups(5)%name) == 'if_up', 'group 5 is the upper interface')
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', newton, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%cutbacks == 0 .and. summary%unconverged_steps == 0, &
+               'full Newton: no cut-back, every step converged')
+    if (allocated(error)) return
+    call check(error, summary%iterations <= 10 + 3, 'full Newton: ' // str(summary%iterations) // &
+               ' iterations in 4 steps (at most 10 in the first, then 1 each)')
+    if (allocated(error)) return
+    np = newton%npoints
+    call check(error, newton%nwritten == 4 .and. any(newton%state(1:np, 4) == state_plastic), &
+               'four steps written, points sliding')
+    if (allocated(error)) return
+    scale = maxval(abs(newton%stress(:, 1:np, 4)))
+    call check(error, maxval(abs(2.0_dp * newton%stress(:, 1:np, 2) - newton%stress(:, 1:np, 4))) <= 1.0e-9_dp * scale, &
+               'step 2 stresses are half those of step 4')
+    if (allocated(error)) return
+    call read_deck('test/data/joint_c0.dat', model, error)
+    if (allocated(error)) return
+    model%stages(1)%steps = 40
+    model%stages(1)%output_every = 40
+    model%stages(1)%controls%method = method_modified_euler
+    model%stages(1)%controls%max_iterations = 1
+    euler%group = 5
+    call run_analysis(model, 'cholmod', euler, summary, error)
+    if (allocated(error)) return
+    call check(error, maxval(abs(euler%stress(:, 1:np, 1) - newton%stress(:, 1:np, 4))) <= 1.0e-6_dp * scale, &
+               'modified Euler, 40 steps: the same stresses')
+  end subroutine test_cohesionless_from_zero
 
 end module test_nonlinear

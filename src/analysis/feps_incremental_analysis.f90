@@ -11,7 +11,8 @@ module feps_incremental_analysis
   use feps_error, only: error_t, fatal_error, err_model, err_solver, str
   use feps_clock, only: wall_clock
   use feps_model, only: model_t, stage_t, controls_t, output_fields_t, method_names, method_euler, method_modified_euler, &
-                        method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness
+                        method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness, &
+                        method_full_newton_raphson
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
   use feps_sparse_matrix, only: csr_matrix_t
   use feps_assembly, only: group_kernel_t, build_kernels, build_materials, build_pattern, check_jacobians, &
@@ -612,6 +613,11 @@ contains
     end if
     do m = 1, c%max_iterations
       t0 = wall_clock()
+      if (c%method == method_full_newton_raphson .and. m > 1) then
+        ! Full Newton: the consistent tangent of the current iterate, refactorized every iteration.
+        call factorize_tangent(model, an, .false., summary, error, trial=.true.)
+        if (allocated(error)) exit
+      end if
       if (use_bfgs) then
         r_old = r
         call bfgs_direction(an, s_hist(:, 1:npairs), y_hist(:, 1:npairs), rho(1:npairs), r, error)
@@ -655,7 +661,7 @@ contains
     ! design and correct them in the next step: for them only an unbalanced force larger than
     ! the load itself is divergence.
     select case (c%method)
-    case (method_newton_raphson)
+    case (method_newton_raphson, method_full_newton_raphson)
       ok = rel < c%delta1 .or. rnorm < c%delta2
     case (method_euler, method_modified_euler)
       ok = rel < max(1.0_dp, c%divergence)
@@ -865,10 +871,11 @@ contains
   end subroutine restore
 
   !> Assemble and factorize the stiffness: elastic (initial) or the committed tangent.
-  subroutine factorize_tangent(model, an, elastic, summary, error)
+  subroutine factorize_tangent(model, an, elastic, summary, error, trial)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     logical, intent(in) :: elastic
+    logical, intent(in), optional :: trial   !! the tangent of the current iterate, not of the committed state
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
     integer :: g, e, q, np, nn, nc, ieq, q0
@@ -893,7 +900,15 @@ contains
           if (.not. (elastic .or. .not. s%nonlinear)) then
             q0 = (e - 1) * np
             do q = 1, np
-              d(:, :, q) = s%dtan(:, :, q0 + q)
+              if (present(trial)) then
+                if (trial) then
+                  d(:, :, q) = s%dtan_t(:, :, q0 + q)
+                else
+                  d(:, :, q) = s%dtan(:, :, q0 + q)
+                end if
+              else
+                d(:, :, q) = s%dtan(:, :, q0 + q)
+              end if
               if (any(abs(d(:, :, q) - transpose(d(:, :, q))) > 1.0e-12_dp * maxval(abs(d(:, :, q))))) then
                 d(:, :, q) = 0.5_dp * (d(:, :, q) + transpose(d(:, :, q)))
                 an%symmetrized = .true.

@@ -13,7 +13,8 @@ module feps_deck
   use feps_model, only: model_t, element_group_t, material_spec_t, node_set_t, face_set_t, &
                         constraint_t, nodal_load_t, face_load_t, region_t, in_region, &
                         load_pressure, load_traction, name_len, stage_t, controls_t, method_names, &
-                        method_euler, method_modified_euler, method_newton_raphson, is_2d_type, report_t, &
+                        method_euler, method_modified_euler, method_newton_raphson, method_full_newton_raphson, &
+                        is_2d_type, report_t, &
                         output_fields_t, field_names
   implicit none
   private
@@ -982,7 +983,7 @@ contains
         select case (c%method)
         case (method_euler, method_modified_euler)
           c%max_iterations = 1
-        case (method_newton_raphson)
+        case (method_newton_raphson, method_full_newton_raphson)
           if (.not. c%max_iterations_set) c%max_iterations = 50
         end select
       end associate
@@ -1098,7 +1099,7 @@ contains
         end do
         if (c%method == 0) then
           call input_error(error, rec%file, rec%line, 'unknown METHOD "' // v // '" (euler, modified-euler, ' // &
-                           'newton-raphson, modified-newton-raphson, initial-stiffness)', i)
+                           'newton-raphson, modified-newton-raphson, initial-stiffness, full-newton-raphson)', i)
           return
         end if
       case ('MAXIT', 'CUTBACKS')

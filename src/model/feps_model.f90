@@ -107,9 +107,10 @@ module feps_model
 
   !> Solution methods of the modified Newton-Raphson family (thesis 2.6).
   integer, parameter, public :: method_euler = 1, method_modified_euler = 2, method_newton_raphson = 3, &
-                                method_modified_newton_raphson = 4, method_initial_stiffness = 5
-  character(len=23), parameter, public :: method_names(5) = [character(len=23) :: 'euler', 'modified-euler', &
-    'newton-raphson', 'modified-newton-raphson', 'initial-stiffness']
+                                method_modified_newton_raphson = 4, method_initial_stiffness = 5, &
+                                method_full_newton_raphson = 6
+  character(len=23), parameter, public :: method_names(6) = [character(len=23) :: 'euler', 'modified-euler', &
+    'newton-raphson', 'modified-newton-raphson', 'initial-stiffness', 'full-newton-raphson']
 
   !> Solution controls of a stage (thesis eqs. 2.6.6-2.6.7).
   type, public :: controls_t

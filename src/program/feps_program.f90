@@ -4,7 +4,8 @@
 module feps_program
   use feps_kinds, only: dp, i8, rad2deg
   use feps_error, only: error_t, fatal_error, input_error, err_input, str
-  use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson
+  use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
+                        method_full_newton_raphson
   use feps_deck, only: read_deck
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
   use feps_clock, only: wall_clock
@@ -204,7 +205,7 @@ contains
     end do
     if (method == 0) then
       call fatal_error(error, err_input, 'unknown method "' // name // '" (euler, modified-euler, ' // &
-                       'newton-raphson, modified-newton-raphson, initial-stiffness)')
+                       'newton-raphson, modified-newton-raphson, initial-stiffness, full-newton-raphson)')
       return
     end if
     do s = 1, size(model%stages)
@@ -213,7 +214,7 @@ contains
         select case (method)
         case (method_euler, method_modified_euler)
           c%max_iterations = 1
-        case (method_newton_raphson)
+        case (method_newton_raphson, method_full_newton_raphson)
           c%max_iterations = max(c%max_iterations, 50)
         case default
           if (c%max_iterations == 1) c%max_iterations = 10

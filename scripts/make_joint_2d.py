@@ -103,7 +103,7 @@ def line3_block(lower_first, upper_first, nx):
     return ["A, 6, " + ", ".join(str(n) for n in lo + up) + ",", f"%, {nx}, *, 6, 2,", "E,"]
 
 
-def deck(gp, nu, beta, stiff, mesh="fine"):
+def deck(gp, nu, beta, stiff, mesh="fine", cohesion=COHESION):
     m = MESHES[mesh]
     nx = m["nx"]
     r = 2 * nx + 1                                   # nodes in one row
@@ -142,11 +142,11 @@ def deck(gp, nu, beta, stiff, mesh="fine"):
         f"! Materials: concrete G = 40000 MPa, nu = 0.2 as printed in thesis 3.2 (E = 96000 MPa); packing",
         f"! G_p = {gp} MPa, nu_p = {nu:g} (E_p = 2 G_p (1 + nu_p) = {ep:g} MPa; the thesis's formula",
         "! 2 G (1 + 2 nu) is a misprint and does not matter: G and nu are the data). Interfaces:",
-        f"! Kn = {kn:g}, Ks = {ks:g} MPa/mm, phi = psi = 20 deg, cohesion c = {COHESION:g} MPa. Chapter 3 gives no",
+        f"! Kn = {kn:g}, Ks = {ks:g} MPa/mm, phi = psi = 20 deg, cohesion c = {cohesion:g} MPa. Chapter 3 gives no",
         "! cohesion; chapter 6 (6.2) describes its interface as 'similar to the analysis described in",
-        "! Chapter 3' with c = 0.05 MPa, which we take. With c = 0 the run fails at the third step in some",
-        "! cases (feps's one-iteration modified Euler; see the joint2d notes); c = 0.001 .. 0.05 change",
-        "! the results by less than 0.5%.",
+        "! Chapter 3' with the same Kn, Ks, phi, psi and c = 0.05 MPa, which we take (make_joint_2d.py",
+        "! --cohesion changes it). c = 0 runs too and changes the results by less than 0.5%",
+        "! (docs/verification.md, chapter 3).",
         "! Loads (thesis 3.2): bottom (y = 0) pinned; q = 30 MPa on the top (y = "
         f"{ytop:g}) applied together with",
         f"! an x displacement of the top nodes delta = L tan(beta) = 150 tan({beta:g} deg) = {delta:.4f} mm",
@@ -175,7 +175,7 @@ def deck(gp, nu, beta, stiff, mesh="fine"):
     out += ["E,", "",
             "MATERIAL, concrete, ELASTIC, G=40000., NU=0.2",
             f"MATERIAL, packer, ELASTIC, G={gp:g}., NU={nu:g}",
-            f"MATERIAL, joint, INTERFACE, KN={num(kn)}, KS={num(ks)}, PHI=20., PSI=20., C={num(COHESION)}",
+            f"MATERIAL, joint, INTERFACE, KN={num(kn)}, KS={num(ks)}, PHI=20., PSI=20., C={num(cohesion)}",
             "",
             "! --- supports: the bottom of the lower pipe pinned ---",
             "NSET, bottom, Y=0., TOL=0.01",
@@ -198,12 +198,13 @@ def main():
     ap.add_argument("--outdir", default=os.path.join(ROOT, "input", "joint2d"))
     ap.add_argument("--mesh", choices=sorted(MESHES), default="fine")
     ap.add_argument("--cases", default="", help="comma-separated case names (default: all 15)")
+    ap.add_argument("--cohesion", type=float, default=COHESION, help="interface cohesion c in MPa (default 0.05)")
     args = ap.parse_args()
     os.makedirs(args.outdir, exist_ok=True)
     cases = [parse_case(c) for c in args.cases.split(",") if c] or all_cases()
     for c in cases:
         with open(os.path.join(args.outdir, case_name(*c) + ".dat"), "w") as f:
-            f.write(deck(*c, mesh=args.mesh))
+            f.write(deck(*c, mesh=args.mesh, cohesion=args.cohesion))
     print(f"wrote {len(cases)} decks to {args.outdir}")
 
 

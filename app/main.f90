@@ -133,7 +133,8 @@ contains
       '                       an XDMF file for ParaView is written beside it', &
       '      --solver NAME    linear solver: cholmod (supernodal, METIS) or skyline (LDL^T, RCM)', &
       '      --method NAME    solve every stage by one method: euler, modified-euler, newton-raphson,', &
-      '                       modified-newton-raphson, initial-stiffness (overrides the deck)', &
+      '                       modified-newton-raphson, initial-stiffness, full-newton-raphson', &
+      '                       (overrides the deck)', &
       '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &

@@ -25,6 +25,13 @@ grep -q "^feps [0-9]" "$tmp/out" && ok "--version prints the version" || bad "--
 expect_status "no deck" 2 "$feps"
 expect_status "unknown option" 2 "$feps" --frobnicate input/modelB.dat
 expect_status "bad --solver" 2 "$feps" test/data/cube.dat --solver lu
+expect_status "bad --method" 2 "$feps" test/data/cube.dat --method newton
+grep -q "full-newton-raphson" "$tmp/err" && ok "bad --method lists the methods" || bad "bad --method lists the methods"
+# The cohesionless joint (c = 0) from zero load with full Newton: every step converges.
+expect_status "--method full-newton-raphson" 0 "$feps" test/data/joint_c0.dat --method full-newton-raphson \
+  --output "$tmp/jc0.h5"
+grep -q "method full-newton-raphson" "$tmp/out" && grep -q "0 cut-backs, 0 steps not converged\|0 cut-backs)" "$tmp/out" \
+  && ok "full Newton: no cut-back, every step converged" || bad "full Newton: no cut-back, every step converged: $(grep analysis "$tmp/out")"
 
 # A file holding only a DATAIN mesh: report it, write /mesh with --output.
 expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.datain --output "$tmp/t21.h5"

@@ -870,7 +870,8 @@ contains
     end do
   end subroutine restore
 
-  !> Assemble and factorize the stiffness: elastic (initial) or the committed tangent.
+  !> Assemble and factorize the stiffness: elastic (initial), the committed tangent, or (trial)
+  !! the tangent of the current iterate (full Newton-Raphson).
   subroutine factorize_tangent(model, an, elastic, summary, error, trial)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
@@ -882,6 +883,9 @@ contains
     real(dp), allocatable :: ke(:, :), d(:, :, :)
     integer, allocatable :: dofs(:)
     real(dp) :: t0
+    logical :: use_trial
+    use_trial = .false.
+    if (present(trial)) use_trial = trial
     t0 = wall_clock()
     an%a%val = 0.0_dp
     do g = 1, size(model%groups)
@@ -900,12 +904,8 @@ contains
           if (.not. (elastic .or. .not. s%nonlinear)) then
             q0 = (e - 1) * np
             do q = 1, np
-              if (present(trial)) then
-                if (trial) then
-                  d(:, :, q) = s%dtan_t(:, :, q0 + q)
-                else
-                  d(:, :, q) = s%dtan(:, :, q0 + q)
-                end if
+              if (use_trial) then
+                d(:, :, q) = s%dtan_t(:, :, q0 + q)
               else
                 d(:, :, q) = s%dtan(:, :, q0 + q)
               end if

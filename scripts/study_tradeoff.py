@@ -42,9 +42,11 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRESETS = ["euler", "modified-euler", "newton-raphson", "modified-newton-raphson", "initial-stiffness"]
+# full Newton (not in the thesis) joins the model B FE1 and model C plans only
+ALL_METHODS = PRESETS + ["full-newton-raphson"]
 SHORT = {"euler": "E", "modified-euler": "ME", "newton-raphson": "NR",
-         "modified-newton-raphson": "MNR", "initial-stiffness": "IS"}
-ITERATIVE = ("newton-raphson", "modified-newton-raphson", "initial-stiffness")
+         "modified-newton-raphson": "MNR", "initial-stiffness": "IS", "full-newton-raphson": "FNR"}
+ITERATIVE = ("newton-raphson", "modified-newton-raphson", "initial-stiffness", "full-newton-raphson")
 ALL_STEPS = [10, 25, 50, 100, 250, 500, 1000]
 ERROR_FLOOR = 1e-12          # errors below this are plotted on the floor (exact to round-off)
 MODEL_C = os.path.join("input", "modelC", "C_G300_nu0.4_b0.27.dat")
@@ -366,7 +368,8 @@ def plans(quick, check=False):
                     [50, 100, 200, 400], [1e-4]))
     fe1 += [("hex8", 0, "initial-stiffness", 100, 1e-4, "skyline"),
             ("hex8", 0, "modified-newton-raphson", 400, 1e-6, "cholmod"),
-            ("hex8", 0, "initial-stiffness", 25, 1e-4, "cholmod")]
+            ("hex8", 0, "initial-stiffness", 25, 1e-4, "cholmod"),
+            ("hex8", 0, "full-newton-raphson", 100, 1e-6, "cholmod")]
     # model C (21864 DOFs, 1-10 min a run on the shared machine): stage 2's steps (stage s3, the
     # equilibrium stage, gets the same number); initial stiffness below 250 steps stops in s3
     modelc = [("hex8", 0, "initial-stiffness", 50, 1e-4, "cholmod"),
@@ -376,7 +379,9 @@ def plans(quick, check=False):
               ("hex8", 0, "modified-newton-raphson", 100, 1e-4, "cholmod"),
               ("hex8", 0, "modified-newton-raphson", 250, 1e-4, "cholmod"),
               ("hex8", 0, "newton-raphson", 50, 1e-4, "cholmod"),
-              ("hex8", 0, "newton-raphson", 100, 1e-4, "cholmod")]
+              ("hex8", 0, "newton-raphson", 100, 1e-4, "cholmod"),
+              ("hex8", 0, "full-newton-raphson", 50, 1e-6, "cholmod"),
+              ("hex8", 0, "full-newton-raphson", 100, 1e-6, "cholmod")]
     return {"block": block, "interface": inter, "fe1": fe1, "modelc": modelc}
 
 
@@ -466,7 +471,7 @@ def plot_scene(path, title, rows, front, reference_kind):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    colors = dict(zip(PRESETS, ["tab:red", "tab:orange", "tab:blue", "tab:green", "tab:purple"]))
+    colors = dict(zip(ALL_METHODS, ["tab:red", "tab:orange", "tab:blue", "tab:green", "tab:purple", "tab:brown"]))
     meshes = sorted({r["mesh"] for r in rows})
     markers = dict(zip(meshes, ["o", "s", "^", "D", "v", "P", "X", "*"]))
     fig, ax = plt.subplots(figsize=(8.6, 4.8), dpi=85)
@@ -488,7 +493,7 @@ def plot_scene(path, title, rows, front, reference_kind):
     ax.set_xlabel("wall time per run (s, median of repeats, nice 5, 2 shared cores)")
     ax.set_ylabel(f"relative error against {reference_kind.split(' (')[0]}")
     ax.set_title(title, fontsize=10)
-    handles = [plt.Line2D([], [], color=colors[m], marker="o", ls="", label=SHORT[m]) for m in PRESETS
+    handles = [plt.Line2D([], [], color=colors[m], marker="o", ls="", label=SHORT[m]) for m in ALL_METHODS
                if any(r["method"] == m for r in rows)]
     handles += [plt.Line2D([], [], color="k", marker=markers[m], ls="", mfc="none", label=m) for m in meshes]
     handles += [plt.Line2D([], [], color="k", lw=1.2, label="Pareto front")]
@@ -509,7 +514,7 @@ def plot_steps(path, title, rows, reference):
     import matplotlib.ticker
     fig, ax = plt.subplots(figsize=(6.0, 4.0), dpi=85)
     styles = iter(["o-", "s--", "^:", "D-.", "v-"])
-    for method in PRESETS:
+    for method in ALL_METHODS:
         for tol in sorted({float(r["tol"]) for r in rows if r["method"] == method}):
             sel = sorted((int(float(r["steps"])), float(r["value"])) for r in rows
                          if r["method"] == method and float(r["tol"]) == tol and r["status"] == "ok"
@@ -535,7 +540,7 @@ def plot_steps(path, title, rows, reference):
 def richardson(rows):
     """Observed order and extrapolated value from the three finest step counts (ratio 2)."""
     out = []
-    for method in PRESETS:
+    for method in ALL_METHODS:
         for tol in sorted({float(r["tol"]) for r in rows if r["method"] == method}):
             sel = dict((int(float(r["steps"])), float(r["value"])) for r in rows
                        if r["method"] == method and float(r["tol"]) == tol and r["status"] == "ok"
@@ -582,7 +587,7 @@ def tables(scene, title, rows, front, reference, kind):
     steps = sorted({int(float(r["steps"])) for r in rows})
     lines += ["| preset | tol | " + " | ".join(str(s) for s in steps) + " |",
               "| --- | --- | " + " | ".join("---" for _ in steps) + " |"]
-    for method in PRESETS:
+    for method in ALL_METHODS:
         for tol in sorted({float(r["tol"]) for r in rows if r["method"] == method}):
             cells = []
             for s in steps:

@@ -119,14 +119,16 @@ def deck(case, r_soil=2000.0):
         out += ["", "STAGE, load, STEPS=1"]
     elif kind == "F" and not edge:
         # docs/verification.md, "The diagonal model B cases with interfaces": the tension side of
-        # the interface unzips at 17% of the load (brittle tension cut-off); no iterative method
-        # in feps converges through it, and the thesis carries the unbalanced force (2.6.3).
+        # the interface unzips at 17% of the load (brittle tension cut-off); the thesis's methods
+        # do not converge through it (full Newton does for FD1 only), and the thesis carries the
+        # unbalanced force (2.6.3).
         out += ["", "! initial stiffness, at most 10 iterations per step (thesis 5.4, 5.5). At 17% of the load",
                 "! the tension side of the interface unzips (each point that reaches the apex of the",
                 "! Mohr-Coulomb cone drops c / tan phi = 0.19 MPa at once) and the unbalanced force reaches",
                 "! 5-15% of |P|; as in the thesis (2.6.3) it is carried into the next steps and decays",
                 "! (1-4% at the end). DIVERGENCE=1 (feps's default 1e-2 is not in the thesis) lets it be",
-                "! carried; docs/verification.md shows the residual history and the sensitivity.",
+                "! carried; docs/verification.md shows the residual history and the sensitivity, and the",
+                "! converged FD1 (METHOD=full-newton-raphson; FD2 and FD3 snap through at the unzipping).",
                 f"STAGE, load, STEPS={steps}, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4, DIVERGENCE=1"]
     elif kind == "F":
         # docs/verification.md, "Model B": with the stiff soil (FE3) the sliding interface leaves

@@ -54,7 +54,9 @@ contains
       new_unittest('initial stiffness factorizes once; elastic groups carry no point state', test_initial_stiffness_once), &
       new_unittest('BFGS: a stiff interface sliding on soft blocks converges in 10 iterations', test_bfgs_sliding), &
       new_unittest('cohesionless dilatant joint from zero: full Newton converges, solution scales with load', &
-                   test_cohesionless_from_zero) &
+                   test_cohesionless_from_zero), &
+      new_unittest('a block pulled past the tensile strength stops where the joint opens, and says so', &
+                   test_brittle_pull) &
       ]
   end subroutine collect_nonlinear
 
@@ -506,5 +508,39 @@ contains
     call check(error, maxval(abs(euler%stress(:, 1:np, 1) - newton%stress(:, 1:np, 4))) <= 1.0e-6_dp * scale, &
                'modified Euler, 40 steps: the same stresses')
   end subroutine test_cohesionless_from_zero
+
+  !> test/data/block_pull.dat: a 3 MPa pull on an interface whose tensile strength is
+  !! c / tan(phi) = 1.732 MPa. The joint opens at load factor 1.732 / 3 = 0.577 and nothing but
+  !! the residual gap stiffness is left: the run must stop there (within the last cut-back,
+  !! 1/1024 of the step) with the clear message, which must say that interface points opened.
+  subroutine test_brittle_pull(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(keep_last_t) :: obs
+    type(analysis_summary_t) :: summary
+    character(len=:), allocatable :: msg
+    integer :: code, at
+    real(dp) :: lf
+    call read_deck('test/data/block_pull.dat', model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (.not. allocated(error)) then
+      call test_failed(error, 'a pull beyond the tensile strength did not stop the run')
+      return
+    end if
+    code = error%code
+    msg = error%message
+    deallocate (error)
+    call check(error, code == err_solver, 'error category: ' // msg)
+    if (allocated(error)) return
+    call check(error, index(msg, 'interface points opened') > 0 .and. index(msg, 'limit point') > 0, &
+               'the message says interface points opened: ' // msg)
+    if (allocated(error)) return
+    at = index(msg, 'load factor ') + len('load factor ')
+    read (msg(at:at + index(msg(at:), ':') - 2), *) lf
+    call check(error, lf > 1.0_dp / tan(30.0_dp * acos(-1.0_dp) / 180.0_dp) / 3.0_dp .and. &
+               lf < 1.0_dp / tan(30.0_dp * acos(-1.0_dp) / 180.0_dp) / 3.0_dp + 1.0_dp / 1024.0_dp, &
+               'stops just past load factor c / tan(phi) / 3 = 0.5774: ' // msg)
+  end subroutine test_brittle_pull
 
 end module test_nonlinear

@@ -434,7 +434,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
-    integer :: s, k, step, iters, cut, nfact0, iters_step
+    integer :: s, k, step, iters, cut, nfact0, iters_step, opened
     logical :: ok, need_factor, have_factor, step_unconverged, born
     logical, allocatable :: fully_open(:)
 
@@ -503,10 +503,11 @@ contains
             else
               cut = cut + 1
               summary%cutbacks = summary%cutbacks + 1
+              opened = newly_open_points(an)
               call restore(an)
               if (cut > c%max_cutbacks) then
                 call stop_error(model, an, r, st, k, s - 1 + (k - 1 + done + h) / st%steps, rnorm / pnorm, &
-                                cut > c%max_cutbacks, error)
+                                cut > c%max_cutbacks, opened, error)
                 return
               end if
               h = h / 2.0_dp
@@ -954,8 +955,20 @@ contains
     error%message = error%message // ' (stage ' // st%name // ', step ' // str(k) // ', load factor ' // str(lf) // ')'
   end subroutine name_step
 
-  !> The clear stop: step, load factor, residual and the DOF where it is largest.
-  subroutine stop_error(model, an, r, st, k, lf, rel, cutbacks_exhausted, error)
+  !> Interface points open in the trial state that were not open at the start of the step.
+  pure integer function newly_open_points(an) result(n)
+    type(analysis_t), intent(in) :: an
+    integer :: g
+    n = 0
+    do g = 1, size(an%states)
+      if (.not. an%kernels(g)%is_interface .or. .not. an%states(g)%nonlinear) cycle
+      n = n + count(an%states(g)%state_t == state_open .and. an%states(g)%state /= state_open)
+    end do
+  end function newly_open_points
+
+  !> The clear stop: step, load factor, residual and the DOF where it is largest; when interface
+  !! points opened in the last try, a hint that the load may have passed a limit point.
+  subroutine stop_error(model, an, r, st, k, lf, rel, cutbacks_exhausted, opened, error)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: an
     real(dp), intent(in) :: r(:)
@@ -963,9 +976,10 @@ contains
     integer, intent(in) :: k
     real(dp), intent(in) :: lf, rel
     logical, intent(in) :: cutbacks_exhausted
+    integer, intent(in) :: opened   !! interface points that opened in the last try
     type(error_t), allocatable, intent(out) :: error
     integer :: imax
-    character(len=:), allocatable :: why
+    character(len=:), allocatable :: why, hint
     imax = maxloc(abs(r), dim=1, mask=r == r)
     if (imax < 1) imax = 1
     if (cutbacks_exhausted) then
@@ -973,9 +987,13 @@ contains
     else
       why = 'the residual is not finite'
     end if
+    hint = ''
+    if (opened > 0) hint = '; ' // str(opened) // ' interface points opened in the last try, each dropping ' // &
+      'its tensile strength c / tan(phi) at once: the load may have passed a limit point (the thesis ' // &
+      'carries the unbalanced force: STAGE ..., DIVERGENCE=1)'
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
                      ', load factor ' // str(lf) // ': ' // why // ' (relative residual ' // str(rel) // &
-                     ', largest at ' // an%map%dof_name(imax) // ')')
+                     ', largest at ' // an%map%dof_name(imax) // ')' // hint)
   end subroutine stop_error
 
   function progress_line(s, k, n, lf, iters, rel, nfact, nfact_step) result(line)

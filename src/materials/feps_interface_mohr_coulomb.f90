@@ -17,9 +17,9 @@
 !! reaches the apex (a trial stress in the gap zone with little shear; with psi = 0 every trial
 !! stress there): the stress is exactly zero and the tangent is `gap_factor` * D (a small residual
 !! stiffness for numerical stability; default 1e-6). The update is then continuous in the trial
-!! stress but for the loss of the tensile strength c / tan phi on opening. An open point stays open while
-!! eps_n > 0; when eps_n <= 0 at the end of a step the gap closes inside the step and the
-!! stress restarts from zero by eq. 2.3.22.
+!! stress but for the loss of the tensile strength c / tan phi on opening. An open point stays
+!! open while eps_n > 0; when eps_n <= 0 at the end of a step the gap closes inside the step and
+!! the stress restarts from zero by eq. 2.3.22.
 module feps_interface_mohr_coulomb
   use feps_kinds, only: dp, deg2rad
   use feps_error, only: error_t, input_error, str
@@ -168,7 +168,8 @@ contains
     ! zero across sigma_n_tr = c / tan phi (Newton iterations then cycle). The extra
     ! sigma_n >= 0 keeps a frictionless, cohesionless interface (phi = c = 0) in contact under
     ! compression instead of treating every state as open.
-    if (sn_tr >= 0.0_dp .and. self%ks * (sn_tr * tan_phi - self%c) >= tau_tr * self%kn * tan_phi * tan_psi) then
+    if (sn_tr >= 0.0_dp .and. &
+        self%ks * (sn_tr * tan_phi - self%c) >= tau_tr * self%kn * tan_phi * tan_psi) then
       sig = 0.0_dp
       state = state_open
       return

@@ -606,7 +606,9 @@ contains
     ok = .true.
     r_first = -1.0_dp
     iters = 0
-    use_bfgs = c%bfgs .and. c%max_iterations > 1
+    ! Full Newton refactorizes every iteration: quasi-Newton pairs built on an earlier factor
+    ! would not describe the new one, so ACCELERATION=bfgs does not apply to it.
+    use_bfgs = c%bfgs .and. c%max_iterations > 1 .and. c%method /= method_full_newton_raphson
     if (use_bfgs) then
       allocate (s_hist(size(r), c%max_iterations), y_hist(size(r), c%max_iterations), rho(c%max_iterations), &
                 r_old(size(r)))

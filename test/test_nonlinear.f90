@@ -28,8 +28,8 @@ module test_nonlinear
   !> Keeps the interface stresses of every written step.
   type, extends(observer_t) :: keep_interface_t
     integer :: group = 0
-    real(dp) :: stress(2, 1000, 8) = 0.0_dp
-    integer :: state(1000, 8) = 0
+    real(dp), allocatable :: stress(:, :, :)   !! (2, npoints, step written), at most 8 steps
+    integer, allocatable :: state(:, :)
     integer :: npoints = 0
     integer :: nwritten = 0
   contains
@@ -86,12 +86,15 @@ contains
     class(keep_interface_t), intent(inout) :: self
     type(step_result_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
-    self%nwritten = self%nwritten + 1
-    if (self%nwritten > size(self%stress, 3)) return
     associate (g => res%groups(self%group))
-      self%npoints = size(g%stress, 2)
-      self%stress(:, 1:self%npoints, self%nwritten) = g%stress(1:2, :)
-      self%state(1:self%npoints, self%nwritten) = g%state
+      if (.not. allocated(self%stress)) then
+        self%npoints = size(g%stress, 2)
+        allocate (self%stress(2, self%npoints, 8), self%state(self%npoints, 8))
+      end if
+      self%nwritten = self%nwritten + 1
+      if (self%nwritten > size(self%stress, 3)) return
+      self%stress(:, :, self%nwritten) = g%stress(1:2, :)
+      self%state(:, self%nwritten) = g%state
     end associate
   end subroutine keep_interface_step
 

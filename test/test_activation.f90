@@ -8,19 +8,12 @@ module test_activation
   use feps_model, only: model_t
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
-  use feps_observer, only: observer_t, step_result_t
+  use feps_observer, only: step_result_t
+  use feps_test_observers, only: all_steps_t
   implicit none
   private
 
   public :: collect_activation
-
-  !> Keeps every step written (the last step of each stage by default).
-  type, extends(observer_t) :: all_steps_t
-    type(step_result_t), allocatable :: steps(:)
-  contains
-    procedure :: progress => ignore_progress
-    procedure :: write_step => keep_step
-  end type all_steps_t
 
 contains
 
@@ -32,19 +25,6 @@ contains
       new_unittest("deck_records_activation_stage", test_deck) &
       ]
   end subroutine collect_activation
-
-  subroutine ignore_progress(self, line)
-    class(all_steps_t), intent(inout) :: self
-    character(len=*), intent(in) :: line
-  end subroutine ignore_progress
-
-  subroutine keep_step(self, res, error)
-    class(all_steps_t), intent(inout) :: self
-    type(step_result_t), intent(in) :: res
-    type(error_t), allocatable, intent(out) :: error
-    if (.not. allocated(self%steps)) allocate (self%steps(0))
-    self%steps = [self%steps, res]
-  end subroutine keep_step
 
   !> Run a deck; the written steps (one per stage here) are returned in obs.
   subroutine run_deck(path, obs, error)

@@ -10,6 +10,7 @@ module test_nonlinear
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
   use feps_observer, only: observer_t, step_result_t
+  use feps_test_observers, only: all_steps_t
   implicit none
   private
 
@@ -24,18 +25,6 @@ module test_nonlinear
     procedure :: progress => keep_progress
     procedure :: write_step => keep_step
   end type keep_last_t
-
-  !> Keeps the interface stresses of every written step.
-  type, extends(observer_t) :: keep_interface_t
-    integer :: group = 0
-    real(dp), allocatable :: stress(:, :, :)   !! (2, npoints, step written), at most 8 steps
-    integer, allocatable :: state(:, :)
-    integer :: npoints = 0
-    integer :: nwritten = 0
-  contains
-    procedure :: progress => ignore_progress
-    procedure :: write_step => keep_interface_step
-  end type keep_interface_t
 
 contains
 
@@ -76,27 +65,6 @@ contains
     self%last = res
     self%nwritten = self%nwritten + 1
   end subroutine keep_step
-
-  subroutine ignore_progress(self, line)
-    class(keep_interface_t), intent(inout) :: self
-    character(len=*), intent(in) :: line
-  end subroutine ignore_progress
-
-  subroutine keep_interface_step(self, res, error)
-    class(keep_interface_t), intent(inout) :: self
-    type(step_result_t), intent(in) :: res
-    type(error_t), allocatable, intent(out) :: error
-    associate (g => res%groups(self%group))
-      if (.not. allocated(self%stress)) then
-        self%npoints = size(g%stress, 2)
-        allocate (self%stress(2, self%npoints, 8), self%state(self%npoints, 8))
-      end if
-      self%nwritten = self%nwritten + 1
-      if (self%nwritten > size(self%stress, 3)) return
-      self%stress(:, :, self%nwritten) = g%stress(1:2, :)
-      self%state(:, self%nwritten) = g%state
-    end associate
-  end subroutine keep_interface_step
 
   logical function said(obs, piece)
     type(keep_last_t), intent(in) :: obs
@@ -474,14 +442,13 @@ contains
   subroutine test_cohesionless_from_zero(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
-    type(keep_interface_t) :: newton, euler
+    type(all_steps_t) :: newton, euler
     type(analysis_summary_t) :: summary
-    integer :: np
+    integer, parameter :: g = 5   ! if_up
     real(dp) :: scale
     call read_deck('test/data/joint_c0.dat', model, error)
     if (allocated(error)) return
-    newton%group = 5
-    call check(error, trim(model%groups(5)%name) == 'if_up', 'group 5 is the upper interface')
+    call check(error, trim(model%groups(g)%name) == 'if_up', 'group 5 is the upper interface')
     if (allocated(error)) return
     call run_analysis(model, 'cholmod', newton, summary, error)
     if (allocated(error)) return
@@ -491,25 +458,26 @@ contains
     call check(error, summary%iterations <= 10 + 3, 'full Newton: ' // str(summary%iterations) // &
                ' iterations in 4 steps (at most 10 in the first, then 1 each)')
     if (allocated(error)) return
-    np = newton%npoints
-    call check(error, newton%nwritten == 4 .and. any(newton%state(1:np, 4) == state_plastic), &
-               'four steps written, points sliding')
+    call check(error, size(newton%steps) == 4, 'four steps written')
     if (allocated(error)) return
-    scale = maxval(abs(newton%stress(:, 1:np, 4)))
-    call check(error, maxval(abs(2.0_dp * newton%stress(:, 1:np, 2) - newton%stress(:, 1:np, 4))) <= 1.0e-9_dp * scale, &
-               'step 2 stresses are half those of step 4')
-    if (allocated(error)) return
-    call read_deck('test/data/joint_c0.dat', model, error)
-    if (allocated(error)) return
-    model%stages(1)%steps = 40
-    model%stages(1)%output_every = 40
-    model%stages(1)%controls%method = method_modified_euler
-    model%stages(1)%controls%max_iterations = 1
-    euler%group = 5
-    call run_analysis(model, 'cholmod', euler, summary, error)
-    if (allocated(error)) return
-    call check(error, maxval(abs(euler%stress(:, 1:np, 1) - newton%stress(:, 1:np, 4))) <= 1.0e-6_dp * scale, &
-               'modified Euler, 40 steps: the same stresses')
+    associate (s2 => newton%steps(2)%groups(g), s4 => newton%steps(4)%groups(g))
+      call check(error, any(s4%state == state_plastic), 'points sliding')
+      if (allocated(error)) return
+      scale = maxval(abs(s4%stress(1:2, :)))
+      call check(error, maxval(abs(2.0_dp * s2%stress(1:2, :) - s4%stress(1:2, :))) <= 1.0e-9_dp * scale, &
+                 'step 2 stresses are half those of step 4')
+      if (allocated(error)) return
+      call read_deck('test/data/joint_c0.dat', model, error)
+      if (allocated(error)) return
+      model%stages(1)%steps = 40
+      model%stages(1)%output_every = 40
+      model%stages(1)%controls%method = method_modified_euler
+      model%stages(1)%controls%max_iterations = 1
+      call run_analysis(model, 'cholmod', euler, summary, error)
+      if (allocated(error)) return
+      call check(error, maxval(abs(euler%steps(1)%groups(g)%stress(1:2, :) - s4%stress(1:2, :))) <= 1.0e-6_dp * scale, &
+                 'modified Euler, 40 steps: the same stresses')
+    end associate
   end subroutine test_cohesionless_from_zero
 
   !> test/data/block_pull.dat: a 3 MPa pull on an interface whose tensile strength is

@@ -4,13 +4,14 @@ module test_nonlinear
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_error, only: err_solver, str
-  use feps_material, only: state_plastic
+  use feps_material, only: state_plastic, state_open
   use feps_model, only: model_t, method_newton_raphson, method_modified_euler, method_initial_stiffness, &
                         method_modified_newton_raphson, method_full_newton_raphson, load_traction
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
   use feps_observer, only: observer_t, step_result_t
   use feps_test_observers, only: all_steps_t
+  use feps_gauss, only: square_rule
   implicit none
   private
 
@@ -45,7 +46,9 @@ contains
       new_unittest('cohesionless dilatant joint from zero: full Newton converges, solution scales with load', &
                    test_cohesionless_from_zero), &
       new_unittest('a block pulled past the tensile strength stops where the joint opens, and says so', &
-                   test_brittle_pull) &
+                   test_brittle_pull), &
+      new_unittest('full Newton follows an unzipping cascade to equilibrium, given the iterations', &
+                   test_unzipping_cascade) &
       ]
   end subroutine collect_nonlinear
 
@@ -513,5 +516,89 @@ contains
                lf < 1.0_dp / tan(30.0_dp * acos(-1.0_dp) / 180.0_dp) / 3.0_dp + 1.0_dp / 1024.0_dp, &
                'stops just past load factor c / tan(phi) / 3 = 0.5774: ' // msg)
   end subroutine test_brittle_pull
+
+  !> test/data/unzip.dat: a block pressed on a base (2 MPa) through 40 x 1 interface quads
+  !! (tensile strength c / tan(phi) = 0.346 MPa), then bent by a moment M = 266667 N mm about
+  !! x = 100. Where the first point opens (load factor 1.55-1.60) the opening spreads at that
+  !! load: full Newton with MAXIT=200 must converge every step, and its interface stresses must
+  !! balance the load (sum of sigma_n dA = -N = -4000 N, of sigma_n (x - 100) dA = -M, 1e-5),
+  !! the open points must lie on the tension side of every closed one, and 4 steps must end
+  !! where 20 do (1e-5 of the peak stress: the unzipping is monotonic). With MAXIT=3 the run
+  !! must stop in that load window and say that more iterations may follow the opening.
+  subroutine test_unzipping_cascade(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: four, twenty
+    type(keep_last_t) :: stopped
+    type(analysis_summary_t) :: summary
+    real(dp), parameter :: m_applied = 0.4_dp * 100.0_dp**3 / 3.0_dp * 2.0_dp, n_applied = 4000.0_dp
+    real(dp) :: s(2, 4), w(4), x, fz, my, xopen, xclosed, lf, peak
+    character(len=:), allocatable :: msg
+    integer :: g, e, k, at
+    call square_rule(2, s, w)
+    call read_deck('test/data/unzip.dat', model, error)
+    if (allocated(error)) return
+    g = 3
+    call check(error, trim(model%groups(g)%name) == 'joint', 'group 3 is the joint')
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', four, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%cutbacks == 0 .and. summary%unconverged_steps == 0, &
+               'MAXIT=200: every step converged without a cut-back')
+    if (allocated(error)) return
+    associate (last => four%steps(size(four%steps))%groups(g))
+      fz = 0.0_dp
+      my = 0.0_dp
+      xopen = -huge(1.0_dp)
+      xclosed = huge(1.0_dp)
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        do k = 1, 4
+          ! 5 x 10 mm quads along x: the point's x from its natural coordinate, weight 50 / 4.
+          x = model%coords(1, model%groups(g)%connectivity(1, e)) + 2.5_dp * (1.0_dp + s(1, k))
+          associate (p => 4 * (e - 1) + k)
+            fz = fz + 12.5_dp * last%stress(3, p)
+            my = my + 12.5_dp * last%stress(3, p) * (x - 100.0_dp)
+            if (last%state(p) == state_open) then
+              xopen = max(xopen, x)
+            else
+              xclosed = min(xclosed, x)
+            end if
+          end associate
+        end do
+      end do
+      call check(error, abs(fz + n_applied) <= 1.0e-5_dp * n_applied, 'sum of sigma_n dA = ' // str(fz))
+      if (allocated(error)) return
+      call check(error, abs(my + m_applied) <= 1.0e-5_dp * m_applied, 'moment of sigma_n = ' // str(my))
+      if (allocated(error)) return
+      call check(error, xopen > 50.0_dp .and. xopen < xclosed, 'open up to x = ' // str(xopen) // &
+                 ', in contact from x = ' // str(xclosed))
+      if (allocated(error)) return
+      call read_deck('test/data/unzip.dat', model, error)
+      if (allocated(error)) return
+      model%stages(2)%steps = 20
+      call run_analysis(model, 'cholmod', twenty, summary, error)
+      if (allocated(error)) return
+      peak = maxval(abs(last%stress(3, :)))
+      call check(error, maxval(abs(twenty%steps(size(twenty%steps))%groups(g)%stress(3, :) - last%stress(3, :))) &
+                 <= 1.0e-5_dp * peak, '20 steps end where 4 do')
+      if (allocated(error)) return
+    end associate
+    call read_deck('test/data/unzip.dat', model, error)
+    if (allocated(error)) return
+    model%stages(2)%controls%max_iterations = 3
+    call run_analysis(model, 'cholmod', stopped, summary, error)
+    if (.not. allocated(error)) then
+      call test_failed(error, 'MAXIT=3 followed the unzipping: the test no longer needs the iterations')
+      return
+    end if
+    msg = error%message
+    deallocate (error)
+    call check(error, index(msg, 'interface points opened') > 0 .and. index(msg, 'MAXIT=') > 0, &
+               'the message suggests more iterations: ' // msg)
+    if (allocated(error)) return
+    at = index(msg, 'load factor ') + len('load factor ')
+    read (msg(at:at + index(msg(at:), ':') - 2), *) lf
+    call check(error, lf > 1.55_dp .and. lf < 1.6_dp, 'stops where the first point opens: ' // msg)
+  end subroutine test_unzipping_cascade
 
 end module test_nonlinear

@@ -120,7 +120,7 @@ def deck(case, r_soil=2000.0):
     elif kind == "F" and not edge:
         # docs/verification.md, "The diagonal model B cases with interfaces": the tension side of
         # the interface unzips at 17% of the load (brittle tension cut-off); the thesis's methods
-        # do not converge through it (full Newton does for FD1 only), and the thesis carries the
+        # do not converge through it (full Newton does, given 75-108 iterations), and the thesis carries the
         # unbalanced force (2.6.3).
         out += ["", "! initial stiffness, at most 10 iterations per step (thesis 5.4, 5.5). At 17% of the load",
                 "! the tension side of the interface unzips (each point that reaches the apex of the",
@@ -128,7 +128,7 @@ def deck(case, r_soil=2000.0):
                 "! 5-15% of |P|; as in the thesis (2.6.3) it is carried into the next steps and decays",
                 "! (1-4% at the end). DIVERGENCE=1 (feps's default 1e-2 is not in the thesis) lets it be",
                 "! carried; docs/verification.md shows the residual history and the sensitivity, and the",
-                "! converged FD1 (METHOD=full-newton-raphson; FD2 and FD3 snap through at the unzipping).",
+                "! converged answers (METHOD=full-newton-raphson, MAXIT=400: 6-21% larger angles).",
                 f"STAGE, load, STEPS={steps}, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4, DIVERGENCE=1"]
     elif kind == "F":
         # docs/verification.md, "Model B": with the stiff soil (FE3) the sliding interface leaves

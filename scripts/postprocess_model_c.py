@@ -27,10 +27,14 @@ From the last step of a model C run (decks by scripts/make_model_c.py):
   point has no gap: the zero of the least-squares line sigma_n(x) through all its points
   ("interpolating linearly the stresses to a zero point"). Z = 715 - x_zero, averaged over the
   four lines ("the average value of Z is used").
-- sigma_max (7.4.3): the element-centre normal stresses (mean of the 4 Gauss points) of the
-  interface elements with theta < 6 deg (4 elements: 2 in theta x 2 through the wall), fitted by
-  a least-squares line in x (element centre x) and evaluated at x = 715; reported as a positive
-  compression.
+- sigma_max (7.4.3), "calculated from the average stresses at the centre of elements in the region
+  of the pipe edge (theta < 6 deg) with a linear interpolation": the axial stress szz at the
+  centres of the packing elements with theta < 6 deg (4 elements: 2 in theta x 2 through the
+  wall; the packing is the joint, and the analytical models' sigma_max is the packing's stress),
+  fitted by a least-squares line in x (element centre x) and evaluated at x = 715; reported as a
+  positive compression. The same reading of the interface's normal stress (mean of each interface
+  element's 4 Gauss points) is printed as sigma_max_interface: it was the tabulated reading until
+  2026-11-22 and is 1-7% higher (docs/verification.md, model C).
 """
 import argparse
 import csv
@@ -231,13 +235,30 @@ def edge_stress(coords, conn_joint, traction):
     return float(-(a + b * R_OUT)), len(xs)
 
 
-def _quantities(coords, conn_top, conn_joint, u, traction):
+def edge_stress_packing(coords, conn_packing, cell_stress):
+    """sigma_max (MPa, compression positive) at x = 715 from the centre stresses szz (element
+    averages of the Gauss points, /steps/N/cell/stress/packing) of the packing elements with
+    theta < 6 deg: least-squares line in the element centres' x, evaluated at x = 715."""
+    xs, ss = [], []
+    for e, elem in enumerate(conn_packing - 1):
+        p = coords[elem[:8]]
+        th = np.degrees(np.arctan2(p[:, 1], p[:, 0]))
+        if th.max() <= EDGE_THETA + 1e-6:
+            xs.append(p[:, 0].mean())
+            ss.append(cell_stress[e, 2])
+    a, b = _lsq_line(xs, ss)
+    return float(-(a + b * R_OUT)), len(xs)
+
+
+def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells):
     bstar, delta, delta_b, bstar_x0, _ = beta_star(coords, conn_top, u)
     bbar, bbar_secant, bbar_mean, bbar_raw, _, _ = beta_bar(coords, conn_top, conn_joint, u)
     z, _, zeros = contact_width(coords, conn_joint, traction)
     z_centres = contact_width_centres(coords, conn_joint, traction)
-    smax, nedge = edge_stress(coords, conn_joint, traction)
+    smax_interface, _ = edge_stress(coords, conn_joint, traction)
+    smax, nedge = edge_stress_packing(coords, conn_packing, packing_cells)
     return {"beta_star": bstar, "beta_bar": bbar, "Z": z, "sigma_max": smax, "delta": delta, "delta_b": delta_b,
+            "sigma_max_interface": smax_interface,
             "beta_star_x0": bstar_x0, "beta_bar_secant": bbar_secant, "beta_bar_wall_mean": bbar_mean,
             "beta_bar_raw": bbar_raw, "Z_centres": z_centres, "Z_lines": [R_OUT - xz for xz, _ in zeros],
             "Z_kinds": [k for _, k in zeros], "n_edge_elements": nedge,
@@ -253,15 +274,21 @@ def postprocess(h5path, verbose=True):
         coords = f["mesh/coordinates"][...]
         conn_top = f["mesh/groups/top_pipe/connectivity"][...]
         conn_joint = f["mesh/groups/joint/connectivity"][...]
+        conn_packing = f["mesh/groups/packing/connectivity"][...]
         names = sorted(f["steps"], key=int)
         step = f["steps"][names[-1]]
-        res = _quantities(coords, conn_top, conn_joint, step["displacement"][...], step["interface/joint"][...])
+        if "cell/stress/packing" not in step:
+            raise SystemExit(f"{h5path}: no /steps/{names[-1]}/cell/stress/packing (sigma_max is read from the "
+                             "packing's element stresses: do not leave the stresses out with FIELDS)")
+        res = _quantities(coords, conn_top, conn_joint, step["displacement"][...], step["interface/joint"][...],
+                          conn_packing, step["cell/stress/packing"][...])
         res["load_factor"] = float(step.attrs["load_factor"])
         res["residual"] = float(step.attrs["residual"])
         s2 = [n for n in names[:-1] if abs(float(f["steps"][n].attrs["load_factor"]) - 2.0) < 1e-9]
         if s2:
             st2 = f["steps"][s2[-1]]
-            q2 = _quantities(coords, conn_top, conn_joint, st2["displacement"][...], st2["interface/joint"][...])
+            q2 = _quantities(coords, conn_top, conn_joint, st2["displacement"][...], st2["interface/joint"][...],
+                             conn_packing, st2["cell/stress/packing"][...])
             for k in ("beta_star", "beta_bar", "Z", "sigma_max", "beta_bar_raw"):
                 res["s2_" + k] = q2[k]
             res["s2_residual"] = float(st2.attrs["residual"])
@@ -281,8 +308,9 @@ def postprocess(h5path, verbose=True):
         print(f"Z          {res['Z']:.1f} mm   (per Gauss line across the wall: " +
               ", ".join(f"{z:.0f}" for z in res["Z_lines"]) + f"; {res['Z_kinds'][0]}; from element-centre "
               f"stresses: {res['Z_centres']:.1f})")
-        print(f"sigma_max  {res['sigma_max']:.2f} MPa  ({res['n_edge_elements']} interface elements with theta < "
-              f"{EDGE_THETA:g} deg, line in x to x = 715)")
+        print(f"sigma_max  {res['sigma_max']:.2f} MPa  (szz at the centres of the {res['n_edge_elements']} packing "
+              f"elements with theta < {EDGE_THETA:g} deg, line in x to x = 715; the same from the interface's "
+              f"normal stress: {res['sigma_max_interface']:.2f})")
         if "s2_beta_star" in res:
             print(f"end of stage 2 (residual {res['s2_residual']:.2e}): beta_star {res['s2_beta_star']:.4f}, "
                   f"beta_bar {res['s2_beta_bar']:.4f}, Z {res['s2_Z']:.1f}, sigma_max {res['s2_sigma_max']:.2f}")
@@ -356,7 +384,7 @@ def table(results_dir, csv_out=None):
         print(f"{case:<22} {r['beta_star']:8.4f} {t['beta_star']:8.4f} {r['beta_bar']:8.4f} {t['beta_bar']:8.4f} "
               f"{r['Z']:7.0f} {t['Z']:7.0f} {r['sigma_max']:7.2f} {t['sigma_max']:7.2f}")
     if csv_out:
-        keys = ["beta_star", "beta_bar", "Z", "sigma_max", "Z_centres", "beta_star_x0", "beta_bar_secant", "beta_bar_wall_mean",
+        keys = ["beta_star", "beta_bar", "Z", "sigma_max", "sigma_max_interface", "Z_centres", "beta_star_x0", "beta_bar_secant", "beta_bar_wall_mean",
                 "beta_bar_raw", "delta_b", "open_fraction", "sliding_fraction", "residual", "s2_beta_star",
                 "s2_beta_bar", "s2_Z", "s2_sigma_max", "s2_residual", "wall_time", "iterations", "cutbacks"]
         with open(csv_out, "w", newline="") as f:

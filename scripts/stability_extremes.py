@@ -88,6 +88,8 @@ def q_max_s1(f):
 
 
 def q_sigma_max(f):
+    # sigma_max as the interface's normal stress (the reading these studies were made with; Table
+    # 7.4 reads the packing's szz, a few per cent lower: docs/verification.md, model C)
     st = last_step(f)
     return float(pmc.edge_stress(f["mesh/coordinates"][...], f["mesh/groups/joint/connectivity"][...],
                                  st["interface/joint"][...])[0])

@@ -244,6 +244,8 @@ def q_interface(f):
 
 
 def q_sigma_max(f):
+    # sigma_max as the interface's normal stress (the reading these studies were made with; Table
+    # 7.4 reads the packing's szz, a few per cent lower: docs/verification.md, model C)
     sys.path.insert(0, os.path.join(ROOT, "scripts"))
     import postprocess_model_c as pmc
     step = last_step(f)

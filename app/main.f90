@@ -72,7 +72,7 @@ contains
         return
       case ('-q', '--quiet')
         options%quiet = .true.
-      case ('-o', '--output', '--solver', '--method')
+      case ('-o', '--output', '--solver', '--method', '--maxit')
         if (i == n) then
           write (error_unit, '(a)') 'feps: error: ' // arg // ' needs a value (see feps --help)'
           status = 2
@@ -81,6 +81,14 @@ contains
         i = i + 1
         if (arg == '--method') then
           options%method = argument(i)
+        else if (arg == '--maxit') then
+          options%max_iterations = whole_number(argument(i))
+          if (options%max_iterations < 1) then
+            write (error_unit, '(a)') 'feps: error: --maxit takes a whole number of at least 1, not "' // &
+              argument(i) // '"'
+            status = 2
+            return
+          end if
         else if (arg == '--solver') then
           options%solver = argument(i)
           if (options%solver /= 'skyline' .and. options%solver /= 'cholmod') then
@@ -112,6 +120,16 @@ contains
     end if
   end subroutine parse_arguments
 
+  !> The value of a whole number argument, or 0 when it is not one.
+  integer function whole_number(text)
+    character(len=*), intent(in) :: text
+    integer :: ios
+    whole_number = 0
+    if (len(text) == 0 .or. verify(text, '0123456789') /= 0 .or. len(text) > 9) return
+    read (text, *, iostat=ios) whole_number
+    if (ios /= 0) whole_number = 0
+  end function whole_number
+
   function argument(i) result(arg)
     integer, intent(in) :: i
     character(len=:), allocatable :: arg
@@ -125,7 +143,7 @@ contains
     write (output_unit, '(a)') &
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
-      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--quiet]', &
+      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N] [--quiet]', &
       '       feps --help | --version', &
       '', &
       '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
@@ -135,6 +153,8 @@ contains
       '      --method NAME    solve every stage by one method: euler, modified-euler, newton-raphson,', &
       '                       modified-newton-raphson, initial-stiffness, full-newton-raphson', &
       '                       (overrides the deck)', &
+      '      --maxit N        at most N iterations per step in every stage (overrides the deck''s', &
+      '                       MAXIT; euler and modified-euler keep their one iteration)', &
       '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &

@@ -32,6 +32,14 @@ expect_status "--method full-newton-raphson" 0 "$feps" test/data/joint_c0.dat --
   --output "$tmp/jc0.h5"
 grep -q "method full-newton-raphson" "$tmp/out" && grep -q "0 cut-backs, 0 steps not converged\|0 cut-backs)" "$tmp/out" \
   && ok "full Newton: no cut-back, every step converged" || bad "full Newton: no cut-back, every step converged: $(grep analysis "$tmp/out")"
+expect_status "bad --maxit" 2 "$feps" test/data/cube.dat --maxit many
+grep -q "\-\-maxit takes a whole number" "$tmp/err" && ok "bad --maxit says what it takes" || bad "bad --maxit says what it takes"
+# --maxit overrides the deck's MAXIT=200 both ways: 3 iterations cannot follow the unzipping
+# of test/data/unzip.dat (stop, exit 1, the message names --maxit, no result file), 200 can.
+expect_status "--maxit 3 stops at the unzipping" 1 "$feps" test/data/unzip.dat --maxit 3 --output "$tmp/u3.h5"
+grep -q "feps --maxit 400" "$tmp/err" && [ ! -e "$tmp/u3.h5" ] && [ ! -e "$tmp/u3.h5.part" ] \
+  && ok "the stop names --maxit and leaves no result file" || bad "the stop names --maxit and leaves no result file: $(head -c 300 "$tmp/err")"
+expect_status "--maxit 200 follows the unzipping" 0 "$feps" test/data/unzip.dat --maxit 200 --output "$tmp/u200.h5"
 
 # A file holding only a DATAIN mesh: report it, write /mesh with --output.
 expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.datain --output "$tmp/t21.h5"

@@ -997,7 +997,7 @@ contains
         ! Each opening sheds its force onto its neighbours, which may open in turn: the
         ! iterations follow that cascade point by point (model B FD2 needs 75 at its unzipping).
         hint = hint // 'the opening may spread further than ' // str(st%controls%max_iterations) // &
-          ' iterations can follow (STAGE ..., MAXIT=400), or the load passed a limit point'
+          ' iterations can follow (STAGE ..., MAXIT=400 or feps --maxit 400), or the load passed a limit point'
       else
         hint = hint // 'the load may have passed a limit point (the thesis carries the unbalanced ' // &
           'force: STAGE ..., DIVERGENCE=1)'

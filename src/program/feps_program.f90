@@ -24,6 +24,7 @@ module feps_program
     character(len=:), allocatable :: output
     character(len=:), allocatable :: solver
     character(len=:), allocatable :: method     !! overrides every stage's METHOD when not empty
+    integer :: max_iterations = 0               !! overrides every stage's MAXIT when positive
     logical :: quiet = .false.
   end type run_options_t
 
@@ -141,6 +142,7 @@ contains
         if (allocated(error)) return
       end if
     end if
+    if (options%max_iterations > 0) call override_max_iterations(model, options%max_iterations)
     obs%model => model
     if (present(sink)) obs%sink => sink
     call obs%h5%create(output, error)
@@ -222,6 +224,21 @@ contains
       end associate
     end do
   end subroutine override_method
+
+  !> Every stage's iteration limit per step (MAXIT), after any --method override. The Euler
+  !! methods keep their single iteration: that is what they are.
+  subroutine override_max_iterations(model, max_iterations)
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: max_iterations
+    integer :: s
+    do s = 1, size(model%stages)
+      associate (c => model%stages(s)%controls)
+        if (c%method == method_euler .or. c%method == method_modified_euler) cycle
+        c%max_iterations = max_iterations
+        c%max_iterations_set = .true.
+      end associate
+    end do
+  end subroutine override_max_iterations
 
   !> REPORT records: rotations of pipe sections (thesis 7.3) from the final displacements.
   subroutine post_process(model, u, h5, summary, error)

@@ -174,7 +174,7 @@ def case_sec2_3_4b(table, feps, tmp):
 
 def read_bar_table(name):
     rows = []
-    with open(os.path.join(ROOT, "..", "shared", "benchmarks", name)) as f:
+    with open(os.path.join(os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks")), name)) as f:
         lines = [l.strip() for l in f if l.strip() and not l.startswith("#")]
     for line in lines[1:]:
         k, ne, ng, forces = line.split(",")

@@ -38,7 +38,7 @@ import sys
 from collections import namedtuple
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BENCHMARKS = os.environ.get("FEPS_BENCHMARKS", "/work/shared/benchmarks")
+BENCHMARKS = os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks"))
 
 Q_DEFAULT = 10.0        # MPa on the top pipe end, thesis section 7.4.3
 DEFAULTS = dict(a=15.0, L=2500.0, Ec=40000.0, R=715.0, r=600.0)

@@ -247,7 +247,8 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None):
 
 def thesis_beta_bar(G, nu, beta):
     """beta_bar of thesis Table 7.3 (benchmarks/table7_3.csv), or None when not found."""
-    path = "/work/shared/benchmarks/table7_3.csv"
+    path = os.path.join(os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks")),
+                        "table7_3.csv")
     if not os.path.exists(path):
         return None
     with open(path) as f:

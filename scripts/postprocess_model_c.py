@@ -46,7 +46,7 @@ import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BENCH = "/work/shared/benchmarks"
+BENCH = os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks"))
 R_IN, R_OUT = 600.0, 715.0
 Z_JOINT = 1250.0
 Z_TOP_BOTTOM = 1265.0

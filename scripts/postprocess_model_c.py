@@ -401,6 +401,40 @@ def table(results_dir, csv_out=None):
 E_CONCRETE, NU_CONCRETE, Q_TOP = 40000.0, 0.2, 10.0
 
 
+def _cowper_kappa():
+    """Cowper's shear coefficient of the pipe's tube section (0.528 for r / R = 600 / 715)."""
+    m2 = (R_IN / R_OUT) ** 2
+    return 6 * (1 + NU_CONCRETE) * (1 + m2) ** 2 / ((7 + 6 * NU_CONCRETE) * (1 + m2) ** 2 +
+                                                      (20 + 12 * NU_CONCRETE) * m2)
+
+
+def thesis_beta_bar_bound(case):
+    """Is a Table 7.3 pair (beta*, beta_bar) consistent with statics, given the thesis's own Z?
+
+    The joint's contact resultant sits e off the pipe axis: e = m(Z) / p(Z) for the linear joint
+    stress with the thesis's contact width Z (analytical models, eqs. 7.2.4-7.2.13), and, where
+    Z >= 2R (full contact, where the thesis's (Z, sigma_max) pairs disagree), the smaller of that
+    and e = (sigma_max / q - 1) (R^2 + r^2) / (4 R) from its sigma_max. Moment equilibrium of the
+    top pipe (load P = q A on its axis at the top) needs H = P e / L at the top end, so by beam
+    theory section A-A turns less than the chord angle beta* by the shear angle H / (kappa G A)
+    less the bending term P e L / (24 E I). Returns (e in mm, that lower bound on
+    beta* - beta_bar in deg, the thesis's beta* - beta_bar in deg)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import joint_models
+    t = thesis_values()[case]
+    area = math.pi * (R_OUT ** 2 - R_IN ** 2)
+    inertia = math.pi / 4.0 * (R_OUT ** 4 - R_IN ** 4)
+    p, m = joint_models.load_and_moment_factors(t["Z"], R_OUT, R_IN)
+    e = m / p
+    if t["Z"] >= 2.0 * R_OUT:
+        e = min(e, (t["sigma_max"] / Q_TOP - 1.0) * (R_OUT ** 2 + R_IN ** 2) / (4.0 * R_OUT))
+    P = Q_TOP * area
+    H = P * e / L_PIPE
+    G = E_CONCRETE / (2 * (1 + NU_CONCRETE))
+    bound = H / (_cowper_kappa() * G * area) - P * e * L_PIPE / (24.0 * E_CONCRETE * inertia)
+    return e, math.degrees(bound), t["beta_star"] - t["beta_bar"]
+
+
 def top_pipe_statics(h5path):
     """Why beta_bar < beta*: the top pipe is a beam loaded by the eccentric joint reaction.
 
@@ -424,9 +458,7 @@ def top_pipe_statics(h5path):
     H = float(reac[end, 0].sum())                       # half pipe (y >= 0)
     area = 0.5 * math.pi * (R_OUT ** 2 - R_IN ** 2)
     inertia = 0.5 * math.pi / 4.0 * (R_OUT ** 4 - R_IN ** 4)
-    m2 = (R_IN / R_OUT) ** 2                            # Cowper's shear coefficient of a tube
-    kappa = 6 * (1 + NU_CONCRETE) * (1 + m2) ** 2 / ((7 + 6 * NU_CONCRETE) * (1 + m2) ** 2 +
-                                                      (20 + 12 * NU_CONCRETE) * m2)
+    kappa = _cowper_kappa()
     G = E_CONCRETE / (2 * (1 + NU_CONCRETE))
     EI, L, s = E_CONCRETE * inertia, L_PIPE, Z_SECTION_AA - Z_TOP_BOTTOM
     rad = math.degrees

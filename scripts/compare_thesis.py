@@ -327,8 +327,8 @@ MODEL_C_ROWS = {}
 
 
 def model_c_rows(feps, tmp):
-    """Run the 12 model C decks once (scripts/campaign_modelC.sh: as many at once as cores; 7-16
-    minutes on this shared 2-core machine with the release build, depending on its load) and keep
+    """Run the 12 model C decks once (scripts/campaign_modelC.sh: as many at once as cores; about 13
+    minutes on this shared 2-core machine with the release build, more under load) and keep
     their rows."""
     if not MODEL_C_ROWS:
         sys.path.insert(0, os.path.join(ROOT, "scripts"))

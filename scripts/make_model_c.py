@@ -32,9 +32,21 @@ POISSON = (0.1, 0.4, -0.3)
 EQUILIBRIUM_STEPS = 100    # stage s3: at most 100 x 50 iterations, 1 per step once converged
 STEPS = {(0.09, 300.0): 250, (0.09, 900.0): 300, (0.27, 300.0): 400, (0.27, 900.0): 500}
 
-# theta grid: 3 deg on the loaded edge (theta = 0, x = +715: sigma_max is read from elements with
-# theta < 6 deg, thesis 7.4.3), 6 deg elsewhere
-THETA_STEPS = [3.0] * 4 + [6.0] * 28                                   # 32 elements, 0..180
+# theta grid: 4 x 3 deg on the loaded edge (theta = 0, x = +715: sigma_max is read from elements
+# with theta < 6 deg, thesis 7.4.3), then THETA_STEP up to 180. 3 deg (60 elements) because the
+# gap front at beta = 0.27 is located between Gauss points: with 6 deg beyond theta = 12 (the
+# first decks) Z of C_G300_nu-0.3_b0.27 was 805 mm, with 3 deg 825 and with 1.5 deg 829
+# (docs/verification.md, model C mesh sensitivity).
+THETA_EDGE = [3.0] * 4
+THETA_STEP = 3.0
+
+
+def theta_steps(theta_step=THETA_STEP):
+    """Element sizes (deg) from theta = 0 to 180: 4 x 3 at the loaded edge, then theta_step."""
+    n = round(168.0 / theta_step)
+    if abs(n * theta_step - 168.0) > 1e-9:
+        raise ValueError("the theta step must divide 168 deg")
+    return THETA_EDGE + [theta_step] * n
 # bottom block z (0 = mid-length of the bottom pipe, a symmetry plane) graded towards the joint
 Z_BOTTOM_STEPS = [150.0] * 4 + [100.0] * 3 + [50.0] * 4 + [25.0] * 4 + [12.5] * 4   # 0 .. 1250
 PACKING_LAYERS = 2
@@ -92,8 +104,8 @@ def direction(steps, axis, label, first=True, start=0.0):
 class Mesh:
     """Node numbering of the two DATAIN node blocks (theta fastest, then r, then z in each)."""
 
-    def __init__(self, r_soil):
-        self.nt = len(THETA_STEPS) + 1                     # nodes along theta
+    def __init__(self, r_soil, thetas):
+        self.nt = len(thetas) + 1                          # nodes along theta
         self.r_bottom = [R_IN, R_IN + 57.5, R_OUT]
         for d in soil_layers(r_soil):
             self.r_bottom.append(self.r_bottom[-1] + d)
@@ -118,13 +130,15 @@ def hex_record(node, it, ir, iz):
     return "A, 8, " + ", ".join(str(n) for n in face + top) + ","
 
 
-def deck(G, nu, beta, r_soil=2000.0, steps=None):
-    m = Mesh(r_soil)
+def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP):
+    """The deck text of one case; theta_step is the element size (deg) beyond theta = 12."""
+    thetas = theta_steps(theta_step)
+    m = Mesh(r_soil, thetas)
     name = case_name(G, nu, beta)
     delta = L_PIPE * math.tan(math.radians(beta))
     nsteps = steps or STEPS[(beta, G)]
     E_p = 2.0 * G * (1.0 + nu)
-    ntheta = len(THETA_STEPS)
+    ntheta = len(thetas)
     nzb = len(Z_BOTTOM_STEPS)
     nzt = len(Z_TOP_STEPS)
     stride_r_b, stride_z_b = m.nt, m.nt * m.nr_bottom
@@ -157,7 +171,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None):
         f"!   and delta together in {nsteps} steps (thesis 6.3/6.4), initial stiffness, at most 10 iterations;",
         "!   stage 3: equilibrium iterations (see the solution controls below).",
         "! - mesh: hex8, 2 elements through the wall; theta 4 x 3 deg at the loaded edge (theta = 0,",
-        "!   x = +715: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then " + f"{len(THETA_STEPS) - 4} x {THETA_STEPS[-1]:g} deg;",
+        "!   x = +715: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then " + f"{len(thetas) - 4} x {thetas[-1]:g} deg;",
         "!   z graded 150/100/50/25/12.5 mm towards the joint on both sides; a node layer at z = 2515, the",
         "!   top pipe's mid-length section A-A of thesis Fig. 7.7.",
         "! The misalignment rotation is about +y: the joint closes at x = +715 (theta = 0) and may open",
@@ -167,7 +181,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None):
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
         f"A, 3, {R_IN:g}., 0., 0.,",
     ]
-    out += direction(THETA_STEPS, 1, "theta")
+    out += direction(thetas, 1, "theta")
     out.append("%, 3, 57.5, 0., 0.,".ljust(30) + "! pipe wall r = 600, 657.5, 715")
     for d in soil_layers(r_soil):
         out.append(f"%, -1, {d:.4f}, 0., 0.,".ljust(30) + "! soil layer")
@@ -176,7 +190,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None):
             "! --- node block 2: the packing's lower face at z = 1250 (coincident with the bottom pipe's",
             "! end face: the interface's two layers), the packing and the top pipe ---",
             f"A, 3, {R_IN:g}., 0., {Z_JOINT:g}.,"]
-    out += direction(THETA_STEPS, 1, "theta")
+    out += direction(thetas, 1, "theta")
     out.append("%, 3, 57.5, 0., 0.,".ljust(30) + "! pipe wall r = 600, 657.5, 715")
     out += direction([PACKING / PACKING_LAYERS] * PACKING_LAYERS, 2, "z (packing)", start=Z_JOINT)
     out += direction(Z_TOP_STEPS, 2, "z", first=False, start=Z_TOP_BOTTOM)
@@ -267,20 +281,19 @@ def main():
     ap.add_argument("--cases", default="", help="comma-separated case names (default: all 12)")
     ap.add_argument("--steps", type=int, default=None, help="stage-2 steps (default: the thesis's)")
     ap.add_argument("--soil-radius", type=float, default=2000.0)
-    ap.add_argument("--theta-step", type=float, default=None,
-                    help="mesh sensitivity: this element size (deg) from theta = 12 to 180 instead of 6")
+    ap.add_argument("--theta-step", type=float, default=THETA_STEP,
+                    help=f"element size (deg) from theta = 12 to 180 (default {THETA_STEP:g}; it must divide 168)")
     args = ap.parse_args()
-    if args.theta_step:
-        n = round(168.0 / args.theta_step)
-        if abs(n * args.theta_step - 168.0) > 1e-9:
-            ap.error("--theta-step must divide 168 deg")
-        THETA_STEPS[4:] = [args.theta_step] * n
+    try:
+        theta_steps(args.theta_step)
+    except ValueError as e:
+        ap.error(str(e))
     os.makedirs(args.outdir, exist_ok=True)
     names = [c for c in args.cases.split(",") if c] or [case_name(*c) for c in all_cases()]
     for name in names:
         G, nu, beta = parse_case(name)
         with open(os.path.join(args.outdir, f"{name}.dat"), "w") as f:
-            f.write(deck(G, nu, beta, args.soil_radius, args.steps))
+            f.write(deck(G, nu, beta, args.soil_radius, args.steps, args.theta_step))
     print(f"wrote {len(names)} decks to {args.outdir}")
 
 

@@ -47,14 +47,24 @@ def feps_release():
     return os.path.join(ROOT, out.stdout.strip().splitlines()[-1].strip())
 
 
+def model_c_6deg(case):
+    """The model C deck this study was made with: 6 deg elements beyond theta = 12 (the decks in
+    input/modelC now use 3 deg; docs/verification.md, model C mesh sensitivity)."""
+    sys.path.insert(0, os.path.join(ROOT, "scripts"))
+    import make_model_c
+    G, nu, beta = make_model_c.parse_case(case)
+    return make_model_c.deck(G, nu, beta, theta_step=6.0)
+
+
 def variant(deck, subs):
-    """Deck text with regex substitutions applied (each must match); INCLUDE made absolute."""
-    text = open(os.path.join(ROOT, deck)).read()
+    """Deck text (a path in the repository, or a function giving the text) with regex
+    substitutions applied (each must match); INCLUDE made absolute."""
+    text = deck() if callable(deck) else open(os.path.join(ROOT, deck)).read()
     for pattern, repl in subs:
         text, n = re.subn(pattern, repl, text, flags=re.MULTILINE | re.IGNORECASE)
         if n == 0:
             raise SystemExit(f"stability_extremes: {deck}: no match for {pattern!r}")
-    folder = os.path.dirname(os.path.join(ROOT, deck))
+    folder = ROOT if callable(deck) else os.path.dirname(os.path.join(ROOT, deck))
     text = re.sub(r"(?im)^INCLUDE, (.+)$", lambda m: "INCLUDE, " + os.path.join(folder, m.group(1).strip()), text)
     return re.sub(r"(?im)^OUTPUT,.*$", "", text)
 
@@ -99,10 +109,14 @@ def open_fraction(f):
     return float(np.mean(last_step(f)["interface/joint"][:, 3] >= 2))
 
 
-MODEL_C = "input/modelC/C_G900_nu0.4_b0.27.dat"
+def model_c_deck():
+    return model_c_6deg("C_G900_nu0.4_b0.27")
+
+
+
 DELTA_05 = 2500.0 * math.tan(math.radians(0.5))
 CASES = {
-    "modelc_open": dict(deck=MODEL_C, quantity=q_sigma_max, tol=0.02, extra=open_fraction,
+    "modelc_open": dict(deck=model_c_deck, quantity=q_sigma_max, tol=0.02, extra=open_fraction,
                         subs=[(r"^(DISPLACE, top_end_nodes, X=)[-0-9.eE+]+", rf"\g<1>{DELTA_05:.4f}")],
                         coarse=[steps_sub("s2", 250)], fine=[], what="sigma_max (MPa)"),
     "kn8": dict(deck="input/modelB/FE1.dat", quantity=q_deflection, tol=0.01,

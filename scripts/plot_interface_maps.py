@@ -66,8 +66,13 @@ def contour_panel(fig, ax, theta, v, values, scale, ylabel, title, cmap, levels,
     vmin, vmax = float(values.min()), float(values.max())
     if vmax - vmin < 1e-9:
         vmin, vmax = vmin - 0.05, vmax + 0.05
-    cs = ax.tricontourf(tri, values, levels=np.linspace(vmin, vmax, levels + 1), cmap=plt.get_cmap(cmap))
-    cb = fig.colorbar(cs, ax=ax, shrink=0.85, format="%.2f")
+    edges = np.linspace(vmin, vmax, levels + 1)
+    # widen the outer levels a little: a plateau exactly at the extreme (sigma_n = 0 where the joint
+    # is open) would otherwise be left blank
+    edges[0] -= 1e-6 * (vmax - vmin)
+    edges[-1] += 1e-6 * (vmax - vmin)
+    cs = ax.tricontourf(tri, values, levels=edges, cmap=plt.get_cmap(cmap))
+    cb = fig.colorbar(cs, ax=ax, shrink=0.85, format="%.2f", ticks=np.linspace(vmin, vmax, 7))
     cb.set_label(title)
     i = mark_peak(ax, theta, v, values, use_max)
     ax.set_title(f"{title}: peak {values[i]:.3f}\nat theta = {theta[i]:.0f} deg, {ylabel.split()[0]} = {v[i]:.0f} mm",

@@ -160,6 +160,10 @@ def unfolded_contour(ax, theta, z, values, radius, levels=12, cmap="turbo", zero
     if vmax - vmin < 1e-12 * max(1.0, abs(vmax)):
         vmin, vmax = vmin - 0.5, vmax + 0.5
     lv = np.linspace(vmin, vmax, levels + 1)
+    # widen the outer levels a little: a plateau exactly at an extreme (a stress at the tension
+    # cap) would otherwise be left blank
+    lv[0] -= 1e-6 * (vmax - vmin)
+    lv[-1] += 1e-6 * (vmax - vmin)
     cs = ax.tricontourf(tri, values, levels=lv, cmap=plt.get_cmap(cmap))
     if zero_line and vmin < 0.0 < vmax:
         ax.tricontour(tri, values, levels=[0.0], colors="k", linewidths=0.7, linestyles="--")
@@ -226,7 +230,8 @@ def main(argv=None):
                           cmap="turbo" if args.field == "tensile" else "turbo_r", zero_line=args.zero_line)
     i = mark_peak(ax, theta, z, values, use_max=args.field == "tensile")
     ax.set_title(title + "\n" + peak_text(theta, z, values, i), fontsize=9.5)
-    cb = fig.colorbar(cs, ax=ax, shrink=0.9, format="%.2f")
+    cb = fig.colorbar(cs, ax=ax, shrink=0.9, format="%.2f",
+                      ticks=np.linspace(float(values.min()), float(values.max()), 7))
     cb.set_label(r"$\sigma_1 / q$" if args.field == "tensile" else r"$\sigma_3 / q$")
     fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)

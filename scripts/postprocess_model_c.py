@@ -221,33 +221,31 @@ def contact_width_centres(coords, conn_joint, traction):
     return float(np.mean(widths))
 
 
-def edge_stress(coords, conn_joint, traction):
-    """sigma_max (MPa, compression positive) at x = 715 from the elements with theta < 6 deg."""
-    sn = traction[:, 2].reshape(-1, 4)
+def _edge_line(coords, conn, nodes, values):
+    """Least-squares line in x through (element centre x, value) of the elements whose corner
+    nodes all lie at theta <= 6 deg, evaluated at x = 715 and returned as a positive compression
+    (values are stresses, compression negative); with the number of elements used."""
     xs, ss = [], []
-    for e, elem in enumerate(conn_joint - 1):
-        p = coords[elem[:4]]
-        th = np.degrees(np.arctan2(p[:, 1], p[:, 0]))
-        if th.max() <= EDGE_THETA + 1e-6:
+    for e, elem in enumerate(conn - 1):
+        p = coords[elem[:nodes]]
+        if np.degrees(np.arctan2(p[:, 1], p[:, 0])).max() <= EDGE_THETA + 1e-6:
             xs.append(p[:, 0].mean())
-            ss.append(sn[e].mean())
+            ss.append(values[e])
     a, b = _lsq_line(xs, ss)
     return float(-(a + b * R_OUT)), len(xs)
+
+
+def edge_stress(coords, conn_joint, traction):
+    """sigma_max (MPa, compression positive) at x = 715 from the interface's normal stress: the
+    element-centre values (mean of each quad's 4 Gauss points) of the elements with theta < 6 deg."""
+    return _edge_line(coords, conn_joint, 4, traction[:, 2].reshape(-1, 4).mean(axis=1))
 
 
 def edge_stress_packing(coords, conn_packing, cell_stress):
     """sigma_max (MPa, compression positive) at x = 715 from the centre stresses szz (element
     averages of the Gauss points, /steps/N/cell/stress/packing) of the packing elements with
     theta < 6 deg: least-squares line in the element centres' x, evaluated at x = 715."""
-    xs, ss = [], []
-    for e, elem in enumerate(conn_packing - 1):
-        p = coords[elem[:8]]
-        th = np.degrees(np.arctan2(p[:, 1], p[:, 0]))
-        if th.max() <= EDGE_THETA + 1e-6:
-            xs.append(p[:, 0].mean())
-            ss.append(cell_stress[e, 2])
-    a, b = _lsq_line(xs, ss)
-    return float(-(a + b * R_OUT)), len(xs)
+    return _edge_line(coords, conn_packing, 8, cell_stress[:, 2])
 
 
 def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells):

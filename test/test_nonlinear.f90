@@ -69,6 +69,14 @@ contains
     self%nwritten = self%nwritten + 1
   end subroutine keep_step
 
+  !> The load factor a clear stop names ("..., load factor 0.5776: ...").
+  real(dp) function stop_load_factor(msg) result(lf)
+    character(len=*), intent(in) :: msg
+    integer :: at
+    at = index(msg, 'load factor ') + len('load factor ')
+    read (msg(at:at + index(msg(at:), ':') - 2), *) lf
+  end function stop_load_factor
+
   logical function said(obs, piece)
     type(keep_last_t), intent(in) :: obs
     character(len=*), intent(in) :: piece
@@ -493,7 +501,7 @@ contains
     type(keep_last_t) :: obs
     type(analysis_summary_t) :: summary
     character(len=:), allocatable :: msg
-    integer :: code, at
+    integer :: code
     real(dp) :: lf
     call read_deck('test/data/block_pull.dat', model, error)
     if (allocated(error)) return
@@ -510,8 +518,7 @@ contains
     call check(error, index(msg, 'interface points opened') > 0 .and. index(msg, 'limit point') > 0, &
                'the message says interface points opened: ' // msg)
     if (allocated(error)) return
-    at = index(msg, 'load factor ') + len('load factor ')
-    read (msg(at:at + index(msg(at:), ':') - 2), *) lf
+    lf = stop_load_factor(msg)
     call check(error, lf > 1.0_dp / tan(30.0_dp * acos(-1.0_dp) / 180.0_dp) / 3.0_dp .and. &
                lf < 1.0_dp / tan(30.0_dp * acos(-1.0_dp) / 180.0_dp) / 3.0_dp + 1.0_dp / 1024.0_dp, &
                'stops just past load factor c / tan(phi) / 3 = 0.5774: ' // msg)
@@ -534,7 +541,7 @@ contains
     real(dp), parameter :: m_applied = 0.4_dp * 100.0_dp**3 / 3.0_dp * 2.0_dp, n_applied = 4000.0_dp
     real(dp) :: s(2, 4), w(4), x, fz, my, xopen, xclosed, lf, peak
     character(len=:), allocatable :: msg
-    integer :: g, e, k, at
+    integer :: g, e, k
     call square_rule(2, s, w)
     call read_deck('test/data/unzip.dat', model, error)
     if (allocated(error)) return
@@ -596,8 +603,7 @@ contains
     call check(error, index(msg, 'interface points opened') > 0 .and. index(msg, 'MAXIT=') > 0, &
                'the message suggests more iterations: ' // msg)
     if (allocated(error)) return
-    at = index(msg, 'load factor ') + len('load factor ')
-    read (msg(at:at + index(msg(at:), ':') - 2), *) lf
+    lf = stop_load_factor(msg)
     call check(error, lf > 1.55_dp .and. lf < 1.6_dp, 'stops where the first point opens: ' // msg)
   end subroutine test_unzipping_cascade
 

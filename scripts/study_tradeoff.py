@@ -707,11 +707,6 @@ def main():
             sc = allscenes[name]
             csv_path = os.path.join(args.out, f"{prefix}{name}.csv")
             rows = read_csv(csv_path) if (args.resume or args.plots_only) else []
-            if sc["deck"] is None:
-                msg = f"{name}: {MODEL_C} not available; skipped"
-                print(msg)
-                report += [f"### {name}", "", msg, ""]
-                continue
             if not args.plots_only:
                 done = {key(r) for r in rows}
                 todo = allplans[name]

@@ -5,7 +5,8 @@ module test_analysis
   use feps_model, only: model_t, node_set_t, constraint_t
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
-  use feps_observer, only: observer_t, step_result_t
+  use feps_observer, only: step_result_t
+  use feps_test_observers, only: all_steps_t
   use feps_elastic, only: elastic_matrix
   use feps_program, only: run_options_t, run_summary_t, run_feps
   implicit none
@@ -13,27 +14,7 @@ module test_analysis
 
   public :: collect_analysis
 
-  !> Keeps the last step's results.
-  type, extends(observer_t) :: last_step_t
-    type(step_result_t) :: res
-  contains
-    procedure :: progress => ignore_progress
-    procedure :: write_step => keep_step
-  end type last_step_t
-
 contains
-
-  subroutine ignore_progress(self, line)
-    class(last_step_t), intent(inout) :: self
-    character(len=*), intent(in) :: line
-  end subroutine ignore_progress
-
-  subroutine keep_step(self, res, error)
-    class(last_step_t), intent(inout) :: self
-    type(step_result_t), intent(in) :: res
-    type(error_t), allocatable, intent(out) :: error
-    self%res = res
-  end subroutine keep_step
 
   !> Run a model and return its last step.
   subroutine solve(model, solver, res, error)
@@ -41,10 +22,10 @@ contains
     character(len=*), intent(in) :: solver
     type(step_result_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
-    type(last_step_t) :: obs
+    type(all_steps_t) :: obs
     type(analysis_summary_t) :: summary
     call run_analysis(model, solver, obs, summary, error)
-    if (.not. allocated(error)) res = obs%res
+    if (.not. allocated(error)) res = obs%steps(size(obs%steps))
   end subroutine solve
 
   subroutine collect_analysis(tests)
@@ -105,7 +86,7 @@ contains
     type(model_t) :: model
     type(step_result_t) :: res
     type(analysis_summary_t) :: summary
-    type(last_step_t) :: obs
+    type(all_steps_t) :: obs
     real(dp), parameter :: p = 100.0_dp, e = 200000.0_dp, l = 10.0_dp
     integer :: g, np
     call read_deck('test/data/cube.dat', model, error)
@@ -125,15 +106,16 @@ contains
     model%fields%principal = .false.
     call run_analysis(model, 'cholmod', obs, summary, error)
     if (allocated(error)) return
+    res = obs%steps(size(obs%steps))
     do g = 1, size(model%groups)
-      np = obs%res%groups(g)%points_per_element * size(model%groups(g)%connectivity, 2)
-      if (obs%res%groups(g)%is_interface) then
-        call check(error, allocated(obs%res%groups(g)%stress), 'interface tractions kept')
+      np = res%groups(g)%points_per_element * size(model%groups(g)%connectivity, 2)
+      if (res%groups(g)%is_interface) then
+        call check(error, allocated(res%groups(g)%stress), 'interface tractions kept')
         if (allocated(error)) return
         call check(error, real(summary%state_bytes(g), dp), real(np * (2 * (3 + 3 + 9) * 8 + 2 * 4), dp), &
                    'interface point state bytes', rel=0.0_dp)
       else
-        call check(error, .not. allocated(obs%res%groups(g)%stress), 'no solid stresses recovered')
+        call check(error, .not. allocated(res%groups(g)%stress), 'no solid stresses recovered')
         if (allocated(error)) return
         call check(error, real(summary%state_bytes(g), dp), 0.0_dp, 'elastic group keeps no state', abs=0.0_dp)
       end if

@@ -2,8 +2,13 @@
 # Run the 12 cases of thesis model C (chapter 6) and gather Tables 7.3 / 7.4 into one CSV.
 #
 #   scripts/campaign_modelC.sh [-j JOBS] [-o RESULTS_DIR] [--feps PATH] [--regenerate]
-#                              [--cases "C_G300_nu0.1_b0.09 ..."] [-- extra feps options]
+#                              [--cases "C_G300_nu0.1_b0.09 ..."] [--grid "MAKE_MODEL_C OPTIONS"]
+#                              [-- extra feps options]
 #
+# A parametric campaign beyond the thesis's cases: --grid passes its options to
+# scripts/make_model_c.py, which writes one deck per combination into RESULTS_DIR/decks, and the
+# campaign runs those, e.g.
+#   scripts/campaign_modelC.sh -o results/packing_nu --grid "--Gp 600 --nup 0,0.1,0.2,0.3,0.4 --beta 0.18"
 # feps is fpm's release build unless --feps names one.
 # Each case runs in RESULTS_DIR/<case>/ (default results/modelC) with its HDF5 file and log.txt.
 # Resumable: a case whose HDF5 exists and whose log ends with feps's "results" line is not rerun
@@ -19,6 +24,7 @@ OUT="$ROOT/results/modelC"
 FEPS=""
 REGEN=0
 CASES=""
+GRID=""
 EXTRA=()
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -27,14 +33,25 @@ while [ $# -gt 0 ]; do
     --feps) FEPS="$2"; shift 2 ;;
     --regenerate) REGEN=1; shift ;;
     --cases) CASES="$2"; shift 2 ;;
+    --grid) GRID="$2"; shift 2 ;;
     --) shift; EXTRA=("$@"); break ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) echo "campaign_modelC: unknown option $1" >&2; exit 2 ;;
   esac
 done
 mkdir -p "$OUT"
 OUT="$(cd "$OUT" && pwd)"
 
+DECKS="$ROOT/input/modelC"
+if [ -n "$GRID" ]; then
+  # the grid's decks live with its results; rewriting them leaves finished cases finished
+  # (same parameters, same deck) and adds the new combinations
+  DECKS="$OUT/decks"
+  # shellcheck disable=SC2086  # GRID is a list of options
+  python3 "$ROOT/scripts/make_model_c.py" --outdir "$DECKS" $GRID || exit 2
+elif [ "$REGEN" = 1 ] || [ ! -d "$DECKS" ]; then
+  python3 "$ROOT/scripts/make_model_c.py" --outdir "$DECKS" || exit 1
+fi
 if [ -z "$FEPS" ]; then
   # the release build (-O3): 2-3x faster than fpm's default debug build (bounds checks, -O0)
   (cd "$ROOT" && fpm build --profile release > /dev/null 2>&1) || { echo "campaign_modelC: fpm build failed" >&2; exit 1; }
@@ -42,10 +59,6 @@ if [ -z "$FEPS" ]; then
 fi
 [ -x "$FEPS" ] || { echo "campaign_modelC: no feps executable at $FEPS" >&2; exit 1; }
 
-DECKS="$ROOT/input/modelC"
-if [ "$REGEN" = 1 ] || [ ! -d "$DECKS" ]; then
-  python3 "$ROOT/scripts/make_model_c.py" --outdir "$DECKS" || exit 1
-fi
 if [ -z "$CASES" ]; then
   CASES="$(cd "$DECKS" && ls C_*.dat | sed 's/\.dat$//')"
 fi

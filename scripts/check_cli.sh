@@ -97,5 +97,34 @@ ua, ub = a["steps/0001/displacement"][...], b["steps/0001/displacement"][...]
 assert np.abs(ua - ub).max() <= 1e-9 * np.abs(ua).max()
 PY
 
+# Parametric decks (scripts/make_model_b.py, make_model_c.py): a grid over the thesis's values
+# writes the thesis's decks, bad parameters exit 2 naming the parameter, and a deck off the
+# thesis grid carries its parameter into the run.
+python3 scripts/make_model_c.py --outdir "$tmp/mc_grid" --Gp 300,900 --nup 0.1,0.4,-0.3 --beta 0.09,0.27 >/dev/null \
+  && diff -r input/modelC "$tmp/mc_grid" >/dev/null \
+  && ok "model C grid over the thesis's values = input/modelC" || bad "model C grid over the thesis's values = input/modelC"
+expect_status "make_model_c.py --nup 0.5" 2 python3 scripts/make_model_c.py --outdir "$tmp/x" --nup 0.5
+grep -q "nu_p = 0.5" "$tmp/err" && ok "the error names nu_p" || bad "the error names nu_p: $(head -c 300 "$tmp/err")"
+expect_status "make_model_b.py --psi above --phi" 2 python3 scripts/make_model_b.py --outdir "$tmp/x" --soil-E 144 \
+  --phi 10 --psi 20
+python3 scripts/make_model_b.py --outdir "$tmp/mb_grid" --kinds F,S --loads E --soil-E 144,50 >/dev/null
+model_lines() { grep -v '^!\|^TITLE\|^REPORT\|^OUTPUT' "$1"; }
+diff <(model_lines input/modelB/FE1.dat) <(model_lines "$tmp/mb_grid/FE_Es144_phi15.dat") >/dev/null \
+  && ok "model B grid: FE_Es144_phi15 is FE1's model" || bad "model B grid: FE_Es144_phi15 is FE1's model"
+# Soil stiffness lowers the pipe's peak tension (thesis 5.3.1: SE2 > SE1 > SE3): E_s = 50 lies
+# between E_s = 14.4 (SE2) and 144 (SE1).
+for c in SE1 SE2; do "$feps" input/modelB/$c.dat --output "$tmp/p_$c.h5" --quiet >/dev/null 2>&1; done
+"$feps" "$tmp/mb_grid/SE_Es50.dat" --output "$tmp/p_SE50.h5" --quiet >/dev/null 2>&1
+python3 - "$tmp/p_SE2.h5" "$tmp/p_SE50.h5" "$tmp/p_SE1.h5" <<'PY' && ok "SE_Es50's peak tension lies between SE2's and SE1's" \
+  || bad "SE_Es50's peak tension lies between SE2's and SE1's"
+import sys, h5py
+def peak(p):
+    with h5py.File(p) as f:
+        return f["steps"][sorted(f["steps"])[-1]]["principal/pipe"][:, 0].max()
+soft, mid, typical = (peak(p) for p in sys.argv[1:4])
+print(f"    peak s1: E_s = 14.4 {soft:.3f}, 50 {mid:.3f}, 144 {typical:.3f} MPa")
+assert soft > mid > typical
+PY
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -3,13 +3,29 @@
 SE1-3, SD1-3 (elastic soil), FE1-3, FD1-3 (interfaces pipe/soil), PE1-3, PD1-3 (Matsuoka soil),
 and input/modelB.dat (= FE1, the README's main job).
 
-    python3 scripts/make_model_b.py [--soil-radius 2000] [--outdir input/modelB]
+    python3 scripts/make_model_b.py [--soil-radius 2000] [--outdir input/modelB] [--cases SE1,FD2,...]
 
 Geometry and loads follow SPEC section 8; the choices the thesis leaves open are written into
 each deck's comments. Case numbers: 1 typical soil (E = 144), 2 soft (14.4), 3 stiff (1440).
+
+Parametric campaigns beyond the thesis's cases (soil stiffness, pipe-soil friction): give lists,
+and a deck is written for every combination of kind (S elastic soil, F interfaces pipe/soil, P
+Matsuoka soil), load (E edge, D diagonal), soil E and friction angle:
+
+    python3 scripts/make_model_b.py --outdir input/sweepB --kinds F --loads E --soil-E 50,144,500 \
+                                    --phi 10,15,25 [--psi ...]
+
+Case names <kind><load>_Es<E>[_phi<phi>[_psi<psi>]] (phi for F and P only; psi when it differs
+from phi), e.g. FE_Es144_phi15, the thesis's FE1. The interface stiffnesses scale with the soil
+as the thesis's three soils do (Ks = 50 E_s / 144, Kn = 2 Ks MPa/mm); c = 0.05 MPa throughout.
+Then `scripts/campaign.sh NAME input/sweepB/*.dat` runs them and gathers one CSV.
 """
 import argparse
 import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from make_model_c import number_list  # noqa: E402  (the same list syntax for both writers)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -47,9 +63,67 @@ def node_block(interfaces, r_soil):
     return lines
 
 
+PHI = 15.0                 # deg: friction and dilation angles of the pipe-soil interface and the Matsuoka soil
+
+
+def parse_case(case):
+    """(kind, load, number or None, soil E, Ks, Kn, phi, psi) of a thesis case id (FE1) or a
+    parametric one (FE_Es144_phi15[_psi15], SD_Es14.4)."""
+    bad = ValueError(f"case {case!r} is neither a thesis case (S|F|P, E|D, 1|2|3) nor "
+                     "<S|F|P><E|D>_Es<E>[_phi<phi>[_psi<psi>]]")
+    if len(case) < 2 or case[0] not in "SFP" or case[1] not in "ED":
+        raise bad
+    kind, load = case[0], case[1]
+    if len(case) == 3 and case[2] in "123":
+        number = int(case[2])
+        _, es, ks, kn = SOILS[number]
+        return kind, load, number, es, ks, kn, PHI, PHI
+    fields = case[2:].split("_")
+    if fields[0] != "":
+        raise bad
+    values = {}
+    for f in fields[1:]:
+        key = next((k for k in ("Es", "phi", "psi") if f.startswith(k)), None)
+        try:
+            values[key] = float(f[len(key):]) if key and key not in values else None
+        except ValueError:
+            values[key] = None
+        if values[key] is None:
+            raise bad
+    if "Es" not in values or (kind == "S" and ("phi" in values or "psi" in values)):
+        raise bad
+    es = values["Es"]
+    phi = values.get("phi", PHI)
+    psi = values.get("psi", phi)
+    check_parameters(es, phi, psi)
+    ks = 50.0 * es / 144.0
+    return kind, load, None, es, ks, 2.0 * ks, phi, psi
+
+
+def num(v):
+    """A deck number: 15 -> '15.', 12.5 -> '12.5'."""
+    return f"{v:g}" + ("." if float(v).is_integer() and "e" not in f"{v:g}" else "")
+
+
+def parametric_name(kind, load, es, phi, psi):
+    name = f"{kind}{load}_Es{es:g}"
+    if kind != "S":
+        name += f"_phi{phi:g}" + ("" if psi == phi else f"_psi{psi:g}")
+    return name
+
+
+def check_parameters(es, phi, psi):
+    if not es > 0.0:
+        raise ValueError(f"E_s = {es:g}: the soil's Young's modulus must be positive")
+    if not 0.0 < phi < 90.0:
+        raise ValueError(f"phi = {phi:g}: the friction angle must lie in (0, 90) deg")
+    if not 0.0 <= psi <= phi:
+        raise ValueError(f"psi = {psi:g}: the dilation angle must lie in [0, phi] deg")
+
+
 def deck(case, r_soil=2000.0):
-    kind, load, number = case[0], case[1], int(case[2])
-    name, es, ks, kn = SOILS[number]
+    kind, load, number, es, ks, kn, phi, psi = parse_case(case)
+    name = SOILS[number][0] if number else f"E_s = {es:g} MPa"
     interfaces = kind == "F"
     nr = 8 if interfaces else 7                 # nodes along r
     layer = nr * 28                             # nodes in one z layer
@@ -66,10 +140,19 @@ def deck(case, r_soil=2000.0):
         "! from each end.",
     ]
     if interfaces:
-        out += [f"! Pipe and soil meet through quadrilateral interfaces (Ks = {ks:g}, Kn = {kn:g} MPa/mm,",
-                "! phi = psi = 15 deg, c = 0.05 MPa, thesis 5.4); their nodes coincide at r = 715."]
+        if phi == psi == PHI:
+            out += [f"! Pipe and soil meet through quadrilateral interfaces (Ks = {ks:g}, Kn = {kn:g} MPa/mm,",
+                    "! phi = psi = 15 deg, c = 0.05 MPa, thesis 5.4); their nodes coincide at r = 715."]
+        else:
+            out += [f"! Pipe and soil meet through quadrilateral interfaces (Ks = {ks:g}, Kn = {kn:g} MPa/mm,",
+                    f"! phi = {phi:g}, psi = {psi:g} deg, c = 0.05 MPa; thesis 5.4: phi = psi = 15); their nodes",
+                    "! coincide at r = 715."]
     elif kind == "P":
-        out += ["! Soil: modified Matsuoka-Nakai, phi = psi = 15 deg, c = 0.05 MPa (thesis 5.5), bonded to the pipe."]
+        if phi == psi == PHI:
+            out += ["! Soil: modified Matsuoka-Nakai, phi = psi = 15 deg, c = 0.05 MPa (thesis 5.5), bonded to the pipe."]
+        else:
+            out += [f"! Soil: modified Matsuoka-Nakai, phi = {phi:g}, psi = {psi:g} deg, c = 0.05 MPa (thesis 5.5:",
+                    "! phi = psi = 15), bonded to the pipe."]
     else:
         out += ["! Pipe and soil share their nodes at r = 715 (bonded)."]
     out += [f"TITLE, Model B {case}: {title}, E_s = {es:g} MPa, {'edge' if edge else 'diagonal'} load P = 1000 kN",
@@ -92,11 +175,11 @@ def deck(case, r_soil=2000.0):
                 f"%, 27, *, 8, {nr},", f"%, 24, *, 8, {layer},", "E,"]
     out += ["E,", "", "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2"]
     if kind == "P":
-        out.append(f"MATERIAL, soil, MATSUOKA, E={es:g}, NU=0.2, PHI=15., PSI=15., C=0.05")
+        out.append(f"MATERIAL, soil, MATSUOKA, E={es:g}, NU=0.2, PHI={num(phi)}, PSI={num(psi)}, C=0.05")
     else:
         out.append(f"MATERIAL, soil, ELASTIC, E={es:g}, NU=0.2")
     if interfaces:
-        out.append(f"MATERIAL, pipe_soil, INTERFACE, KN={kn:g}, KS={ks:g}, PHI=15., PSI=15., C=0.05")
+        out.append(f"MATERIAL, pipe_soil, INTERFACE, KN={kn:g}, KS={ks:g}, PHI={num(phi)}, PSI={num(psi)}, C=0.05")
     out += ["", "! --- supports ---",
             f"NSET, soil_outer, CSYS=3, R={r_soil:.1f}, TOL=0.01",
             "NSET, symmetry, CSYS=2, Y=0., TOL=0.01",
@@ -153,13 +236,13 @@ def deck(case, r_soil=2000.0):
             "! diameter and the mid-length section's rotation (which adds the pipe's shear deformation)",
             "! are reported beside them; docs/verification.md compares all four with Table 7.2 ---"]
     if kind == "F" and edge:
-        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715., "
-                   f"REFERENCE={THESIS_EDGE_ANGLE[number]}")
+        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715."
+                   + (f", REFERENCE={THESIS_EDGE_ANGLE[number]}" if number else ""))
     elif kind == "F":
-        tot, rig = THESIS_DIAGONAL[number]
-        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715., "
-                   f"REFERENCE={tot}")
-        out.append(f"REPORT, TILT, NAME=rigid, GROUP=pipe, FROM=0., TO=2500., REFERENCE={rig}")
+        tot, rig = THESIS_DIAGONAL[number] if number else (None, None)
+        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715."
+                   + (f", REFERENCE={tot}" if number else ""))
+        out.append("REPORT, TILT, NAME=rigid, GROUP=pipe, FROM=0., TO=2500." + (f", REFERENCE={rig}" if number else ""))
         out.append("REPORT, ROTATION, NAME=deflection_diameter, GROUP=pipe, R=715., Z=2500.")
         out.append("REPORT, ROTATION, NAME=rigid_section, GROUP=pipe, R=715., Z=1250.")
     elif edge:
@@ -175,9 +258,38 @@ def main():
     ap.add_argument("--soil-radius", type=float, default=2000.0)
     ap.add_argument("--outdir", default=os.path.join(ROOT, "input", "modelB"))
     ap.add_argument("--cases", default="", help="comma-separated case ids (default: all 18)")
+    grid = ap.add_argument_group("parametric grid (every combination)")
+    grid.add_argument("--kinds", default="F", help="soil models: S elastic, F interfaces, P Matsuoka (default F)")
+    grid.add_argument("--loads", default="E", help="E edge, D diagonal (default E)")
+    grid.add_argument("--soil-E", type=number_list, help="soil Young's moduli (MPa), e.g. 50,144,500")
+    grid.add_argument("--phi", type=number_list, help=f"friction angles (deg; default {PHI:g})")
+    grid.add_argument("--psi", type=number_list, help="dilation angles (deg; default: equal to phi)")
     args = ap.parse_args()
+    parametric = any(v is not None for v in (args.soil_E, args.phi, args.psi))
+    if parametric and args.cases:
+        ap.error("give either --cases or the grid lists (--soil-E, --phi, --psi), not both")
+    if parametric and not args.soil_E:
+        ap.error("a parametric grid needs --soil-E")
+    if any(k not in "SFP" for k in args.kinds.replace(",", "")) or any(l not in "ED" for l in args.loads.replace(",", "")):
+        ap.error("--kinds takes letters of SFP, --loads letters of ED")
+    try:
+        if parametric:
+            cases = []
+            for kind in args.kinds.replace(",", ""):
+                for load in args.loads.replace(",", ""):
+                    for es in args.soil_E:
+                        for phi in ([PHI] if kind == "S" else args.phi or [PHI]):
+                            for psi in ([phi] if kind == "S" or not args.psi else args.psi):
+                                cases.append(parametric_name(kind, load, es, phi, psi))
+        else:
+            cases = [c for c in args.cases.split(",") if c] or [f"{k}{l}{n}" for k in "SFP" for l in "ED"
+                                                                  for n in (1, 2, 3)]
+        for case in dict.fromkeys(cases):
+            parse_case(case)
+    except ValueError as e:
+        ap.error(str(e))
+    cases = list(dict.fromkeys(cases))
     os.makedirs(args.outdir, exist_ok=True)
-    cases = [c for c in args.cases.split(",") if c] or [f"{k}{l}{n}" for k in "SFP" for l in "ED" for n in (1, 2, 3)]
     for case in cases:
         with open(os.path.join(args.outdir, f"{case}.dat"), "w") as f:
             f.write(deck(case, args.soil_radius))

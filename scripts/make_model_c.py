@@ -3,7 +3,17 @@
 C_G<G_p>_nu<nu_p>_b<beta> (G_p = 300, 900 MPa; nu_p = 0.1, 0.4, -0.3; beta = 0.09, 0.27 deg).
 
     python3 scripts/make_model_c.py [--outdir input/modelC] [--cases C_G300_nu0.1_b0.09,...]
-                                    [--steps N] [--soil-radius 2000]
+                                    [--steps N] [--soil-radius 2000] [--theta-step 3]
+
+Parametric campaigns beyond the thesis's twelve cases: give lists, and a deck is written for every
+combination (the thesis's own cases among them are the same decks as above):
+
+    python3 scripts/make_model_c.py --outdir input/sweep --Gp 300,600,900 --nup 0.1 --beta 0.09,0.18
+                                    [--soil-E 144,1440]
+
+Case names: C_G<G_p>_nu<nu_p>_b<beta>, with _Es<E_s> appended when the soil's E is not the
+thesis's 144 MPa. Stage-2 steps off the thesis grid: at least the thesis's 250 and one step per
+0.000 54 deg of misalignment (500 at 0.27 deg), rounded up to 50 (see stage2_steps).
 
 Quarter model (y >= 0, z >= 0) of the symmetric three-pipe system, thesis Fig. 6.2 and SPEC
 section 8: the bottom half pipe (z 0..1250) in soil, a 15 mm packing (z 1250..1265) bonded to
@@ -55,8 +65,12 @@ Z_TOP_STEPS = [12.5] * 4 + [25.0] * 4 + [50.0] * 4 + [100.0] * 3 + [150.0] * 4 \
     + [150.0] * 5 + [100.0] * 3 + [50.0] * 4                                         # 1265 .. 3765
 
 
-def case_name(G, nu, beta):
-    return f"C_G{G:g}_nu{nu:g}_b{beta:g}"
+SOIL_E = 144.0             # MPa (thesis 6.1)
+
+
+def case_name(G, nu, beta, soil_E=SOIL_E):
+    name = f"C_G{G:g}_nu{nu:g}_b{beta:g}"
+    return name if soil_E == SOIL_E else name + f"_Es{soil_E:g}"
 
 
 def all_cases():
@@ -64,9 +78,39 @@ def all_cases():
 
 
 def parse_case(name):
-    """(G, nu, beta) of a case name C_G300_nu0.1_b0.09."""
+    """(G, nu, beta, soil_E) of a case name C_G300_nu0.1_b0.09[_Es1440]."""
     parts = name.split("_")
-    return float(parts[1][1:]), float(parts[2][2:]), float(parts[3][1:])
+    try:
+        if len(parts) not in (4, 5) or parts[0] != "C" or not (parts[1].startswith("G") and
+                                                                 parts[2].startswith("nu") and parts[3].startswith("b")):
+            raise ValueError
+        soil_E = float(parts[4][2:]) if len(parts) == 5 and parts[4].startswith("Es") else SOIL_E
+        if len(parts) == 5 and not parts[4].startswith("Es"):
+            raise ValueError
+        return float(parts[1][1:]), float(parts[2][2:]), float(parts[3][1:]), soil_E
+    except ValueError:
+        raise ValueError(f"case name {name!r} is not C_G<G_p>_nu<nu_p>_b<beta>[_Es<E_s>]") from None
+
+
+def stage2_steps(G, beta):
+    """Stage-2 steps: the thesis's (6.3, 6.4) for its four (beta, G_p); otherwise at least 250 and
+    one step per 0.27 / 500 deg of misalignment (the thesis's finest: 500 steps at 0.27 deg),
+    rounded up to a multiple of 50."""
+    if (beta, G) in STEPS:
+        return STEPS[(beta, G)]
+    return max(250, 50 * math.ceil(500.0 * beta / 0.27 / 50.0 - 1e-9))
+
+
+def check_parameters(G, nu, beta, soil_E):
+    """The ranges a deck can be written for (the materials' own checks are feps's)."""
+    if not G > 0.0:
+        raise ValueError(f"G_p = {G:g}: the packing's shear modulus must be positive")
+    if not -1.0 < nu < 0.5:
+        raise ValueError(f"nu_p = {nu:g}: Poisson's ratio must lie in (-1, 0.5)")
+    if not 0.0 < beta < 5.0:
+        raise ValueError(f"beta = {beta:g} deg: the misalignment must lie in (0, 5) deg")
+    if not soil_E > 0.0:
+        raise ValueError(f"E_s = {soil_E:g}: the soil's Young's modulus must be positive")
 
 
 def soil_layers(r_soil):
@@ -130,13 +174,14 @@ def hex_record(node, it, ir, iz):
     return "A, 8, " + ", ".join(str(n) for n in face + top) + ","
 
 
-def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP):
+def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=SOIL_E):
     """The deck text of one case; theta_step is the element size (deg) beyond theta = 12."""
+    check_parameters(G, nu, beta, soil_E)
     thetas = theta_steps(theta_step)
     m = Mesh(r_soil, thetas)
-    name = case_name(G, nu, beta)
+    name = case_name(G, nu, beta, soil_E)
     delta = L_PIPE * math.tan(math.radians(beta))
-    nsteps = steps or STEPS[(beta, G)]
+    nsteps = steps or stage2_steps(G, beta)
     E_p = 2.0 * G * (1.0 + nu)
     ntheta = len(thetas)
     nzb = len(Z_BOTTOM_STEPS)
@@ -163,7 +208,8 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP):
         "!   bottom half pipe ('a half pipe with its surrounding soil at the bottom, a complete pipe on the",
         "!   top'). Its only supports are the joint, the symmetry plane y = 0 and the prescribed x",
         "!   displacement of its upper end.",
-        "! - concrete E = 40000, nu = 0.2; soil E = 144, nu = 0.2 (thesis 6.1); all elastic.",
+        f"! - concrete E = 40000, nu = 0.2; soil E = {soil_E:g}, nu = 0.2 (thesis 6.1{'' if soil_E == SOIL_E else ': E = 144'}); "
+        "all elastic.",
         "! - supports (thesis 6.2): soil outer surface fixed in x and y; z = 0 fixed in z; y = 0 fixed in y.",
         f"! - loads: q = {Q:g} MPa uniform on the top end; delta in x on every node of the top end (thesis 6.2:",
         "!   'an equivalent displacement delta in x direction at the upper end'); the end's y and z are free.",
@@ -214,7 +260,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP):
             f"%, {ntheta}, *, 8, 1,", f"%, 2, *, 8, {m.nt},", "E,",
             "E,", "",
             "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2",
-            "MATERIAL, soil, ELASTIC, E=144., NU=0.2",
+            f"MATERIAL, soil, ELASTIC, E={soil_E:g}{'.' if float(soil_E).is_integer() else ''}, NU=0.2",
             f"MATERIAL, packing, ELASTIC, G={G:g}, NU={nu:g}",
             "MATERIAL, pipe_packing, INTERFACE, KN=800., KS=400., PHI=20., PSI=20., C=0.05",
             "",
@@ -250,7 +296,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP):
             "! top pipe's mid-length section A-A (beta_bar before the interface's own deformation is taken",
             "! out; negative: w falls towards x = +715; REFERENCE = minus the thesis's beta_bar) and of the",
             "! bottom pipe's end face (thesis Figs. 7.5/7.6) ---"]
-    ref = thesis_beta_bar(G, nu, beta)
+    ref = thesis_beta_bar(G, nu, beta) if soil_E == SOIL_E else None
     rep = f"REPORT, ROTATION, NAME=section_AA, GROUP=top_pipe, R={R_OUT:g}., Z={Z_SECTION_AA:g}., FROM=250., TO=715."
     out.append(rep + (f", REFERENCE={-ref:g}" if ref is not None else ""))
     out.append(f"REPORT, ROTATION, NAME=bottom_end, GROUP=bottom_pipe, R={R_OUT:g}., Z={Z_JOINT:g}., "
@@ -283,18 +329,46 @@ def main():
     ap.add_argument("--soil-radius", type=float, default=2000.0)
     ap.add_argument("--theta-step", type=float, default=THETA_STEP,
                     help=f"element size (deg) from theta = 12 to 180 (default {THETA_STEP:g}; it must divide 168)")
+    grid = ap.add_argument_group("parametric grid (every combination; any list left out keeps the thesis's values)")
+    grid.add_argument("--Gp", type=number_list, help="packing shear moduli G_p (MPa), e.g. 300,600,900")
+    grid.add_argument("--nup", type=number_list, help="packing Poisson's ratios nu_p, e.g. 0.1,0.4,-0.3")
+    grid.add_argument("--beta", type=number_list, help="applied misalignment angles (deg), e.g. 0.09,0.18")
+    grid.add_argument("--soil-E", type=number_list, help=f"soil Young's moduli (MPa; default {SOIL_E:g})")
     args = ap.parse_args()
     try:
         theta_steps(args.theta_step)
     except ValueError as e:
         ap.error(str(e))
+    if args.cases and any(v is not None for v in (args.Gp, args.nup, args.beta, args.soil_E)):
+        ap.error("give either --cases or the grid lists (--Gp, --nup, --beta, --soil-E), not both")
+    try:
+        if args.cases:
+            cases = [parse_case(c) for c in args.cases.split(",") if c]
+        elif any(v is not None for v in (args.Gp, args.nup, args.beta, args.soil_E)):
+            cases = [(G, nu, b, e) for e in (args.soil_E or [SOIL_E]) for b in (args.beta or BETAS)
+                     for G in (args.Gp or SHEAR_MODULI) for nu in (args.nup or POISSON)]
+        else:
+            cases = [c + (SOIL_E,) for c in all_cases()]
+        for c in cases:
+            check_parameters(*c)
+    except ValueError as e:
+        ap.error(str(e))
     os.makedirs(args.outdir, exist_ok=True)
-    names = [c for c in args.cases.split(",") if c] or [case_name(*c) for c in all_cases()]
-    for name in names:
-        G, nu, beta = parse_case(name)
-        with open(os.path.join(args.outdir, f"{name}.dat"), "w") as f:
-            f.write(deck(G, nu, beta, args.soil_radius, args.steps, args.theta_step))
-    print(f"wrote {len(names)} decks to {args.outdir}")
+    for G, nu, beta, soil_E in cases:
+        with open(os.path.join(args.outdir, f"{case_name(G, nu, beta, soil_E)}.dat"), "w") as f:
+            f.write(deck(G, nu, beta, args.soil_radius, args.steps, args.theta_step, soil_E))
+    print(f"wrote {len(cases)} decks to {args.outdir}")
+
+
+def number_list(text):
+    """'300,600,900' -> [300.0, 600.0, 900.0] (argparse type)."""
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a comma-separated list of numbers") from None
+    if not values:
+        raise argparse.ArgumentTypeError("empty list")
+    return values
 
 
 if __name__ == "__main__":

@@ -388,34 +388,69 @@ def compare_rows(results_dir, state="final"):
     return rows
 
 
+def result_cases(results_dir):
+    """Case folders under results_dir holding <case>/<case>.h5: the thesis's twelve first (in the
+    order of its tables), then any other (a parametric campaign) in name order."""
+    thesis = list(thesis_values())
+    found = sorted(d for d in os.listdir(results_dir) if os.path.exists(case_h5(results_dir, d)))
+    return [c for c in thesis if c in found] + [c for c in found if c not in thesis]
+
+
+def peak_tension_pipes(h5path):
+    """Max most tensile principal stress (MPa) over the Gauss points of the two concrete pipes at
+    the last step (the packing and the interface left out, as in the thesis's contours)."""
+    with h5py.File(h5path, "r") as f:
+        step = last_step(f)
+        return max(float(step["principal"][g][:, 0].max()) for g in ("top_pipe", "bottom_pipe"))
+
+
 def table(results_dir, csv_out=None):
-    """Post-process every case found; print thesis beside feps; optionally write a CSV."""
+    """Post-process every case found under results_dir (the thesis's and any other); print the
+    thesis beside feps where it has the case; optionally write a CSV."""
     ref = thesis_values()
     out = []
-    print(f"{'case':<22} {'beta*':>8} {'thesis':>8} {'beta_bar':>8} {'thesis':>8} {'Z':>7} {'thesis':>7} "
-          f"{'s_max':>7} {'thesis':>7}")
-    for case, t in ref.items():
+    print(f"{'case':<28} {'beta*':>8} {'thesis':>8} {'beta_bar':>8} {'thesis':>8} {'Z':>7} {'thesis':>7} "
+          f"{'s_max':>7} {'thesis':>7} {'s1_peak':>8}")
+    cases = result_cases(results_dir)
+    if all(c in ref for c in cases):          # the thesis's campaign: say which cases are missing
+        for case in ref:
+            if case not in cases:
+                print(f"{case:<28} (no result)")
+    for case in cases:
         path = case_h5(results_dir, case)
-        if not os.path.exists(path):
-            print(f"{case:<22} (no result)")
-            continue
         r = postprocess(path, verbose=False)
+        r["peak_s1_pipes"] = peak_tension_pipes(path)
         out.append((case, r))
-        print(f"{case:<22} {r['beta_star']:8.4f} {t['beta_star']:8.4f} {r['beta_bar']:8.4f} {t['beta_bar']:8.4f} "
-              f"{r['Z']:7.0f} {t['Z']:7.0f} {r['sigma_max']:7.2f} {t['sigma_max']:7.2f}")
+        t = ref.get(case, {})
+        th = lambda k, width, prec: f"{t[k]:{width}.{prec}f}" if k in t else f"{'-':>{width}}"
+        print(f"{case:<28} {r['beta_star']:8.4f} {th('beta_star', 8, 4)} {r['beta_bar']:8.4f} {th('beta_bar', 8, 4)} "
+              f"{r['Z']:7.0f} {th('Z', 7, 0)} {r['sigma_max']:7.2f} {th('sigma_max', 7, 2)} {r['peak_s1_pipes']:8.2f}")
     if csv_out:
-        keys = ["beta_star", "beta_bar", "Z", "sigma_max", "sigma_max_interface", "Z_centres", "beta_star_x0", "beta_bar_secant", "beta_bar_wall_mean",
-                "beta_bar_raw", "beta_bar_elastic_jump", "delta_b", "open_fraction", "sliding_fraction", "residual", "s2_beta_star",
-                "s2_beta_bar", "s2_Z", "s2_sigma_max", "s2_residual", "wall_time", "iterations", "cutbacks"]
+        keys = ["beta_star", "beta_bar", "Z", "sigma_max", "peak_s1_pipes", "sigma_max_interface", "Z_centres",
+                "beta_star_x0", "beta_bar_secant", "beta_bar_wall_mean", "beta_bar_raw", "beta_bar_elastic_jump",
+                "delta_b", "open_fraction", "sliding_fraction", "residual", "s2_beta_star", "s2_beta_bar", "s2_Z",
+                "s2_sigma_max", "s2_residual", "wall_time", "iterations", "cutbacks"]
         with open(csv_out, "w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["case"] + keys + ["thesis_beta_star", "thesis_beta_bar", "thesis_Z", "thesis_sigma_max"])
+            w.writerow(["case", "G_p", "nu_p", "beta", "E_s"] + keys +
+                       ["thesis_beta_star", "thesis_beta_bar", "thesis_Z", "thesis_sigma_max"])
             for case, r in out:
-                t = ref[case]
-                w.writerow([case] + [f"{r[k]:.6g}" if k in r else "" for k in keys] +
-                           [t["beta_star"], t["beta_bar"], t["Z"], t["sigma_max"]])
+                t = ref.get(case)
+                w.writerow([case] + [f"{v:g}" for v in case_parameters(case)] +
+                           [f"{r[k]:.6g}" if k in r else "" for k in keys] +
+                           ([t["beta_star"], t["beta_bar"], t["Z"], t["sigma_max"]] if t else ["", "", "", ""]))
         print(f"wrote {csv_out}")
     return out
+
+
+def case_parameters(case):
+    """(G_p, nu_p, beta, E_s) of a case name C_G300_nu0.1_b0.09[_Es1440] (make_model_c.py)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import make_model_c
+    try:
+        return make_model_c.parse_case(case)
+    except ValueError:
+        return (float("nan"),) * 4
 
 
 E_CONCRETE, NU_CONCRETE, Q_TOP = 40000.0, 0.2, 10.0

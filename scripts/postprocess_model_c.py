@@ -55,6 +55,7 @@ Z_TOP_END = 3765.0
 L_PIPE = 2500.0
 X_REGION = 250.0      # beta_bar from the deformation in x > 250 mm (thesis 7.4.2)
 EDGE_THETA = 6.0      # sigma_max from the elements with theta < 6 deg (thesis 7.4.3)
+PACKING_A = 15.0      # mm: the packing thickness the analytical models take (SPEC section 8)
 TOL = 1e-3
 GAUSS = 1.0 / math.sqrt(3.0)
 # 2x2 Gauss points, first natural coordinate fastest (feps square_rule), and the quad4 corners
@@ -392,8 +393,10 @@ def result_cases(results_dir):
     """Case folders under results_dir holding <case>/<case>.h5: the thesis's twelve first (in the
     order of its tables), then any other (a parametric campaign) in name order."""
     thesis = list(thesis_values())
-    found = sorted(d for d in os.listdir(results_dir) if os.path.exists(case_h5(results_dir, d)))
-    return [c for c in thesis if c in found] + [c for c in found if c not in thesis]
+    found = [d for d in os.listdir(results_dir) if os.path.exists(case_h5(results_dir, d))]
+    # parametric cases by (E_s, beta, G_p, nu_p); a name make_model_c.py did not write comes last
+    key = lambda c: (math.isnan(case_parameters(c)[0]), [case_parameters(c)[i] for i in (3, 2, 0, 1)], c)
+    return [c for c in thesis if c in found] + sorted((c for c in found if c not in thesis), key=key)
 
 
 def peak_tension_pipes(h5path):
@@ -420,13 +423,15 @@ def table(results_dir, csv_out=None):
         path = case_h5(results_dir, case)
         r = postprocess(path, verbose=False)
         r["peak_s1_pipes"] = peak_tension_pipes(path)
+        r.update(analytical_at_beta_bar(case, r["beta_bar"]))
         out.append((case, r))
         t = ref.get(case, {})
         th = lambda k, width, prec: f"{t[k]:{width}.{prec}f}" if k in t else f"{'-':>{width}}"
         print(f"{case:<28} {r['beta_star']:8.4f} {th('beta_star', 8, 4)} {r['beta_bar']:8.4f} {th('beta_bar', 8, 4)} "
               f"{r['Z']:7.0f} {th('Z', 7, 0)} {r['sigma_max']:7.2f} {th('sigma_max', 7, 2)} {r['peak_s1_pipes']:8.2f}")
     if csv_out:
-        keys = ["beta_star", "beta_bar", "Z", "sigma_max", "peak_s1_pipes", "sigma_max_interface", "Z_centres",
+        keys = ["beta_star", "beta_bar", "Z", "sigma_max", "peak_s1_pipes", "australian_Z", "australian_sigma_max",
+                "haslem_Z", "haslem_sigma_max", "sigma_max_interface", "Z_centres",
                 "beta_star_x0", "beta_bar_secant", "beta_bar_wall_mean", "beta_bar_raw", "beta_bar_elastic_jump",
                 "delta_b", "open_fraction", "sliding_fraction", "residual", "s2_beta_star", "s2_beta_bar", "s2_Z",
                 "s2_sigma_max", "s2_residual", "wall_time", "iterations", "cutbacks"]
@@ -440,6 +445,22 @@ def table(results_dir, csv_out=None):
                            [f"{r[k]:.6g}" if k in r else "" for k in keys] +
                            ([t["beta_star"], t["beta_bar"], t["Z"], t["sigma_max"]] if t else ["", "", "", ""]))
         print(f"wrote {csv_out}")
+    return out
+
+
+def analytical_at_beta_bar(case, beta_bar):
+    """The Australian and Haslem joint models (scripts/joint_models.py) at feps's beta_bar, as the
+    thesis's Table 7.4 sets them beside model C: a = 15 mm, E_p = 2 G_p (1 + nu_p), q = 10 MPa on
+    the annulus, L = 2500, E_c = 40000. Empty for a case name make_model_c.py did not write."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import joint_models
+    G, nu = case_parameters(case)[:2]
+    if math.isnan(G) or not beta_bar > 0.0:
+        return {}
+    out = {}
+    for model in (joint_models.australian, joint_models.haslem):
+        res = model(beta=beta_bar, a=PACKING_A, Ep=joint_models.packing_modulus(G, nu))
+        out[f"{res.model}_Z"], out[f"{res.model}_sigma_max"] = res.Z, res.sigma_max
     return out
 
 

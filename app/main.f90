@@ -72,6 +72,8 @@ contains
         return
       case ('-q', '--quiet')
         options%quiet = .true.
+      case ('--check')
+        options%check_only = .true.
       case ('-o', '--output', '--solver', '--method', '--maxit')
         if (i == n) then
           write (error_unit, '(a)') 'feps: error: ' // arg // ' needs a value (see feps --help)'
@@ -143,7 +145,8 @@ contains
     write (output_unit, '(a)') &
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
-      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N] [--quiet]', &
+      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N] [--check]', &
+      '                 [--quiet]', &
       '       feps --help | --version', &
       '', &
       '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
@@ -155,6 +158,10 @@ contains
       '                       (overrides the deck)', &
       '      --maxit N        at most N iterations per step in every stage (overrides the deck''s', &
       '                       MAXIT; euler and modified-euler keep their one iteration)', &
+      '      --check          check the deck and the model: everything a run checks before its', &
+      '                       first step, every stage''s loads, and one factorization of the', &
+      '                       elastic stiffness per stage (missing supports); take no step,', &
+      '                       write no file', &
       '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &
@@ -169,6 +176,10 @@ contains
     if (len(s%title) > 0) write (output_unit, '(a)') 'title            ' // s%title
     write (output_unit, '(a)') 'nodes            ' // str(s%nodes)
     write (output_unit, '(a)') 'elements         ' // str(s%elements)
+    if (s%checked_only) then
+      call print_check(s)
+      return
+    end if
     if (s%mesh_only) then
       write (output_unit, '(a,3(1x,es12.5))') 'bounding box min', s%bbox(:, 1)
       write (output_unit, '(a,3(1x,es12.5))') 'bounding box max', s%bbox(:, 2)
@@ -212,6 +223,34 @@ contains
     end if
     if (len(s%output) > 0) write (output_unit, '(a)') 'results          ' // s%output
   end subroutine print_summary
+
+  !> The summary of `feps --check`: the model's size and the solver's predictions.
+  subroutine print_check(s)
+    type(run_summary_t), intent(in) :: s
+    character(len=32) :: buf
+    write (output_unit, '(a)') 'dofs             ' // str(s%dofs)
+    if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
+      ' (in no element; no DOFs)'
+    write (output_unit, '(a,es12.5)') 'min Jacobian     ', s%min_jacobian
+    write (output_unit, '(a)') 'analysis         ' // trim(merge('linear   ', 'nonlinear', s%linear)) // ': ' // &
+      str(s%stages) // ' stage(s), ' // str(s%steps) // ' steps'
+    write (output_unit, '(a,3(1x,es12.5))') 'applied force   ', s%applied_force
+    write (output_unit, '(a)') 'solver           ' // s%solver
+    write (buf, '(i0)') s%matrix_nnz
+    write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'
+    write (buf, '(i0)') s%factor_nnz
+    write (output_unit, '(a,f0.1,a)') 'factor nonzeros  ' // trim(buf) // ' (', &
+      8.0_dp * real(s%factor_nnz, dp) / 1024.0_dp**2, ' MiB)'
+    write (output_unit, '(a,es10.3,a)') 'factor flops     ', s%flops, ' (one factorization)'
+    write (output_unit, '(a,es10.3,a,es10.3)') 'pivot ratio      ', s%min_pivot_ratio, ' .. ', s%max_pivot_ratio
+    if (s%condition_warning) write (error_unit, '(a)') 'feps: warning: the max/min pivot ratio exceeded 1e12: ' // &
+      'the stiffness is ill-conditioned (stiffness contrast or a nearly free part); results may have lost digits'
+    write (output_unit, '(a,3(f0.3,a))') 'times            assembly ', s%time_assembly, &
+      ' s, factorization ', s%time_factorization, ' s'
+    write (output_unit, '(a,f0.3,a)') 'wall time        ', s%wall_time, ' s'
+    write (output_unit, '(a)') 'checked          the elastic stiffness of every stage factorizes; ' // &
+      'no step taken, no result file written (--check)'
+  end subroutine print_check
 
   !> Memory kept for point states: nonlinear groups only (elastic groups keep none).
   subroutine print_state_memory(s)

@@ -3,6 +3,8 @@
 #
 #   scripts/campaign.sh NAME DECK...
 #
+# Every deck is first checked with `feps --check` (seconds each): if any fails, the campaign
+# prints feps's errors and stops with exit status 2 before running anything.
 # Each deck runs in results/NAME/<deck stem>/ (from the repository root) as
 #   feps DECK --output <stem>.h5 > log.txt 2>&1
 # as many at once as JOBS (default: the number of cores). Resumable: a case whose log.txt ends
@@ -23,7 +25,7 @@
 #   RERUN=1     run every case again
 set -euo pipefail
 
-usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 [[ $# -ge 2 ]] || usage
 case "$1" in -h|--help) usage ;; esac
 
@@ -87,6 +89,18 @@ run_case() {
     echo "done   $stem (exit $rc)"
 }
 export -f run_case finished
+
+# Check every deck first (feps --check: input, model, one factorization per stage; seconds):
+# a bad deck stops the campaign before any case runs, with feps's one-line error.
+nbad=0
+for deck in "${DECKS[@]}"; do
+    # shellcheck disable=SC2086  # FEPS_ARGS is a list of options
+    if ! msg=$("$FEPS" "$deck" --check --quiet $FEPS_ARGS 2>&1); then
+        echo "campaign: $msg" >&2
+        nbad=$((nbad + 1))
+    fi
+done
+[[ $nbad -eq 0 ]] || { echo "campaign: $nbad deck(s) failed feps --check; nothing was run" >&2; exit 2; }
 
 printf '%s\0' "${DECKS[@]}" | xargs -0 -n 1 -P "$JOBS" bash -c 'run_case "$1"' _ || true
 

@@ -63,6 +63,17 @@ if [ -z "$CASES" ]; then
   CASES="$(cd "$DECKS" && ls C_*.dat | sed 's/\.dat$//')"
 fi
 
+# Check every deck first (feps --check: input, model, one factorization per stage, about a
+# second each): a bad deck stops the campaign before any case runs.
+nbad=0
+for case in $CASES; do
+  if ! msg=$("$FEPS" "$DECKS/$case.dat" --check --quiet "${EXTRA[@]}" 2>&1); then
+    echo "campaign_modelC: $msg" >&2
+    nbad=$((nbad + 1))
+  fi
+done
+[ "$nbad" -eq 0 ] || { echo "campaign_modelC: $nbad deck(s) failed feps --check; nothing was run" >&2; exit 2; }
+
 THREADS=$(( $(nproc) / JOBS ))
 [ "$THREADS" -ge 1 ] || THREADS=1
 

@@ -65,7 +65,21 @@ for deck in test/data/bad/*.dat; do
   else
     bad "bad input $name: exit $got, $lines stderr lines, files: $(ls "$tmp" | grep "^$name" | tr '\n' ' ')"
   fi
+  # --check finds the same error (the rigid-body mode through its factorization) and writes nothing
+  cp "$tmp/err" "$tmp/err_run"
+  "$feps" "$deck" --check --output "$out" >"$tmp/out" 2>"$tmp/err"; got=$?
+  if [ "$got" -eq 2 ] && cmp -s "$tmp/err" "$tmp/err_run" && [ ! -e "$out" ] && [ ! -e "$out.part" ]; then
+    ok "--check on $name: the same error"
+  else
+    bad "--check on $name: exit $got, $(head -c 300 "$tmp/err")"
+  fi
 done
+
+# --check: the whole model checked and factorized once, no step taken, no file written.
+expect_status "--check input/modelB.dat" 0 "$feps" input/modelB.dat --check --output "$tmp/chk.h5"
+grep -q "^checked " "$tmp/out" && grep -q "^dofs  *15049$" "$tmp/out" && grep -q "nonlinear: 1 stage(s), 400 steps" "$tmp/out" \
+  && [ ! -e "$tmp/chk.h5" ] && [ ! -e "$tmp/chk.h5.part" ] && [ ! -e "$tmp/chk.xmf" ] \
+  && ok "--check reports the model and writes no file" || bad "--check reports the model and writes no file: $(cat "$tmp/out")"
 
 # Model B SE1 (linear) with both solvers: results file, XDMF beside it, quiet mode prints nothing.
 for solver in cholmod skyline; do
@@ -96,6 +110,15 @@ for k in ("program", "input_file", "wall_time", "solver", "dofs", "factor_nonzer
 ua, ub = a["steps/0001/displacement"][...], b["steps/0001/displacement"][...]
 assert np.abs(ua - ub).max() <= 1e-9 * np.abs(ua).max()
 PY
+
+# A campaign with a bad deck stops before running anything (feps --check on every deck first).
+camp="check_cli_$$"
+FEPS="$PWD/$feps" bash scripts/campaign.sh "$camp" test/data/cube.dat test/data/bad/rigid_body_mode.dat \
+  >"$tmp/out" 2>"$tmp/err"; got=$?
+[ "$got" -eq 2 ] && grep -q "rigid_body_mode.dat: the stiffness matrix is singular" "$tmp/err" \
+  && [ ! -e "results/$camp/cube" ] && ok "campaign.sh with a bad deck: exit 2, nothing run" \
+  || bad "campaign.sh with a bad deck: exit 2, nothing run: exit $got, $(head -c 300 "$tmp/err")"
+rm -rf "results/$camp"
 
 # Parametric decks (scripts/make_model_b.py, make_model_c.py): a grid over the thesis's values
 # writes the thesis's decks, bad parameters exit 2 naming the parameter, and a deck off the

@@ -44,7 +44,8 @@ contains
       new_unittest('Lame cylinder near incompressibility and at negative nu: locking and B-bar', test_locking), &
       new_unittest('model B: the symmetric half equals the full 360-degree model', test_symmetry), &
       new_unittest('fields not asked for are not computed; elastic groups keep no point state', test_fields), &
-      new_unittest('REPORT, TILT: axis tilt of a cantilever column against Timoshenko', test_tilt_report) &
+      new_unittest('REPORT, TILT: axis tilt of a cantilever column against Timoshenko', test_tilt_report), &
+      new_unittest('feps --check: the run''s model and factorization, no step, no file', test_check_only) &
       ]
   end subroutine collect_analysis
 
@@ -317,6 +318,58 @@ contains
     if (allocated(error)) return
     call check(error, sum(res%reaction(2, :)), p, 'shear reaction at the clamp', rel=1.0e-9_dp)
   end subroutine test_cantilever
+
+  !> `feps --check` on a linear deck and on a staged one with element birth: the same DOFs,
+  !! matrix and factor (nonzeros and flops of one factorization) as the run, the same total
+  !! applied force (the run sums what it applied; the check sums the stages' increments), every
+  !! stage's steps counted, and no result file.
+  subroutine test_check_only(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: decks(2) = [character(len=32) :: 'test/data/column_tilt.dat', &
+                                                'test/data/activate_block.dat']
+    type(run_options_t) :: opt
+    type(run_summary_t) :: run, chk
+    integer :: k
+    logical :: exists
+    do k = 1, size(decks)
+      opt%deck = trim(decks(k))
+      opt%solver = 'cholmod'
+      opt%output = 'build/test_check_run.h5'
+      opt%check_only = .false.
+      call run_feps(opt, run, error)
+      if (allocated(error)) return
+      opt%output = 'build/test_check_only.h5'
+      opt%check_only = .true.
+      call run_feps(opt, chk, error)
+      if (allocated(error)) return
+      inquire (file='build/test_check_only.h5', exist=exists)
+      call check(error, .not. exists, trim(decks(k)) // ': no result file')
+      if (allocated(error)) return
+      inquire (file='build/test_check_only.h5.part', exist=exists)
+      call check(error, .not. exists, trim(decks(k)) // ': no partial file')
+      if (allocated(error)) return
+      call check(error, chk%checked_only .and. .not. run%checked_only, 'reported as checked')
+      if (allocated(error)) return
+      call check(error, chk%dofs, run%dofs, trim(decks(k)) // ': DOFs')
+      if (allocated(error)) return
+      call check(error, int(chk%matrix_nnz), int(run%matrix_nnz), trim(decks(k)) // ': matrix nonzeros')
+      if (allocated(error)) return
+      call check(error, int(chk%factor_nnz), int(run%factor_nnz), trim(decks(k)) // ': factor nonzeros')
+      if (allocated(error)) return
+      call check(error, chk%flops, run%flops, trim(decks(k)) // ': flops of one factorization', rel=1.0e-12_dp)
+      if (allocated(error)) return
+      call check(error, chk%linear .eqv. run%linear, trim(decks(k)) // ': linear or not')
+      if (allocated(error)) return
+      if (.not. run%linear) then
+        call check(error, chk%steps, run%steps, trim(decks(k)) // ': steps of all stages')
+        if (allocated(error)) return
+      end if
+      call check(error, norm2(chk%applied_force - run%applied_force) <= 1.0e-9_dp * norm2(run%applied_force), &
+                 trim(decks(k)) // ': total applied force')
+      if (allocated(error)) return
+    end do
+    call check(error, chk%stages, 2, 'activate_block.dat: two stages')
+  end subroutine test_check_only
 
   !> REPORT, TILT on the cantilever turned onto the z axis: the axis tilt between clamp and tip
   !! is atan(delta / L) with the Timoshenko tip deflection (within 1%), and REPORT, ROTATION of

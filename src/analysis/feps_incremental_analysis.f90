@@ -98,7 +98,7 @@ module feps_incremental_analysis
     logical, allocatable :: active(:)                  !! groups active in the current stage
   end type analysis_t
 
-  public :: run_analysis, is_linear_model
+  public :: run_analysis, check_analysis, is_linear_model
 
 contains
 
@@ -125,28 +125,7 @@ contains
     integer :: n
 
     t0 = wall_clock()
-    call build_kernels(model, an%kernels, error)
-    if (allocated(error)) return
-    call build_materials(model, an%materials, error)
-    if (allocated(error)) return
-    call check_jacobians(model, an%kernels, summary%min_detj, error)
-    if (allocated(error)) return
-    call resolve_face_sets(model, an%kernels, error)
-    if (allocated(error)) return
-    call build_dof_map(model, an%map, error)
-    if (allocated(error)) return
-    summary%neq = an%map%neq
-    summary%unused_nodes = an%map%unused_nodes
-    if (an%map%neq == 0) then
-      call fatal_error(error, err_model, model%deck_file // ': the model has no free degree of freedom')
-      return
-    end if
-    call build_pattern(model, an%map, an%a)
-    summary%matrix_nnz = an%a%nnz()
-    call new_linear_solver(solver_name, an%solver, error)
-    if (allocated(error)) return
-    summary%solver = an%solver%name()
-    call an%solver%analyze(an%a, error)
+    call set_up(model, solver_name, an, summary, error)
     if (allocated(error)) return
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
@@ -181,6 +160,89 @@ contains
       end if
     end do
   end subroutine run_analysis
+
+  !> Everything a run checks before it takes a step, without taking one: elements and their
+  !! Jacobians, materials, face sets, DOF numbering, the sparse pattern, the solver's analysis,
+  !! and, stage by stage, the loads, the prescribed displacements, the nodes of elements born
+  !! later and the factorization of the elastic stiffness of the elements active in the stage
+  !! (a missing support or rigid-body mode is found there, as in a run; summary%factor_nnz,
+  !! %flops and the pivot ratios are those of the factorization). The same errors as
+  !! run_analysis up to that point.
+  subroutine check_analysis(model, solver_name, summary, error)
+    type(model_t), intent(inout) :: model     !! face sets are resolved into it
+    character(len=*), intent(in) :: solver_name
+    type(analysis_summary_t), intent(out) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    type(analysis_t) :: an
+    real(dp), allocatable :: df(:, :), duc(:, :)
+    real(dp) :: t0
+    integer :: s
+    logical :: born
+
+    t0 = wall_clock()
+    call set_up(model, solver_name, an, summary, error)
+    if (allocated(error)) return
+    summary%linear = is_linear_model(model, an%materials)
+    call init_states(model, an)
+    summary%state_bytes = state_bytes(an%states)
+    allocate (an%f_ref(3, model%nnode), df(3, model%nnode), duc(3, model%nnode))
+    call nodal_load_vector(model, an%kernels, an%f_ref, error, stage=0)
+    if (allocated(error)) return
+    summary%time_assembly = wall_clock() - t0
+    do s = 1, size(model%stages)
+      call activate_groups(model, an, s, born)
+      if (s == 1 .or. born) then
+        call check_born_nodes(model, an, s, error)
+        if (allocated(error)) return
+        call factorize_tangent(model, an, .true., summary, error)
+        if (allocated(error)) then
+          ! as a run reports it: a nonlinear run factorizes in the stage's first step
+          if (.not. summary%linear) call name_step(error, model%stages(s), 1, real(s - 1, dp))
+          return
+        end if
+      end if
+      call stage_increments(model, an, s, df, duc, error)
+      if (allocated(error)) return
+      summary%steps = summary%steps + model%stages(s)%steps
+      summary%applied_force = summary%applied_force + sum(df, dim=2)
+    end do
+    summary%factor_nnz = an%solver%factor_nnz
+    summary%flops = an%solver%flops
+    summary%min_pivot_ratio = an%solver%min_pivot_ratio
+    summary%max_pivot_ratio = an%solver%max_pivot_ratio
+  end subroutine check_analysis
+
+  !> Kernels, materials, Jacobians, face sets, DOF map, pattern and the solver's analysis.
+  subroutine set_up(model, solver_name, an, summary, error)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: solver_name
+    type(analysis_t), intent(inout) :: an
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+
+    call build_kernels(model, an%kernels, error)
+    if (allocated(error)) return
+    call build_materials(model, an%materials, error)
+    if (allocated(error)) return
+    call check_jacobians(model, an%kernels, summary%min_detj, error)
+    if (allocated(error)) return
+    call resolve_face_sets(model, an%kernels, error)
+    if (allocated(error)) return
+    call build_dof_map(model, an%map, error)
+    if (allocated(error)) return
+    summary%neq = an%map%neq
+    summary%unused_nodes = an%map%unused_nodes
+    if (an%map%neq == 0) then
+      call fatal_error(error, err_model, model%deck_file // ': the model has no free degree of freedom')
+      return
+    end if
+    call build_pattern(model, an%map, an%a)
+    summary%matrix_nnz = an%a%nnz()
+    call new_linear_solver(solver_name, an%solver, error)
+    if (allocated(error)) return
+    summary%solver = an%solver%name()
+    call an%solver%analyze(an%a, error)
+  end subroutine set_up
 
   subroutine init_states(model, an)
     type(model_t), intent(in) :: model

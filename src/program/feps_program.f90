@@ -9,7 +9,7 @@ module feps_program
   use feps_deck, only: read_deck
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
   use feps_clock, only: wall_clock
-  use feps_incremental_analysis, only: analysis_summary_t, run_analysis
+  use feps_incremental_analysis, only: analysis_summary_t, run_analysis, check_analysis
   use feps_observer, only: observer_t, step_result_t
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
@@ -26,6 +26,7 @@ module feps_program
     character(len=:), allocatable :: method     !! overrides every stage's METHOD when not empty
     integer :: max_iterations = 0               !! overrides every stage's MAXIT when positive
     logical :: quiet = .false.
+    logical :: check_only = .false.             !! check the deck and the model, solve nothing, write nothing
   end type run_options_t
 
   !> What the program reports after a run.
@@ -34,6 +35,8 @@ module feps_program
     character(len=:), allocatable :: output
     character(len=:), allocatable :: solver
     logical :: mesh_only = .false.
+    logical :: checked_only = .false.               !! --check: nothing solved, no file written
+    integer :: stages = 0
     integer :: nodes = 0
     integer :: elements = 0
     integer :: dofs = 0
@@ -143,6 +146,11 @@ contains
       end if
     end if
     if (options%max_iterations > 0) call override_max_iterations(model, options%max_iterations)
+    if (options%check_only) then
+      call check_only(model, solver, summary, error)
+      summary%wall_time = wall_clock() - t0
+      return
+    end if
     obs%model => model
     if (present(sink)) obs%sink => sink
     call obs%h5%create(output, error)
@@ -194,6 +202,36 @@ contains
     if (.not. allocated(error)) call obs%h5%close(error)
     if (allocated(error)) call obs%h5%discard()
   end subroutine run_feps
+
+  !> `feps --check`: every check a run makes before its first step (check_analysis), one
+  !! elastic factorization per stage whose elements change, and no result file.
+  subroutine check_only(model, solver, summary, error)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: solver
+    type(run_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    type(analysis_summary_t) :: an
+    call check_analysis(model, solver, an, error)
+    if (allocated(error)) return
+    summary%checked_only = .true.
+    summary%output = ''
+    summary%solver = an%solver
+    summary%linear = an%linear
+    summary%dofs = an%neq
+    summary%unused_nodes = an%unused_nodes
+    summary%matrix_nnz = an%matrix_nnz
+    summary%factor_nnz = an%factor_nnz
+    summary%flops = an%flops
+    summary%min_jacobian = an%min_detj
+    summary%steps = an%steps
+    summary%stages = size(model%stages)
+    summary%applied_force = an%applied_force
+    summary%time_assembly = an%time_assembly
+    summary%time_factorization = an%time_factorization
+    summary%min_pivot_ratio = an%min_pivot_ratio
+    summary%max_pivot_ratio = an%max_pivot_ratio
+    summary%condition_warning = an%condition_warning
+  end subroutine check_only
 
   !> Every stage solved by one method (its preset iteration limits as in the deck reader).
   subroutine override_method(model, name, error)

@@ -1,7 +1,8 @@
 !> Element activation per stage (STAGE ..., ACTIVATE=group): a group born in stage k carries
 !! nothing before k and is stress-free at the start of k, so it takes only its share of the
 !! later increments. Checked against two-springs-in-parallel closed forms, on the linear path
-!! (bars) and on the nonlinear path (solids and interfaces, a model with interfaces).
+!! (bars) and on the nonlinear path (solids and interfaces, a model with interfaces). Supports
+!! that change between stages (FIX and RELEASE after a STAGE record) against a bar's closed form.
 module test_activation
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
@@ -22,7 +23,8 @@ contains
     tests = [ &
       new_unittest("bars_in_parallel_born_in_stage_2", test_bars), &
       new_unittest("block_and_interface_born_in_stage_2", test_block), &
-      new_unittest("deck_records_activation_stage", test_deck) &
+      new_unittest("deck_records_activation_stage", test_deck), &
+      new_unittest("supports_held_and_released_between_stages", test_stage_supports) &
       ]
   end subroutine collect_activation
 
@@ -150,5 +152,71 @@ contains
     if (allocated(error)) return
     call check(error, model%groups(model%find_group('joint'))%activate_stage, 0, 'joint present from the start')
   end subroutine test_deck
+
+  !> test/data/stage_supports.dat (linear driver) and its Matsuoka twin (incremental driver,
+  !! never yields): a bar pulled at the top (stage 1), its top then held where it is while the
+  !! middle is pulled (stage 2), then released, its support force removed over 5 steps
+  !! (stage 3). Closed forms in the deck's header; the incremental run writes every step of
+  !! stage 3, where the support force falls linearly: u_mid = 1.5 + 0.1 k after k steps.
+  subroutine test_stage_supports(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: decks(2) = [character(len=48) :: 'test/data/stage_supports.dat', &
+                                                'test/data/stage_supports_incremental.dat']
+    type(all_steps_t) :: obs
+    type(model_t) :: model
+    real(dp) :: umid, utop, rtop, rbot
+    integer :: d, k, n, j
+    do d = 1, size(decks)
+      call run_deck(trim(decks(d)), obs, error)
+      if (allocated(error)) return
+      call read_deck(trim(decks(d)), model, error)
+      if (allocated(error)) return
+      n = size(obs%steps)
+      call check(error, n, merge(3, 7, d == 1), trim(decks(d)) // ': steps written')
+      if (allocated(error)) return
+      call measure(obs%steps(1))
+      call compare([1.0_dp, 2.0_dp, 0.0_dp, -1000.0_dp], 'stage 1')
+      if (allocated(error)) return
+      call measure(obs%steps(2))
+      call compare([1.5_dp, 2.0_dp, -500.0_dp, -1500.0_dp], 'stage 2 (top held where it was)')
+      if (allocated(error)) return
+      do k = 3, n
+        j = 5 - (n - k)     ! steps of stage 3 done (the linear driver writes only its end)
+        call measure(obs%steps(k))
+        call compare([1.5_dp + 0.1_dp * j, 2.0_dp + 0.2_dp * j, 0.0_dp, -1500.0_dp - 100.0_dp * j], &
+                     'stage 3 (top released), step ' // achar(iachar('0') + j))
+        if (allocated(error)) return
+      end do
+    end do
+  contains
+    !> u_mid and u_top (mm) to 1e-9 mm, the reactions (N) to 1e-6 N.
+    subroutine compare(expected, what)
+      real(dp), intent(in) :: expected(4)
+      character(len=*), intent(in) :: what
+      character(len=*), parameter :: names(4) = [character(len=8) :: 'u_mid', 'u_top', 'R_top', 'R_bottom']
+      real(dp) :: got(4)
+      integer :: i
+      got = [umid, utop, rtop, rbot]
+      do i = 1, 4
+        call check(error, got(i), expected(i), trim(decks(d)) // ', ' // what // ': ' // trim(names(i)), &
+                   abs=merge(1.0e-9_dp, 1.0e-6_dp, i <= 2))
+        if (allocated(error)) return
+      end do
+    end subroutine compare
+
+    !> Mean axial displacement of the middle and top layers, summed axial reactions of the top
+    !! and bottom layers.
+    subroutine measure(res)
+      type(step_result_t), intent(in) :: res
+      logical :: top(model%nnode), mid(model%nnode), bot(model%nnode)
+      top = abs(model%coords(3, :) - 200.0_dp) < 1.0e-9_dp
+      mid = abs(model%coords(3, :) - 100.0_dp) < 1.0e-9_dp
+      bot = abs(model%coords(3, :)) < 1.0e-9_dp
+      umid = sum(res%displacement(3, :), mask=mid) / count(mid)
+      utop = sum(res%displacement(3, :), mask=top) / count(top)
+      rtop = sum(res%reaction(3, :), mask=top)
+      rbot = sum(res%reaction(3, :), mask=bot)
+    end subroutine measure
+  end subroutine test_stage_supports
 
 end module test_activation

@@ -36,7 +36,10 @@ contains
       new_unittest('REPORT, TILT without two sections', test_tilt_no_span), &
       new_unittest('ACTIVATE of an undefined group', test_activate_unknown), &
       new_unittest('ACTIVATE of a group twice', test_activate_twice), &
-      new_unittest('node carried only by an unborn group names node and DOF', test_activate_orphan) &
+      new_unittest('node carried only by an unborn group names node and DOF', test_activate_orphan), &
+      new_unittest('RELEASE before any STAGE record', test_release_before_stage), &
+      new_unittest('RELEASE of a DOF not held in the stage before names node and DOF', test_release_not_held), &
+      new_unittest('RELEASE of a prescribed DOF names node, DOF and the DISPLACE line', test_release_prescribed) &
       ]
   end subroutine collect_bad_input
 
@@ -231,5 +234,25 @@ contains
                         [character(len=40) :: 'activate_orphan_node.dat', 'stage first', 'node 3', 'DOF ux', &
                          'group new'], error)
   end subroutine test_activate_orphan
+
+  subroutine test_release_before_stage(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/release_before_stage.dat', err_input, &
+                        [character(len=40) :: 'release_before_stage.dat:18:', 'after the STAGE record'], error)
+  end subroutine test_release_before_stage
+
+  subroutine test_release_not_held(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/release_not_held.dat', err_input, &
+                        [character(len=40) :: 'release_not_held.dat:24:', 'node 5, DOF uz', 'stage let_go', &
+                         'not held in the stage before (hold)'], error)
+  end subroutine test_release_not_held
+
+  subroutine test_release_prescribed(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/release_prescribed.dat', err_input, &
+                        [character(len=40) :: 'release_prescribed.dat:25:', 'node 1, DOF uz', 'DISPLACE at line 18'], &
+                        error)
+  end subroutine test_release_prescribed
 
 end module test_bad_input

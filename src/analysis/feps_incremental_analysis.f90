@@ -96,6 +96,7 @@ module feps_incremental_analysis
     logical :: warned_condition = .false.
     type(linear_part_t) :: lin
     logical, allocatable :: active(:)                  !! groups active in the current stage
+    real(dp), allocatable :: release_force(:, :)       !! load increment of the stage that removes released supports' forces
   end type analysis_t
 
   public :: run_analysis, check_analysis, is_linear_model
@@ -177,7 +178,7 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :)
     real(dp) :: t0
     integer :: s
-    logical :: born
+    logical :: born, changed
 
     t0 = wall_clock()
     call set_up(model, solver_name, an, summary, error)
@@ -189,9 +190,13 @@ contains
     call nodal_load_vector(model, an%kernels, an%f_ref, error, stage=0)
     if (allocated(error)) return
     summary%time_assembly = wall_clock() - t0
+    allocate (an%f_applied(3, model%nnode))
+    an%f_applied = 0.0_dp
     do s = 1, size(model%stages)
+      call change_supports(model, an, s, changed, summary, error)
+      if (allocated(error)) return
       call activate_groups(model, an, s, born)
-      if (s == 1 .or. born) then
+      if (s == 1 .or. born .or. changed) then
         call check_born_nodes(model, an, s, error)
         if (allocated(error)) return
         call factorize_tangent(model, an, .true., summary, error)
@@ -236,6 +241,8 @@ contains
       call fatal_error(error, err_model, model%deck_file // ': the model has no free degree of freedom')
       return
     end if
+    call check_later_supports(model, error)
+    if (allocated(error)) return
     call build_pattern(model, an%map, an%a)
     summary%matrix_nnz = an%a%nnz()
     call new_linear_solver(solver_name, an%solver, error)
@@ -243,6 +250,77 @@ contains
     summary%solver = an%solver%name()
     call an%solver%analyze(an%a, error)
   end subroutine set_up
+
+  !> The supports of every later stage whose supports change are valid (RELEASE records)
+  !! and leave a free DOF: input errors before any solving.
+  subroutine check_later_supports(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(dof_map_t) :: map
+    integer :: s
+    do s = 2, size(model%stages)
+      if (.not. model%supports_change(s)) cycle
+      call build_dof_map(model, map, error, stage=s)
+      if (allocated(error)) return
+      if (map%neq == 0) then
+        call fatal_error(error, err_model, model%deck_file // ': stage ' // model%stages(s)%name // &
+                         ': the supports leave no free degree of freedom')
+        return
+      end if
+    end do
+  end subroutine check_later_supports
+
+  !> At the start of stage s, when FIX or RELEASE records change the supports: number the
+  !! equations of the new set; a DOF held from now on stays where it is (its target is its
+  !! current displacement), and a released DOF's support force becomes a load at once
+  !! (nothing moves) that the stage's increments remove in equal parts over its steps; then
+  !! the new pattern is analysed (the caller factorizes). changed is false when nothing changes.
+  subroutine change_supports(model, an, s, changed, summary, error, observer)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer, intent(in) :: s
+    logical, intent(out) :: changed
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    class(observer_t), intent(inout), optional :: observer
+    type(dof_map_t) :: new
+    real(dp) :: ul(3), support(3)
+    integer :: n, d, nheld, nfreed
+
+    an%release_force = 0.0_dp
+    changed = model%supports_change(s)
+    if (.not. changed) return
+    call build_dof_map(model, new, error, stage=s)
+    if (allocated(error)) return
+    nheld = 0
+    nfreed = 0
+    do n = 1, model%nnode
+      if (.not. new%used(n)) cycle
+      if (all(new%constrained(:, n) .eqv. an%map%constrained(:, n))) cycle
+      ul = matmul(transpose(an%map%basis(:, :, n)), an%u(:, n))
+      support = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
+      do d = 1, 3
+        if (new%constrained(d, n) .and. .not. an%map%constrained(d, n)) then
+          an%uc(d, n) = ul(d)
+          nheld = nheld + 1
+        else if (an%map%constrained(d, n) .and. .not. new%constrained(d, n)) then
+          an%f_applied(:, n) = an%f_applied(:, n) + support(d) * an%map%basis(:, d, n)
+          an%release_force(:, n) = an%release_force(:, n) - support(d) * an%map%basis(:, d, n)
+          nfreed = nfreed + 1
+        end if
+      end do
+    end do
+    an%map = new
+    summary%neq = an%map%neq
+    call build_pattern(model, an%map, an%a)
+    summary%matrix_nnz = an%a%nnz()
+    call an%solver%analyze(an%a, error)
+    if (allocated(error)) return
+    if (present(observer)) call observer%progress('stage ' // model%stages(s)%name // ': supports change: ' // &
+                                                  str(nheld) // ' DOFs held from here, ' // str(nfreed) // &
+                                                  ' released (their support forces removed over the stage); ' // &
+                                                  str(an%map%neq) // ' equations')
+  end subroutine change_supports
 
   subroutine init_states(model, an)
     type(model_t), intent(in) :: model
@@ -304,6 +382,8 @@ contains
     an%u_t = 0.0_dp
     an%fint = 0.0_dp
     an%uc = 0.0_dp
+    allocate (an%release_force(3, model%nnode))
+    an%release_force = 0.0_dp
   end subroutine init_states
 
   !> Memory held per group for point states (stresses, strains, flags, tangents; committed
@@ -417,6 +497,7 @@ contains
     if (allocated(error)) return
     frac = model%stages(s)%load_fraction
     df = df + frac * an%f_ref
+    if (allocated(an%release_force)) df = df + an%release_force
     duc = 0.0_dp
     do c = 1, size(model%constraints)
       associate (con => model%constraints(c))
@@ -446,13 +527,19 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: t0, rnorm, pnorm
     integer :: s, step
-    logical :: born
+    logical :: born, changed
 
     allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq))
     step = 0
     do s = 1, size(model%stages)
+      call change_supports(model, an, s, changed, summary, error, observer)
+      if (allocated(error)) return
+      if (changed) then
+        deallocate (r)
+        allocate (r(an%map%neq))
+      end if
       call activate_groups(model, an, s, born)
-      if (s == 1 .or. born) then
+      if (s == 1 .or. born .or. changed) then
         call check_born_nodes(model, an, s, error)
         if (allocated(error)) return
         call factorize_tangent(model, an, .true., summary, error)
@@ -497,7 +584,7 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
     integer :: s, k, step, iters, cut, nfact0, iters_step, opened
-    logical :: ok, need_factor, have_factor, step_unconverged, born
+    logical :: ok, need_factor, have_factor, step_unconverged, born, changed
     logical, allocatable :: fully_open(:)
 
     allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq), fully_open(size(model%groups)))
@@ -508,8 +595,15 @@ contains
     abs_prev = 0.0_dp
     do s = 1, size(model%stages)
       associate (st => model%stages(s), c => model%stages(s)%controls)
+        call change_supports(model, an, s, changed, summary, error, observer)
+        if (allocated(error)) return
+        if (changed) then
+          deallocate (r)
+          allocate (r(an%map%neq))
+          have_factor = .false.     ! a new set of equations: factorize again, whatever the method
+        end if
         call activate_groups(model, an, s, born)
-        if (s == 1 .or. born) then
+        if (s == 1 .or. born .or. changed) then
           call check_born_nodes(model, an, s, error)
           if (allocated(error)) return
           ! New elements change the stiffness: refactorize (the tangent, or the initial

@@ -32,13 +32,20 @@ module feps_dof_map
 
 contains
 
-  !> Number the free DOFs node by node; constrained DOFs and nodes of no element get none.
-  subroutine build_dof_map(model, map, error)
+  !> Number the free DOFs of stage `stage` (default 1) node by node; DOFs held in that stage
+  !! and nodes of no element get none. A node's nodal system comes from all its constraint
+  !! records, whatever their stage, so it does not change between stages. A RELEASE from this
+  !! stage must free DOFs held in the stage before, and no DOF a DISPLACE prescribes.
+  subroutine build_dof_map(model, map, error, stage)
     type(model_t), intent(in) :: model
     type(dof_map_t), intent(out) :: map
     type(error_t), allocatable, intent(out) :: error
-    integer :: nn, g, e, c, k, n, cs, d, line_of_csys
+    integer, intent(in), optional :: stage
+    integer :: nn, g, e, c, k, n, cs, d, line_of_csys, s
     integer, allocatable :: csys_line(:)
+
+    s = 1
+    if (present(stage)) s = stage
 
     nn = model%nnode
     allocate (map%eq(3, nn), map%constrained(3, nn), map%node_csys(nn))
@@ -93,13 +100,9 @@ contains
         map%basis(:, :, n) = model%systems(map%node_csys(n))%local_basis(model%coords(:, n))
       end if
     end do
-    do c = 1, size(model%constraints)
-      d = model%constraints(c)%dof
-      do k = 1, size(model%node_sets(model%constraints(c)%node_set)%nodes)
-        n = model%node_sets(model%constraints(c)%node_set)%nodes(k)
-        map%constrained(d, n) = .true.
-      end do
-    end do
+    call check_releases(model, s, error)
+    if (allocated(error)) return
+    map%constrained = held_dofs(model, s)
 
     map%rotated = any(map%node_csys /= 0)
     ! Plane strain: uz = 0 everywhere.
@@ -124,6 +127,75 @@ contains
       end do
     end do
   end subroutine build_dof_map
+
+  !> The DOFs held in stage s (nodal directions): the constraint records active by then, in
+  !! deck order, the last one on a DOF deciding.
+  pure function held_dofs(model, s) result(held)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: s
+    logical :: held(3, model%nnode)
+    integer :: c, k
+    held = .false.
+    do c = 1, size(model%constraints)
+      associate (con => model%constraints(c))
+        if (con%active_from > s) cycle
+        do k = 1, size(model%node_sets(con%node_set)%nodes)
+          held(con%dof, model%node_sets(con%node_set)%nodes(k)) = .not. con%release
+        end do
+      end associate
+    end do
+  end function held_dofs
+
+  !> The RELEASE records of stage s free DOFs held in stage s - 1, and neither they nor the
+  !! FIX records of stage s touch a DOF that a DISPLACE prescribes (a prescribed displacement
+  !! holds its DOF in every stage).
+  subroutine check_releases(model, s, error)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: s
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: before(:, :)
+    integer :: c, k, n, p
+    if (s <= 1) return
+    if (.not. any(model%constraints(:)%active_from == s)) return
+    before = held_dofs(model, s - 1)
+    do c = 1, size(model%constraints)
+      associate (con => model%constraints(c))
+        if (con%prescribed .or. con%active_from /= s) cycle
+        do k = 1, size(model%node_sets(con%node_set)%nodes)
+          n = model%node_sets(con%node_set)%nodes(k)
+          do p = 1, size(model%constraints)
+            associate (pre => model%constraints(p))
+              if (.not. pre%prescribed .or. pre%dof /= con%dof) cycle
+              if (.not. any(model%node_sets(pre%node_set)%nodes == n)) cycle
+              call input_error(error, con%file, con%line, trim(merge('RELEASE', 'FIX    ', con%release)) // &
+                               ' of node ' // str(n) // ', DOF ' // trim(dof_label(model, con%csys, con%dof)) // &
+                               ' from stage ' // model%stages(s)%name // ', which DISPLACE at line ' // &
+                               str(pre%line) // ' prescribes: a prescribed displacement holds its DOF in every stage')
+              return
+            end associate
+          end do
+          if (con%release .and. .not. before(con%dof, n)) then
+            call input_error(error, con%file, con%line, 'RELEASE of node ' // str(n) // ', DOF ' // &
+                             trim(dof_label(model, con%csys, con%dof)) // ' from stage ' // model%stages(s)%name // &
+                             ', which is not held in the stage before (' // model%stages(s - 1)%name // ')')
+            return
+          end if
+        end do
+      end associate
+    end do
+  end subroutine check_releases
+
+  !> 'ux' in a Cartesian system (its own axes), 'ur' / 'utheta' / 'uz' in a cylindrical one.
+  function dof_label(model, cs, d) result(label)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: cs, d
+    character(len=:), allocatable :: label
+    if (model%systems(cs)%kind /= 3) then
+      label = 'u' // trim(cart_names(d))
+    else
+      label = 'u' // trim(cyl_names(d))
+    end if
+  end function dof_label
 
   !> Every DOF of every node in an element numbered, in global Cartesian directions: the
   !! numbering of the matrices that give internal forces of linear groups as one product.

@@ -126,7 +126,9 @@ contains
     case ('FSET')
       call read_fset(records(pos), model, error)
     case ('FIX')
-      call read_fix(records(pos), model, error)
+      call read_fix(records(pos), model, st%current_stage, .false., error)
+    case ('RELEASE')
+      call read_fix(records(pos), model, st%current_stage, .true., error)
     case ('DISPLACE')
       call read_displace(records(pos), model, st%current_stage, error)
     case ('FORCE')
@@ -503,13 +505,21 @@ contains
   end subroutine read_fset
 
   !> FIX, set, dof [, dof ...] [, CSYS=n]: dofs X Y Z (Cartesian) or R T Z (cylindrical), or ALL.
-  subroutine read_fix(rec, model, error)
+  subroutine read_fix(rec, model, stage, release, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage         !! 0 before any STAGE record: held in every stage
+    logical, intent(in) :: release       !! RELEASE: free the DOFs from this stage on
     type(error_t), allocatable, intent(out) :: error
-    integer :: iset, cs, i, dof
+    integer :: iset, cs, i, dof, from
     character(len=:), allocatable :: f
 
+    if (release .and. stage <= 1) then
+      call input_error(error, rec%file, rec%line, 'RELEASE frees supports from a stage on: put it after the ' // &
+                       'STAGE record of a later stage than the first (in the first stage, leave the FIX out)', 1)
+      return
+    end if
+    from = max(stage, 1)
     call require_fields(rec, 3, error)
     if (allocated(error)) return
     call get_node_set(rec, model, iset, error)
@@ -521,7 +531,7 @@ contains
       if (index(f, '=') > 0) cycle
       if (f == 'ALL') then
         do dof = 1, 3
-          call add_constraint(model, rec, iset, cs, dof, 0.0_dp, 0)
+          call add_hold(dof)
         end do
         cycle
       end if
@@ -531,8 +541,17 @@ contains
                          // dof_names(model%systems(cs)%kind) // ' or ALL)', i)
         return
       end if
-      call add_constraint(model, rec, iset, cs, dof, 0.0_dp, 0)
+      call add_hold(dof)
     end do
+  contains
+    !> A FIX after a STAGE record holds from that stage on (at the value reached: its
+    !! increment in the stage is zero); a RELEASE frees from that stage on.
+    subroutine add_hold(d)
+      integer, intent(in) :: d
+      call add_constraint(model, rec, iset, cs, d, 0.0_dp, merge(from, 0, from > 1))
+      model%constraints(size(model%constraints))%active_from = from
+      model%constraints(size(model%constraints))%release = release
+    end subroutine add_hold
   end subroutine read_fix
 
   !> DISPLACE, set, DOF=value [, DOF=value ...] [, CSYS=n]
@@ -568,6 +587,7 @@ contains
       call parse_real(f(eq + 1:), v, error, rec, i)
       if (allocated(error)) return
       call add_constraint(model, rec, iset, cs, dof, v, stage)
+      model%constraints(size(model%constraints))%prescribed = .true.
     end do
   end subroutine read_displace
 

@@ -63,12 +63,17 @@ module feps_model
 
   !> Fixed (value 0) or prescribed displacement of one DOF of every node of a set, the DOF
   !! counted in the directions of coordinate system csys (radial, hoop, axial if cylindrical).
+  !! Which DOFs are held in stage s: the constraints with active_from <= s, in deck order, the
+  !! last one on a DOF deciding (a release frees it).
   type, public :: constraint_t
     integer :: node_set = 0
     integer :: csys = 2
     integer :: dof = 0
     real(dp) :: value = 0.0_dp
     integer :: stage = 0                     !! 0: scaled by each stage's LOAD=; s: increment in stage s
+    integer :: active_from = 1               !! held from this stage on (FIX after a STAGE record)
+    logical :: release = .false.             !! RELEASE: free from stage active_from on
+    logical :: prescribed = .false.          !! DISPLACE: held in every stage
     character(len=:), allocatable :: file
     integer :: line = 0
   end type constraint_t
@@ -202,6 +207,7 @@ module feps_model
   contains
     procedure :: nelem => model_nelem
     procedure :: has_interfaces
+    procedure :: supports_change
     procedure :: find_node_set, find_face_set, find_material, find_group
   end type model_t
 
@@ -301,6 +307,15 @@ contains
       if (index(self%groups(g)%element_type, 'interface-') == 1) has_interfaces = .true.
     end do
   end function has_interfaces
+
+  !> Some DOF is held or freed from stage s on (FIX or RELEASE after the STAGE record of s).
+  pure logical function supports_change(self, s)
+    class(model_t), intent(in) :: self
+    integer, intent(in) :: s
+    supports_change = .false.
+    if (s <= 1 .or. .not. allocated(self%constraints)) return
+    supports_change = any(self%constraints(:)%active_from == s)
+  end function supports_change
 
   pure integer function find_node_set(self, name) result(idx)
     class(model_t), intent(in) :: self

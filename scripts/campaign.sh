@@ -13,7 +13,8 @@
 # row per case (those of this call, then any other case folder of the campaign): case, status,
 # exit code, wall time, steps, iterations, factorizations, cut-backs, load factor reached, every
 # /summary attribute rotation_*_deg, and the peak most tensile principal stress (MPa, over all
-# Gauss points of the last step) of group pipe (PEAK_GROUP).
+# Gauss points of the last step) of group pipe (PEAK_GROUP); the decks' PARAMETERS (/summary
+# attributes parameter_<name>) come right after the case name, one column each.
 #
 # Environment:
 #   FEPS        the feps executable (default: fpm's release build of the repository, copied to
@@ -25,7 +26,7 @@
 #   RERUN=1     run every case again
 set -euo pipefail
 
-usage() { sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 [[ $# -ge 2 ]] || usage
 case "$1" in -h|--help) usage ;; esac
 
@@ -119,7 +120,7 @@ import h5py
 import numpy as np
 
 campaign, peak_group, stems = sys.argv[1], sys.argv[2], sys.argv[3:]
-rows, rotations = [], []
+rows, rotations, parameters = [], [], []
 for stem in stems:
     folder = os.path.join(campaign, stem)
     h5 = os.path.join(folder, stem + ".h5")
@@ -146,6 +147,11 @@ for stem in stems:
                     row[key] = f"{float(s[key]):.6g}"
                     if key not in rotations:
                         rotations.append(key)
+                elif key.startswith("parameter_"):       # the deck's PARAMETERS records
+                    v = s[key]
+                    row[key[len("parameter_"):]] = v.decode() if isinstance(v, bytes) else f"{float(v):.6g}"
+                    if key not in parameters:
+                        parameters.append(key)
             steps = sorted(f["steps"]) if "steps" in f else []
             if steps:
                 row["load_factor"] = f"{float(f['steps/' + steps[-1]].attrs['load_factor']):.6g}"
@@ -160,7 +166,8 @@ for stem in stems:
     row["exit_code"] = code
     rows.append(row)
 
-columns = (["case", "status", "exit_code", "wall_time_s", "steps", "iterations", "factorizations", "cutbacks",
+columns = (["case"] + [p[len("parameter_"):] for p in parameters] +
+           ["status", "exit_code", "wall_time_s", "steps", "iterations", "factorizations", "cutbacks",
             "load_factor"] + sorted(rotations) + [f"peak_tensile_{peak_group}_MPa", "last_log_line"])
 out = os.path.join(campaign, "summary.csv")
 with open(out, "w", newline="") as fh:

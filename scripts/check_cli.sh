@@ -138,8 +138,8 @@ diff <(model_lines input/modelB/FE1.dat) <(model_lines "$tmp/mb_grid/FE_Es144_ph
 # between E_s = 14.4 (SE2) and 144 (SE1).
 for c in SE1 SE2; do "$feps" input/modelB/$c.dat --output "$tmp/p_$c.h5" --quiet >/dev/null 2>&1; done
 "$feps" "$tmp/mb_grid/SE_Es50.dat" --output "$tmp/p_SE50.h5" --quiet >/dev/null 2>&1
-python3 - "$tmp/p_SE2.h5" "$tmp/p_SE50.h5" "$tmp/p_SE1.h5" <<'PY' && ok "SE_Es50's peak tension lies between SE2's and SE1's" \
-  || bad "SE_Es50's peak tension lies between SE2's and SE1's"
+python3 - "$tmp/p_SE2.h5" "$tmp/p_SE50.h5" "$tmp/p_SE1.h5" <<'PY' && ok "SE_Es50's peak tension lies between SE2's and SE1's; its PARAMETERS are in /summary" \
+  || bad "SE_Es50's peak tension lies between SE2's and SE1's; its PARAMETERS are in /summary"
 import sys, h5py
 def peak(p):
     with h5py.File(p) as f:
@@ -147,6 +147,9 @@ def peak(p):
 soft, mid, typical = (peak(p) for p in sys.argv[1:4])
 print(f"    peak s1: E_s = 14.4 {soft:.3f}, 50 {mid:.3f}, 144 {typical:.3f} MPa")
 assert soft > mid > typical
+with h5py.File(sys.argv[2]) as f:       # the deck's PARAMETERS record, in /summary
+    a = f["summary"].attrs
+    assert float(a["parameter_E_s"]) == 50.0 and a["parameter_kind"] in (b"S", "S"), dict(a)
 PY
 
 echo "$pass passed, $fail failed"

@@ -155,7 +155,12 @@ def deck(case, r_soil=2000.0):
                     "! phi = psi = 15), bonded to the pipe."]
     else:
         out += ["! Pipe and soil share their nodes at r = 715 (bonded)."]
+    params = f"PARAMETERS, kind={kind}, load={'edge' if edge else 'diagonal'}, E_s={es:g}"
+    if kind != "S":
+        params += f", phi={phi:g}, psi={psi:g}"
     out += [f"TITLE, Model B {case}: {title}, E_s = {es:g} MPa, {'edge' if edge else 'diagonal'} load P = 1000 kN",
+            "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
+            params,
             "", "! --- nodes: r fastest, then theta (28), then z (25) ---"]
     out += node_block(interfaces, r_soil)
     out += ["", "GROUP, pipe, TYPE=hex8, MATERIAL=concrete",

@@ -223,6 +223,8 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
         "! The misalignment rotation is about +y: the joint closes at x = +715 (theta = 0) and may open",
         "! towards x = -715 (theta = 180), as thesis Figs. 6.4 and 6.11.",
         f"TITLE, Model C {name}: packing G_p = {G:g}, nu_p = {nu:g}, beta = {beta:g} deg, q = {Q:g} MPa",
+        "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
+        f"PARAMETERS, G_p={G:g}, nu_p={nu:g}, beta={beta:g}, E_s={soil_E:g}",
         "",
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
         f"A, 3, {R_IN:g}., 0., 0.,",

@@ -39,7 +39,8 @@ contains
       new_unittest('node carried only by an unborn group names node and DOF', test_activate_orphan), &
       new_unittest('RELEASE before any STAGE record', test_release_before_stage), &
       new_unittest('RELEASE of a DOF not held in the stage before names node and DOF', test_release_not_held), &
-      new_unittest('RELEASE of a prescribed DOF names node, DOF and the DISPLACE line', test_release_prescribed) &
+      new_unittest('RELEASE of a prescribed DOF names node, DOF and the DISPLACE line', test_release_prescribed), &
+      new_unittest('PARAMETERS: a name given twice', test_parameter_twice) &
       ]
   end subroutine collect_bad_input
 
@@ -254,5 +255,11 @@ contains
                         [character(len=40) :: 'release_prescribed.dat:25:', 'node 1, DOF uz', 'DISPLACE at line 18'], &
                         error)
   end subroutine test_release_prescribed
+
+  subroutine test_parameter_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/parameter_twice.dat', err_input, &
+                        [character(len=40) :: 'parameter_twice.dat:16:', 'field 2', '"E_s" is given twice'], error)
+  end subroutine test_parameter_twice
 
 end module test_bad_input

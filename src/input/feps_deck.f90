@@ -111,6 +111,8 @@ contains
     select case (key)
     case ('TITLE')
       call read_title(records(pos), model)
+    case ('PARAMETERS')
+      call read_parameters(records(pos), model, error)
     case ('CSYS')
       call read_csys(records(pos), model, error)
     case ('INCLUDE')
@@ -172,6 +174,51 @@ contains
       model%title = model%title // field_text(rec, i)
     end do
   end subroutine read_title
+
+  !> PARAMETERS, NAME=value [, NAME=value ...]: labels of the case (a campaign's parameters),
+  !! written to the results file as /summary attributes parameter_<name> (a number as a real,
+  !! anything else as a string). Names: letters, digits and underscores, not starting with a
+  !! digit, each given once in the deck.
+  subroutine read_parameters(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: f, name, value
+    character(len=name_len), allocatable :: names(:), values(:)
+    integer :: i, eq, n
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    if (.not. allocated(model%parameter_names)) allocate (model%parameter_names(0), model%parameter_values(0))
+    do i = 2, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      name = trim(adjustl(f(:max(eq - 1, 0))))
+      value = trim(adjustl(f(eq + 1:)))
+      if (eq == 0 .or. len(name) == 0 .or. len(value) == 0) then
+        call input_error(error, rec%file, rec%line, 'expected NAME=value, got "' // f // '"', i)
+        return
+      end if
+      if (verify(name, 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0 .or. &
+          scan(name(1:1), '0123456789') /= 0 .or. len(name) > name_len - 10 .or. len(value) > name_len) then
+        call input_error(error, rec%file, rec%line, 'parameter "' // name // '": a name is letters, digits and ' // &
+                         'underscores, not starting with a digit, at most ' // str(name_len - 10) // &
+                         ' characters; a value at most ' // str(name_len), i)
+        return
+      end if
+      if (any(model%parameter_names == name)) then
+        call input_error(error, rec%file, rec%line, 'parameter "' // name // '" is given twice', i)
+        return
+      end if
+      n = size(model%parameter_names)
+      allocate (names(n + 1), values(n + 1))
+      names(:n) = model%parameter_names
+      values(:n) = model%parameter_values
+      names(n + 1) = name
+      values(n + 1) = value
+      call move_alloc(names, model%parameter_names)
+      call move_alloc(values, model%parameter_values)
+    end do
+  end subroutine read_parameters
 
   !> CSYS, id, CYLINDRICAL, x0, y0, z0, ax, ay, az [, rx, ry, rz]   or   CSYS, id, CARTESIAN, x0, y0, z0
   subroutine read_csys(rec, model, error)

@@ -204,6 +204,8 @@ module feps_model
     type(output_fields_t) :: fields                        !! result fields to write
     logical :: mesh_only = .false.                         !! a file holding only a DATAIN mesh
     logical :: plane_strain = .false.                      !! a 2D model: uz = 0 at every node
+    character(len=name_len), allocatable :: parameter_names(:)    !! PARAMETERS: the campaign's own labels
+    character(len=name_len), allocatable :: parameter_values(:)   !! (written to /summary as parameter_<name>)
   contains
     procedure :: nelem => model_nelem
     procedure :: has_interfaces

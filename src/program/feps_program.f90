@@ -516,6 +516,7 @@ contains
                                                                                  summary%linear), error)
     if (.not. allocated(error)) call h5%write_summary_string('fields', summary%fields, error)
     if (.not. allocated(error)) call h5%write_summary_int('point_state_bytes', sum(summary%state_bytes), error)
+    if (.not. allocated(error)) call write_parameters(h5, model, error)
     do g = 1, size(summary%state_bytes)
       if (allocated(error)) return
       call h5%write_group_int(model%groups(g)%name, 'point_state_bytes', summary%state_bytes(g), error)
@@ -525,6 +526,27 @@ contains
   end subroutine write_summary
 
   !> The deck's name without folder and extension, with .h5, in the working directory.
+  !> PARAMETERS records as /summary attributes parameter_<name>: a number as a real, anything
+  !! else as a string.
+  subroutine write_parameters(h5, model, error)
+    type(results_file_t), intent(inout) :: h5
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: v
+    integer :: i, ios
+    if (.not. allocated(model%parameter_names)) return
+    do i = 1, size(model%parameter_names)
+      read (model%parameter_values(i), *, iostat=ios) v
+      if (ios == 0 .and. verify(trim(model%parameter_values(i)), '0123456789+-.eEdD') == 0) then
+        call h5%write_summary_real('parameter_' // trim(model%parameter_names(i)), v, error)
+      else
+        call h5%write_summary_string('parameter_' // trim(model%parameter_names(i)), &
+                                     trim(model%parameter_values(i)), error)
+      end if
+      if (allocated(error)) return
+    end do
+  end subroutine write_parameters
+
   pure function default_output(deck) result(path)
     character(len=*), intent(in) :: deck
     character(len=:), allocatable :: path

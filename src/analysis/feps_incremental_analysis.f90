@@ -178,7 +178,7 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :)
     real(dp) :: t0
     integer :: s
-    logical :: born, changed
+    logical :: changed
 
     t0 = wall_clock()
     call set_up(model, solver_name, an, summary, error)
@@ -193,19 +193,9 @@ contains
     allocate (an%f_applied(3, model%nnode))
     an%f_applied = 0.0_dp
     do s = 1, size(model%stages)
-      call change_supports(model, an, s, changed, summary, error)
+      ! as a run reports a failed factorization: a nonlinear run factorizes in the stage's first step
+      call start_elastic_stage(model, an, s, summary, changed, error, name_failed_step=.not. summary%linear)
       if (allocated(error)) return
-      call activate_groups(model, an, s, born)
-      if (s == 1 .or. born .or. changed) then
-        call check_born_nodes(model, an, s, error)
-        if (allocated(error)) return
-        call factorize_tangent(model, an, .true., summary, error)
-        if (allocated(error)) then
-          ! as a run reports it: a nonlinear run factorizes in the stage's first step
-          if (.not. summary%linear) call name_step(error, model%stages(s), 1, real(s - 1, dp))
-          return
-        end if
-      end if
       call stage_increments(model, an, s, df, duc, error)
       if (allocated(error)) return
       summary%steps = summary%steps + model%stages(s)%steps
@@ -434,6 +424,31 @@ contains
     end do
   end subroutine add_linear_forces
 
+  !> The start of a stage on the elastic stiffness (the linear driver, feps --check): the
+  !! stage's supports and born groups, then a factorization when either changed (and in the
+  !! first stage). With name_failed_step a failed factorization names stage, step 1 and load
+  !! factor, as the nonlinear driver reports it.
+  subroutine start_elastic_stage(model, an, s, summary, changed, error, observer, name_failed_step)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer, intent(in) :: s
+    type(analysis_summary_t), intent(inout) :: summary
+    logical, intent(out) :: changed
+    type(error_t), allocatable, intent(out) :: error
+    class(observer_t), intent(inout), optional :: observer
+    logical, intent(in), optional :: name_failed_step
+    logical :: born
+    call change_supports(model, an, s, changed, summary, error, observer)
+    if (allocated(error)) return
+    call activate_groups(model, an, s, born)
+    if (.not. (s == 1 .or. born .or. changed)) return
+    call check_born_nodes(model, an, s, error)
+    if (allocated(error)) return
+    call factorize_tangent(model, an, .true., summary, error)
+    if (.not. allocated(error) .or. .not. present(name_failed_step)) return
+    if (name_failed_step) call name_step(error, model%stages(s), 1, real(s - 1, dp))
+  end subroutine start_elastic_stage
+
   !> Activate the groups born in stage s (true if there are any). Their point states are still
   !! zero, so their strains count from the displacement at the start of the stage.
   subroutine activate_groups(model, an, s, any_born)
@@ -527,23 +542,16 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: t0, rnorm, pnorm
     integer :: s, step
-    logical :: born, changed
+    logical :: changed
 
     allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq))
     step = 0
     do s = 1, size(model%stages)
-      call change_supports(model, an, s, changed, summary, error, observer)
+      call start_elastic_stage(model, an, s, summary, changed, error, observer=observer)
       if (allocated(error)) return
       if (changed) then
         deallocate (r)
         allocate (r(an%map%neq))
-      end if
-      call activate_groups(model, an, s, born)
-      if (s == 1 .or. born .or. changed) then
-        call check_born_nodes(model, an, s, error)
-        if (allocated(error)) return
-        call factorize_tangent(model, an, .true., summary, error)
-        if (allocated(error)) return
       end if
       call stage_increments(model, an, s, df, duc, error)
       if (allocated(error)) return

@@ -1,6 +1,7 @@
 !> End-to-end linear analyses against closed forms and each other.
 module test_analysis
   use feps_kinds, only: dp, pi
+  use feps_error, only: str
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_model, only: model_t, node_set_t, constraint_t
   use feps_deck, only: read_deck
@@ -45,7 +46,8 @@ contains
       new_unittest('model B: the symmetric half equals the full 360-degree model', test_symmetry), &
       new_unittest('fields not asked for are not computed; elastic groups keep no point state', test_fields), &
       new_unittest('REPORT, TILT: axis tilt of a cantilever column against Timoshenko', test_tilt_report), &
-      new_unittest('feps --check: the run''s model and factorization, no step, no file', test_check_only) &
+      new_unittest('feps --check: the run''s model and factorization, no step, no file', test_check_only), &
+      new_unittest('PRESSURE with VARY and VARY2: bilinear load, exact nodal forces', test_bilinear_load) &
       ]
   end subroutine collect_analysis
 
@@ -318,6 +320,33 @@ contains
     if (allocated(error)) return
     call check(error, sum(res%reaction(2, :)), p, 'shear reaction at the clamp', rel=1.0e-9_dp)
   end subroutine test_cantilever
+
+  !> test/data/bilinear_load.dat: p = p0 (x / 10) (y / 10) on a 2 x 2 top face, TOTAL = 900 N.
+  !! Each consistent nodal force is p0 / 100 times the product of the 1D integrals of the hat
+  !! function times the coordinate (25/6, 25, 125/6 at 0, 5, 10), exact with the 2 x 2 rule.
+  subroutine test_bilinear_load(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(step_result_t) :: res
+    real(dp), parameter :: p0 = 900.0_dp / 25.0_dp, a(3) = [25.0_dp / 6.0_dp, 25.0_dp, 125.0_dp / 6.0_dp]
+    integer :: n, i, j
+    call read_deck('test/data/bilinear_load.dat', model, error)
+    if (allocated(error)) return
+    call solve(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    do n = 1, model%nnode
+      if (abs(model%coords(3, n) - 10.0_dp) > 1.0e-9_dp) cycle
+      i = nint(model%coords(1, n) / 5.0_dp) + 1
+      j = nint(model%coords(2, n) / 5.0_dp) + 1
+      call check(error, res%applied_force(3, n), -p0 / 100.0_dp * a(i) * a(j), 'nodal force at x = ' // &
+                 str(model%coords(1, n)) // ', y = ' // str(model%coords(2, n)), rel=1.0e-12_dp)
+      if (allocated(error)) return
+    end do
+    call check(error, sum(res%applied_force(3, :)), -900.0_dp, 'resultant (N)', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, sum(res%applied_force(3, :) * model%coords(1, :)) / sum(res%applied_force(3, :)), &
+               20.0_dp / 3.0_dp, 'x of the resultant (mm)', rel=1.0e-12_dp)
+  end subroutine test_bilinear_load
 
   !> `feps --check` on a linear deck and on a staged one with element birth: the same DOFs,
   !! matrix and factor (nonzeros and flops of one factorization) as the run, the same total

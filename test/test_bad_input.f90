@@ -40,7 +40,8 @@ contains
       new_unittest('RELEASE before any STAGE record', test_release_before_stage), &
       new_unittest('RELEASE of a DOF not held in the stage before names node and DOF', test_release_not_held), &
       new_unittest('RELEASE of a prescribed DOF names node, DOF and the DISPLACE line', test_release_prescribed), &
-      new_unittest('PARAMETERS: a name given twice', test_parameter_twice) &
+      new_unittest('PARAMETERS: a name given twice', test_parameter_twice), &
+      new_unittest('PRESSURE with VARY2 but no VARY', test_vary2_alone) &
       ]
   end subroutine collect_bad_input
 
@@ -261,5 +262,11 @@ contains
     call expect_failure('test/data/bad/parameter_twice.dat', err_input, &
                         [character(len=40) :: 'parameter_twice.dat:16:', 'field 2', '"E_s" is given twice'], error)
   end subroutine test_parameter_twice
+
+  subroutine test_vary2_alone(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/vary2_alone.dat', err_input, &
+                        [character(len=40) :: 'vary2_alone.dat:18:', 'give VARY= too'], error)
+  end subroutine test_vary2_alone
 
 end module test_bad_input

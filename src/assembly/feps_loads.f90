@@ -56,19 +56,23 @@ contains
     end do
   end subroutine resolve_face_sets
 
-  !> Shape of a face load at global point x: 1, or linear from 0 at `zero` to 1 at `peak_at`,
+  !> Shape of a face load at global point x: 1, or linear from 0 at `zero` to 1 at `peak_at`
+  !! (times the second ramp's factor when there is one),
   !! never negative.
   pure real(dp) function load_shape(model, l, x)
     type(model_t), intent(in) :: model
     type(face_load_t), intent(in) :: l
     real(dp), intent(in) :: x(3)
     real(dp) :: c(3)
-    if (l%vary_coord == 0) then
-      load_shape = 1.0_dp
-      return
+    load_shape = 1.0_dp
+    if (l%vary_coord > 0) then
+      c = model%systems(l%vary_csys)%from_global(x)
+      load_shape = max(0.0_dp, (c(l%vary_coord) - l%zero) / (l%peak_at - l%zero))
     end if
-    c = model%systems(l%vary_csys)%from_global(x)
-    load_shape = max(0.0_dp, (c(l%vary_coord) - l%zero) / (l%peak_at - l%zero))
+    if (l%vary2_coord > 0) then
+      c = model%systems(l%vary2_csys)%from_global(x)
+      load_shape = load_shape * max(0.0_dp, (c(l%vary2_coord) - l%zero2) / (l%peak2_at - l%zero2))
+    end if
   end function load_shape
 
   !> Integral of the load's shape over its faces (the total of a unit peak intensity).

@@ -716,9 +716,9 @@ contains
       end if
       k = to_upper(f(:eq - 1))
       select case (k)
-      case ('CSYS', 'VARY', 'VARY_CSYS')
+      case ('CSYS', 'VARY', 'VARY_CSYS', 'VARY2', 'VARY2_CSYS')
         cycle
-      case ('VALUE', 'TOTAL', 'ZERO', 'PEAK')
+      case ('VALUE', 'TOTAL', 'ZERO', 'PEAK', 'ZERO2', 'PEAK2')
         call parse_real(f(eq + 1:), v, error, rec, i)
         if (allocated(error)) return
         select case (k)
@@ -736,11 +736,15 @@ contains
           l%zero = v
         case ('PEAK')
           l%peak_at = v
+        case ('ZERO2')
+          l%zero2 = v
+        case ('PEAK2')
+          l%peak2_at = v
         end select
       case default
         if (l%kind == load_pressure) then
           call input_error(error, rec%file, rec%line, 'unknown PRESSURE option "' // k // &
-                           '" (VALUE, TOTAL, VARY, ZERO, PEAK, VARY_CSYS)', i)
+                           '" (VALUE, TOTAL, VARY, ZERO, PEAK, VARY_CSYS, VARY2, ZERO2, PEAK2, VARY2_CSYS)', i)
           return
         end if
         call dof_index(k, model%systems(l%csys)%kind, dof)
@@ -766,37 +770,54 @@ contains
       call input_error(error, rec%file, rec%line, 'TRACTION with TOTAL= needs a nonzero direction')
       return
     end if
-    ! A linear variation in one coordinate
-    call option_text(rec, 'VARY', text, ifield, found)
-    if (found) then
-      l%vary_csys = csys_cartesian
-      select case (to_upper(text))
-      case ('X')
-        l%vary_coord = 1
-      case ('Y')
-        l%vary_coord = 2
-      case ('Z')
-        l%vary_coord = 3
-      case ('R')
-        l%vary_coord = 1
-        l%vary_csys = csys_cylindrical
-      case ('THETA', 'T')
-        l%vary_coord = 2
-        l%vary_csys = csys_cylindrical
-      case default
-        call input_error(error, rec%file, rec%line, 'VARY takes X, Y, Z, R or THETA, not "' // text // '"', &
-                         ifield)
-        return
-      end select
-      call get_csys_option(rec, model, 'VARY_CSYS', l%vary_csys, l%vary_csys, error)
-      if (allocated(error)) return
-      if (l%peak_at == l%zero) then
-        call input_error(error, rec%file, rec%line, 'VARY needs ZERO= and PEAK= at different places')
-        return
-      end if
+    ! A linear variation in one coordinate, and optionally in a second one (the product)
+    call read_ramp('', l%vary_csys, l%vary_coord, l%zero, l%peak_at)
+    if (allocated(error)) return
+    call read_ramp('2', l%vary2_csys, l%vary2_coord, l%zero2, l%peak2_at)
+    if (allocated(error)) return
+    if (l%vary2_coord > 0 .and. l%vary_coord == 0) then
+      call input_error(error, rec%file, rec%line, 'VARY2 is the second variation: give VARY= too')
+      return
     end if
     tmp = [model%face_loads, l]
     call move_alloc(tmp, model%face_loads)
+  contains
+    !> VARY<n>=coordinate with ZERO<n>= and PEAK<n>= (and VARY<n>_CSYS=), n = '' or '2'.
+    subroutine read_ramp(n, csys, coord, zero, peak_at)
+      character(len=*), intent(in) :: n
+      integer, intent(inout) :: csys, coord
+      real(dp), intent(in) :: zero, peak_at
+      integer :: default_csys
+      call option_text(rec, 'VARY' // n, text, ifield, found)
+      if (.not. found) return
+      csys = csys_cartesian
+      select case (to_upper(text))
+      case ('X')
+        coord = 1
+      case ('Y')
+        coord = 2
+      case ('Z')
+        coord = 3
+      case ('R')
+        coord = 1
+        csys = csys_cylindrical
+      case ('THETA', 'T')
+        coord = 2
+        csys = csys_cylindrical
+      case default
+        call input_error(error, rec%file, rec%line, 'VARY' // n // ' takes X, Y, Z, R or THETA, not "' // text // &
+                         '"', ifield)
+        return
+      end select
+      default_csys = csys
+      call get_csys_option(rec, model, 'VARY' // n // '_CSYS', default_csys, csys, error)
+      if (allocated(error)) return
+      if (peak_at == zero) then
+        call input_error(error, rec%file, rec%line, 'VARY' // n // ' needs ZERO' // n // '= and PEAK' // n // &
+                         '= at different places')
+        return
+      end if
+    end subroutine read_ramp
   end subroutine read_face_load
 
   subroutine read_solver(rec, model, error)

@@ -91,7 +91,8 @@ module feps_model
   !> Distributed load on a face set. Pressure acts against the outward normal; a traction has
   !! components in the directions of system csys. Intensity = peak * shape(x), where shape is
   !! 1 (uniform) or linear in one coordinate of system vary_csys: 0 at `zero`, 1 at `peak_at`,
-  !! clipped below at 0. With `use_total` the peak is scaled so that the integral of the
+  !! clipped below at 0, times a second such ramp when vary2_coord > 0 (a bilinear load, e.g.
+  !! linear in x and in r). With `use_total` the peak is scaled so that the integral of the
   !! intensity over the faces equals `total`.
   type, public :: face_load_t
     integer :: stage = 0                     !! 0: reference load scaled by LOAD=; s: increment in stage s
@@ -106,6 +107,10 @@ module feps_model
     integer :: vary_coord = 0                !! 0: uniform; 1..3: coordinate of vary_csys
     real(dp) :: zero = 0.0_dp
     real(dp) :: peak_at = 1.0_dp
+    integer :: vary2_csys = 2                !! the second ramp (VARY2=): same meaning
+    integer :: vary2_coord = 0               !! 0: none
+    real(dp) :: zero2 = 0.0_dp
+    real(dp) :: peak2_at = 1.0_dp
     character(len=:), allocatable :: file
     integer :: line = 0
   end type face_load_t

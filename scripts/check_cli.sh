@@ -78,6 +78,7 @@ done
 # --check: the whole model checked and factorized once, no step taken, no file written.
 expect_status "--check input/modelB.dat" 0 "$feps" input/modelB.dat --check --output "$tmp/chk.h5"
 grep -q "^checked " "$tmp/out" && grep -q "^dofs  *15049$" "$tmp/out" && grep -q "nonlinear: 1 stage(s), 400 steps" "$tmp/out" \
+  && grep -q "^stage load: 400 steps, initial-stiffness, at most 10 iterations per step; load increment" "$tmp/out" \
   && [ ! -e "$tmp/chk.h5" ] && [ ! -e "$tmp/chk.h5.part" ] && [ ! -e "$tmp/chk.xmf" ] \
   && ok "--check reports the model and writes no file" || bad "--check reports the model and writes no file: $(cat "$tmp/out")"
 

@@ -169,16 +169,19 @@ contains
   !! (a missing support or rigid-body mode is found there, as in a run; summary%factor_nnz,
   !! %flops and the pivot ratios are those of the factorization). The same errors as
   !! run_analysis up to that point.
-  subroutine check_analysis(model, solver_name, summary, error)
+  subroutine check_analysis(model, solver_name, summary, error, observer)
     type(model_t), intent(inout) :: model     !! face sets are resolved into it
     character(len=*), intent(in) :: solver_name
     type(analysis_summary_t), intent(out) :: summary
     type(error_t), allocatable, intent(out) :: error
+    class(observer_t), intent(inout), optional :: observer   !! gets one line per stage
     type(analysis_t) :: an
     real(dp), allocatable :: df(:, :), duc(:, :)
-    real(dp) :: t0
-    integer :: s
+    real(dp) :: t0, f(3)
+    integer :: s, g
     logical :: changed
+    character(len=:), allocatable :: line
+    character(len=40) :: buf
 
     t0 = wall_clock()
     call set_up(model, solver_name, an, summary, error)
@@ -194,12 +197,26 @@ contains
     an%f_applied = 0.0_dp
     do s = 1, size(model%stages)
       ! as a run reports a failed factorization: a nonlinear run factorizes in the stage's first step
-      call start_elastic_stage(model, an, s, summary, changed, error, name_failed_step=.not. summary%linear)
+      call start_elastic_stage(model, an, s, summary, changed, error, observer=observer, &
+                               name_failed_step=.not. summary%linear)
       if (allocated(error)) return
       call stage_increments(model, an, s, df, duc, error)
       if (allocated(error)) return
       summary%steps = summary%steps + model%stages(s)%steps
-      summary%applied_force = summary%applied_force + sum(df, dim=2)
+      f = sum(df, dim=2)
+      summary%applied_force = summary%applied_force + f
+      if (.not. present(observer)) cycle
+      associate (st => model%stages(s), c => model%stages(s)%controls)
+        line = 'stage ' // st%name // ': ' // str(st%steps) // ' steps, ' // &
+               trim(merge('linear (one solve)     ', method_names(c%method), summary%linear))
+        if (.not. summary%linear) line = line // ', at most ' // str(c%max_iterations) // ' iterations per step'
+        write (buf, '(3(1x,es10.3))') f
+        line = line // '; load increment' // trim(buf) // ' N; ' // str(count(duc /= 0.0_dp)) // ' DOFs moved'
+        do g = 1, size(model%groups)
+          if (model%groups(g)%activate_stage == s .and. s > 1) line = line // '; born: ' // model%groups(g)%name
+        end do
+      end associate
+      call observer%progress(line)
     end do
     summary%factor_nnz = an%solver%factor_nnz
     summary%flops = an%solver%flops

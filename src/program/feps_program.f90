@@ -147,7 +147,8 @@ contains
     end if
     if (options%max_iterations > 0) call override_max_iterations(model, options%max_iterations)
     if (options%check_only) then
-      call check_only(model, solver, summary, error)
+      if (present(sink)) obs%sink => sink
+      call check_only(model, solver, obs, summary, error)
       summary%wall_time = wall_clock() - t0
       return
     end if
@@ -205,13 +206,18 @@ contains
 
   !> `feps --check`: every check a run makes before its first step (check_analysis), one
   !! elastic factorization per stage whose elements change, and no result file.
-  subroutine check_only(model, solver, summary, error)
+  subroutine check_only(model, solver, obs, summary, error)
     type(model_t), intent(inout) :: model
     character(len=*), intent(in) :: solver
+    type(results_observer_t), intent(inout) :: obs     !! forwards the stage lines (writes nothing)
     type(run_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
     type(analysis_summary_t) :: an
-    call check_analysis(model, solver, an, error)
+    if (associated(obs%sink)) then
+      call check_analysis(model, solver, an, error, obs)
+    else
+      call check_analysis(model, solver, an, error)
+    end if
     if (allocated(error)) return
     summary%checked_only = .true.
     summary%output = ''

@@ -112,6 +112,15 @@ ua, ub = a["steps/0001/displacement"][...], b["steps/0001/displacement"][...]
 assert np.abs(ua - ub).max() <= 1e-9 * np.abs(ua).max()
 PY
 
+# The CalculiX exporter takes a thesis deck (its PARAMETERS are labels) and refuses, with the
+# deck's line, what it cannot write (a second load variation).
+python3 scripts/export_inp.py "$tmp/b_cholmod.h5" input/modelB/SE1.dat -o "$tmp/se1.inp" >"$tmp/out" 2>&1 \
+  && grep -q "^\*STEP" "$tmp/se1.inp" && ok "export_inp.py writes model B SE1" || bad "export_inp.py writes model B SE1: $(cat "$tmp/out")"
+"$feps" test/data/bilinear_load.dat --output "$tmp/bl.h5" --quiet >/dev/null 2>&1
+python3 scripts/export_inp.py "$tmp/bl.h5" test/data/bilinear_load.dat -o "$tmp/bl.inp" >"$tmp/out" 2>&1; got=$?
+[ "$got" -ne 0 ] && grep -q "bilinear_load.dat:21: unknown PRESSURE options" "$tmp/out" && [ ! -e "$tmp/bl.inp" ] \
+  && ok "export_inp.py refuses VARY2 naming the line" || bad "export_inp.py refuses VARY2 naming the line: $(cat "$tmp/out")"
+
 # A campaign with a bad deck stops before running anything (feps --check on every deck first).
 camp="check_cli_$$"
 FEPS="$PWD/$feps" bash scripts/campaign.sh "$camp" test/data/cube.dat test/data/bad/rigid_body_mode.dat \

@@ -18,7 +18,8 @@ hex8 faces, 3x3 on hex20 faces) times the face shape functions and area, with TO
 the same quadrature. A per-face *DLOAD could not carry feps's intensity, which varies inside a
 face and is cut off at ZERO.
 
-Only what a linear run with one load case needs is accepted: ELASTIC materials, solid groups
+Only what a linear run with one load case needs is accepted (PARAMETERS records are labels and
+are skipped): ELASTIC materials, solid groups
 hex8/hex20/hex20r, at most one STAGE with LOAD=1. Anything else (interfaces, DISPLACE,
 TRACTION, CSYS, nodal systems in FIX, several stages) is refused with the deck's line number.
 The step asks for the displacements of all nodes in the .dat file (*NODE PRINT) and, with
@@ -41,7 +42,7 @@ HEX20_FACES = [(1, 4, 3, 2, 12, 11, 10, 9), (5, 6, 7, 8, 13, 14, 15, 16), (1, 2,
 QUAD_CORNERS = np.array([(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)])
 
 DATAIN_KEYS = {"A", "%", "E"}
-IGNORED = {"TITLE", "REPORT", "SOLVER", "OUTPUT", "CONTROLS", "INCLUDE", "NODE"}
+IGNORED = {"TITLE", "REPORT", "SOLVER", "OUTPUT", "CONTROLS", "INCLUDE", "NODE", "PARAMETERS"}
 
 
 class DeckError(Exception):

@@ -162,5 +162,24 @@ with h5py.File(sys.argv[2]) as f:       # the deck's PARAMETERS record, in /summ
     assert float(a["parameter_E_s"]) == 50.0 and a["parameter_kind"] in (b"S", "S"), dict(a)
 PY
 
+# A parametric campaign end to end: decks with PARAMETERS, campaign.sh's CSV has their columns,
+# plot_campaign.py draws the trend (and names a column the CSV lacks).
+camp="check_cli_sweep_$$"
+FEPS="$PWD/$feps" JOBS=2 bash scripts/campaign.sh "$camp" "$tmp/mb_grid/SE_Es144.dat" "$tmp/mb_grid/SE_Es50.dat" \
+  >"$tmp/out" 2>&1
+python3 - "results/$camp/summary.csv" <<'PY' && ok "campaign.sh: one column per PARAMETERS value" \
+  || bad "campaign.sh: one column per PARAMETERS value: $(cat "results/$camp/summary.csv" 2>/dev/null | head -3)"
+import csv, sys
+rows = {r["case"]: r for r in csv.DictReader(open(sys.argv[1]))}
+assert rows["SE_Es50"]["E_s"] == "50" and rows["SE_Es144"]["kind"] == "S", rows
+assert float(rows["SE_Es50"]["peak_tensile_pipe_MPa"]) > float(rows["SE_Es144"]["peak_tensile_pipe_MPa"])
+PY
+python3 scripts/plot_campaign.py "results/$camp/summary.csv" --x E_s --y peak_tensile_pipe_MPa -o "$tmp/trend.png" \
+  >"$tmp/out" 2>&1 && [ -s "$tmp/trend.png" ] && ok "plot_campaign.py draws the trend" || bad "plot_campaign.py draws the trend: $(cat "$tmp/out")"
+python3 scripts/plot_campaign.py "results/$camp/summary.csv" --x E_s --y nu_p -o "$tmp/none.png" >"$tmp/out" 2>&1; got=$?
+[ "$got" -ne 0 ] && grep -q "no column(s) \['nu_p'\]" "$tmp/out" && [ ! -e "$tmp/none.png" ] \
+  && ok "plot_campaign.py names a missing column" || bad "plot_campaign.py names a missing column: $(cat "$tmp/out")"
+rm -rf "results/$camp"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -323,10 +323,15 @@ contains
     summary%matrix_nnz = an%a%nnz()
     call an%solver%analyze(an%a, error)
     if (allocated(error)) return
-    if (present(observer)) call observer%progress('stage ' // model%stages(s)%name // ': supports change: ' // &
-                                                  str(nheld) // ' DOFs held from here, ' // str(nfreed) // &
-                                                  ' released (their support forces removed over the stage); ' // &
-                                                  str(an%map%neq) // ' equations')
+    if (.not. present(observer)) return
+    if (nfreed > 0) then
+      call observer%progress('stage ' // model%stages(s)%name // ': supports change: ' // str(nheld) // &
+                             ' DOFs held from here, ' // str(nfreed) // ' released (their support forces ' // &
+                             'removed over the stage); ' // str(an%map%neq) // ' equations')
+    else
+      call observer%progress('stage ' // model%stages(s)%name // ': supports change: ' // str(nheld) // &
+                             ' DOFs held from here; ' // str(an%map%neq) // ' equations')
+    end if
   end subroutine change_supports
 
   subroutine init_states(model, an)

@@ -41,7 +41,10 @@ contains
       new_unittest('RELEASE of a DOF not held in the stage before names node and DOF', test_release_not_held), &
       new_unittest('RELEASE of a prescribed DOF names node, DOF and the DISPLACE line', test_release_prescribed), &
       new_unittest('PARAMETERS: a name given twice', test_parameter_twice), &
-      new_unittest('PRESSURE with VARY2 but no VARY', test_vary2_alone) &
+      new_unittest('PRESSURE with VARY2 but no VARY', test_vary2_alone), &
+      new_unittest('FIX from a later stage of a prescribed DOF names node, DOF and the DISPLACE line', &
+                   test_fix_prescribed), &
+      new_unittest('PARAMETERS: a name starting with a digit', test_parameter_bad_name) &
       ]
   end subroutine collect_bad_input
 
@@ -268,5 +271,18 @@ contains
     call expect_failure('test/data/bad/vary2_alone.dat', err_input, &
                         [character(len=40) :: 'vary2_alone.dat:18:', 'give VARY= too'], error)
   end subroutine test_vary2_alone
+
+  subroutine test_fix_prescribed(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fix_prescribed.dat', err_input, &
+                        [character(len=40) :: 'fix_prescribed.dat:22:', 'FIX of node 5, DOF uz', 'stage hold', &
+                         'DISPLACE at line 21'], error)
+  end subroutine test_fix_prescribed
+
+  subroutine test_parameter_bad_name(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/parameter_bad_name.dat', err_input, &
+                        [character(len=40) :: 'parameter_bad_name.dat:15:', 'field 3', '"2nd_soil"'], error)
+  end subroutine test_parameter_bad_name
 
 end module test_bad_input

@@ -4,7 +4,7 @@ another, from the CSV a campaign writes (scripts/campaign.sh's summary.csv, whos
 columns come from the decks' PARAMETERS records, or scripts/postprocess_model_c.py's table.csv).
 
     python3 scripts/plot_campaign.py CSV --x PARAM --y QUANTITY [--y QUANTITY ...] [--by PARAM]
-                                     [--where PARAM=VALUE ...] [-o FIGURE.png] [--title TEXT]
+                                     [--where PARAM=VALUE ...] [--logx] [-o FIGURE.png] [--title TEXT]
 
 Rows whose status is not "ok" (campaign.sh) are left out and counted; a row without a number
 in a column that is plotted is an error naming the row and column, not a silent gap.
@@ -65,6 +65,7 @@ def main(argv=None):
     ap.add_argument("--where", action="append", default=[], metavar="PARAM=VALUE", help="keep only these rows")
     ap.add_argument("-o", "--output", help="figure file (default: CSV name with _<y>.png)")
     ap.add_argument("--title")
+    ap.add_argument("--logx", action="store_true", help="logarithmic horizontal axis (e.g. soil moduli)")
     args = ap.parse_args(argv)
     filters = []
     for w in args.where:
@@ -84,7 +85,7 @@ def main(argv=None):
     for i, row in enumerate(rows):
         key = row[args.by] if args.by else ""
         groups.setdefault(key, []).append(row)
-    fig, axes = plt.subplots(1, len(args.y), figsize=(5.0 * len(args.y), 4.0), squeeze=False)
+    fig, axes = plt.subplots(1, len(args.y), figsize=(max(7.0, 5.0 * len(args.y)), 4.0), squeeze=False)
     for ax, quantity in zip(axes[0], args.y):
         for key in sorted(groups, key=lambda k: (_as_float(k), k)):
             pts = sorted((number(r, args.x, f"row {r.get('case', '?')}"), number(r, quantity, f"row {r.get('case', '?')}"))
@@ -93,6 +94,8 @@ def main(argv=None):
             ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=label)
         ax.set_xlabel(args.x)
         ax.set_ylabel(quantity)
+        if args.logx:
+            ax.set_xscale("log")
         ax.grid(True, alpha=0.3)
         if args.by:
             ax.legend()

@@ -33,11 +33,12 @@ Gauss points of the last step ('/steps/NNNN/principal/<group>' column 0), concre
 import os
 import sys
 
-import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import orderings_model_a_ch9 as model_a  # noqa: E402  (hex8 Gauss points, last step)
+from make_model_c import case_name  # noqa: E402
+from postprocess_model_c import peak_tension_pipes  # noqa: E402
 
 MEAN_PRESSURE_B = 4.21            # MPa: model B's end load 1000 kN over the half annulus (SPEC 8)
 TENSION_FRACTION_B = 0.25         # of the mean pressure: the "wider region" threshold
@@ -53,17 +54,6 @@ def model_b_measures(path):
     outer = np.hypot(x[:, 0], x[:, 1]) > 0.5 * (node_r[-1] + node_r[-2])
     return {"peak": float(s1.max()), "peak_external": float(s1[outer].max()),
             "volume": float(vol[s1 >= TENSION_FRACTION_B * MEAN_PRESSURE_B].sum())}
-
-
-def peak_concrete(path, groups=("top_pipe", "bottom_pipe")):
-    """Max s1 (MPa) over the Gauss points of the given groups at the last step."""
-    with h5py.File(path, "r") as f:
-        step = f["steps"][model_a.last_step(f)]
-        return max(float(step["principal"][g][:, 0].max()) for g in groups)
-
-
-def model_c_case(G, nu, beta):
-    return f"C_G{G:g}_nu{nu:g}_b{beta:g}"
 
 
 def model_b_rows(results_dir):
@@ -88,10 +78,10 @@ def model_c_rows(results_dir):
     for G in SHEAR_MODULI_C:
         for nu in POISSON_C:
             for b in BETAS_C:
-                case = model_c_case(G, nu, b)
+                case = case_name(G, nu, b)
                 path = os.path.join(results_dir, case, case + ".h5")
                 if os.path.exists(path):
-                    peaks[(G, nu, b)] = peak_concrete(path)
+                    peaks[(G, nu, b)] = peak_tension_pipes(path)
     rows = []
     quantity = "peak s1 in the pipes (MPa): "
     for b in BETAS_C:

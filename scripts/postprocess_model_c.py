@@ -343,7 +343,10 @@ def postprocess(h5path, verbose=True):
 # ------------------------------------------------------------------------------------------
 
 def case_name(G, nu, beta):
-    return f"C_G{G:g}_nu{nu:g}_b{beta:g}"
+    """The deck writer's name of a thesis case (make_model_c.py)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import make_model_c
+    return make_model_c.case_name(G, nu, beta)
 
 
 def _rows(name):

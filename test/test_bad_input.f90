@@ -44,7 +44,10 @@ contains
       new_unittest('PRESSURE with VARY2 but no VARY', test_vary2_alone), &
       new_unittest('FIX from a later stage of a prescribed DOF names node, DOF and the DISPLACE line', &
                    test_fix_prescribed), &
-      new_unittest('PARAMETERS: a name starting with a digit', test_parameter_bad_name) &
+      new_unittest('PARAMETERS: a name starting with a digit', test_parameter_bad_name), &
+      new_unittest('a node repeat count beyond the mesh size limit', test_repeat_too_large), &
+      new_unittest('an element repeat count beyond the mesh size limit', test_element_repeat_too_large), &
+      new_unittest('a NODE number beyond the mesh size limit', test_node_number_too_large) &
       ]
   end subroutine collect_bad_input
 
@@ -185,6 +188,29 @@ contains
     call expect_failure('test/data/bad/node_out_of_range.dat', err_input, &
                         [character(len=40) :: 'node_out_of_range.dat:9:', '99'], error)
   end subroutine test_node_out_of_range
+
+  !> A mistyped repeat count is refused before any node is generated (it used to fill the
+  !! machine's memory).
+  subroutine test_repeat_too_large(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/repeat_too_large.dat', err_input, &
+                        [character(len=60) :: 'repeat_too_large.dat:5: field 2:', &
+                         'the mesh would have 300000000 nodes', 'more than feps reads (20000000)'], error)
+  end subroutine test_repeat_too_large
+
+  subroutine test_element_repeat_too_large(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/element_repeat_too_large.dat', err_input, &
+                        [character(len=60) :: 'element_repeat_too_large.dat:12: field 2:', &
+                         'the mesh would have 120000000 elements', 'more than feps reads (20000000)'], error)
+  end subroutine test_element_repeat_too_large
+
+  subroutine test_node_number_too_large(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/node_number_too_large.dat', err_input, &
+                        [character(len=60) :: 'node_number_too_large.dat:16: field 2:', &
+                         'node number 2000000000 is larger than feps reads (20000000)'], error)
+  end subroutine test_node_number_too_large
 
   subroutine test_duplicate_node(error)
     type(error_t), allocatable, intent(out) :: error

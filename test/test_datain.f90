@@ -585,6 +585,13 @@ contains
     call mesh_error([character(len=30) :: 'A, 2, 0., 0., 0.', '%, 2, 1., 0., 0.', &
                      '%, 2000000000, 0., 1., 0.', 'E', 'E'], got)
     call expect_error(error, got, err_input, name // ':3: field 2: ', 'repeat count too large')
+    if (allocated(error)) return
+    ! one node past the mesh size limit, counted across node blocks: 3 + 2 x 9999999 = 2e7 + 1
+    ! (the second block alone is within it)
+    call mesh_error([character(len=30) :: 'A, 2, 0., 0., 0.', '%, 3, 1., 0., 0.', 'E', &
+                     'A, 2, 0., 0., 1.', '%, 2, 1., 0., 0.', '%, 9999999, 0., 1., 0.', 'E', 'E'], got)
+    call expect_error(error, got, err_input, name // ':6: field 2: ', &
+                      'the mesh would have 20000001 nodes, more than feps reads (20000000)')
   end subroutine test_error_zero_repeat
 
   !> Records that end inside a block, or before the final E; the line is the last one.

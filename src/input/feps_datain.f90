@@ -46,6 +46,13 @@ module feps_datain
 
   public :: element_block_t, datain_mesh_t
   public :: datain_read_block, datain_read_file, datain_read_records, is_datain_record, datain_check
+  public :: max_mesh_nodes, max_mesh_elements
+
+  !> Most nodes and elements a mesh may have. Far beyond what a machine can factor (a 3D mesh
+  !! of 20 million nodes needs terabytes for its Cholesky factor), so a mistyped repeat count
+  !! is an input error at once instead of filling the machine's memory with generated nodes.
+  integer, parameter :: max_mesh_nodes = 20000000
+  integer, parameter :: max_mesh_elements = 20000000
 
   !> Elements of one `A ... E` element block.
   type :: element_block_t
@@ -315,7 +322,7 @@ contains
           return
         end if
         count = merge(n - 1, -n, n > 0)
-        call make_room(records(pos), npts, layer, count, 'nodes', error)
+        call make_room(records(pos), mesh%nnode + npts, layer, count, 'nodes', max_mesh_nodes, error)
         if (allocated(error)) return
         call grow_real(local, npts + layer * count, ok)
         if (.not. ok) then
@@ -336,10 +343,6 @@ contains
       end select
     end do
 
-    if (int(mesh%nnode, i8) + npts > int(huge(1), i8)) then
-      call record_error(error, records(first_pos), 'too many nodes: more than ' // str(huge(1)))
-      return
-    end if
     call resize_coords(mesh, mesh%nnode + npts)
     do k = 1, npts
       mesh%coords(:, mesh%nnode + k) = systems(c)%to_global(local(:, k))
@@ -408,7 +411,8 @@ contains
           return
         end if
         count = merge(n - 1, -n, n > 0)
-        call make_room(records(pos), nel, layer, count, 'elements', error)
+        call make_room(records(pos), mesh%nelements() + nel, layer, count, 'elements', &
+                       max_mesh_elements, error)
         if (allocated(error)) return
         call grow_int(conn, nel + layer * count, ok)
         if (.not. ok) then
@@ -535,15 +539,18 @@ contains
     call move_alloc(coords, mesh%coords)
   end subroutine resize_coords
 
-  !> Error unless a repeat adding `count` copies of `layer` items to `have` keeps the
-  !! numbering within default integers.
-  pure subroutine make_room(rec, have, layer, count, what, error)
+  !> Error unless a repeat adding `count` copies of `layer` items to the mesh's `have` keeps
+  !! their number within `limit`.
+  pure subroutine make_room(rec, have, layer, count, what, limit, error)
     type(record_t), intent(in) :: rec
-    integer, intent(in) :: have, layer, count
+    integer, intent(in) :: have, layer, count, limit
     character(len=*), intent(in) :: what
     type(error_t), allocatable, intent(out) :: error
-    if (int(have, i8) + int(layer, i8) * int(count, i8) > int(huge(1), i8)) then
-      call record_error(error, rec, 'repeat count too large: more than ' // str(huge(1)) // ' ' // what, 2)
+    integer(i8) :: total
+    total = int(have, i8) + int(layer, i8) * int(count, i8)
+    if (total > int(limit, i8)) then
+      call record_error(error, rec, 'repeat count too large: the mesh would have ' // str(total) // &
+                        ' ' // what // ', more than feps reads (' // str(limit) // ')', 2)
     end if
   end subroutine make_room
 

@@ -7,7 +7,7 @@ module feps_deck
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, fatal_error, err_input, str
   use feps_records, only: record_t, read_records, keyword, nfields, field_text
-  use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check
+  use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check, max_mesh_nodes
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, &
                                     cylindrical_about, csys_cartesian, csys_cylindrical
   use feps_model, only: model_t, element_group_t, material_spec_t, node_set_t, face_set_t, &
@@ -346,6 +346,11 @@ contains
     if (allocated(error)) return
     if (id < 1) then
       call input_error(error, rec%file, rec%line, 'node number ' // str(id) // ' must be positive', 2)
+      return
+    end if
+    if (id > max_mesh_nodes) then
+      call input_error(error, rec%file, rec%line, 'node number ' // str(id) // ' is larger than feps reads (' // &
+                       str(max_mesh_nodes) // ')', 2)
       return
     end if
     do i = 1, 3

@@ -75,6 +75,21 @@ for deck in test/data/bad/*.dat; do
   fi
 done
 
+# Mutated decks (fixed seeds): a clear answer every time, never a crash, a hang or a runaway
+# allocation (scripts/fuzz_input.py; longer campaigns in docs/verification.md).
+python3 scripts/fuzz_input.py --feps "$feps" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+  && ok "fuzz --check: $(tail -n 1 "$tmp/out")" || bad "fuzz --check: $(grep FAIL "$tmp/out" | head -3)"
+python3 scripts/fuzz_input.py --feps "$feps" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+  && ok "fuzz --run: $(tail -n 1 "$tmp/out")" || bad "fuzz --run: $(grep FAIL "$tmp/out" | head -3)"
+# ... and the fuzzer does fail on a program that crashes (exit 134) or hangs
+printf '#!/bin/sh\necho "Program received signal SIGSEGV" >&2\nexit 134\n' >"$tmp/crash" && chmod +x "$tmp/crash"
+printf '#!/bin/sh\nsleep 30\n' >"$tmp/hang" && chmod +x "$tmp/hang"
+python3 scripts/fuzz_input.py --feps "$tmp/crash" --cases 2 --out "$tmp/fuzzc" >"$tmp/out" 2>&1; got=$?
+[ "$got" -eq 1 ] && grep -q "exit 134" "$tmp/out" && [ "$(ls "$tmp/fuzzc" | wc -l)" -eq 2 ] \
+  && ok "fuzz flags a crash and keeps the mutants" || bad "fuzz flags a crash: exit $got, $(head -c 300 "$tmp/out")"
+python3 scripts/fuzz_input.py --feps "$tmp/hang" --cases 1 --timeout 1 --out "$tmp/fuzzh" >"$tmp/out" 2>&1; got=$?
+[ "$got" -eq 1 ] && grep -q "no answer within 1 s" "$tmp/out" && ok "fuzz flags a hang" || bad "fuzz flags a hang: exit $got, $(head -c 300 "$tmp/out")"
+
 # --check: the whole model checked and factorized once, no step taken, no file written.
 expect_status "--check input/modelB.dat" 0 "$feps" input/modelB.dat --check --output "$tmp/chk.h5"
 grep -q "^checked " "$tmp/out" && grep -q "^dofs  *15049$" "$tmp/out" && grep -q "nonlinear: 1 stage(s), 400 steps" "$tmp/out" \

@@ -1,0 +1,210 @@
+#!/usr/bin/env python3
+"""Fuzz feps's input handling: mutate valid decks at random and require a clear answer.
+
+    python3 scripts/fuzz_input.py [--feps PATH] [--decks GLOB ...] [--cases N] [--seed S]
+                                  [--run] [--timeout S] [--memory-gb G] [--out DIR]
+
+Each case takes a deck (default: the small decks in test/data), changes one to three of its
+lines (a field replaced by junk or an extreme number, a line deleted, duplicated or cut short,
+the file cut off) and runs `feps --check` on it, or the whole analysis with `--run`. The
+mutant sits in a copy of the deck's folder, so INCLUDE still finds its files.
+
+A case passes when feps ends with
+  - exit 0 (the mutant is still a valid deck), or
+  - exit 2 and exactly one line on stderr, `feps: error: ...` naming the mutant's file
+    (bad input), or
+  - with `--run` only: exit 1 and exactly one `feps: error: ...` line (a clear numerical stop,
+    such as a step that does not converge after its cut-backs),
+and, when it did not end with 0, left no result file. Anything else fails: another exit
+status (a crash, a Fortran runtime error), more than one line, a message without the file, a
+run past `--timeout` (a hang; a run still stepping through a mutated STEPS= of 100 000 or
+more is reported as a long run instead), or memory past `--memory-gb` (the limit turns a runaway
+allocation into a failure instead of taking the machine). Failing mutants are copied to
+`--out` (default results/fuzz) with the command that failed. Exit status 1 if any case failed.
+
+The same seed gives the same cases. check_cli.sh runs a short fixed-seed campaign; longer
+ones (docs/verification.md, "Input fuzzing") are run by hand.
+"""
+import argparse
+import glob
+import os
+import random
+import re
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+JUNK = ['', 'abc', '-1', '0', '1e400', 'nan', 'inf', '-inf', '1e-400', '999999999999',
+        '2147483648', '-0', '1.5', ',', '=', "'", '1d5', '*', '  ', 'E=', ',,,', '1e308',
+        '-1e308', '100000000']
+EXTREME_NUMBERS = ['0', '-1', '1e30', '1e-30', '0.5', '-0.999', '100000000', '3', '0.4999999']
+NUMBER = re.compile(r'-?\d+(\.\d*)?([eEdD][-+]?\d+)?')
+SPLIT = re.compile(r'(\s*[,=]\s*|\s+)')
+
+
+def mutate(text, rng):
+    """One to three random changes to the deck's lines; the file may also be cut off."""
+    lines = text.split('\n')
+    for _ in range(rng.randint(1, 3)):
+        if not lines:
+            break
+        i = rng.randrange(len(lines))
+        tokens = SPLIT.split(lines[i])
+        op = rng.randrange(6)
+        if op == 0:
+            tokens[rng.randrange(len(tokens))] = rng.choice(JUNK)
+            lines[i] = ''.join(tokens)
+        elif op == 1:
+            del lines[i]
+        elif op == 2:
+            lines.insert(i, lines[rng.randrange(len(lines))])
+        elif op == 3:
+            lines[i] = lines[i][:rng.randrange(len(lines[i]) + 1)]
+        elif op == 4:
+            numbers = [k for k, t in enumerate(tokens) if NUMBER.fullmatch(t.strip())]
+            if numbers:
+                tokens[rng.choice(numbers)] = rng.choice(EXTREME_NUMBERS)
+                lines[i] = ''.join(tokens)
+        else:
+            lines = lines[:i]
+            break
+    return '\n'.join(lines)
+
+
+def limit_memory(gigabytes):
+    def apply():
+        limit = int(gigabytes * 2**30)
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+    return apply
+
+
+def long_run(progress):
+    """The steps a stage asks for, if the progress file shows a run still stepping through a
+    stage of at least 100 000 steps (a mutated STEPS=; a long run, not a hang), else 0."""
+    try:
+        with open(progress, 'rb') as f:
+            f.seek(0, os.SEEK_END)
+            f.seek(max(0, f.tell() - 4096))
+            tail = f.read().decode(errors='replace').splitlines()
+    except OSError:
+        return 0
+    steps = [re.search(r'step\s+(\d+)/(\d+)', line) for line in tail]
+    steps = [(int(m.group(1)), int(m.group(2))) for m in steps if m]
+    if len(steps) >= 2 and steps[-1][1] >= 100000 and steps[-1][0] > steps[0][0]:
+        return steps[-1][1]
+    return 0
+
+
+def judge(status, stderr, mutant, run_mode, leftovers):
+    """None if feps answered clearly, else what was wrong."""
+    lines = [line for line in stderr.splitlines() if line.strip()]
+    if status == 0:
+        return None
+    if leftovers:
+        return f'exit {status} but left {", ".join(leftovers)}'
+    if status not in (1, 2) or (status == 1 and not run_mode):
+        return f'exit {status}'
+    if len(lines) != 1:
+        return f'exit {status} with {len(lines)} lines on stderr'
+    if not lines[0].startswith('feps: error: '):
+        return f'exit {status}: the line is not "feps: error: ..."'
+    if status == 2 and os.path.basename(mutant) not in lines[0]:
+        return 'exit 2: the message does not name the file'
+    return None
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('--feps', help='the feps executable (default: the debug build, via fpm)')
+    ap.add_argument('--decks', nargs='+', default=[os.path.join(ROOT, 'test', 'data', '*.dat')],
+                    help='glob patterns of the decks to mutate (default: test/data/*.dat)')
+    ap.add_argument('--max-size', type=int, default=6000,
+                    help='leave out decks larger than this many bytes (default 6000)')
+    ap.add_argument('--cases', type=int, default=100)
+    ap.add_argument('--seed', type=int, default=1)
+    ap.add_argument('--run', action='store_true', help='run the analyses, not only --check')
+    ap.add_argument('--timeout', type=float, default=60.0, help='seconds per case (default 60)')
+    ap.add_argument('--memory-gb', type=float, default=4.0, help='address space per case (default 4)')
+    ap.add_argument('--out', default=os.path.join(ROOT, 'results', 'fuzz'))
+    args = ap.parse_args()
+    if args.cases < 1:
+        sys.exit('fuzz_input.py: --cases must be at least 1')
+
+    feps = args.feps
+    if feps is None:
+        got = subprocess.run(['fpm', 'run', '--runner', 'echo'], cwd=ROOT, capture_output=True, text=True)
+        feps = os.path.join(ROOT, got.stdout.strip().splitlines()[-1]) if got.returncode == 0 else ''
+    feps = os.path.abspath(feps)
+    if not os.access(feps, os.X_OK):
+        sys.exit(f'fuzz_input.py: cannot run feps at {feps!r} (--feps)')
+
+    decks = sorted({d for pattern in args.decks for d in glob.glob(pattern)
+                    if os.path.getsize(d) <= args.max_size})
+    if not decks:
+        sys.exit('fuzz_input.py: no deck matches --decks within --max-size')
+
+    rng = random.Random(args.seed)
+    failures = []
+    outcomes = {}
+    with tempfile.TemporaryDirectory(prefix='feps_fuzz_') as work:
+        copies = {}  # a copy of each deck's folder, so INCLUDE finds its files
+        for case in range(args.cases):
+            deck = rng.choice(decks)
+            folder = os.path.dirname(os.path.abspath(deck))
+            if folder not in copies:
+                copies[folder] = os.path.join(work, f'dir{len(copies)}')
+                shutil.copytree(folder, copies[folder], ignore=shutil.ignore_patterns('*.h5', '*.xmf'))
+            with open(deck) as f:
+                text = mutate(f.read(), rng)
+            mutant = os.path.join(copies[folder], f'fuzz_{args.seed}_{case}.dat')
+            with open(mutant, 'w') as f:
+                f.write(text)
+            result = os.path.join(work, f'fuzz_{args.seed}_{case}.h5')
+            # --run keeps the progress lines (in a file: a long run writes many) to tell a
+            # long run the mutant asks for from a hang
+            command = [feps, mutant, '--output', result] + (['--check', '--quiet'] if not args.run else [])
+            progress = os.path.join(work, 'progress.txt')
+            try:
+                with open(progress, 'w') as stdout:
+                    done = subprocess.run(command, cwd=copies[folder], stdout=stdout, stderr=subprocess.PIPE,
+                                          text=True, timeout=args.timeout,
+                                          preexec_fn=limit_memory(args.memory_gb))
+                leftovers = [p for p in (result, result + '.part') if os.path.exists(p)]
+                problem = judge(done.returncode, done.stderr, mutant, args.run,
+                                leftovers if done.returncode != 0 else [])
+                outcomes[done.returncode] = outcomes.get(done.returncode, 0) + 1
+                message = done.stderr.strip().replace('\n', ' | ')[:300]
+            except subprocess.TimeoutExpired:
+                steps = long_run(progress)
+                if steps:
+                    problem, message = None, ''
+                    outcomes['long run'] = outcomes.get('long run', 0) + 1
+                    print(f'long run (not a failure): {os.path.relpath(deck, ROOT)} mutated to {steps} steps, '
+                          f'still stepping after {args.timeout:g} s')
+                else:
+                    problem, message = f'no answer within {args.timeout:g} s', ''
+                    outcomes['timeout'] = outcomes.get('timeout', 0) + 1
+            for p in (result, result + '.part', os.path.splitext(result)[0] + '.xmf'):
+                if os.path.exists(p):
+                    os.remove(p)
+            if problem:
+                os.makedirs(args.out, exist_ok=True)
+                kept = os.path.join(args.out, os.path.basename(mutant))
+                shutil.copy(mutant, kept)
+                failures.append(kept)
+                print(f'FAIL {kept} (from {os.path.relpath(deck, ROOT)}): {problem}: {message}')
+                print(f'     command: {" ".join(command)} (in {os.path.dirname(deck)})')
+            os.remove(mutant)
+
+    summary = ', '.join(f'exit {k}: {v}' for k, v in sorted(outcomes.items(), key=str))
+    print(f'fuzz_input.py: {args.cases} mutants of {len(decks)} decks (seed {args.seed}, '
+          f'{"--run" if args.run else "--check"}): {len(failures)} failed; {summary}')
+    return 1 if failures else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -19,6 +19,8 @@ import tempfile
 import h5py
 import numpy as np
 
+from feps_build import feps_executable
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRESETS = ["euler", "modified-euler", "newton-raphson", "modified-newton-raphson", "initial-stiffness",
            "full-newton-raphson"]
@@ -84,18 +86,6 @@ class Table:
             print(f"({nknown} of the passed rows are KNOWN: not reproduced, with the reason found; "
                   "docs/verification.md)")
         return nfail
-
-
-def feps_executable(profile="debug"):
-    """fpm's build of feps: the default (debug) profile for the fast set, release for --all."""
-    if profile != "debug":
-        subprocess.run(["fpm", "build", "--profile", profile], cwd=ROOT, capture_output=True, text=True)
-    out = subprocess.run(["fpm", "run", "--profile", profile, "--runner", "echo"], cwd=ROOT,
-                         capture_output=True, text=True)
-    lines = [l for l in out.stdout.strip().splitlines() if l.strip()]
-    if out.returncode != 0 or not lines:
-        sys.exit("compare_thesis: cannot build feps:\n" + out.stderr)
-    return os.path.join(ROOT, lines[-1].strip())
 
 
 def run_feps(feps, deck, workdir, name, *args):

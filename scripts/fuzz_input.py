@@ -36,6 +36,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_build import feps_executable  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 JUNK = ['', 'abc', '-1', '0', '1e400', 'nan', 'inf', '-inf', '1e-400', '999999999999',
@@ -134,10 +137,7 @@ def main():
     if args.cases < 1:
         sys.exit('fuzz_input.py: --cases must be at least 1')
 
-    feps = args.feps
-    if feps is None:
-        got = subprocess.run(['fpm', 'run', '--runner', 'echo'], cwd=ROOT, capture_output=True, text=True)
-        feps = os.path.join(ROOT, got.stdout.strip().splitlines()[-1]) if got.returncode == 0 else ''
+    feps = args.feps or feps_executable('debug')
     feps = os.path.abspath(feps)
     if not os.access(feps, os.X_OK):
         sys.exit(f'fuzz_input.py: cannot run feps at {feps!r} (--feps)')

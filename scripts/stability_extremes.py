@@ -38,13 +38,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import postprocess_model_c as pmc  # noqa: E402
-
-
-def feps_release():
-    subprocess.run(["fpm", "build", "--profile", "release"], cwd=ROOT, capture_output=True)
-    out = subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"], cwd=ROOT,
-                         capture_output=True, text=True)
-    return os.path.join(ROOT, out.stdout.strip().splitlines()[-1].strip())
+from feps_build import feps_executable  # noqa: E402
 
 
 def model_c_deck():
@@ -172,7 +166,7 @@ def main():
     ap.add_argument("--resume", action="store_true",
                     help="reuse a finished run whose deck is unchanged (OUT/<case>/<level>/run.h5)")
     args = ap.parse_args()
-    feps = args.feps or feps_release()
+    feps = args.feps or feps_executable("release")
     rows, failed = [], 0
     for name, c in CASES.items():
         if args.only and name not in args.only:

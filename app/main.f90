@@ -5,6 +5,7 @@ program feps_main
   use feps_kinds, only: dp, i8
   use feps_error, only: error_t, err_input, err_model, str
   use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version
+  use feps_strings, only: sci
   implicit none
 
   interface
@@ -181,9 +182,9 @@ contains
       return
     end if
     if (s%mesh_only) then
-      write (output_unit, '(a,3(1x,es12.5))') 'bounding box min', s%bbox(:, 1)
-      write (output_unit, '(a,3(1x,es12.5))') 'bounding box max', s%bbox(:, 2)
-      write (output_unit, '(a,es12.5)') 'min Jacobian     ', s%min_jacobian
+      write (output_unit, '(a)') 'bounding box min' // vec3(s%bbox(:, 1))
+      write (output_unit, '(a)') 'bounding box max' // vec3(s%bbox(:, 2))
+      write (output_unit, '(a)') 'min Jacobian     ' // sci(s%min_jacobian, 5, 12)
     else
       write (output_unit, '(a)') 'dofs             ' // str(s%dofs)
       if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
@@ -207,10 +208,14 @@ contains
         s%max_pivot_ratio / s%min_pivot_ratio, ' (max/min pivot ratio)'
       if (s%condition_warning) write (error_unit, '(a)') 'feps: warning: the max/min pivot ratio exceeded 1e12: ' // &
         'the stiffness is ill-conditioned (stiffness contrast or a nearly free part); results may have lost digits'
-      write (output_unit, '(a,3(1x,es12.5))') 'applied force   ', s%applied_force
-      write (output_unit, '(a,3(1x,es12.5))') 'reaction force  ', s%reaction_force
-      write (output_unit, '(a,es12.5,a)') 'max displacement ', s%max_displacement, ' at node ' // &
-        str(s%max_displacement_node)
+      write (output_unit, '(a)') 'applied force   ' // vec3(s%applied_force)
+      write (output_unit, '(a)') 'reaction force  ' // vec3(s%reaction_force)
+      if (s%max_displacement_node > 0) then
+        write (output_unit, '(a)') 'max displacement ' // sci(s%max_displacement, 5, 12) // ' at node ' // &
+          str(s%max_displacement_node)
+      else
+        write (output_unit, '(a)') 'max displacement ' // sci(0.0_dp, 5, 12) // ' (no node moves)'
+      end if
     end if
     if (allocated(s%state_bytes)) call print_state_memory(s)
     if (.not. s%mesh_only) write (output_unit, '(a,3(f0.3,a))') 'times            assembly ', s%time_assembly, &
@@ -224,6 +229,13 @@ contains
     if (len(s%output) > 0) write (output_unit, '(a)') 'results          ' // s%output
   end subroutine print_summary
 
+  !> A 3-vector as the summary prints it: each component after a blank, in 12 characters.
+  pure function vec3(v) result(line)
+    real(dp), intent(in) :: v(3)
+    character(len=:), allocatable :: line
+    line = ' ' // sci(v(1), 5, 12) // ' ' // sci(v(2), 5, 12) // ' ' // sci(v(3), 5, 12)
+  end function vec3
+
   !> The summary of `feps --check`: the model's size and the solver's predictions.
   subroutine print_check(s)
     type(run_summary_t), intent(in) :: s
@@ -231,10 +243,10 @@ contains
     write (output_unit, '(a)') 'dofs             ' // str(s%dofs)
     if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
       ' (in no element; no DOFs)'
-    write (output_unit, '(a,es12.5)') 'min Jacobian     ', s%min_jacobian
+    write (output_unit, '(a)') 'min Jacobian     ' // sci(s%min_jacobian, 5, 12)
     write (output_unit, '(a)') 'analysis         ' // trim(merge('linear   ', 'nonlinear', s%linear)) // ': ' // &
       str(s%stages) // ' stage(s), ' // str(s%steps) // ' steps'
-    write (output_unit, '(a,3(1x,es12.5))') 'applied force   ', s%applied_force
+    write (output_unit, '(a)') 'applied force   ' // vec3(s%applied_force)
     write (output_unit, '(a)') 'solver           ' // s%solver
     write (buf, '(i0)') s%matrix_nnz
     write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'

@@ -75,6 +75,18 @@ for deck in test/data/bad/*.dat; do
   fi
 done
 
+# A three-digit exponent keeps its E in the summary (es12.5 would print 1.08628+303), and the
+# largest displacement, whose squares overflow, is the closed form p l / E sqrt(1 + 2 nu^2).
+sed 's/E=200000\./E=1e-300/' test/data/cube.dat >"$tmp/cube_soft.dat"
+expect_status "cube with E = 1e-300" 0 "$feps" "$tmp/cube_soft.dat" --output "$tmp/soft.h5"
+python3 - "$tmp/out" <<'PY' && ok "summary numbers with three-digit exponents read as numbers" || bad "summary numbers with three-digit exponents: $(grep -E "displacement|force" "$tmp/out")"
+import math, sys
+lines = {l[:16].strip(): l[16:].split() for l in open(sys.argv[1])}
+u = float(lines["max displacement"][0])
+assert abs(u / (100 * 10 / 1e-300 * math.sqrt(1 + 2 * 0.3**2)) - 1) < 1e-5, u
+assert [float(x) for x in lines["applied force"]] == [0.0, 0.0, -1e4], lines["applied force"]
+PY
+
 # Mutated decks (fixed seeds): a clear answer every time, never a crash, a hang or a runaway
 # allocation (scripts/fuzz_input.py; longer campaigns in docs/verification.md).
 python3 scripts/fuzz_input.py --feps "$feps" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \

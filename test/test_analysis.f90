@@ -47,7 +47,8 @@ contains
       new_unittest('fields not asked for are not computed; elastic groups keep no point state', test_fields), &
       new_unittest('REPORT, TILT: axis tilt of a cantilever column against Timoshenko', test_tilt_report), &
       new_unittest('feps --check: the run''s model and factorization, no step, no file', test_check_only), &
-      new_unittest('PRESSURE with VARY and VARY2: bilinear load, exact nodal forces', test_bilinear_load) &
+      new_unittest('PRESSURE with VARY and VARY2: bilinear load, exact nodal forces', test_bilinear_load), &
+      new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus) &
       ]
   end subroutine collect_analysis
 
@@ -80,6 +81,38 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_cube
+
+  !> The cube of test_cube with E = 1e-300 and 1e300 MPa: the displacements (1e303 and 1e-297
+  !! mm) still match the closed form, and the summary's largest displacement, whose squares
+  !! overflow or underflow, is the corner's p l / E sqrt(1 + 2 nu^2) at node 27.
+  subroutine test_cube_extreme_modulus(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(analysis_summary_t) :: summary
+    type(all_steps_t) :: obs
+    real(dp), parameter :: p = 100.0_dp, nu = 0.3_dp, l = 10.0_dp, moduli(2) = [1.0e-300_dp, 1.0e300_dp]
+    real(dp) :: e
+    integer :: i
+    do i = 1, size(moduli)
+      e = moduli(i)
+      call read_deck('test/data/cube.dat', model, error)
+      if (allocated(error)) return
+      model%materials(1)%values(1) = e
+      call run_analysis(model, 'cholmod', obs, summary, error)
+      if (allocated(error)) return
+      associate (u => obs%steps(size(obs%steps))%displacement)
+        call check(error, u(3, 27), -p * l / e, 'uz at the top', rel=1.0e-10_dp)
+        if (allocated(error)) return
+        call check(error, u(1, 27), nu * p * l / e, 'ux at x = 10', rel=1.0e-10_dp)
+        if (allocated(error)) return
+      end associate
+      call check(error, summary%max_displacement, p * l / e * sqrt(1.0_dp + 2.0_dp * nu**2), &
+                 'largest displacement', rel=1.0e-10_dp)
+      if (allocated(error)) return
+      call check(error, summary%max_displacement_node, 27, 'node of the largest displacement')
+      if (allocated(error)) return
+    end do
+  end subroutine test_cube_extreme_modulus
 
   !> FIELDS without stresses: the displacements are unchanged (closed form) and no stress is
   !! recovered; in the block-contact deck only the interface group keeps point state, 2 x (3

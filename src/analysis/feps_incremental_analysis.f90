@@ -155,12 +155,22 @@ contains
     do n = 1, model%nnode
       if (any(an%map%constrained(:, n))) summary%reaction_force = summary%reaction_force + an%fint(:, n) - &
                                                                   an%f_applied(:, n)
-      if (norm2(an%u(:, n)) > summary%max_displacement) then
-        summary%max_displacement = norm2(an%u(:, n))
+      if (magnitude(an%u(:, n)) > summary%max_displacement) then
+        summary%max_displacement = magnitude(an%u(:, n))
         summary%max_displacement_node = n
       end if
     end do
   end subroutine run_analysis
+
+  !> Euclidean length without the under- or overflow of the squares that norm2 has in
+  !! gfortran (a displacement of 1e-297 mm stays 1e-297, one of 1e200 stays finite).
+  pure real(dp) function magnitude(v)
+    real(dp), intent(in) :: v(:)
+    real(dp) :: scale
+    scale = maxval(abs(v))
+    magnitude = 0.0_dp
+    if (scale > 0.0_dp) magnitude = scale * norm2(v / scale)
+  end function magnitude
 
   !> Everything a run checks before it takes a step, without taking one: elements and their
   !! Jacobians, materials, face sets, DOF numbering, the sparse pattern, the solver's analysis,

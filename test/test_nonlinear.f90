@@ -48,7 +48,11 @@ contains
       new_unittest('a block pulled past the tensile strength stops where the joint opens, and says so', &
                    test_brittle_pull), &
       new_unittest('full Newton follows an unzipping cascade to equilibrium, given the iterations', &
-                   test_unzipping_cascade) &
+                   test_unzipping_cascade), &
+      new_unittest('non-dilatant joint (psi = 0): full Newton stops naming the remedy, BFGS converges', &
+                   test_non_dilatant_joint), &
+      new_unittest('weakly dilatant joint (psi = 5): full Newton converges on the nearest PSD tangent', &
+                   test_weakly_dilatant_joint) &
       ]
   end subroutine collect_nonlinear
 
@@ -490,6 +494,87 @@ contains
                  'modified Euler, 40 steps: the same stresses')
     end associate
   end subroutine test_cohesionless_from_zero
+
+  !> test/data/joint_psi0.dat, the cohesionless joint with psi = 0. Full Newton factorizes a
+  !! symmetric stand-in for the non-symmetric tangent and cannot converge: the run must stop
+  !! with the clear message naming the remedy. That remedy, the elastic stiffness with BFGS
+  !! updates (MAXIT = 400), must converge every step, and with c = 0 the solution must scale
+  !! with the load (step 2 = half of step 4, to 1e-6 of the largest shear stress; each step
+  !! converged to DELTA1 = 1e-6).
+  subroutine test_non_dilatant_joint(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer, parameter :: g = 5   ! if_up
+    character(len=:), allocatable :: msg
+    integer :: code
+    real(dp) :: scale
+    call read_deck('test/data/joint_psi0.dat', model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (.not. allocated(error)) then
+      call test_failed(error, 'full Newton with psi = 0 converged: this test no longer shows the limitation')
+      return
+    end if
+    code = error%code
+    msg = error%message
+    deallocate (error)
+    call check(error, code == err_solver .and. index(msg, 'non-symmetric (psi /= phi)') > 0 .and. &
+               index(msg, 'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400') > 0, &
+               'the stop names the remedy: ' // msg)
+    if (allocated(error)) return
+
+    call read_deck('test/data/joint_psi0.dat', model, error)
+    if (allocated(error)) return
+    model%stages(1)%controls%method = method_initial_stiffness
+    model%stages(1)%controls%bfgs = .true.
+    model%stages(1)%controls%max_iterations = 400
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%cutbacks == 0 .and. summary%unconverged_steps == 0 .and. summary%factorizations == 1, &
+               'BFGS on the elastic stiffness: one factorization, every step converged')
+    if (allocated(error)) return
+    associate (s2 => obs%steps(2)%groups(g), s4 => obs%steps(4)%groups(g))
+      call check(error, any(s4%state == state_plastic), 'points sliding')
+      if (allocated(error)) return
+      scale = maxval(abs(s4%stress(1:2, :)))
+      call check(error, maxval(abs(2.0_dp * s2%stress(1:2, :) - s4%stress(1:2, :))) <= 1.0e-6_dp * scale, &
+                 'step 2 stresses are half those of step 4')
+    end associate
+  end subroutine test_non_dilatant_joint
+
+  !> The same joint with psi = 5: full Newton on the nearest symmetric positive semi-definite
+  !! tangent converges every step (with the plain symmetric part, which is indefinite at the
+  !! sliding points, it stopped after 10 cut-backs), and the solution scales with the load.
+  subroutine test_weakly_dilatant_joint(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer, parameter :: g = 5   ! if_up
+    real(dp) :: scale
+    integer :: m, k
+    call read_deck('test/data/joint_psi0.dat', model, error)
+    if (allocated(error)) return
+    m = model%groups(g)%material
+    k = findloc(model%materials(m)%keys, 'psi', dim=1)
+    call check(error, k > 0, 'the interface material has a PSI value')
+    if (allocated(error)) return
+    model%materials(m)%values(k) = 5.0_dp
+    model%stages(1)%controls%max_iterations = 400
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%unconverged_steps == 0, 'full Newton: every step converged')
+    if (allocated(error)) return
+    associate (s2 => obs%steps(2)%groups(g), s4 => obs%steps(4)%groups(g))
+      call check(error, any(s4%state == state_plastic), 'points sliding')
+      if (allocated(error)) return
+      scale = maxval(abs(s4%stress(1:2, :)))
+      call check(error, maxval(abs(2.0_dp * s2%stress(1:2, :) - s4%stress(1:2, :))) <= 1.0e-6_dp * scale, &
+                 'step 2 stresses are half those of step 4')
+    end associate
+  end subroutine test_weakly_dilatant_joint
 
   !> test/data/block_pull.dat: a 3 MPa pull on an interface whose tensile strength is
   !! c / tan(phi) = 1.732 MPa. The joint opens at load factor 1.732 / 3 = 0.577 and nothing but

@@ -20,6 +20,7 @@ module feps_incremental_analysis
                            scatter_element_matrix, rotate_matrix
   use feps_loads, only: resolve_face_sets, nodal_load_vector, to_equations
   use feps_material, only: material_slot_t, state_open
+  use feps_tangent_symmetry, only: nearest_symmetric_psd
   use feps_linear_solver, only: linear_solver_t
   use feps_solver_factory, only: new_linear_solver
   use feps_observer, only: observer_t, step_result_t, group_result_t
@@ -730,8 +731,8 @@ contains
     end do
     if (an%symmetrized) call observer%progress('note: the tangent was non-symmetric at some points (non-' // &
                                                'associated flow, psi /= phi, or a gap closing within a step); ' // &
-                                               'its symmetric part was factorized and the exact residual ' // &
-                                               'iterated on')
+                                               'the nearest symmetric positive semi-definite matrix was ' // &
+                                               'factorized and the exact residual iterated on')
   end subroutine run_nonlinear_stages
 
   !> Say when an interface group opens completely (only the residual gap stiffness then holds
@@ -1109,7 +1110,7 @@ contains
                 d(:, :, q) = s%dtan(:, :, q0 + q)
               end if
               if (any(abs(d(:, :, q) - transpose(d(:, :, q))) > 1.0e-12_dp * maxval(abs(d(:, :, q))))) then
-                d(:, :, q) = 0.5_dp * (d(:, :, q) + transpose(d(:, :, q)))
+                call nearest_symmetric_psd(d(:, :, q))
                 an%symmetrized = .true.
               end if
             end do
@@ -1198,6 +1199,13 @@ contains
         hint = hint // 'the load may have passed a limit point (the thesis carries the unbalanced ' // &
           'force: STAGE ..., DIVERGENCE=1)'
       end if
+    end if
+    if (an%symmetrized .and. st%controls%method /= method_initial_stiffness .and. cutbacks_exhausted) then
+      ! Non-associated flow: the factorized matrix is only a symmetric stand-in for the tangent,
+      ! and as psi -> 0 Newton's quadratic convergence is lost (the 2D joint with psi = 0 stalls);
+      ! the elastic stiffness with BFGS updates converges there (docs/input-format.md, CONTROLS).
+      hint = hint // '; the tangent was non-symmetric (psi /= phi) and only its nearest symmetric ' // &
+        'stand-in is factorized: try STAGE ..., METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400'
     end if
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
                      ', load factor ' // str(lf) // ': ' // why // ' (relative residual ' // str(rel) // &

@@ -197,6 +197,8 @@ contains
           str(s%iterations) // ' iterations, ' // str(s%factorizations) // ' factorizations, ' // &
           str(s%cutbacks) // ' cut-backs, ' // str(s%unconverged_steps) // &
           ' steps not converged (residual carried on)'
+        if (s%lu_factorizations > 0) write (output_unit, '(a)') 'unsymmetric LU   ' // str(s%lu_factorizations) // &
+          ' of the factorizations (UMFPACK: exact non-symmetric tangents, psi /= phi)'
       end if
       write (buf, '(i0)') s%matrix_nnz
       write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'

@@ -3,8 +3,9 @@
 module test_cholmod
   use feps_kinds, only: dp, i8, pi
   use feps_error, only: err_model, err_internal, str
-  use feps_sparse_matrix, only: csr_matrix_t
-  use feps_lapack, only: dposv, dgemm
+  use feps_sparse_matrix, only: csr_matrix_t, full_pattern
+  use feps_lapack, only: dposv, dgemm, dgesv
+  use feps_umfpack_solver, only: umfpack_solver_t
   use feps_cholmod_solver, only: cholmod_solver_t, count_supervariables
   use feps_skyline_solver, only: skyline_solver_t
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
@@ -28,9 +29,78 @@ contains
       new_unittest("factor statistics of a dense matrix", test_statistics), &
       new_unittest("solve before factorize fails", test_solve_unfactorized), &
       new_unittest("supervariables of known patterns", test_supervariable_counts), &
-      new_unittest("node-graph ordering equals skyline", test_node_ordering_vs_skyline) &
+      new_unittest("node-graph ordering equals skyline", test_node_ordering_vs_skyline), &
+      new_unittest("UMFPACK: non-symmetric Laplacian plus convection against dgesv; singular is err_model", &
+                   test_umfpack) &
     ]
   end subroutine collect_cholmod
+
+  !> The full pattern of the 2D Laplacian (6 x 6 grid) filled with a non-symmetric matrix,
+  !! the Laplacian plus a convection term (+c to the right neighbour, -c to the left, so
+  !! a(i, j) /= a(j, i)), solved by UMFPACK against LAPACK's dense LU (dgesv) to 1e-12;
+  !! every row of the pattern sorted; then a matrix with a zero row fails with err_model.
+  subroutine test_umfpack(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(csr_matrix_t) :: lower, full
+    type(umfpack_solver_t) :: lu
+    real(dp), allocatable :: dense(:, :), x(:), b(:, :)
+    integer, allocatable :: ipiv(:)
+    integer :: i, j, n, info, code
+    integer(i8) :: k
+    character(len=:), allocatable :: msg
+    lower = laplacian_2d(6)
+    call full_pattern(lower, full)
+    n = full%n
+    call check(error, int(size(full%col)), int(2 * lower%nnz() - n), 'both triangles')
+    if (allocated(error)) return
+    allocate (dense(n, n), x(n), b(n, 1), ipiv(n))
+    dense = 0.0_dp
+    do i = 1, n
+      do k = full%row_ptr(i), full%row_ptr(i + 1) - 1
+        j = full%col(k)
+        if (k > full%row_ptr(i)) then
+          if (full%col(k - 1) >= j) then
+            call test_failed(error, 'row ' // str(i) // ' not sorted')
+            return
+          end if
+        end if
+        if (i == j) then
+          full%val(k) = 4.0_dp
+        else if (j == i + 1) then
+          full%val(k) = -1.0_dp + 0.3_dp
+        else if (j == i - 1) then
+          full%val(k) = -1.0_dp - 0.3_dp
+        else
+          full%val(k) = -1.0_dp
+        end if
+        dense(i, j) = full%val(k)
+      end do
+    end do
+    do i = 1, n
+      x(i) = sin(real(i, dp))
+    end do
+    b(:, 1) = x
+    call lu%factorize(full, error)
+    if (allocated(error)) return
+    call lu%solve(x, error)
+    if (allocated(error)) return
+    call dgesv(n, 1, dense, n, ipiv, b, n, info)
+    call check(error, info, 0, 'dgesv')
+    if (allocated(error)) return
+    call check(error, maxval(abs(x - b(:, 1))) <= 1.0e-12_dp * maxval(abs(b)), 'UMFPACK equals dgesv')
+    if (allocated(error)) return
+    ! a zero row: singular
+    full%val(full%row_ptr(3):full%row_ptr(4) - 1) = 0.0_dp
+    call lu%factorize(full, error)
+    if (.not. allocated(error)) then
+      call test_failed(error, 'a singular matrix was factorized')
+      return
+    end if
+    code = error%code
+    msg = error%message
+    deallocate (error)
+    call check(error, code, err_model, 'singular: ' // msg)
+  end subroutine test_umfpack
 
   !> 5-point Laplacian on an m x m interior grid with Dirichlet boundaries (lower triangle).
   function laplacian_2d(m) result(a)

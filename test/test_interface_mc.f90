@@ -10,6 +10,7 @@ module test_interface_mc
   use feps_material, only: material_t, state_elastic, state_plastic, state_open
   use feps_interface_mohr_coulomb, only: interface_mohr_coulomb_t, new_interface_mohr_coulomb, &
                                          default_gap_factor
+  use feps_tangent_symmetry, only: nearest_symmetric_psd
   implicit none
   private
 
@@ -39,7 +40,8 @@ contains
       new_unittest("tangent_eq_2_3_18", test_tangent_continuum), &
       new_unittest("symmetric_tangent", test_symmetric), &
       new_unittest("validator", test_validator), &
-      new_unittest("huge_steps_finite", test_huge_steps) &
+      new_unittest("huge_steps_finite", test_huge_steps), &
+      new_unittest("sliding_tangent_psd_stand_in", test_psd_stand_in) &
       ]
   end subroutine collect_interface_mc
 
@@ -199,6 +201,47 @@ contains
                   state_elastic, sig3, st, dt3)
     call check_vector(error, sig3, [0.0_dp, -100.0_dp * tan(30.0_dp * deg2rad), -100.0_dp], 'sig 3D', 1.0e-12_dp)
   end subroutine test_sliding_no_dilation
+
+  !> The symmetric stand-in for a sliding point's tangent (psi = 0, kn = 2000, ks = 1000,
+  !! phi = 30, the point of test_sliding_no_dilation). The consistent tangent is
+  !! [[0, -t kn], [0, kn]] (t = tan phi): no shear stiffness, shear following the normal
+  !! stress. Its symmetric part S = [[0, -a], [-a, kn]], a = t kn / 2, is indefinite (det = -a^2),
+  !! and the nearest symmetric positive semi-definite matrix is S without its negative
+  !! eigenvalue: l v v^T with l = (kn + sqrt(kn^2 + 4 a^2)) / 2, whose trace is l and whose
+  !! determinant is 0. With psi = phi the tangent is symmetric and semi-definite and the
+  !! stand-in is the tangent itself. Tolerance 1e-12 relative.
+  subroutine test_psd_stand_in(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(interface_mohr_coulomb_t) :: m
+    real(dp) :: sig(2), dt(2, 2), d(2, 2), kn, a, l
+    integer :: st
+    kn = 2000.0_dp
+    m = make(kn, 1000.0_dp, 0.0_dp, 30.0_dp, 0.0_dp)
+    call m%update([0.0_dp, -100.0_dp], [0.0_dp, -0.05_dp], [0.2_dp, -0.01_dp], state_elastic, sig, st, dt)
+    call check(error, st, state_plastic, 'sliding')
+    if (allocated(error)) return
+    a = tan(30.0_dp * deg2rad) * kn / 2.0_dp
+    call check_vector(error, reshape(dt, [4]), [0.0_dp, 0.0_dp, -2.0_dp * a, kn], 'consistent tangent', 1.0e-12_dp)
+    if (allocated(error)) return
+    d = dt
+    call nearest_symmetric_psd(d)
+    l = (kn + sqrt(kn**2 + 4.0_dp * a**2)) / 2.0_dp
+    call check(error, d(1, 2), d(2, 1), 'stand-in symmetric', rel=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, d(1, 1) + d(2, 2), l, 'trace = the positive eigenvalue of S', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, d(1, 1) * d(2, 2) - d(1, 2) * d(2, 1), 0.0_dp, 'determinant 0 (negative eigenvalue removed)', &
+               abs=1.0e-12_dp * l**2)
+    if (allocated(error)) return
+    call check(error, d(1, 2) < 0.0_dp .and. d(1, 1) > 0.0_dp, 'coupling sign of S kept, shear stiffness gained')
+    if (allocated(error)) return
+    ! associated flow: the tangent is symmetric and semi-definite, the stand-in is itself
+    m = make(kn, 1000.0_dp, 0.0_dp, 30.0_dp, 30.0_dp)
+    call m%update([0.0_dp, -100.0_dp], [0.0_dp, -0.05_dp], [0.2_dp, -0.01_dp], state_elastic, sig, st, dt)
+    d = dt
+    call nearest_symmetric_psd(d)
+    call check_vector(error, reshape(d, [4]), reshape(dt, [4]), 'psi = phi: unchanged', 1.0e-12_dp)
+  end subroutine test_psd_stand_in
 
   !> SPEC sec2.3.4a on one point: kn = 2000, ks = 1000, tan phi = tan psi = 0.5, c = 0;
   !! eps_n = -0.1 then 100 steps of gamma1 += 0.002 with eps_n held. The closed form is

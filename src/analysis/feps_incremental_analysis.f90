@@ -14,7 +14,8 @@ module feps_incremental_analysis
                         method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness, &
                         method_full_newton_raphson
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
-  use feps_sparse_matrix, only: csr_matrix_t
+  use feps_sparse_matrix, only: csr_matrix_t, full_pattern
+  use feps_umfpack_solver, only: umfpack_solver_t
   use feps_assembly, only: group_kernel_t, build_kernels, build_materials, build_pattern, check_jacobians, &
                            element_dofs, element_stiffness, element_strains, element_internal_force, &
                            scatter_element_matrix, rotate_matrix
@@ -35,6 +36,7 @@ module feps_incremental_analysis
     integer :: steps = 0
     integer :: iterations = 0
     integer :: factorizations = 0
+    integer :: lu_factorizations = 0        !! LU factorizations of exact non-symmetric tangents (full Newton)
     integer :: cutbacks = 0
     integer :: unconverged_steps = 0         !! steps accepted with |R| / |P| above delta1 (carried on)
     integer(i8) :: matrix_nnz = 0
@@ -95,6 +97,10 @@ module feps_incremental_analysis
     real(dp), allocatable :: uc(:, :)                  !! constrained values reached (nodal systems)
     logical :: symmetrized = .false.
     logical :: warned_condition = .false.
+    type(csr_matrix_t) :: a_full                       !! both triangles: the exact non-symmetric tangent
+    type(umfpack_solver_t) :: lu                       !! its LU factors (full Newton, psi /= phi)
+    logical :: use_lu = .false.                        !! solve with lu, not solver (set by factorize_tangent)
+    integer :: lu_singular = 0                         !! exact tangents found singular (the stand-in was used)
     type(linear_part_t) :: lin
     logical, allocatable :: active(:)                  !! groups active in the current stage
     real(dp), allocatable :: release_force(:, :)       !! load increment of the stage that removes released supports' forces
@@ -262,6 +268,7 @@ contains
     call check_later_supports(model, error)
     if (allocated(error)) return
     call build_pattern(model, an%map, an%a)
+    if (allocated(an%a_full%row_ptr)) deallocate (an%a_full%row_ptr, an%a_full%col, an%a_full%val)
     summary%matrix_nnz = an%a%nnz()
     call new_linear_solver(solver_name, an%solver, error)
     if (allocated(error)) return
@@ -331,6 +338,7 @@ contains
     an%map = new
     summary%neq = an%map%neq
     call build_pattern(model, an%map, an%a)
+    if (allocated(an%a_full%row_ptr)) deallocate (an%a_full%row_ptr, an%a_full%col, an%a_full%val)
     summary%matrix_nnz = an%a%nnz()
     call an%solver%analyze(an%a, error)
     if (allocated(error)) return
@@ -663,7 +671,7 @@ contains
           h = 1.0_dp
           cut = 0
           iters_step = 0
-          nfact0 = an%solver%factorizations
+          nfact0 = summary%factorizations
           step_unconverged = .false.
           do while (done < 1.0_dp - 1.0e-12_dp)
             h = min(h, 1.0_dp - done)
@@ -678,7 +686,7 @@ contains
             end select
             if (need_factor) then
               call factorize_tangent(model, an, c%method == method_initial_stiffness .or. .not. have_factor, &
-                                     summary, error)
+                                     summary, error, exact=c%method == method_full_newton_raphson)
               if (allocated(error)) then
                 call name_step(error, st, k, s - 1 + (k - 1 + done) / st%steps)
                 return
@@ -717,7 +725,7 @@ contains
           summary%iterations = summary%iterations + iters_step
           if (step_unconverged) summary%unconverged_steps = summary%unconverged_steps + 1
           call observer%progress(progress_line(s, k, st%steps, s - 1 + real(k, dp) / st%steps, iters_step, &
-                                               rel_prev, summary%factorizations, an%solver%factorizations - nfact0) &
+                                               rel_prev, summary%factorizations, summary%factorizations - nfact0) &
                                  // trim(merge('  (not converged: carried) ', '                           ', &
                                                 step_unconverged)))
           call report_open_interfaces(model, an, observer, fully_open)
@@ -729,6 +737,11 @@ contains
         end do
       end associate
     end do
+    if (summary%lu_factorizations > 0) call observer%progress('note: ' // str(summary%lu_factorizations) // &
+      ' tangents were non-symmetric (non-associated flow, psi /= phi): factorized as they are by UMFPACK (LU)')
+    if (an%lu_singular > 0) call observer%progress('note: ' // str(an%lu_singular) // ' exact non-symmetric ' // &
+      'tangents were singular (a body held only by faces sliding without dilation): their nearest symmetric ' // &
+      'positive semi-definite stand-ins were factorized')
     if (an%symmetrized) call observer%progress('note: the tangent was non-symmetric at some points (non-' // &
                                                'associated flow, psi /= phi, or a gap closing within a step); ' // &
                                                'the nearest symmetric positive semi-definite matrix was ' // &
@@ -815,12 +828,14 @@ contains
       t0 = wall_clock()
       if (c%method == method_full_newton_raphson .and. m > 1) then
         ! Full Newton: the consistent tangent of the current iterate, refactorized every iteration.
-        call factorize_tangent(model, an, .false., summary, error, trial=.true.)
+        call factorize_tangent(model, an, .false., summary, error, trial=.true., exact=.true.)
         if (allocated(error)) exit
       end if
       if (use_bfgs) then
         r_old = r
         call bfgs_direction(an, s_hist(:, 1:npairs), y_hist(:, 1:npairs), rho(1:npairs), r, error)
+      else if (an%use_lu) then
+        call an%lu%solve(r, error)
       else
         call an%solver%solve(r, error)
       end if
@@ -1072,22 +1087,89 @@ contains
 
   !> Assemble and factorize the stiffness: elastic (initial), the committed tangent, or (trial)
   !! the tangent of the current iterate (full Newton-Raphson).
-  subroutine factorize_tangent(model, an, elastic, summary, error, trial)
+  subroutine factorize_tangent(model, an, elastic, summary, error, trial, exact)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     logical, intent(in) :: elastic
     logical, intent(in), optional :: trial   !! the tangent of the current iterate, not of the committed state
+    logical, intent(in), optional :: exact   !! also factorize a non-symmetric tangent as it is (LU)
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
-    integer :: g, e, q, np, nn, nc, ieq, q0
-    real(dp), allocatable :: ke(:, :), d(:, :, :)
-    integer, allocatable :: dofs(:)
+    type(error_t), allocatable :: lu_error
+    integer :: ieq
     real(dp) :: t0
-    logical :: use_trial
+    logical :: use_trial, nonsymmetric
     use_trial = .false.
     if (present(trial)) use_trial = trial
     t0 = wall_clock()
-    an%a%val = 0.0_dp
+    call assemble_tangent(model, an, elastic, use_trial, .false., an%a, nonsymmetric)
+    summary%time_assembly = summary%time_assembly + wall_clock() - t0
+
+    ! Non-symmetric points under full Newton: factorize the exact tangent (UMFPACK LU) and
+    ! solve with it. Where it is singular (a body held only by faces sliding without
+    ! dilation, a neutral equilibrium) the symmetric stand-in below is used instead.
+    an%use_lu = .false.
+    if (present(exact) .and. nonsymmetric) then
+      if (exact) then
+        t0 = wall_clock()
+        if (.not. allocated(an%a_full%row_ptr)) call full_pattern(an%a, an%a_full)
+        call assemble_tangent(model, an, elastic, use_trial, .true., an%a_full, nonsymmetric)
+        summary%time_assembly = summary%time_assembly + wall_clock() - t0
+        t0 = wall_clock()
+        call an%lu%factorize(an%a_full, lu_error)
+        summary%time_factorization = summary%time_factorization + wall_clock() - t0
+        if (.not. allocated(lu_error)) then
+          an%use_lu = .true.
+          summary%lu_factorizations = an%lu%factorizations
+          summary%factorizations = an%solver%factorizations + an%lu%factorizations
+          return
+        end if
+        if (lu_error%code /= err_model) then
+          call move_alloc(lu_error, error)
+          return
+        end if
+        an%lu_singular = an%lu_singular + 1
+      end if
+    end if
+    if (nonsymmetric) an%symmetrized = .true.
+
+    t0 = wall_clock()
+    call an%solver%factorize(an%a, error)
+    summary%time_factorization = summary%time_factorization + wall_clock() - t0
+    if (allocated(error)) then
+      ieq = error%item   ! fatal_error reallocates error: keep the item first
+      if (ieq > 0 .and. ieq <= an%map%neq) then
+        call fatal_error(error, err_model, model%deck_file // ': the stiffness matrix is singular at ' // &
+                         an%map%dof_name(ieq) // ': that DOF is not held (an unconstrained rigid-body mode ' // &
+                         'or a missing support), or held only through a stiffness contrast beyond double ' // &
+                         'precision (pivot below 1e-11 of its diagonal)', item=ieq)
+      end if
+      return
+    end if
+    summary%factorizations = an%solver%factorizations + an%lu%factorizations
+    if (.not. an%warned_condition .and. an%solver%min_pivot_ratio > 0.0_dp) then
+      if (an%solver%max_pivot_ratio / an%solver%min_pivot_ratio > condition_warning) then
+        an%warned_condition = .true.
+        summary%condition_warning = .true.
+      end if
+    end if
+  end subroutine factorize_tangent
+
+  !> Assemble the tangent stiffness into `a`: the lower triangle with every non-symmetric point
+  !! tangent replaced by its nearest symmetric positive semi-definite stand-in, or (`exact`)
+  !! both triangles with the point tangents as they are. `nonsymmetric` tells whether any
+  !! point tangent was non-symmetric.
+  subroutine assemble_tangent(model, an, elastic, use_trial, exact, a, nonsymmetric)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    logical, intent(in) :: elastic, use_trial, exact
+    type(csr_matrix_t), intent(inout) :: a
+    logical, intent(out) :: nonsymmetric
+    integer :: g, e, q, np, nn, nc, q0
+    real(dp), allocatable :: ke(:, :), d(:, :, :)
+    integer, allocatable :: dofs(:)
+    nonsymmetric = .false.
+    a%val = 0.0_dp
     do g = 1, size(model%groups)
       if (.not. an%active(g)) cycle   ! not yet born: no stiffness
       np = an%kernels(g)%npoints
@@ -1110,41 +1192,41 @@ contains
                 d(:, :, q) = s%dtan(:, :, q0 + q)
               end if
               if (any(abs(d(:, :, q) - transpose(d(:, :, q))) > 1.0e-12_dp * maxval(abs(d(:, :, q))))) then
-                call nearest_symmetric_psd(d(:, :, q))
-                an%symmetrized = .true.
+                nonsymmetric = .true.
+                if (.not. exact) call nearest_symmetric_psd(d(:, :, q))
               end if
             end do
           end if
           call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
           if (an%map%has_rotations()) call rotate_matrix(an%map, conn(:, e), ke)
           call element_dofs(an%map, conn(:, e), dofs)
-          call scatter_element_matrix(dofs, ke, an%a)
+          if (exact) then
+            call scatter_full_matrix(dofs, ke, a)
+          else
+            call scatter_element_matrix(dofs, ke, a)
+          end if
         end do
       end associate
       deallocate (ke, d, dofs)
     end do
-    summary%time_assembly = summary%time_assembly + wall_clock() - t0
-    t0 = wall_clock()
-    call an%solver%factorize(an%a, error)
-    summary%time_factorization = summary%time_factorization + wall_clock() - t0
-    if (allocated(error)) then
-      ieq = error%item   ! fatal_error reallocates error: keep the item first
-      if (ieq > 0 .and. ieq <= an%map%neq) then
-        call fatal_error(error, err_model, model%deck_file // ': the stiffness matrix is singular at ' // &
-                         an%map%dof_name(ieq) // ': that DOF is not held (an unconstrained rigid-body mode ' // &
-                         'or a missing support), or held only through a stiffness contrast beyond double ' // &
-                         'precision (pivot below 1e-11 of its diagonal)', item=ieq)
-      end if
-      return
-    end if
-    summary%factorizations = an%solver%factorizations
-    if (.not. an%warned_condition .and. an%solver%min_pivot_ratio > 0.0_dp) then
-      if (an%solver%max_pivot_ratio / an%solver%min_pivot_ratio > condition_warning) then
-        an%warned_condition = .true.
-        summary%condition_warning = .true.
-      end if
-    end if
-  end subroutine factorize_tangent
+  end subroutine assemble_tangent
+
+  !> Add an element matrix to a matrix stored with both triangles.
+  subroutine scatter_full_matrix(dofs, ke, a)
+    integer, intent(in) :: dofs(:)
+    real(dp), intent(in) :: ke(:, :)
+    type(csr_matrix_t), intent(inout) :: a
+    integer :: i, j
+    integer(i8) :: pos
+    do i = 1, size(dofs)
+      if (dofs(i) == 0) cycle
+      do j = 1, size(dofs)
+        if (dofs(j) == 0) cycle
+        pos = a%find(dofs(i), dofs(j))
+        a%val(pos) = a%val(pos) + ke(i, j)
+      end do
+    end do
+  end subroutine scatter_full_matrix
 
   subroutine name_step(error, st, k, lf)
     type(error_t), intent(inout) :: error
@@ -1201,11 +1283,12 @@ contains
       end if
     end if
     if (an%symmetrized .and. st%controls%method /= method_initial_stiffness .and. cutbacks_exhausted) then
-      ! Non-associated flow: the factorized matrix is only a symmetric stand-in for the tangent,
-      ! and as psi -> 0 Newton's quadratic convergence is lost (the 2D joint with psi = 0 stalls);
-      ! the elastic stiffness with BFGS updates converges there (docs/input-format.md, CONTROLS).
+      ! Non-associated flow: outside full Newton (which factorizes the exact tangent by LU) the
+      ! factorized matrix is only a symmetric stand-in for the tangent, and as psi -> 0 the
+      ! iterations stall (the 2D joint with psi = 0; docs/input-format.md, CONTROLS).
       hint = hint // '; the tangent was non-symmetric (psi /= phi) and only its nearest symmetric ' // &
-        'stand-in is factorized: try STAGE ..., METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400'
+        'stand-in was factorized: try STAGE ..., METHOD=full-newton-raphson (exact tangent, LU) or ' // &
+        'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400'
     end if
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
                      ', load factor ' // str(lf) // ': ' // why // ' (relative residual ' // str(rel) // &

@@ -52,6 +52,7 @@ module feps_program
     integer :: steps = 0
     integer :: iterations = 0
     integer :: factorizations = 0
+    integer :: lu_factorizations = 0       !! of them, LU factorizations of exact non-symmetric tangents
     integer :: cutbacks = 0
     integer :: unconverged_steps = 0
     real(dp) :: max_displacement = 0.0_dp
@@ -168,6 +169,7 @@ contains
     summary%steps = an%steps
     summary%iterations = an%iterations
     summary%factorizations = an%factorizations
+    summary%lu_factorizations = an%lu_factorizations
     summary%cutbacks = an%cutbacks
     summary%unconverged_steps = an%unconverged_steps
     summary%dofs = an%neq
@@ -515,6 +517,7 @@ contains
     if (.not. allocated(error)) call h5%write_summary_int('steps', int(summary%steps, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('iterations', int(summary%iterations, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('factorizations', int(summary%factorizations, i8), error)
+    if (.not. allocated(error)) call h5%write_summary_int('lu_factorizations', int(summary%lu_factorizations, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('cutbacks', int(summary%cutbacks, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('unconverged_steps', int(summary%unconverged_steps, i8), &
                                                           error)

@@ -18,6 +18,8 @@ module feps_sparse_matrix
     procedure :: diagonal => csr_diagonal
   end type csr_matrix_t
 
+  public :: full_pattern
+
 contains
 
   pure integer(i8) function csr_nnz(self)
@@ -71,5 +73,48 @@ contains
       d(i) = self%val(self%row_ptr(i + 1) - 1)
     end do
   end function csr_diagonal
+
+  !> The pattern of both triangles of the symmetric `lower` (values zero), for a
+  !! non-symmetric matrix with the same structure: columns sorted in each row, so `find`
+  !! works on it for any (i, j) (multiply and diagonal do not: they assume the lower triangle).
+  pure subroutine full_pattern(lower, full)
+    type(csr_matrix_t), intent(in) :: lower
+    type(csr_matrix_t), intent(out) :: full
+    integer(i8), allocatable :: next(:)
+    integer :: i, j
+    integer(i8) :: k
+    full%n = lower%n
+    allocate (full%row_ptr(lower%n + 1), next(lower%n))
+    ! row i holds its lower entries and, from the rows below, the transposes of theirs
+    full%row_ptr = 0
+    do i = 1, lower%n
+      do k = lower%row_ptr(i), lower%row_ptr(i + 1) - 1
+        j = lower%col(k)
+        full%row_ptr(i + 1) = full%row_ptr(i + 1) + 1
+        if (j /= i) full%row_ptr(j + 1) = full%row_ptr(j + 1) + 1
+      end do
+    end do
+    full%row_ptr(1) = 1
+    do i = 1, lower%n
+      full%row_ptr(i + 1) = full%row_ptr(i + 1) + full%row_ptr(i)
+    end do
+    allocate (full%col(full%row_ptr(lower%n + 1) - 1))
+    allocate (full%val(size(full%col)))
+    full%val = 0.0_dp
+    ! rows in order: row i's lower entries (columns <= i) come first, then the transposed ones
+    ! from rows j > i arrive in increasing j, so every row ends up sorted
+    next = full%row_ptr(1:lower%n)
+    do i = 1, lower%n
+      do k = lower%row_ptr(i), lower%row_ptr(i + 1) - 1
+        j = lower%col(k)
+        full%col(next(i)) = j
+        next(i) = next(i) + 1
+        if (j /= i) then
+          full%col(next(j)) = i
+          next(j) = next(j) + 1
+        end if
+      end do
+    end do
+  end subroutine full_pattern
 
 end module feps_sparse_matrix

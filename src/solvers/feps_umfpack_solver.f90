@@ -1,0 +1,79 @@
+!> Direct solver for non-symmetric sparse matrices (UMFPACK, unsymmetric multifrontal LU),
+!! for the full-Newton tangent where a material's tangent is non-symmetric (psi /= phi). It
+!! takes the full matrix, both triangles, in compressed rows (`full_pattern` of
+!! feps_sparse_matrix), not the lower triangle the symmetric solvers take.
+!!
+!! The UMFPACK state lives behind a C handle that the finalizer frees; do not copy a
+!! umfpack_solver_t after a factorization (the copy would share, and later free, the handle).
+module feps_umfpack_solver
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_int64_t
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, fatal_error, err_solver, err_model, str
+  use feps_sparse_matrix, only: csr_matrix_t
+  use feps_umfpack_bindings, only: feps_umf_create, feps_umf_free, feps_umf_factorize, feps_umf_solve, &
+                                   feps_umf_status, feps_umf_flops, umf_ok, umf_singular
+  implicit none
+  private
+
+  type, public :: umfpack_solver_t
+    type(c_ptr) :: handle = c_null_ptr
+    logical :: factorized = .false.    !! a valid factorization is held
+    integer :: factorizations = 0      !! successful factorizations so far
+    real(dp) :: flops = 0.0_dp         !! of the last factorization
+  contains
+    procedure :: factorize => umfpack_factorize
+    procedure :: solve => umfpack_solve
+    final :: umfpack_finalize
+  end type umfpack_solver_t
+
+contains
+
+  !> LU factorization of the full matrix `a`; a singular matrix fails with err_model.
+  subroutine umfpack_factorize(self, a, error)
+    !! `a` holds both triangles in compressed rows, 1-based.
+    class(umfpack_solver_t), intent(inout) :: self
+    type(csr_matrix_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+    self%factorized = .false.
+    if (.not. c_associated(self%handle)) self%handle = feps_umf_create()
+    if (.not. c_associated(self%handle)) then
+      call fatal_error(error, err_solver, 'UMFPACK: out of memory creating the solver')
+      return
+    end if
+    code = feps_umf_factorize(self%handle, int(a%n, c_int64_t), a%row_ptr, a%col, a%val)
+    self%flops = feps_umf_flops(self%handle)
+    if (code == umf_singular) then
+      call fatal_error(error, err_model, 'UMFPACK: the non-symmetric tangent is singular')
+      return
+    else if (code /= umf_ok) then
+      call fatal_error(error, err_solver, 'UMFPACK failed to factorize (code ' // str(int(code)) // &
+                       ', status ' // str(int(feps_umf_status(self%handle))) // ')')
+      return
+    end if
+    self%factorized = .true.
+    self%factorizations = self%factorizations + 1
+  end subroutine umfpack_factorize
+
+  !> Solve A x = b in place with the last factorization.
+  subroutine umfpack_solve(self, b, error)
+    class(umfpack_solver_t), intent(inout) :: self
+    real(dp), intent(inout) :: b(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+    if (.not. self%factorized) then
+      call fatal_error(error, err_solver, 'UMFPACK: solve without a factorization')
+      return
+    end if
+    code = feps_umf_solve(self%handle, b)
+    if (code /= umf_ok) call fatal_error(error, err_solver, 'UMFPACK failed to solve (status ' // &
+                                         str(int(feps_umf_status(self%handle))) // ')')
+  end subroutine umfpack_solve
+
+  subroutine umfpack_finalize(self)
+    type(umfpack_solver_t), intent(inout) :: self
+    if (c_associated(self%handle)) call feps_umf_free(self%handle)
+    self%handle = c_null_ptr
+  end subroutine umfpack_finalize
+
+end module feps_umfpack_solver

@@ -825,12 +825,13 @@ contains
       npairs = 0
     end if
     do m = 1, c%max_iterations
-      t0 = wall_clock()
       if (c%method == method_full_newton_raphson .and. m > 1) then
-        ! Full Newton: the consistent tangent of the current iterate, refactorized every iteration.
+        ! Full Newton: the consistent tangent of the current iterate, refactorized every iteration
+        ! (factorize_tangent times its assembly and factorization itself).
         call factorize_tangent(model, an, .false., summary, error, trial=.true., exact=.true.)
         if (allocated(error)) exit
       end if
+      t0 = wall_clock()
       if (use_bfgs) then
         r_old = r
         call bfgs_direction(an, s_hist(:, 1:npairs), y_hist(:, 1:npairs), rho(1:npairs), r, error)

@@ -1201,33 +1201,13 @@ contains
           call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
           if (an%map%has_rotations()) call rotate_matrix(an%map, conn(:, e), ke)
           call element_dofs(an%map, conn(:, e), dofs)
-          if (exact) then
-            call scatter_full_matrix(dofs, ke, a)
-          else
-            call scatter_element_matrix(dofs, ke, a)
-          end if
+          call scatter_element_matrix(dofs, ke, a, both_triangles=exact)
         end do
       end associate
       deallocate (ke, d, dofs)
     end do
   end subroutine assemble_tangent
 
-  !> Add an element matrix to a matrix stored with both triangles.
-  subroutine scatter_full_matrix(dofs, ke, a)
-    integer, intent(in) :: dofs(:)
-    real(dp), intent(in) :: ke(:, :)
-    type(csr_matrix_t), intent(inout) :: a
-    integer :: i, j
-    integer(i8) :: pos
-    do i = 1, size(dofs)
-      if (dofs(i) == 0) cycle
-      do j = 1, size(dofs)
-        if (dofs(j) == 0) cycle
-        pos = a%find(dofs(i), dofs(j))
-        a%val(pos) = a%val(pos) + ke(i, j)
-      end do
-    end do
-  end subroutine scatter_full_matrix
 
   subroutine name_step(error, st, k, lf)
     type(error_t), intent(inout) :: error

@@ -304,17 +304,21 @@ contains
   end subroutine rotate_matrix
 
 
-  !> Add an element matrix into the lower triangle of the free equations.
-  subroutine scatter_element_matrix(dofs, ke, a)
+  !> Add an element matrix into the lower triangle of the free equations (or into both).
+  subroutine scatter_element_matrix(dofs, ke, a, both_triangles)
     integer, intent(in) :: dofs(:)
     real(dp), intent(in) :: ke(:, :)
     type(csr_matrix_t), intent(inout) :: a
+    logical, intent(in), optional :: both_triangles   !! `a` holds both triangles (full_pattern)
     integer :: i, j
     integer(i8) :: pos
+    logical :: lower_only
+    lower_only = .true.
+    if (present(both_triangles)) lower_only = .not. both_triangles
     do i = 1, size(dofs)
       if (dofs(i) == 0) cycle
       do j = 1, size(dofs)
-        if (dofs(j) == 0 .or. dofs(j) > dofs(i)) cycle
+        if (dofs(j) == 0 .or. (lower_only .and. dofs(j) > dofs(i))) cycle
         pos = a%find(dofs(i), dofs(j))
         a%val(pos) = a%val(pos) + ke(i, j)
       end do

@@ -1102,36 +1102,38 @@ contains
     logical :: use_trial, nonsymmetric
     use_trial = .false.
     if (present(trial)) use_trial = trial
-    t0 = wall_clock()
-    call assemble_tangent(model, an, elastic, use_trial, .false., an%a, nonsymmetric)
-    summary%time_assembly = summary%time_assembly + wall_clock() - t0
-
     ! Non-symmetric points under full Newton: factorize the exact tangent (UMFPACK LU) and
     ! solve with it. Where it is singular (a body held only by faces sliding without
     ! dilation, a neutral equilibrium) the symmetric stand-in below is used instead.
     an%use_lu = .false.
-    if (present(exact) .and. nonsymmetric) then
-      if (exact) then
-        t0 = wall_clock()
-        if (.not. allocated(an%a_full%row_ptr)) call full_pattern(an%a, an%a_full)
-        call assemble_tangent(model, an, elastic, use_trial, .true., an%a_full, nonsymmetric)
-        summary%time_assembly = summary%time_assembly + wall_clock() - t0
-        t0 = wall_clock()
-        call an%lu%factorize(an%a_full, lu_error)
-        summary%time_factorization = summary%time_factorization + wall_clock() - t0
-        if (.not. allocated(lu_error)) then
-          an%use_lu = .true.
-          summary%lu_factorizations = an%lu%factorizations
-          summary%factorizations = an%solver%factorizations + an%lu%factorizations
-          return
-        end if
-        if (lu_error%code /= err_model) then
-          call move_alloc(lu_error, error)
-          return
-        end if
-        an%lu_singular = an%lu_singular + 1
-      end if
+    nonsymmetric = .false.
+    if (present(exact) .and. .not. elastic) then
+      if (exact) nonsymmetric = any_nonsymmetric_tangent(model, an, use_trial)
     end if
+    if (nonsymmetric) then
+      t0 = wall_clock()
+      if (.not. allocated(an%a_full%row_ptr)) call full_pattern(an%a, an%a_full)
+      call assemble_tangent(model, an, elastic, use_trial, .true., an%a_full, nonsymmetric)
+      summary%time_assembly = summary%time_assembly + wall_clock() - t0
+      t0 = wall_clock()
+      call an%lu%factorize(an%a_full, lu_error)
+      summary%time_factorization = summary%time_factorization + wall_clock() - t0
+      if (.not. allocated(lu_error)) then
+        an%use_lu = .true.
+        summary%lu_factorizations = an%lu%factorizations
+        summary%factorizations = an%solver%factorizations + an%lu%factorizations
+        return
+      end if
+      if (lu_error%code /= err_model) then
+        call move_alloc(lu_error, error)
+        return
+      end if
+      an%lu_singular = an%lu_singular + 1
+    end if
+
+    t0 = wall_clock()
+    call assemble_tangent(model, an, elastic, use_trial, .false., an%a, nonsymmetric)
+    summary%time_assembly = summary%time_assembly + wall_clock() - t0
     if (nonsymmetric) an%symmetrized = .true.
 
     t0 = wall_clock()
@@ -1155,6 +1157,33 @@ contains
       end if
     end if
   end subroutine factorize_tangent
+
+  !> A point tangent that differs from its transpose beyond rounding.
+  pure logical function is_nonsymmetric(d)
+    real(dp), intent(in) :: d(:, :)
+    is_nonsymmetric = any(abs(d - transpose(d)) > 1.0e-12_dp * maxval(abs(d)))
+  end function is_nonsymmetric
+
+  !> Whether any point tangent of the active nonlinear groups (committed, or of the current
+  !! iterate with `use_trial`) is non-symmetric: a pass over the points, no element matrices.
+  pure logical function any_nonsymmetric_tangent(model, an, use_trial) result(found)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    logical, intent(in) :: use_trial
+    integer :: g, q
+    found = .false.
+    do g = 1, size(model%groups)
+      if (.not. an%active(g) .or. .not. an%states(g)%nonlinear) cycle
+      do q = 1, size(an%states(g)%dtan, 3)
+        if (use_trial) then
+          found = is_nonsymmetric(an%states(g)%dtan_t(:, :, q))
+        else
+          found = is_nonsymmetric(an%states(g)%dtan(:, :, q))
+        end if
+        if (found) return
+      end do
+    end do
+  end function any_nonsymmetric_tangent
 
   !> Assemble the tangent stiffness into `a`: the lower triangle with every non-symmetric point
   !! tangent replaced by its nearest symmetric positive semi-definite stand-in, or (`exact`)
@@ -1192,7 +1221,7 @@ contains
               else
                 d(:, :, q) = s%dtan(:, :, q0 + q)
               end if
-              if (any(abs(d(:, :, q) - transpose(d(:, :, q))) > 1.0e-12_dp * maxval(abs(d(:, :, q))))) then
+              if (is_nonsymmetric(d(:, :, q))) then
                 nonsymmetric = .true.
                 if (.not. exact) call nearest_symmetric_psd(d(:, :, q))
               end if

@@ -89,6 +89,10 @@ contains
     if (allocated(error)) return
     call check(error, maxval(abs(x - b(:, 1))) <= 1.0e-12_dp * maxval(abs(b)), 'UMFPACK equals dgesv')
     if (allocated(error)) return
+    ! another pattern with the same size and number of entries (equations renumbered between
+    ! stages): [[2, 0, 1], [0, 3, 0], [-1, 0, 4]] x = [3, 3, 3] has x = [1, 1, 1]
+    call three_by_three([1, 1, 2, 3, 3], [1, 3, 2, 1, 3], [2.0_dp, 1.0_dp, 3.0_dp, -1.0_dp, 4.0_dp], error)
+    if (allocated(error)) return
     ! a zero row: singular
     full%val(full%row_ptr(3):full%row_ptr(4) - 1) = 0.0_dp
     call lu%factorize(full, error)
@@ -100,6 +104,34 @@ contains
     msg = error%message
     deallocate (error)
     call check(error, code, err_model, 'singular: ' // msg)
+  contains
+    !> Factorize a 3 x 3 matrix given by its entries, row by row, with the solver that holds
+    !! the Laplacian's analysis (first [[2, 1, 0], [1, 3, 0], [0, 0, 4]], same size and count),
+    !! and solve for the right-hand side [3, 3, 3].
+    subroutine three_by_three(rows, cols, vals, error)
+      integer, intent(in) :: rows(5), cols(5)
+      real(dp), intent(in) :: vals(5)
+      type(error_t), allocatable, intent(out) :: error
+      type(csr_matrix_t) :: m
+      type(umfpack_solver_t) :: small
+      real(dp) :: y(3)
+      m%n = 3
+      m%row_ptr = [1_i8, 3_i8, 4_i8, 6_i8]
+      m%col = [1, 2, 2, 1, 3]
+      m%val = [2.0_dp, 1.0_dp, 3.0_dp, 1.0_dp, 4.0_dp]
+      call small%factorize(m, error)
+      if (allocated(error)) return
+      m%col = cols
+      m%val = vals
+      m%row_ptr = [1_i8, int(count(rows <= 1) + 1, i8), int(count(rows <= 2) + 1, i8), 6_i8]
+      call small%factorize(m, error)
+      if (allocated(error)) return
+      y = 3.0_dp
+      call small%solve(y, error)
+      if (allocated(error)) return
+      call check(error, maxval(abs(y - 1.0_dp)) <= 1.0e-14_dp, &
+                 'a new pattern of the same size is analysed again')
+    end subroutine three_by_three
   end subroutine test_umfpack
 
   !> 5-point Laplacian on an m x m interior grid with Dirichlet boundaries (lower triangle).

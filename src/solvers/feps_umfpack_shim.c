@@ -4,7 +4,7 @@
  * Fortran passes the full matrix (both triangles) in 1-based compressed rows: row_ptr as int64,
  * columns as int32.  Read as compressed columns that is A^T, which UMFPACK factorizes; the solve
  * asks for the transposed system (UMFPACK_At), i.e. A x = b.  The symbolic analysis is kept while
- * the pattern (n and the number of entries) stays the same.
+ * the pattern stays the same.
  *
  * Return codes: FEPS_UMF_* below (0 = success).
  */
@@ -75,8 +75,8 @@ int feps_umf_factorize(void *handle, int64_t n, const int64_t *row_ptr, const in
     if (h->numeric != NULL) umfpack_dl_free_numeric(&h->numeric);
     if (n != h->n || nnz != h->nnz) {
         release(h);
-        h->ap = malloc((size_t)(n + 1) * sizeof(int64_t));
-        h->ai = malloc((size_t)nnz * sizeof(int64_t));
+        h->ap = calloc((size_t)(n + 1), sizeof(int64_t));
+        h->ai = calloc((size_t)nnz, sizeof(int64_t));
         h->ax = malloc((size_t)nnz * sizeof(double));
         h->x = malloc((size_t)n * sizeof(double));
         if (!h->ap || !h->ai || !h->ax || !h->x) {
@@ -86,11 +86,19 @@ int feps_umf_factorize(void *handle, int64_t n, const int64_t *row_ptr, const in
         h->n = n;
         h->nnz = nnz;
     }
-    for (int64_t i = 0; i <= n; i++) h->ap[i] = row_ptr[i] - 1;
+    /* The symbolic analysis is kept only for the very pattern it was made for: equations
+     * renumbered between stages may keep n and the number of entries. */
+    int same = 1;
+    for (int64_t i = 0; i <= n; i++) {
+        if (h->ap[i] != row_ptr[i] - 1) same = 0;
+        h->ap[i] = row_ptr[i] - 1;
+    }
     for (int64_t k = 0; k < nnz; k++) {
         if (col[k] < 1 || col[k] > n) return FEPS_UMF_BAD_INPUT;
+        if (h->ai[k] != col[k] - 1) same = 0;
         h->ai[k] = col[k] - 1;
     }
+    if (!same && h->symbolic != NULL) umfpack_dl_free_symbolic(&h->symbolic);
     memcpy(h->ax, val, (size_t)nnz * sizeof(double));
     if (h->symbolic == NULL) {
         h->status = umfpack_dl_symbolic(n, n, h->ap, h->ai, h->ax, &h->symbolic, h->control, h->info);

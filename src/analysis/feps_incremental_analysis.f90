@@ -129,7 +129,7 @@ contains
     type(analysis_summary_t), intent(out) :: summary
     type(error_t), allocatable, intent(out) :: error
     type(analysis_t) :: an
-    real(dp) :: t0
+    real(dp) :: t0, length
     integer :: n
 
     t0 = wall_clock()
@@ -162,8 +162,9 @@ contains
     do n = 1, model%nnode
       if (any(an%map%constrained(:, n))) summary%reaction_force = summary%reaction_force + an%fint(:, n) - &
                                                                   an%f_applied(:, n)
-      if (magnitude(an%u(:, n)) > summary%max_displacement) then
-        summary%max_displacement = magnitude(an%u(:, n))
+      length = magnitude(an%u(:, n))
+      if (length > summary%max_displacement) then
+        summary%max_displacement = length
         summary%max_displacement_node = n
       end if
     end do

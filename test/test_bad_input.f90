@@ -47,7 +47,11 @@ contains
       new_unittest('PARAMETERS: a name starting with a digit', test_parameter_bad_name), &
       new_unittest('a node repeat count beyond the mesh size limit', test_repeat_too_large), &
       new_unittest('an element repeat count beyond the mesh size limit', test_element_repeat_too_large), &
-      new_unittest('a NODE number beyond the mesh size limit', test_node_number_too_large) &
+      new_unittest('a NODE number beyond the mesh size limit', test_node_number_too_large), &
+      new_unittest('MATSUOKA with an unknown TENSION rule', test_tension_rule_unknown), &
+      new_unittest('ELASTIC with a parameter it does not have (TENSION)', test_tension_on_elastic), &
+      new_unittest('ELASTIC with both E and G', test_elastic_e_and_g), &
+      new_unittest('a MATERIAL parameter given twice', test_material_key_twice) &
       ]
   end subroutine collect_bad_input
 
@@ -211,6 +215,36 @@ contains
                         [character(len=60) :: 'node_number_too_large.dat:16: field 2:', &
                          'node number 2000000000 is larger than feps reads (20000000)'], error)
   end subroutine test_node_number_too_large
+
+  subroutine test_tension_rule_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/tension_rule_unknown.dat', err_input, &
+                        [character(len=60) :: 'tension_rule_unknown.dat:14:', 'material concrete', &
+                         'TENSION = "sideways"', 'PROPORTIONAL', 'CLOSEST-POINT'], error)
+  end subroutine test_tension_rule_unknown
+
+  !> An elastic material used to ignore parameters it does not know.
+  subroutine test_tension_on_elastic(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/tension_on_elastic.dat', err_input, &
+                        [character(len=60) :: 'tension_on_elastic.dat:14:', 'material concrete', &
+                         'unknown parameter TENSION', '(expected E, NU, G)'], error)
+  end subroutine test_tension_on_elastic
+
+  !> E and G together used to keep E and ignore G.
+  subroutine test_elastic_e_and_g(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/elastic_e_and_g.dat', err_input, &
+                        [character(len=60) :: 'elastic_e_and_g.dat:15:', 'material steel', &
+                         'give only one of E and G'], error)
+  end subroutine test_elastic_e_and_g
+
+  !> A key given twice used to keep the first value.
+  subroutine test_material_key_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/material_key_twice.dat', err_input, &
+                        [character(len=60) :: 'material_key_twice.dat:15: field 6:', 'NU is given twice'], error)
+  end subroutine test_material_key_twice
 
   subroutine test_duplicate_node(error)
     type(error_t), allocatable, intent(out) :: error

@@ -3,7 +3,8 @@
 !! ft/fc = 1/10 at 54.9 deg), returns onto the surface with the flow rule, the apex and the
 !! tension zone, the consistent tangent against finite differences, rotation invariance,
 !! the uniaxial strain-driven block example, the elastic range of nu, huge steps for a range
-!! of angles and the parameter checks.
+!! of angles and the parameter checks; both tension-zone rules (the thesis's proportional
+!! return, discontinuous, and the continuous closest-point return with its apex).
 module test_matsuoka
   use feps_kinds, only: dp, deg2rad
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
@@ -11,7 +12,8 @@ module test_matsuoka
   use feps_model, only: material_spec_t, name_len
   use feps_material, only: material_t, state_elastic, state_plastic, state_tension
   use feps_matsuoka_nakai, only: matsuoka_nakai_t, new_matsuoka_nakai, apex_from_tensile_strength, &
-                                 apex_from_cohesion, apex_stiffness_factor
+                                 apex_from_cohesion, apex_stiffness_factor, tension_proportional, &
+                                 tension_closest_point
   implicit none
   private
 
@@ -30,6 +32,8 @@ contains
       new_unittest("elastic_step_and_nu_range", test_elastic_nu), &
       new_unittest("random_returns_on_surface", test_random_returns), &
       new_unittest("apex_and_tension_zone", test_apex_tension), &
+      new_unittest("tension_rules_continuity", test_tension_continuity), &
+      new_unittest("closest_point_tension_returns", test_closest_point_returns), &
       new_unittest("tangent_finite_difference", test_tangent_fd), &
       new_unittest("rotation_invariance", test_rotation), &
       new_unittest("uniaxial_block_path_2_4_3", test_block_path), &
@@ -40,14 +44,16 @@ contains
 
   ! ---------------------------------------------------------------- helpers
 
-  pure function make(phi, psi, ft, e, nu) result(m)
+  pure function make(phi, psi, ft, e, nu, tension) result(m)
     real(dp), intent(in) :: phi, psi, ft
     real(dp), intent(in), optional :: e, nu
+    integer, intent(in), optional :: tension
     type(matsuoka_nakai_t) :: m
     m = matsuoka_nakai_t(name='concrete', e=e_block, nu=nu_block, phi=phi, psi=psi, &
                          apex=apex_from_tensile_strength(ft, phi))
     if (present(e)) m%e = e
     if (present(nu)) m%nu = nu
+    if (present(tension)) m%tension = tension
   end function make
 
   pure logical function finite(x)
@@ -178,7 +184,8 @@ contains
   !! (|F| <= 1e-12 scale, thesis cubic <= 1e-10 relative); elastic: unchanged and inside;
   !! plastic: plastic strain D^-1 (sig_tr - sig) along the potential gradient with a positive
   !! multiplier (potential: the cone with angle psi, FD gradient; psi = 0: the deviator);
-  !! tension: sig = alpha sig_tr with 0 < alpha <= 1.
+  !! tension: sig = alpha sig_tr with 0 < alpha <= 1 (proportional rule) or the apex M I with
+  !! the small residual tangent (closest-point rule).
   subroutine check_returned(error, m, sig_tr, sig, state, dtan, what)
     type(error_t), allocatable, intent(out) :: error
     type(matsuoka_nakai_t), intent(in) :: m
@@ -219,6 +226,11 @@ contains
         if (allocated(error)) return
         call check(error, norm2(ep - proj * ng), 0.0_dp, what // ': plastic strain along dg/dsigma', &
                    abs=1.0e-7_dp * norm2(ep))
+      else if (m%tension == tension_closest_point) then
+        call check(error, maxval(abs(sig - m%apex * [1, 1, 1, 0, 0, 0])), 0.0_dp, what // ': the apex', abs=0.0_dp)
+        if (allocated(error)) return
+        call check(error, maxval(abs(dtan - apex_stiffness_factor * d_matrix(m%e, m%nu))), 0.0_dp, &
+                   what // ': apex residual tangent', abs=1.0e-12_dp * m%e)
       else
         alpha = dot_product(sig, sig_tr) / dot_product(sig_tr, sig_tr)
         call check(error, alpha > 0.0_dp .and. alpha <= 1.0_dp + 1.0e-14_dp, what // ': 0 < alpha <= 1')
@@ -342,7 +354,8 @@ contains
   end subroutine test_elastic_nu
 
   !> 300 random trial stresses (fixed seed) for phi = 15, 26.57, 40, 54.9 (nu = 0.2, -0.9,
-  !! 0.499, 0) and psi = 0, phi/2, phi: every result passes check_returned; each kind of result occurs.
+  !! 0.499, 0) and psi = 0, phi/2, phi, under both tension rules: every result passes
+  !! check_returned; each kind of result occurs.
   subroutine test_random_returns(error)
     type(error_t), allocatable, intent(out) :: error
     real(dp), parameter :: angles(4) = [15.0_dp, 26.57_dp, 40.0_dp, 54.9_dp]
@@ -350,13 +363,14 @@ contains
     type(matsuoka_nakai_t) :: m
     real(dp) :: sig_tr(6), sig(6), dt(6, 6), psi
     integer(kind=8) :: seed
-    integer :: i, j, k, n, st, counts(0:3)
+    integer :: i, j, k, n, st, counts(0:3), rule
+    do rule = tension_proportional, tension_closest_point
     seed = 20240917_8
     counts = 0
     do i = 1, size(angles)
       do j = 0, 2
         psi = 0.5_dp * j * angles(i)
-        m = make(angles(i), psi, 4.0_dp, nu=nus(i))
+        m = make(angles(i), psi, 4.0_dp, nu=nus(i), tension=rule)
         do n = 1, 300
           do k = 1, 6
             sig_tr(k) = m%apex * (6.0_dp * next_uniform(seed) - 4.5_dp)
@@ -370,10 +384,98 @@ contains
         end do
       end do
     end do
+    ! (the closest-point rule's apex region is a narrow cone round the hydrostatic axis)
     call check(error, counts(state_elastic) > 100 .and. counts(state_plastic) > 1000 .and. &
-               counts(state_tension) > 100, 'elastic, plastic and tension results all occur: ' // &
-               str(counts(0)) // ' ' // str(counts(1)) // ' ' // str(counts(3)))
+               counts(state_tension) > merge(100, 0, rule == tension_proportional), &
+               'elastic, plastic and tension results all occur (rule ' // &
+               str(rule) // '): ' // str(counts(0)) // ' ' // str(counts(1)) // ' ' // str(counts(3)))
+    if (allocated(error)) return
+    end do
   end subroutine test_random_returns
+
+  !> Trial stresses swept in steps of 0.005 MPa across the tension zone's border sigma_1 = M
+  !! (phi = 54.9 deg, ft = 5 MPa, chapter 9's concrete; sigma_2 = 0, -10, -30, sigma_3 =
+  !! sigma_2 - 5; psi = phi and 0). The closest-point rule is continuous: no returned component
+  !! moves by more than twice the trial's step. The thesis's proportional rule jumps at the
+  !! border, by more than 1 MPa at sigma_2 = -10 and -30 (measured: up to 16 MPa).
+  subroutine test_tension_continuity(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: lateral(3) = [0.0_dp, -10.0_dp, -30.0_dp], step = 0.005_dp
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: trial(6), sig(6), prev(6), dt(6, 6), biggest
+    integer :: i, j, k, st, rule
+    do k = 0, 1
+      do rule = tension_proportional, tension_closest_point
+        m = make(54.9_dp, k * 54.9_dp, 5.0_dp, e=31700.0_dp, nu=0.22_dp, tension=rule)
+        do j = 1, size(lateral)
+          biggest = 0.0_dp
+          do i = 0, 4000
+            trial = [-5.0_dp + i * step, lateral(j), lateral(j) - 5.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+            call return_of(m, trial, sig, st, dt)
+            if (i > 0) biggest = max(biggest, maxval(abs(sig - prev)))
+            prev = sig
+          end do
+          if (rule == tension_closest_point) then
+            call check(error, biggest <= 2.0_dp * step, 'closest point: continuous at sigma_2 = ' // &
+                       str(lateral(j)) // ', psi = ' // str(m%psi) // ' (largest change ' // str(biggest) // ')')
+          else if (j > 1) then
+            call check(error, biggest > 1.0_dp, 'proportional (thesis): jumps at sigma_2 = ' // str(lateral(j)) // &
+                       ', psi = ' // str(m%psi) // ' (largest change ' // str(biggest) // ')')
+          end if
+          if (allocated(error)) return
+        end do
+      end do
+    end do
+  end subroutine test_tension_continuity
+
+  !> The closest-point rule: a hydrostatic trial beyond the apex returns to M I (state
+  !! tension) for psi = phi and psi = 0; a trial whose sigma_1 exceeds M but whose return
+  !! stays on the cone is a plastic point with the consistent tangent, checked against central
+  !! finite differences (1e-5 relative); uniaxial tension far beyond ft lands on the cone, not
+  !! proportionally at (ft, 0, 0).
+  subroutine test_closest_point_returns(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: psis(2) = [54.9_dp, 0.0_dp]
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: sig0(6), deps(6), sig(6), dt(6, 6), dfd(6, 6), sp(6), sm(6), dd(6, 6), e(6), h
+    integer :: i, j, st, stp, stm
+    do i = 1, size(psis)
+      m = make(54.9_dp, psis(i), 5.0_dp, e=31700.0_dp, nu=0.22_dp, tension=tension_closest_point)
+      call return_of(m, 2.0_dp * m%apex * [1, 1, 1, 0, 0, 0], sig, st, dt)
+      call check_returned(error, m, 2.0_dp * m%apex * [1, 1, 1, 0, 0, 0], sig, st, dt, 'hydrostatic 2 M')
+      if (allocated(error)) return
+      call check(error, st, state_tension, 'hydrostatic 2 M: the apex, state tension')
+      if (allocated(error)) return
+      ! sigma_1 = M + 1 with lateral compression: the old tension zone, now a return to the cone
+      sig0 = [m%apex + 1.0_dp, -10.0_dp, -15.0_dp, 0.3_dp, -0.2_dp, 0.1_dp]
+      deps = 1.0e-5_dp * [1.0_dp, -0.5_dp, 0.2_dp, 0.3_dp, 0.1_dp, -0.2_dp]
+      call m%update(sig0, zero6, deps, state_elastic, sig, st, dt)
+      call check_returned(error, m, sig0 + matmul(d_matrix(m%e, m%nu), deps), sig, st, dt, &
+                          'sigma_1 beyond M, psi ' // str(psis(i)))
+      if (allocated(error)) return
+      call check(error, st, state_plastic, 'sigma_1 beyond M: a plastic point on the cone')
+      if (allocated(error)) return
+      h = 1.0e-6_dp * maxval(abs(deps))
+      do j = 1, 6
+        e = 0.0_dp
+        e(j) = h
+        call m%update(sig0, zero6, deps + e, state_elastic, sp, stp, dd)
+        call m%update(sig0, zero6, deps - e, state_elastic, sm, stm, dd)
+        dfd(:, j) = (sp - sm) / (2.0_dp * h)
+      end do
+      call check(error, maxval(abs(dt - dfd)), 0.0_dp, 'closest point: tangent vs FD, psi ' // str(psis(i)), &
+                 abs=1.0e-5_dp * maxval(abs(dfd)))
+      if (allocated(error)) return
+      ! uniaxial tension 2 ft: on the cone, and not the proportional (ft, 0, 0)
+      call return_of(m, [10.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], sig, st, dt)
+      call check_returned(error, m, [10.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], sig, st, dt, &
+                          'uniaxial 2 ft, psi ' // str(psis(i)))
+      if (allocated(error)) return
+      call check(error, maxval(abs(sig - [5.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])) > 0.1_dp, &
+                 'uniaxial 2 ft: not the proportional return')
+      if (allocated(error)) return
+    end do
+  end subroutine test_closest_point_returns
 
   !> The apex M I for hydrostatic tension beyond it and for a trial exactly at it; uniaxial
   !! tension beyond M returns proportionally to (ft, 0, 0); uniaxial tension below M (but
@@ -542,13 +644,14 @@ contains
   !> The block example of thesis 2.4.3 at one material point: eps_z imposed in 200 equal
   !! steps, the lateral stresses kept zero by Newton iteration on the lateral strains with the
   !! tangent. sigma_z rises with slope E and stays at -15.71 in compression and +6 in tension
-  !! (0.2%), never beyond.
+  !! (0.2%), never beyond; with either tension rule (the path stays on the cone).
   subroutine test_block_path(error)
     type(error_t), allocatable, intent(out) :: error
     type(matsuoka_nakai_t) :: m
     real(dp) :: sig0(6), eps0(6), deps(6), sig(6), dt(6, 6), target, ezmax, a(2, 2), r(2), det, peak
-    integer :: dir, step, iter, st, st0
-    m = make(phi_block, phi_block, ft_block)
+    integer :: dir, step, iter, st, st0, rule
+    do rule = tension_proportional, tension_closest_point
+    m = make(phi_block, phi_block, ft_block, tension=rule)
     do dir = -1, 1, 2
       if (dir < 0) then
         target = -15.71_dp
@@ -590,6 +693,7 @@ contains
       if (allocated(error)) return
       call check(error, peak, abs(target), 'no overshoot', rel=2.0e-3_dp)
       if (allocated(error)) return
+    end do
     end do
   end subroutine test_block_path
 
@@ -732,6 +836,60 @@ contains
     if (allocated(error)) return
     call expect_rejected(error, [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'kn'], &
                          [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp], 'unknown parameter KN')
+    if (allocated(error)) return
+    ! TENSION: a rule's name, the default the thesis's
+    call check(error, tension_of(''), tension_proportional, 'no TENSION: proportional')
+    if (allocated(error)) return
+    call check(error, tension_of('proportional'), tension_proportional, 'TENSION=proportional')
+    if (allocated(error)) return
+    call check(error, tension_of('closest-point'), tension_closest_point, 'TENSION=closest-point')
+    if (allocated(error)) return
+    call expect_tension_rejected(error, 'sideways')
+    if (allocated(error)) return
+    call expect_tension_rejected(error, '')   ! given as a number (TENSION=1)
   end subroutine test_validator
+
+  !> E, NU, PHI, PSI, FT and TENSION given as `word` ('' as if a number had been given).
+  function spec_with_tension(word) result(spec)
+    character(len=*), intent(in) :: word
+    type(material_spec_t) :: spec
+    spec = spec_of([character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'tension'], &
+                   [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp])
+    spec%texts = [character(len=name_len) :: '', '', '', '', '', word]
+  end function spec_with_tension
+
+  !> The tension rule the validator stores for TENSION=`word` (`word` = '': TENSION left out).
+  integer function tension_of(word) result(rule)
+    character(len=*), intent(in) :: word
+    class(material_t), allocatable :: mat
+    type(error_t), allocatable :: err
+    rule = -1
+    if (word == '') then
+      call new_matsuoka_nakai(spec_of([character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft'], &
+                                      [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp]), mat, err)
+    else
+      call new_matsuoka_nakai(spec_with_tension(word), mat, err)
+    end if
+    if (allocated(err)) return
+    select type (mat)
+    type is (matsuoka_nakai_t)
+      rule = mat%tension
+    end select
+  end function tension_of
+
+  subroutine expect_tension_rejected(error, word)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in) :: word
+    class(material_t), allocatable :: mat
+    type(error_t), allocatable :: err
+    call new_matsuoka_nakai(spec_with_tension(word), mat, err)
+    if (.not. allocated(err)) then
+      call test_failed(error, 'TENSION="' // word // '" accepted')
+      return
+    end if
+    call check(error, index(err%message, 'deck.inp:23:') == 1 .and. &
+               index(err%message, 'TENSION = "' // word // '": it must be') > 0 &
+               .and. index(err%message, 'CLOSEST-POINT') > 0, 'message "' // err%message // '" names TENSION')
+  end subroutine expect_tension_rejected
 
 end module test_matsuoka

@@ -10,7 +10,7 @@ module feps_deck
   use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check, max_mesh_nodes
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, &
                                     cylindrical_about, csys_cartesian, csys_cylindrical
-  use feps_model, only: model_t, element_group_t, material_spec_t, node_set_t, face_set_t, &
+  use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
                         constraint_t, nodal_load_t, face_load_t, region_t, in_region, &
                         load_pressure, load_traction, name_len, stage_t, controls_t, method_names, &
                         method_euler, method_modified_euler, method_newton_raphson, method_full_newton_raphson, &
@@ -379,7 +379,7 @@ contains
     type(material_spec_t) :: m
     type(material_spec_t), allocatable :: tmp(:)
     integer :: i, eq
-    character(len=:), allocatable :: f
+    character(len=:), allocatable :: f, key, word
     real(dp) :: v
 
     call require_fields(rec, 3, error)
@@ -392,7 +392,7 @@ contains
     m%kind = to_lower(field_text(rec, 3))
     m%file = rec%file
     m%line = rec%line
-    allocate (m%keys(0), m%values(0))
+    allocate (m%keys(0), m%values(0), m%texts(0))
     do i = 4, nfields(rec)
       f = field_text(rec, i)
       eq = index(f, '=')
@@ -400,10 +400,22 @@ contains
         call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
         return
       end if
-      call parse_real(f(eq + 1:), v, error, rec, i)
-      if (allocated(error)) return
-      m%keys = [character(len=name_len) :: m%keys, to_lower(f(:eq - 1))]
+      key = to_lower(f(:eq - 1))
+      if (any(m%keys == key)) then
+        call input_error(error, rec%file, rec%line, to_upper(key) // ' is given twice', i)
+        return
+      end if
+      word = ''
+      v = 0.0_dp
+      if (any(key == text_material_keys)) then
+        word = to_lower(f(eq + 1:))   ! a word (the material checks it)
+      else
+        call parse_real(f(eq + 1:), v, error, rec, i)
+        if (allocated(error)) return
+      end if
+      m%keys = [character(len=name_len) :: m%keys, key]
       m%values = [m%values, v]
+      m%texts = [character(len=name_len) :: m%texts, word]
     end do
     tmp = [model%materials, m]
     call move_alloc(tmp, model%materials)

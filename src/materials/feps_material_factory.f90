@@ -3,6 +3,7 @@ module feps_material_factory
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
+  use feps_material_params, only: check_known_keys
   use feps_material, only: material_t
   use feps_linear_elastic, only: linear_elastic_t
   use feps_interface_mohr_coulomb, only: new_interface_mohr_coulomb
@@ -24,9 +25,16 @@ contains
     logical :: has_e, has_nu, has_g
     select case (spec%kind)
     case ('elastic')
+      call check_known_keys(spec, ['e ', 'nu', 'g '], error)
+      if (allocated(error)) return
       call spec%get('e', e, has_e)
       call spec%get('nu', nu, has_nu)
       call spec%get('g', g, has_g)
+      if (has_e .and. has_g) then
+        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': give only one of E and G ' // &
+                         '(with NU, either fixes the other)')
+        return
+      end if
       if (.not. has_nu) then
         call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': nu is missing')
         return

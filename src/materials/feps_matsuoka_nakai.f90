@@ -27,12 +27,21 @@
 !!
 !! Stress update (backward Euler, closest-point return along D n_g at the end point):
 !!  - elastic trial sigma_tr = sig0 + D deps; F(sigma_tr) < -1e-12 scale: elastic;
-!!  - tension zone: the most tensile principal trial stress sigma_1 >= M (sigma*_min <= 0).
+!!  - tension zone (rule `tension_proportional`, the thesis's and the default): the most
+!!    tensile principal trial stress sigma_1 >= M (sigma*_min <= 0).
 !!    "Proportionally put back" is implemented as a scaling about the origin (zero stress,
 !!    which lies inside the surface since M > 0): sigma = alpha sigma_tr with the unique
 !!    alpha in (0, 1] that puts it on the surface, alpha = beta M / (r(s_tr) + beta p_tr)
 !!    (closed form: F is linear along the ray). Hydrostatic tension beyond the apex gives the
-!!    apex M I exactly; uniaxial tension sigma > M gives (ft, 0, 0). State state_tension;
+!!    apex M I exactly; uniaxial tension sigma > M gives (ft, 0, 0). State state_tension.
+!!    This rule makes the update discontinuous where sigma_1 crosses M (the closest-point
+!!    return just below M lands elsewhere on the surface; jumps of up to 16 MPa for chapter
+!!    9's concrete), so Newton iterations that cross it may cycle;
+!!  - rule `tension_closest_point` (MATERIAL key TENSION=closest-point, not in the thesis): no
+!!    tension zone; every trial outside the surface takes the closest-point return below, and
+!!    where that return passes the apex (rho <= 0) the stress is the apex M I, state
+!!    state_tension, tangent apex_stiffness_factor D (the exact derivative there is zero). The
+!!    update is continuous;
 !!  - within 1e-12 of the surface: sigma = sigma_tr, state_plastic (no return);
 !!  - otherwise the closest-point return, state_plastic. Because D, F and G are isotropic the
 !!    return keeps the principal axes of the trial, and the return equations reduce exactly to
@@ -47,7 +56,8 @@
 !!    trial by a rotation in the deviatoric plane, s = rho (cos(delta) s_tr/|s_tr| + sin(delta)
 !!    w), w the unit coaxial deviator orthogonal to s_tr (from dev(s_tr^2)). No eigenvectors are
 !!    needed and the result is covariant under rotations of the axes. Outside the tension zone
-!!    p_tr < M, so this return always has a solution on the smooth part of the surface.
+!!    p_tr < M, so under the proportional rule this return always has a solution on the
+!!    smooth part of the surface (R's bracket holds for any p_tr).
 !!
 !! Tangents: normal return: the consistent (algorithmic) tangent
 !!   dtan = Xi - Xi n_g n_f^T Xi / (n_f^T Xi n_g),  Xi = (D^-1 + dlambda d2G/dsigma2)^-1,
@@ -70,6 +80,9 @@ module feps_matsuoka_nakai
 
   public :: new_matsuoka_nakai, apex_from_tensile_strength, apex_from_cohesion
 
+  !> Tension-zone rules (MATERIAL key TENSION=proportional | closest-point).
+  integer, parameter, public :: tension_proportional = 1, tension_closest_point = 2
+
   !> Volumetric residual stiffness at the apex (tension zone, hydrostatic trial): K times this.
   real(dp), parameter, public :: apex_stiffness_factor = 1.0e-6_dp
 
@@ -87,6 +100,9 @@ module feps_matsuoka_nakai
     real(dp) :: phi = 0.0_dp
     real(dp) :: psi = 0.0_dp
     real(dp) :: apex = 0.0_dp    !! M = c / tan(phi) = ft/2 (1 + 1/sin(phi))
+    !> The return of trials in the tension zone: tension_proportional (thesis 2.4.2, the
+    !! default) or tension_closest_point (continuous; the apex for trials beyond it)
+    integer :: tension = tension_proportional
   contains
     procedure :: elastic_tangent => mn_elastic_tangent
     procedure :: update => mn_update
@@ -231,9 +247,9 @@ contains
       return
     end if
 
-    ! Tension zone: most tensile principal stress at or beyond the apex.
+    ! Tension zone (thesis rule): most tensile principal stress at or beyond the apex.
     sigma_1 = p_tr + rho_tr * sqrt2_3 * cos(theta_tr)
-    if (sigma_1 >= m) then
+    if (self%tension == tension_proportional .and. sigma_1 >= m) then
       alpha = min(1.0_dp, yc%beta * m / max(f_tr + yc%beta * m, tiny(1.0_dp)))
       sig = alpha * sig_tr
       state = state_tension
@@ -262,6 +278,16 @@ contains
     dlambda = (rho_tr * wf * cos(delta) - yc%beta * (m - p_tr)) / b
     p = p_tr - bulk * pc%beta * dlambda
     rho = yc%beta * (m - p) / wf
+    if (self%tension == tension_closest_point .and. .not. (rho > 0.0_dp)) then
+      ! The return passes the apex: the stress is the apex itself, the same for every trial
+      ! of this region (zero derivative; a small residual stiffness keeps the matrix regular).
+      ! Continuous with the return to the cone, where rho -> 0 at the region's border.
+      sig = 0.0_dp
+      sig(1:3) = m
+      state = state_tension
+      dtan = apex_stiffness_factor * d
+      return
+    end if
     if (.not. (dlambda > 0.0_dp .and. rho > 0.0_dp)) then
       ! Not expected for a trial outside the surface with p_tr < M (a safeguard only):
       ! put the stress back proportionally as in the tension zone.
@@ -570,9 +596,12 @@ contains
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: error
-    character(len=*), parameter :: known(6) = ['e  ', 'nu ', 'phi', 'psi', 'ft ', 'c  ']
+    character(len=*), parameter :: known(7) = ['e      ', 'nu     ', 'phi    ', 'psi    ', 'ft     ', &
+                                               'c      ', 'tension']
     real(dp) :: e, nu, phi, psi, ft, c, m
-    logical :: has_ft, has_c
+    logical :: has_ft, has_c, has_tension
+    character(len=:), allocatable :: rule
+    integer :: tension
 
     call check_known_keys(spec, known, error)
     if (.not. allocated(error)) call get_parameter(spec, 'e', e, error, positive=.true.)
@@ -617,7 +646,22 @@ contains
       call material_error(error, spec, 'FT or C is missing')
       return
     end if
-    allocate (material, source=matsuoka_nakai_t(name=spec%name, e=e, nu=nu, phi=phi, psi=psi, apex=m))
+    tension = tension_proportional
+    call spec%get_text('tension', rule, has_tension)
+    if (has_tension) then
+      select case (rule)
+      case ('proportional')
+        tension = tension_proportional
+      case ('closest-point')
+        tension = tension_closest_point
+      case default
+        call material_error(error, spec, 'TENSION = "' // rule // '": it must be PROPORTIONAL (the thesis''s ' // &
+                            'rule, the default) or CLOSEST-POINT')
+        return
+      end select
+    end if
+    allocate (material, source=matsuoka_nakai_t(name=spec%name, e=e, nu=nu, phi=phi, psi=psi, apex=m, &
+                                                tension=tension))
 
 
   end subroutine new_matsuoka_nakai

@@ -15,11 +15,16 @@ module feps_model
     character(len=:), allocatable :: kind          !! 'elastic', ...
     character(len=name_len), allocatable :: keys(:)
     real(dp), allocatable :: values(:)
+    character(len=name_len), allocatable :: texts(:)  !! lower-case word of a text-valued key, else ''
     character(len=:), allocatable :: file
     integer :: line = 0
   contains
     procedure :: get => material_get
+    procedure :: get_text => material_get_text
   end type material_spec_t
+
+  !> MATERIAL keys whose value is a word, not a number (e.g. TENSION=closest-point).
+  character(len=*), parameter, public :: text_material_keys(1) = ['tension']
 
   !> Elements of one type and one material.
   type, public :: element_group_t
@@ -285,6 +290,25 @@ contains
       end if
     end do
   end subroutine material_get
+
+  !> The word given for a text-valued key (lower case; '' if it was given as a number).
+  pure subroutine material_get_text(self, key, text, found)
+    class(material_spec_t), intent(in) :: self
+    character(len=*), intent(in) :: key
+    character(len=:), allocatable, intent(out) :: text
+    logical, intent(out) :: found
+    integer :: i
+    found = .false.
+    text = ''
+    if (.not. allocated(self%keys)) return
+    do i = 1, size(self%keys)
+      if (trim(self%keys(i)) == key) then
+        if (allocated(self%texts)) text = trim(self%texts(i))
+        found = .true.
+        return
+      end if
+    end do
+  end subroutine material_get_text
 
   pure integer function model_nelem(self) result(n)
     class(model_t), intent(in) :: self

@@ -137,6 +137,18 @@ for k in ("program", "input_file", "wall_time", "solver", "dofs", "factor_nonzer
     assert k in a["summary"].attrs, k
 ua, ub = a["steps/0001/displacement"][...], b["steps/0001/displacement"][...]
 assert np.abs(ua - ub).max() <= 1e-9 * np.abs(ua).max()
+# the materials as the deck gave them, and each group's material
+assert a["mesh/groups/pipe"].attrs["material"] in (b"concrete", "concrete")
+c = a["materials/concrete"].attrs
+assert c["kind"] in (b"elastic", "elastic") and c["e"] == 40000.0 and c["nu"] == 0.2, dict(c)
+PY
+# A word-valued material parameter (TENSION) is stored as a string.
+"$feps" test/data/beam_tension_cap.dat --quiet --output "$tmp/beam.h5" >/dev/null 2>&1
+python3 - "$tmp/beam.h5" <<'PY' && ok "/materials holds TENSION as a string" || bad "/materials holds TENSION as a string"
+import sys, h5py
+c = h5py.File(sys.argv[1])["materials/concrete"].attrs
+assert c["kind"] in (b"matsuoka", "matsuoka") and c["tension"] in (b"closest-point", "closest-point")
+assert c["phi"] == 54.9 and c["ft"] == 5.0, dict(c)
 PY
 
 # The CalculiX exporter takes a thesis deck (its PARAMETERS are labels) and refuses, with the

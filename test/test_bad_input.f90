@@ -51,7 +51,9 @@ contains
       new_unittest('MATSUOKA with an unknown TENSION rule', test_tension_rule_unknown), &
       new_unittest('ELASTIC with a parameter it does not have (TENSION)', test_tension_on_elastic), &
       new_unittest('ELASTIC with both E and G', test_elastic_e_and_g), &
-      new_unittest('a MATERIAL parameter given twice', test_material_key_twice) &
+      new_unittest('a MATERIAL parameter given twice', test_material_key_twice), &
+      new_unittest('a material name with a slash', test_material_name_slash), &
+      new_unittest('a group name with a slash', test_group_name_slash) &
       ]
   end subroutine collect_bad_input
 
@@ -245,6 +247,22 @@ contains
     call expect_failure('test/data/bad/material_key_twice.dat', err_input, &
                         [character(len=60) :: 'material_key_twice.dat:15: field 6:', 'NU is given twice'], error)
   end subroutine test_material_key_twice
+
+  !> Names become HDF5 groups: a slash used to stop the run with exit 1 when the results were
+  !! written (for a material, after the whole analysis).
+  subroutine test_material_name_slash(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/material_name_slash.dat', err_input, &
+                        [character(len=60) :: 'material_name_slash.dat:15: field 2:', 'the material name "st/eel"', &
+                         'may not contain /'], error)
+  end subroutine test_material_name_slash
+
+  subroutine test_group_name_slash(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/group_name_slash.dat', err_input, &
+                        [character(len=60) :: 'group_name_slash.dat:8: field 2:', 'the group name "bl/ock"', &
+                         'may not contain /'], error)
+  end subroutine test_group_name_slash
 
   subroutine test_duplicate_node(error)
     type(error_t), allocatable, intent(out) :: error

@@ -385,6 +385,8 @@ contains
     call require_fields(rec, 3, error)
     if (allocated(error)) return
     m%name = field_text(rec, 2)
+    call check_result_name(rec, 'material', m%name, error)
+    if (allocated(error)) return
     if (model%find_material(m%name) > 0) then
       call input_error(error, rec%file, rec%line, 'material "' // m%name // '" is defined twice', 2)
       return
@@ -421,6 +423,18 @@ contains
     call move_alloc(tmp, model%materials)
   end subroutine read_material
 
+  !> Group and material names become HDF5 paths (/mesh/groups/<name>, /materials/<name>) and
+  !! XDMF (XML) text: no '/', no XML markup characters, not '.' or '..'.
+  subroutine check_result_name(rec, what, name, error)
+    type(record_t), intent(in) :: rec
+    character(len=*), intent(in) :: what, name
+    type(error_t), allocatable, intent(out) :: error
+    if (scan(name, '/<>&"''') > 0 .or. name == '.' .or. name == '..') then
+      call input_error(error, rec%file, rec%line, 'the ' // what // ' name "' // name // '" may not contain ' // &
+                       '/ < > & " or '' nor be . or .. (it names a group in the results file)', 2)
+    end if
+  end subroutine check_result_name
+
   !> GROUP, name, TYPE=hex8, MATERIAL=name [, BLOCKS=i or i:j]
   subroutine read_group(rec, model, st, error)
     type(record_t), intent(in) :: rec
@@ -436,6 +450,8 @@ contains
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     g%name = field_text(rec, 2)
+    call check_result_name(rec, 'group', g%name, error)
+    if (allocated(error)) return
     if (model%find_group(g%name) > 0) then
       call input_error(error, rec%file, rec%line, 'group "' // g%name // '" is defined twice', 2)
       return

@@ -50,6 +50,7 @@ module feps_results_file
     procedure :: write_summary_real
     procedure :: write_summary_int
     procedure :: write_group_int
+    procedure :: write_material
     procedure :: close => close_file
     procedure :: discard
   end type results_file_t
@@ -146,12 +147,13 @@ contains
 
   !> `/mesh/groups/<name>/connectivity`: connectivity(k, nelem), 1-based node numbers, and the
   !! group attribute `element_type`; a 0-based copy at `/xdmf/<name>/topology` when XDMF can show it.
-  subroutine write_group(self, name, element_type, connectivity, error)
+  subroutine write_group(self, name, element_type, connectivity, error, material)
     class(results_file_t), intent(inout) :: self
     character(len=*), intent(in) :: name
     character(len=*), intent(in) :: element_type
     integer, intent(in) :: connectivity(:, :)
     type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: material   !! its material's name (attribute `material`)
     integer(hid_t) :: group_id
     integer :: hdferr
     type(xdmf_group_t), allocatable :: grown(:)
@@ -171,6 +173,8 @@ contains
       return
     end if
     call write_string_attribute(group_id, 'element_type', element_type, error)
+    if (present(material) .and. .not. allocated(error)) call write_string_attribute(group_id, 'material', material, &
+                                                                                     error)
     call h5gclose_f(group_id, hdferr)
     if (allocated(error)) return
     call write_int_dataset(self, '/mesh/groups/' // name // '/connectivity', connectivity, error)
@@ -392,6 +396,46 @@ contains
     call h5gclose_f(group_id, hdferr2)
     if (allocated(error)) error%message = 'cannot write attribute /mesh/groups/' // name // '/' // key
   end subroutine write_group_int
+
+  !> Group `/materials/<name>` with a string attribute `kind` and one attribute per parameter
+  !! as the MATERIAL record gave it: a real, or a string where `texts(i)` is not empty.
+  subroutine write_material(self, name, kind, keys, values, texts, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: name, kind
+    character(len=*), intent(in) :: keys(:)
+    real(dp), intent(in) :: values(:)
+    character(len=*), intent(in) :: texts(:)    !! '' for a number (size 0: all numbers)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id
+    integer :: hdferr, i
+
+    call require_open(self, error)
+    if (allocated(error)) return
+    call check_name(name, 'material', error)
+    if (allocated(error)) return
+    if (size(values) /= size(keys) .or. (size(texts) /= 0 .and. size(texts) /= size(keys))) then
+      call fatal_error(error, err_internal, 'write_material: keys, values and texts differ in size')
+      return
+    end if
+    call h5gcreate_f(self%file_id, '/materials/' // name, group_id, hdferr, lcpl_id=self%link_plist)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create group /materials/' // name // ' in ' // self%part_path)
+      return
+    end if
+    call write_string_attribute(group_id, 'kind', kind, error)
+    do i = 1, size(keys)
+      if (allocated(error)) exit
+      if (size(texts) > 0) then
+        if (len_trim(texts(i)) > 0) then
+          call write_string_attribute(group_id, trim(keys(i)), trim(texts(i)), error)
+          cycle
+        end if
+      end if
+      call write_real_attribute(group_id, trim(keys(i)), values(i), error)
+    end do
+    call h5gclose_f(group_id, hdferr)
+    if (allocated(error)) error%message = 'cannot write /materials/' // name // ': ' // error%message
+  end subroutine write_material
 
   !> A scalar 64-bit integer attribute on an open group.
   subroutine write_int8_attribute(group_id, key, value, error)

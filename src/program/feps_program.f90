@@ -526,6 +526,7 @@ contains
     if (.not. allocated(error)) call h5%write_summary_string('fields', summary%fields, error)
     if (.not. allocated(error)) call h5%write_summary_int('point_state_bytes', sum(summary%state_bytes), error)
     if (.not. allocated(error)) call write_parameters(h5, model, error)
+    if (.not. allocated(error)) call write_materials(h5, model, error)
     do g = 1, size(summary%state_bytes)
       if (allocated(error)) return
       call h5%write_group_int(model%groups(g)%name, 'point_state_bytes', summary%state_bytes(g), error)
@@ -534,7 +535,26 @@ contains
     end do
   end subroutine write_summary
 
-  !> The deck's name without folder and extension, with .h5, in the working directory.
+  !> Each MATERIAL record as /materials/<name>: its kind and its parameters as given.
+  subroutine write_materials(h5, model, error)
+    type(results_file_t), intent(inout) :: h5
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer :: m
+    character(len=1), parameter :: no_texts(0) = [character(len=1) ::]
+    if (.not. allocated(model%materials)) return
+    do m = 1, size(model%materials)
+      associate (spec => model%materials(m))
+        if (allocated(spec%texts)) then
+          call h5%write_material(spec%name, spec%kind, spec%keys, spec%values, spec%texts, error)
+        else
+          call h5%write_material(spec%name, spec%kind, spec%keys, spec%values, no_texts, error)
+        end if
+      end associate
+      if (allocated(error)) return
+    end do
+  end subroutine write_materials
+
   !> PARAMETERS records as /summary attributes parameter_<name>: a number as a real, anything
   !! else as a string.
   subroutine write_parameters(h5, model, error)
@@ -556,6 +576,7 @@ contains
     end do
   end subroutine write_parameters
 
+  !> The deck's name without folder and extension, with .h5, in the working directory.
   pure function default_output(deck) result(path)
     character(len=*), intent(in) :: deck
     character(len=:), allocatable :: path
@@ -591,7 +612,8 @@ contains
     call h5%write_mesh(model%coords, error)
     if (allocated(error)) return
     do g = 1, size(model%groups)
-      call h5%write_group(model%groups(g)%name, model%groups(g)%element_type, model%groups(g)%connectivity, error)
+      call h5%write_group(model%groups(g)%name, model%groups(g)%element_type, model%groups(g)%connectivity, error, &
+                          material=model%groups(g)%material_name)
       if (allocated(error)) return
     end do
   end subroutine write_mesh

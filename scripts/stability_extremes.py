@@ -16,6 +16,10 @@ Cases (variants of the thesis decks, written into OUT/<name>/deck.dat):
   phi54_psi54   principal stress at the deck's 400 steps against 1000, tolerance 2%
   giant_step    model B PE1 (Matsuoka soil): one load step (Newton-Raphson, up to 200
                 iterations) against 1000 steps, deflection angle, tolerance 1%
+  tension_cp_5  chapter 9 CR with TENSION=closest-point: 5 full-Newton steps against the
+                deck's 400, largest principal stress, tolerance 0.5% (the thesis's proportional
+                rule needs 1 403 iterations and 24 cut-backs for 10 such steps)
+  tension_cp_psi0_10  the same with psi = 0 (LU tangents): 10 full-Newton steps against 400
 
 Every run has a time limit (--timeout, default 1800 s): a run that passes it counts as a hang.
 A run that stops with feps's clear message (exit 1: "the step does not converge after N
@@ -104,6 +108,7 @@ def open_fraction(f):
 
 
 DELTA_05 = 2500.0 * math.tan(math.radians(0.5))
+FULL_NEWTON = (r"^CONTROLS, METHOD=modified-newton-raphson, MAXIT=10", "CONTROLS, METHOD=full-newton-raphson, MAXIT=30")
 CASES = {
     "modelc_open": dict(deck=model_c_deck, quantity=q_sigma_max, tol=0.02, extra=open_fraction,
                         subs=[(r"^(DISPLACE, top_end_nodes, X=)[-0-9.eE+]+", rf"\g<1>{DELTA_05:.4f}")],
@@ -125,6 +130,12 @@ CASES = {
                        fine=[(r"^STAGE, load, STEPS=400, METHOD=initial-stiffness, MAXIT=10",
                               "STAGE, load, STEPS=1000, METHOD=modified-newton-raphson, MAXIT=20")],
                        what="deflection (deg)"),
+    "tension_cp_5": dict(deck="input/chapter9/CR.dat", quantity=q_max_s1, tol=0.005,
+                         subs=[(r"(FT=5\.)", r"\1, TENSION=closest-point")],
+                         coarse=[FULL_NEWTON, steps_sub("load", 5)], fine=[], what="max s1 (MPa)"),
+    "tension_cp_psi0_10": dict(deck="input/chapter9/CR.dat", quantity=q_max_s1, tol=0.005,
+                               subs=[(r"PSI=54\.9", "PSI=0"), (r"(FT=5\.)", r"\1, TENSION=closest-point")],
+                               coarse=[FULL_NEWTON, steps_sub("load", 10)], fine=[], what="max s1 (MPa)"),
 }
 
 

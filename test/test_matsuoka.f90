@@ -474,8 +474,74 @@ contains
       call check(error, maxval(abs(sig - [5.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])) > 0.1_dp, &
                  'uniaxial 2 ft: not the proportional return')
       if (allocated(error)) return
+      call check_random_tension_tangents(error, m)
+      if (allocated(error)) return
     end do
   end subroutine test_closest_point_returns
+
+  !> 200 random trials with the most tensile principal stress near or beyond the apex (fixed
+  !! seed): where the trial and its perturbations return to the cone, the tangent equals the
+  !! central finite difference (1e-5 relative); at the apex it is the residual 1e-6 D. At least
+  !! 50 of each must occur.
+  subroutine check_random_tension_tangents(error, m)
+    type(error_t), allocatable, intent(out) :: error
+    type(matsuoka_nakai_t), intent(in) :: m
+    real(dp) :: trial(6), sig(6), dt(6, 6), dfd(6, 6), sp(6), sm(6), dd(6, 6), e(6), h, dev(6)
+    integer(kind=8) :: seed
+    integer :: n, k, j, st, stp, stm, on_cone, at_apex
+    logical :: same_side
+    seed = 4242_8
+    on_cone = 0
+    at_apex = 0
+    do n = 1, 200
+      do k = 1, 3
+        trial(k) = m%apex * (2.5_dp * next_uniform(seed) - 1.0_dp)
+      end do
+      do k = 4, 6
+        trial(k) = m%apex * (next_uniform(seed) - 0.5_dp)
+      end do
+      ! every other trial near the hydrostatic axis beyond the apex
+      if (modulo(n, 2) == 0) trial = 0.05_dp * trial + m%apex * (1.0_dp + next_uniform(seed)) * [1, 1, 1, 0, 0, 0]
+      call return_of(m, trial, sig, st, dt)
+      dev = sig - sum(sig(1:3)) / 3.0_dp * [1, 1, 1, 0, 0, 0]
+      if (st == state_plastic .and. sqrt(sum(dev(1:3)**2) + 2.0_dp * sum(dev(4:6)**2)) < 2.0e-2_dp * m%apex) then
+        ! near the apex check_returned's finite-difference gradient of the cone misses the flow
+        ! direction by 1e-5 (trial 50: |s| = 3.6e-3 M; its return meets the flow rule to 1e-14
+        ! in 50-digit arithmetic): check only that the stress is on the surface; the tangent
+        ! check below covers these points
+        call check(error, m%yield_value(sig), 0.0_dp, 'random tension trial ' // str(n) // ': on the surface', &
+                   abs=1.0e-12_dp * m%apex)
+      else
+        call check_returned(error, m, trial, sig, st, dt, 'random tension trial ' // str(n))
+      end if
+      if (allocated(error)) return
+      if (st == state_tension) at_apex = at_apex + 1
+      if (st /= state_plastic) cycle
+      h = 1.0e-7_dp * m%apex
+      same_side = .true.
+      do j = 1, 6
+        e = 0.0_dp
+        e(j) = h
+        call return_of(m, trial + e, sp, stp, dd)
+        call return_of(m, trial - e, sm, stm, dd)
+        same_side = same_side .and. stp == state_plastic .and. stm == state_plastic
+        dfd(:, j) = (sp - sm) / (2.0_dp * h)
+      end do
+      if (.not. same_side) cycle
+      ! d sig / d sig_tr = dt D^-1
+      do j = 1, 6
+        e = 0.0_dp
+        e(j) = 1.0_dp
+        dd(:, j) = matmul(dt, compliance(m%e, m%nu, e))
+      end do
+      call check(error, maxval(abs(dd - dfd)), 0.0_dp, 'random tension trial ' // str(n) // ': tangent vs FD', &
+                 abs=1.0e-5_dp * max(1.0_dp, maxval(abs(dfd))))
+      if (allocated(error)) return
+      on_cone = on_cone + 1
+    end do
+    call check(error, on_cone >= 50 .and. at_apex >= 50, 'random tension trials: ' // str(on_cone) // &
+               ' on the cone checked, ' // str(at_apex) // ' at the apex')
+  end subroutine check_random_tension_tangents
 
   !> The apex M I for hydrostatic tension beyond it and for a trial exactly at it; uniaxial
   !! tension beyond M returns proportionally to (ft, 0, 0); uniaxial tension below M (but

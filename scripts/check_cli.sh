@@ -175,6 +175,15 @@ rm -rf "results/$camp"
 python3 scripts/make_model_c.py --outdir "$tmp/mc_grid" --Gp 300,900 --nup 0.1,0.4,-0.3 --beta 0.09,0.27 >/dev/null \
   && diff -r input/modelC "$tmp/mc_grid" >/dev/null \
   && ok "model C grid over the thesis's values = input/modelC" || bad "model C grid over the thesis's values = input/modelC"
+python3 scripts/make_chapter9.py --outdir "$tmp/c9" >/dev/null && diff -r input/chapter9 "$tmp/c9" >/dev/null \
+  && ok "make_chapter9.py's defaults = input/chapter9" || bad "make_chapter9.py's defaults = input/chapter9"
+# CR with the continuous tension rule in 5 full-Newton steps: every step converged, no cut-back
+python3 scripts/make_chapter9.py --outdir "$tmp/c9cp" --steps 5 --tension closest-point \
+  --method full-newton-raphson >/dev/null
+"$feps" "$tmp/c9cp/CR.dat" --output "$tmp/c9cp.h5" >"$tmp/out" 2>&1 \
+  && grep -q "nonlinear: 5 steps, .* 0 cut-backs, 0 steps not converged" "$tmp/out" \
+  && ok "CR, TENSION=closest-point: 5 full-Newton steps converge" \
+  || bad "CR, TENSION=closest-point: 5 full-Newton steps converge: $(grep analysis "$tmp/out")"
 expect_status "make_model_c.py --nup 0.5" 2 python3 scripts/make_model_c.py --outdir "$tmp/x" --nup 0.5
 grep -q "nu_p = 0.5" "$tmp/err" && ok "the error names nu_p" || bad "the error names nu_p: $(head -c 300 "$tmp/err")"
 expect_status "make_model_b.py --psi above --phi" 2 python3 scripts/make_model_b.py --outdir "$tmp/x" --soil-E 144 \

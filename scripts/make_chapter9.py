@@ -9,6 +9,12 @@ input/chapter9/<case>.dat for
   PR2  the same with q = 1 MPa.
 
     python3 scripts/make_chapter9.py [--outdir input/chapter9] [--steps 400]
+                                     [--tension closest-point] [--method full-newton-raphson]
+
+--tension closest-point writes the concrete with the continuous tension rule (not in the thesis;
+docs/verification.md, "The tension zone of the Matsuoka-Nakai model"), with which a few
+full-Newton steps reproduce the thesis's 400: e.g. --steps 5 --tension closest-point --method
+full-newton-raphson. The defaults write the thesis's decks (input/chapter9).
 
 Geometry, material and loads follow SPEC section 8 and thesis 9.1-9.3; the choices the thesis
 leaves to its figures are written into each deck's comments (DECISIONS below).
@@ -103,7 +109,7 @@ def hoop_ring_block(ir, izs):
     return lines
 
 
-def deck(case, steps=400):
+def deck(case, steps=400, tension="proportional", method="modified-newton-raphson"):
     out = [
         f"! feps deck: back analysis of the laboratory tests (thesis chapter 9), case {case}.",
         "! Written by scripts/make_chapter9.py.",
@@ -132,7 +138,10 @@ def deck(case, steps=400):
         out += hoop_ring_block(NR - 1, [24, 26])
         out += ["", "GROUP, band_middle, TYPE=bar3, MATERIAL=band_middle"]
         out += hoop_ring_block(NR - 1, [25])
-    out += ["E,", "", "MATERIAL, concrete, MATSUOKA, E=31700., NU=0.22, PHI=54.9, PSI=54.9, FT=5."]
+    concrete = "MATERIAL, concrete, MATSUOKA, E=31700., NU=0.22, PHI=54.9, PSI=54.9, FT=5."
+    if tension != "proportional":
+        concrete += f", TENSION={tension}"
+    out += ["E,", "", concrete]
     if case.startswith("RE"):
         out.append(f"MATERIAL, hoop_bar, BAR, E=200000., A={HOOP_AREA}")
     if case.startswith("PR"):
@@ -144,7 +153,7 @@ def deck(case, steps=400):
             "NSET, sym_y, CSYS=2, Y=0., TOL=0.01", "FIX, sym_y, Y", "",
             "! --- loads ---",
             "FSET, top, GROUP=pipe, CSYS=2, Z=232., TOL=0.01"]
-    out += ["", "CONTROLS, METHOD=modified-newton-raphson, MAXIT=10"]
+    out += ["", f"CONTROLS, METHOD={method}, MAXIT={30 if method == 'full-newton-raphson' else 10}"]
     if case.startswith("PR"):
         q = PRESTRESS[case]
         out += ["FSET, band, GROUP=pipe, CSYS=3, R=100., Z=219.:232., TOL=0.01", "",
@@ -165,12 +174,18 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--outdir", default=os.path.join(ROOT, "input", "chapter9"))
     ap.add_argument("--steps", type=int, default=400, help="steps of the loading stage (thesis: 400)")
+    ap.add_argument("--tension", choices=["proportional", "closest-point"], default="proportional",
+                    help="the concrete's tension rule (thesis: proportional)")
+    ap.add_argument("--method", choices=["modified-newton-raphson", "full-newton-raphson"],
+                    default="modified-newton-raphson", help="solution method (thesis: modified-newton-raphson)")
     args = ap.parse_args()
+    if args.steps < 1:
+        ap.error(f"--steps {args.steps}: at least one step is needed")
     os.makedirs(args.outdir, exist_ok=True)
     cases = ["CR", "RE1", "RE2", "PR1", "PR2"]
     for case in cases:
         with open(os.path.join(args.outdir, f"{case}.dat"), "w") as f:
-            f.write(deck(case, args.steps))
+            f.write(deck(case, args.steps, args.tension, args.method))
     print(f"wrote {len(cases)} decks to {args.outdir}")
 
 

@@ -180,6 +180,23 @@ contains
     end do
   end function fd_gradient
 
+  !> Central finite-difference derivative of the update from sig0 with respect to the strain
+  !! increment at deps (step 1e-6 of its largest component).
+  function fd_tangent(m, sig0, deps) result(dfd)
+    type(matsuoka_nakai_t), intent(in) :: m
+    real(dp), intent(in) :: sig0(6), deps(6)
+    real(dp) :: dfd(6, 6), e(6), h, sp(6), sm(6), dd(6, 6)
+    integer :: j, stp, stm
+    h = 1.0e-6_dp * maxval(abs(deps))
+    do j = 1, 6
+      e = 0.0_dp
+      e(j) = h
+      call m%update(sig0, zero6, deps + e, state_elastic, sp, stp, dd)
+      call m%update(sig0, zero6, deps - e, state_elastic, sm, stm, dd)
+      dfd(:, j) = (sp - sm) / (2.0_dp * h)
+    end do
+  end function fd_tangent
+
   !> Checks for one returned stress: finite; on the surface for plastic and tension states
   !! (|F| <= 1e-12 scale, thesis cubic <= 1e-10 relative); elastic: unchanged and inside;
   !! plastic: plastic strain D^-1 (sig_tr - sig) along the potential gradient with a positive
@@ -437,8 +454,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), parameter :: psis(2) = [54.9_dp, 0.0_dp]
     type(matsuoka_nakai_t) :: m
-    real(dp) :: sig0(6), deps(6), sig(6), dt(6, 6), dfd(6, 6), sp(6), sm(6), dd(6, 6), e(6), h
-    integer :: i, j, st, stp, stm
+    real(dp) :: sig0(6), deps(6), sig(6), dt(6, 6), dfd(6, 6)
+    integer :: i, st
     do i = 1, size(psis)
       m = make(54.9_dp, psis(i), 5.0_dp, e=31700.0_dp, nu=0.22_dp, tension=tension_closest_point)
       call return_of(m, 2.0_dp * m%apex * [1, 1, 1, 0, 0, 0], sig, st, dt)
@@ -455,14 +472,7 @@ contains
       if (allocated(error)) return
       call check(error, st, state_plastic, 'sigma_1 beyond M: a plastic point on the cone')
       if (allocated(error)) return
-      h = 1.0e-6_dp * maxval(abs(deps))
-      do j = 1, 6
-        e = 0.0_dp
-        e(j) = h
-        call m%update(sig0, zero6, deps + e, state_elastic, sp, stp, dd)
-        call m%update(sig0, zero6, deps - e, state_elastic, sm, stm, dd)
-        dfd(:, j) = (sp - sm) / (2.0_dp * h)
-      end do
+      dfd = fd_tangent(m, sig0, deps)
       call check(error, maxval(abs(dt - dfd)), 0.0_dp, 'closest point: tangent vs FD, psi ' // str(psis(i)), &
                  abs=1.0e-5_dp * maxval(abs(dfd)))
       if (allocated(error)) return
@@ -629,8 +639,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), parameter :: psis(4) = [26.57_dp, 15.0_dp, 5.0_dp, 0.0_dp]
     type(matsuoka_nakai_t) :: m
-    real(dp) :: sig0(6), deps(6), sig(6), dt(6, 6), dfd(6, 6), sp(6), sm(6), dd(6, 6), e(6), h
-    integer :: i, k, j, st, stp, stm
+    real(dp) :: sig0(6), deps(6), sig(6), dt(6, 6), dfd(6, 6)
+    integer :: i, k, st
     do i = 1, size(psis)
       m = make(26.57_dp, psis(i), ft_block, nu=0.25_dp)
       do k = 1, 5
@@ -653,14 +663,7 @@ contains
         call m%update(sig0, zero6, deps, state_elastic, sig, st, dt)
         call check(error, st, state_plastic, 'tangent psi ' // str(psis(i)) // ' case ' // str(k) // ' plastic')
         if (allocated(error)) return
-        h = 1.0e-6_dp * maxval(abs(deps))
-        do j = 1, 6
-          e = 0.0_dp
-          e(j) = h
-          call m%update(sig0, zero6, deps + e, state_elastic, sp, stp, dd)
-          call m%update(sig0, zero6, deps - e, state_elastic, sm, stm, dd)
-          dfd(:, j) = (sp - sm) / (2.0_dp * h)
-        end do
+        dfd = fd_tangent(m, sig0, deps)
         call check(error, maxval(abs(dt - dfd)), 0.0_dp, 'tangent vs FD, psi ' // str(psis(i)) // ' case ' // &
                    str(k), abs=1.0e-5_dp * maxval(abs(dfd)))
         if (allocated(error)) return

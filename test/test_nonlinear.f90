@@ -523,12 +523,7 @@ contains
                str(summary%lu_factorizations) // ' LU factorizations, every step converged')
     if (allocated(error)) return
 
-    call read_deck('test/data/joint_psi0.dat', model, error)
-    if (allocated(error)) return
-    model%stages(1)%controls%method = method_initial_stiffness
-    model%stages(1)%controls%bfgs = .true.
-    model%stages(1)%controls%max_iterations = 400
-    call run_analysis(model, 'cholmod', bfgs, summary, error)
+    call run_elastic_bfgs('test/data/joint_psi0.dat', bfgs, summary, error)
     if (allocated(error)) return
     call check(error, summary%cutbacks == 0 .and. summary%unconverged_steps == 0 .and. summary%factorizations == 1, &
                'BFGS on the elastic stiffness: one factorization, every step converged')
@@ -592,12 +587,7 @@ contains
       f5 = tip_force(model, s5%reaction)
     end associate
 
-    call read_deck(deck, model, error)
-    if (allocated(error)) return
-    model%stages(1)%controls%method = method_initial_stiffness
-    model%stages(1)%controls%bfgs = .true.
-    model%stages(1)%controls%max_iterations = 400
-    call run_analysis(model, 'cholmod', bfgs, summary, error)
+    call run_elastic_bfgs(deck, bfgs, summary, error)
     if (allocated(error)) return
     call check(error, summary%unconverged_steps == 0 .and. summary%factorizations == 1, &
                'BFGS on the elastic stiffness: one factorization, every step converged')
@@ -624,6 +614,22 @@ contains
       f = sum(reaction(2, :), mask=abs(model%coords(1, :) - 200.0_dp) < 1.0e-9_dp)
     end function tip_force
   end subroutine test_tension_cap_beam
+
+  !> Run a deck with an independent iteration: the elastic stiffness (one factorization) with
+  !! BFGS updates and up to 400 iterations a step, the reference for full Newton's solutions.
+  subroutine run_elastic_bfgs(path, observer, summary, error)
+    character(len=*), intent(in) :: path
+    class(observer_t), intent(inout) :: observer
+    type(analysis_summary_t), intent(out) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    call read_deck(path, model, error)
+    if (allocated(error)) return
+    model%stages(1)%controls%method = method_initial_stiffness
+    model%stages(1)%controls%bfgs = .true.
+    model%stages(1)%controls%max_iterations = 400
+    call run_analysis(model, 'cholmod', observer, summary, error)
+  end subroutine run_elastic_bfgs
 
   !> test/data/block_pull.dat: a 3 MPa pull on an interface whose tensile strength is
   !! c / tan(phi) = 1.732 MPa. The joint opens at load factor 1.732 / 3 = 0.577 and nothing but

@@ -198,7 +198,7 @@ contains
           str(s%cutbacks) // ' cut-backs, ' // str(s%unconverged_steps) // &
           ' steps not converged (residual carried on)'
         if (s%lu_factorizations > 0) write (output_unit, '(a)') 'unsymmetric LU   ' // str(s%lu_factorizations) // &
-          ' of the factorizations (UMFPACK: exact non-symmetric tangents, psi /= phi)'
+          ' of the factorizations (UMFPACK: exact non-symmetric tangents)'
       end if
       write (buf, '(i0)') s%matrix_nnz
       write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'

@@ -551,7 +551,7 @@ contains
     code = error%code
     msg = error%message
     deallocate (error)
-    call check(error, code == err_solver .and. index(msg, 'non-symmetric (psi /= phi)') > 0 .and. &
+    call check(error, code == err_solver .and. index(msg, 'non-symmetric (psi /= phi, or a gap closing)') > 0 .and. &
                index(msg, 'METHOD=full-newton-raphson (exact tangent, LU)') > 0 .and. &
                index(msg, 'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400') > 0, &
                'the stop names the remedies: ' // msg)

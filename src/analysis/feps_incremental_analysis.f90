@@ -739,7 +739,8 @@ contains
       end associate
     end do
     if (summary%lu_factorizations > 0) call observer%progress('note: ' // str(summary%lu_factorizations) // &
-      ' tangents were non-symmetric (non-associated flow, psi /= phi): factorized as they are by UMFPACK (LU)')
+      ' tangents were non-symmetric (non-associated flow, psi /= phi, or a gap closing within a step): ' // &
+      'factorized as they are by UMFPACK (LU)')
     if (an%lu_singular > 0) call observer%progress('note: ' // str(an%lu_singular) // ' exact non-symmetric ' // &
       'tangents were singular (a body held only by faces sliding without dilation): their nearest symmetric ' // &
       'positive semi-definite stand-ins were factorized')
@@ -1297,7 +1298,7 @@ contains
       ! Non-associated flow: outside full Newton (which factorizes the exact tangent by LU) the
       ! factorized matrix is only a symmetric stand-in for the tangent, and as psi -> 0 the
       ! iterations stall (the 2D joint with psi = 0; docs/input-format.md, CONTROLS).
-      hint = hint // '; the tangent was non-symmetric (psi /= phi) and only its nearest symmetric ' // &
+      hint = hint // '; the tangent was non-symmetric (psi /= phi, or a gap closing) and only its nearest symmetric ' // &
         'stand-in was factorized: try STAGE ..., METHOD=full-newton-raphson (exact tangent, LU) or ' // &
         'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400'
     end if

@@ -564,7 +564,8 @@ contains
   !! stiffness with BFGS updates (1e-6 of the largest; both to DELTA1 = 1e-9), and its tip force
   !! is within 0.2% of a 50-step run's (0.12% measured). (The thesis's proportional rule, whose
   !! update jumps where sigma_1 reaches M, needs 4-5 times the iterations and a cut-back here,
-  !! and its 5-step answer moves with DELTA1: docs/verification.md.)
+  !! and its 5-step answer moves with DELTA1: docs/verification.md; the run then ends with a
+  !! note naming TENSION=closest-point, which this test checks.)
   subroutine test_tension_cap_beam(error)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), parameter :: deck = 'test/data/beam_tension_cap.dat'
@@ -607,6 +608,20 @@ contains
     if (allocated(error)) return
     f50 = tip_force(model, fine%last%reaction)
     call check(error, f5, f50, 'closest point: 5 steps give the tip force of 50', rel=2.0e-3_dp)
+    if (allocated(error)) return
+    call check(error, .not. any(index(fine%lines, 'reached the tension zone') > 0), &
+               'closest point: no note about the tension zone')
+    if (allocated(error)) return
+
+    ! The thesis's rule: the run ends, and says that points reached its discontinuous tension zone.
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    where (model%materials(1)%keys == 'tension') model%materials(1)%texts = 'proportional'
+    deallocate (fine%lines)
+    call run_analysis(model, 'cholmod', fine, summary, error)
+    if (allocated(error)) return
+    call check(error, any(index(fine%lines, 'note: material concrete: points reached the tension zone') > 0), &
+               'proportional: the run notes the tension zone')
   contains
     real(dp) function tip_force(model, reaction) result(f)
       type(model_t), intent(in) :: model

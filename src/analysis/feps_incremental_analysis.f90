@@ -20,7 +20,7 @@ module feps_incremental_analysis
                            element_dofs, element_stiffness, element_strains, element_internal_force, &
                            scatter_element_matrix, rotate_matrix
   use feps_loads, only: resolve_face_sets, nodal_load_vector, to_equations
-  use feps_material, only: material_slot_t, state_open
+  use feps_material, only: material_slot_t, state_open, state_elastic, state_tension
   use feps_tangent_symmetry, only: nearest_symmetric_psd
   use feps_linear_solver, only: linear_solver_t
   use feps_solver_factory, only: new_linear_solver
@@ -634,6 +634,7 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
     integer :: s, k, step, iters, cut, nfact0, iters_step, opened
+    character(len=:), allocatable :: last_try_notes, run_notes
     logical :: ok, need_factor, have_factor, step_unconverged, born, changed
     logical, allocatable :: fully_open(:)
 
@@ -704,16 +705,19 @@ contains
               abs_prev = rnorm
               if (.not. (rel_prev < c%delta1 .or. rnorm < c%delta2)) step_unconverged = .true.
               call commit(an)
+              call collect_point_notes(model, an, .false., run_notes)
               an%f_applied = an%f_applied + df * (h / st%steps)
               an%uc = an%uc + duc * (h / st%steps)
             else
               cut = cut + 1
               summary%cutbacks = summary%cutbacks + 1
               opened = newly_open_points(an)
+              last_try_notes = ''
+              call collect_point_notes(model, an, .true., last_try_notes)
               call restore(an)
               if (cut > c%max_cutbacks) then
                 call stop_error(model, an, r, st, k, s - 1 + (k - 1 + done + h) / st%steps, rnorm / pnorm, &
-                                cut > c%max_cutbacks, opened, error)
+                                cut > c%max_cutbacks, opened, last_try_notes, error)
                 return
               end if
               h = h / 2.0_dp
@@ -744,6 +748,9 @@ contains
     if (an%lu_singular > 0) call observer%progress('note: ' // str(an%lu_singular) // ' exact non-symmetric ' // &
       'tangents were singular (a body held only by faces sliding without dilation): their nearest symmetric ' // &
       'positive semi-definite stand-ins were factorized')
+    if (allocated(run_notes)) then
+      if (len(run_notes) > 0) call observer%progress('note: ' // run_notes)
+    end if
     if (an%symmetrized) call observer%progress('note: the tangent was non-symmetric at some points (non-' // &
                                                'associated flow, psi /= phi, or a gap closing within a step); ' // &
                                                'the nearest symmetric positive semi-definite matrix was ' // &
@@ -1259,9 +1266,37 @@ contains
     end do
   end function newly_open_points
 
+  !> Add to `notes` (separated by '; ') each material's note about a point state present in
+  !! the trial (`trial`) or committed states of the active nonlinear groups, once.
+  subroutine collect_point_notes(model, an, trial, notes)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    logical, intent(in) :: trial
+    character(len=:), allocatable, intent(inout) :: notes
+    character(len=:), allocatable :: note
+    integer :: g, state
+    logical :: present_
+    if (.not. allocated(notes)) notes = ''
+    do g = 1, size(an%states)
+      if (.not. an%active(g) .or. .not. an%states(g)%nonlinear) cycle
+      do state = state_elastic, state_tension
+        if (trial) then
+          present_ = any(an%states(g)%state_t == state)
+        else
+          present_ = any(an%states(g)%state == state)
+        end if
+        if (.not. present_) cycle
+        call an%materials(model%groups(g)%material)%m%state_note(state, note)
+        if (len(note) == 0 .or. index(notes, note) > 0) cycle
+        if (len(notes) > 0) notes = notes // '; '
+        notes = notes // note
+      end do
+    end do
+  end subroutine collect_point_notes
+
   !> The clear stop: step, load factor, residual and the DOF where it is largest; when interface
   !! points opened in the last try, a hint that the load may have passed a limit point.
-  subroutine stop_error(model, an, r, st, k, lf, rel, cutbacks_exhausted, opened, error)
+  subroutine stop_error(model, an, r, st, k, lf, rel, cutbacks_exhausted, opened, notes, error)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: an
     real(dp), intent(in) :: r(:)
@@ -1270,6 +1305,7 @@ contains
     real(dp), intent(in) :: lf, rel
     logical, intent(in) :: cutbacks_exhausted
     integer, intent(in) :: opened   !! interface points that opened in the last try
+    character(len=*), intent(in) :: notes   !! materials' notes about the states of the last try
     type(error_t), allocatable, intent(out) :: error
     integer :: imax
     character(len=:), allocatable :: why, hint
@@ -1302,6 +1338,7 @@ contains
         'stand-in was factorized: try STAGE ..., METHOD=full-newton-raphson (exact tangent, LU) or ' // &
         'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400'
     end if
+    if (len(notes) > 0 .and. cutbacks_exhausted) hint = hint // '; ' // notes
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
                      ', load factor ' // str(lf) // ': ' // why // ' (relative residual ' // str(rel) // &
                      ', largest at ' // an%map%dof_name(imax) // ')' // hint)

@@ -20,6 +20,7 @@ module feps_material
     procedure(update_interface), deferred :: update
     procedure(is_linear_interface), deferred :: is_linear
     procedure :: symmetric_tangent => material_symmetric_tangent
+    procedure :: state_note => material_state_note
   end type material_t
 
   abstract interface
@@ -65,5 +66,14 @@ contains
     class(material_t), intent(in) :: self
     material_symmetric_tangent = .true.
   end function material_symmetric_tangent
+
+  !> A note for the user about points in `state` (empty: nothing to say). A material whose
+  !! update is not smooth in some state overrides this to name the remedy.
+  pure subroutine material_state_note(self, state, note)
+    class(material_t), intent(in) :: self
+    integer, intent(in) :: state
+    character(len=:), allocatable, intent(out) :: note
+    note = ''
+  end subroutine material_state_note
 
 end module feps_material

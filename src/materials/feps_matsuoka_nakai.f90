@@ -108,6 +108,7 @@ module feps_matsuoka_nakai
     procedure :: update => mn_update
     procedure :: is_linear => mn_is_linear
     procedure :: symmetric_tangent => mn_symmetric_tangent
+    procedure :: state_note => mn_state_note
     procedure :: yield_value => mn_yield_value
     procedure :: yield_cubic => mn_yield_cubic
   end type matsuoka_nakai_t
@@ -169,6 +170,19 @@ contains
     class(matsuoka_nakai_t), intent(in) :: self
     mn_symmetric_tangent = self%psi == self%phi
   end function mn_symmetric_tangent
+
+  !> Under the thesis's tension rule a point in the tension zone was returned proportionally,
+  !! across the jump of the update at sigma_1 = M: say so and name the continuous rule.
+  pure subroutine mn_state_note(self, state, note)
+    class(matsuoka_nakai_t), intent(in) :: self
+    integer, intent(in) :: state
+    character(len=:), allocatable, intent(out) :: note
+    note = ''
+    if (self%tension == tension_proportional .and. state == state_tension) note = 'material ' // self%name // &
+      ': points reached the tension zone, whose proportional return (thesis 2.4.2) makes the stress jump ' // &
+      'where sigma_1 reaches the apex, so the result may depend on the step size; TENSION=closest-point is ' // &
+      'continuous (docs/input-format.md)'
+  end subroutine mn_state_note
 
   !> Yield value F(sigma) = r(s) + beta (p - M) in stress units: negative inside, zero on the
   !! surface, positive outside (a convex function, scaled like a stress distance).

@@ -574,6 +574,7 @@ contains
     type(keep_last_t) :: fine
     type(analysis_summary_t) :: summary
     real(dp) :: scale, f5, f50
+    character(len=:), allocatable :: msg
     call read_deck(deck, model, error)
     if (allocated(error)) return
     call run_analysis(model, 'cholmod', newton, summary, error)
@@ -622,6 +623,24 @@ contains
     if (allocated(error)) return
     call check(error, any(index(fine%lines, 'note: material concrete: points reached the tension zone') > 0), &
                'proportional: the run notes the tension zone')
+    if (allocated(error)) return
+
+    ! ... and a run that stops after its cut-backs says so in its stop message.
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    where (model%materials(1)%keys == 'tension') model%materials(1)%texts = 'proportional'
+    model%stages(1)%controls%max_iterations = 4
+    model%stages(1)%controls%max_cutbacks = 1
+    call run_analysis(model, 'cholmod', fine, summary, error)
+    if (.not. allocated(error)) then
+      call test_failed(error, 'proportional, 4 iterations, 1 cut-back: expected the clear stop')
+      return
+    end if
+    msg = error%message
+    deallocate (error)
+    call check(error, index(msg, 'does not converge after 1 cut-backs') > 0 .and. &
+               index(msg, 'points reached the tension zone') > 0 .and. index(msg, 'TENSION=closest-point') > 0, &
+               'the stop names the tension zone and the continuous rule: ' // msg)
   contains
     real(dp) function tip_force(model, reaction) result(f)
       type(model_t), intent(in) :: model

@@ -634,7 +634,7 @@ contains
     real(dp), allocatable :: df(:, :), duc(:, :), r(:)
     real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
     integer :: s, k, step, iters, cut, nfact0, iters_step, opened
-    character(len=:), allocatable :: last_try_notes, run_notes
+    character(len=:), allocatable :: step_notes, run_notes
     logical :: ok, need_factor, have_factor, step_unconverged, born, changed
     logical, allocatable :: fully_open(:)
 
@@ -675,6 +675,7 @@ contains
           iters_step = 0
           nfact0 = summary%factorizations
           step_unconverged = .false.
+          step_notes = ''
           do while (done < 1.0_dp - 1.0e-12_dp)
             h = min(h, 1.0_dp - done)
             ! Which stiffness: the method decides (thesis 2.6.3).
@@ -696,7 +697,7 @@ contains
               have_factor = .true.
             end if
             call substep(model, an, c, df * (h / st%steps), duc * (h / st%steps), r, rnorm, pnorm, iters, ok, &
-                         summary, error)
+                         summary, error, step_notes)
             if (allocated(error)) return
             iters_step = iters_step + iters
             if (ok) then
@@ -712,12 +713,10 @@ contains
               cut = cut + 1
               summary%cutbacks = summary%cutbacks + 1
               opened = newly_open_points(an)
-              last_try_notes = ''
-              call collect_point_notes(model, an, .true., last_try_notes)
               call restore(an)
               if (cut > c%max_cutbacks) then
                 call stop_error(model, an, r, st, k, s - 1 + (k - 1 + done + h) / st%steps, rnorm / pnorm, &
-                                cut > c%max_cutbacks, opened, last_try_notes, error)
+                                cut > c%max_cutbacks, opened, step_notes, error)
                 return
               end if
               h = h / 2.0_dp
@@ -793,7 +792,7 @@ contains
   !> One (sub)step: move the constrained DOFs by duc, apply df, iterate on the residual.
   !! ok is false when the step diverges (non-finite or growing residual, or iterations run out
   !! far from convergence).
-  subroutine substep(model, an, c, df, duc, r, rnorm, pnorm, iters, ok, summary, error)
+  subroutine substep(model, an, c, df, duc, r, rnorm, pnorm, iters, ok, summary, error, notes)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     type(controls_t), intent(in) :: c
@@ -804,6 +803,8 @@ contains
     logical, intent(out) :: ok
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
+    !> materials' notes about the states of every iterate (collect_point_notes)
+    character(len=:), allocatable, intent(inout) :: notes
     real(dp), allocatable :: r_carry(:)
     real(dp) :: t0, r_first, rel, r_scale
     integer :: m, npairs
@@ -819,6 +820,7 @@ contains
     an%uc = an%uc + duc
     call set_trial(model, an)
     call update_points(model, an)
+    call collect_point_notes(model, an, .true., notes)
     call residual(an, r, rnorm, pnorm)
     if (allocated(r_carry)) r = r - r_carry
     r_scale = rnorm
@@ -855,6 +857,7 @@ contains
       if (use_bfgs) s_hist(:, npairs + 1) = r
       t0 = wall_clock()
       call update_points(model, an)
+      call collect_point_notes(model, an, .true., notes)
       summary%time_update = summary%time_update + wall_clock() - t0
       call residual(an, r, rnorm, pnorm)
       if (use_bfgs) call bfgs_add_pair(s_hist, y_hist, rho, npairs, r_old, r)
@@ -1305,7 +1308,7 @@ contains
     real(dp), intent(in) :: lf, rel
     logical, intent(in) :: cutbacks_exhausted
     integer, intent(in) :: opened   !! interface points that opened in the last try
-    character(len=*), intent(in) :: notes   !! materials' notes about the states of the last try
+    character(len=*), intent(in) :: notes   !! materials' notes about the states the step's iterates reached
     type(error_t), allocatable, intent(out) :: error
     integer :: imax
     character(len=:), allocatable :: why, hint

@@ -510,7 +510,6 @@ contains
     type(analysis_summary_t) :: summary
     integer, parameter :: g = 5   ! if_up
     character(len=:), allocatable :: msg
-    integer :: code
     real(dp) :: scale
     call read_deck('test/data/joint_psi0.dat', model, error)
     if (allocated(error)) return
@@ -543,15 +542,10 @@ contains
     call read_deck('test/data/joint_psi0.dat', model, error)
     if (allocated(error)) return
     model%stages(1)%controls%method = method_modified_newton_raphson
-    call run_analysis(model, 'cholmod', bfgs, summary, error)
-    if (.not. allocated(error)) then
-      call test_failed(error, 'modified Newton-Raphson with psi = 0 converged: this test no longer shows the stand-in''s limit')
-      return
-    end if
-    code = error%code
-    msg = error%message
-    deallocate (error)
-    call check(error, code == err_solver .and. index(msg, 'non-symmetric (psi /= phi, or a gap closing)') > 0 .and. &
+    call expect_clear_stop(model, bfgs, 'modified Newton-Raphson with psi = 0 converged: this test no longer ' // &
+                           'shows the stand-in''s limit', msg, error)
+    if (allocated(error)) return
+    call check(error, index(msg, 'non-symmetric (psi /= phi, or a gap closing)') > 0 .and. &
                index(msg, 'METHOD=full-newton-raphson (exact tangent, LU)') > 0 .and. &
                index(msg, 'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400') > 0, &
                'the stop names the remedies: ' // msg)
@@ -631,13 +625,8 @@ contains
     where (model%materials(1)%keys == 'tension') model%materials(1)%texts = 'proportional'
     model%stages(1)%controls%max_iterations = 4
     model%stages(1)%controls%max_cutbacks = 1
-    call run_analysis(model, 'cholmod', fine, summary, error)
-    if (.not. allocated(error)) then
-      call test_failed(error, 'proportional, 4 iterations, 1 cut-back: expected the clear stop')
-      return
-    end if
-    msg = error%message
-    deallocate (error)
+    call expect_clear_stop(model, fine, 'proportional, 4 iterations, 1 cut-back: expected the clear stop', msg, error)
+    if (allocated(error)) return
     call check(error, index(msg, 'does not converge after 1 cut-backs') > 0 .and. &
                index(msg, 'points reached the tension zone') > 0 .and. index(msg, 'TENSION=closest-point') > 0, &
                'the stop names the tension zone and the continuous rule: ' // msg)
@@ -648,6 +637,26 @@ contains
       f = sum(reaction(2, :), mask=abs(model%coords(1, :) - 200.0_dp) < 1.0e-9_dp)
     end function tip_force
   end subroutine test_tension_cap_beam
+
+  !> Run a model that must stop with the clear message (a solver error): `msg` gets it; the test
+  !! fails with `what` if the run ended well, or with the message if it failed otherwise.
+  subroutine expect_clear_stop(model, observer, what, msg, error)
+    type(model_t), intent(inout) :: model
+    class(observer_t), intent(inout) :: observer
+    character(len=*), intent(in) :: what
+    character(len=:), allocatable, intent(out) :: msg
+    type(error_t), allocatable, intent(out) :: error
+    type(analysis_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    msg = ''
+    call run_analysis(model, 'cholmod', observer, summary, run_error)
+    if (.not. allocated(run_error)) then
+      call test_failed(error, what)
+      return
+    end if
+    msg = run_error%message
+    call check(error, run_error%code, err_solver, 'error category of "' // msg // '"')
+  end subroutine expect_clear_stop
 
   !> Run a deck with an independent iteration: the elastic stiffness (one factorization) with
   !! BFGS updates and up to 400 iterations a step, the reference for full Newton's solutions.
@@ -673,21 +682,11 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
     type(keep_last_t) :: obs
-    type(analysis_summary_t) :: summary
     character(len=:), allocatable :: msg
-    integer :: code
     real(dp) :: lf
     call read_deck('test/data/block_pull.dat', model, error)
     if (allocated(error)) return
-    call run_analysis(model, 'cholmod', obs, summary, error)
-    if (.not. allocated(error)) then
-      call test_failed(error, 'a pull beyond the tensile strength did not stop the run')
-      return
-    end if
-    code = error%code
-    msg = error%message
-    deallocate (error)
-    call check(error, code == err_solver, 'error category: ' // msg)
+    call expect_clear_stop(model, obs, 'a pull beyond the tensile strength did not stop the run', msg, error)
     if (allocated(error)) return
     call check(error, index(msg, 'interface points opened') > 0 .and. index(msg, 'limit point') > 0, &
                'the message says interface points opened: ' // msg)
@@ -767,13 +766,9 @@ contains
     call read_deck('test/data/unzip.dat', model, error)
     if (allocated(error)) return
     model%stages(2)%controls%max_iterations = 3
-    call run_analysis(model, 'cholmod', stopped, summary, error)
-    if (.not. allocated(error)) then
-      call test_failed(error, 'MAXIT=3 followed the unzipping: the test no longer needs the iterations')
-      return
-    end if
-    msg = error%message
-    deallocate (error)
+    call expect_clear_stop(model, stopped, 'MAXIT=3 followed the unzipping: the test no longer needs the ' // &
+                           'iterations', msg, error)
+    if (allocated(error)) return
     call check(error, index(msg, 'interface points opened') > 0 .and. index(msg, 'MAXIT=') > 0, &
                'the message suggests more iterations: ' // msg)
     if (allocated(error)) return

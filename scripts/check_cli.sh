@@ -175,6 +175,17 @@ rm -rf "results/$camp"
 python3 scripts/make_model_c.py --outdir "$tmp/mc_grid" --Gp 300,900 --nup 0.1,0.4,-0.3 --beta 0.09,0.27 >/dev/null \
   && diff -r input/modelC "$tmp/mc_grid" >/dev/null \
   && ok "model C grid over the thesis's values = input/modelC" || bad "model C grid over the thesis's values = input/modelC"
+# The speed-accuracy study builds the deck of every scene (it once broke when a generator's
+# signature changed, and nothing ran it).
+python3 - <<'PY' && ok "study_tradeoff.py builds every scene's deck" || bad "study_tradeoff.py builds every scene's deck"
+import sys
+sys.path.insert(0, "scripts")
+import study_tradeoff as t
+plans = t.plans(quick=False)
+for name, sc in t.scenes().items():
+    for element, n, method, steps, tol, solver in plans[name][:1] + plans[name][-1:]:
+        assert "STAGE" in sc["deck"](element, n, steps, tol or 1e-6, method), name
+PY
 python3 scripts/make_chapter9.py --outdir "$tmp/c9" >/dev/null && diff -r input/chapter9 "$tmp/c9" >/dev/null \
   && ok "make_chapter9.py's defaults = input/chapter9" || bad "make_chapter9.py's defaults = input/chapter9"
 # CR with the continuous tension rule in 5 full-Newton steps: every step converged, no cut-back

@@ -21,6 +21,9 @@ peak memory (/usr/bin/time -f %M, kB) and the relative error of the result again
     modelc     model C C_G300_nu0.4_b0.27 with 6 deg elements beyond theta = 12 (make_model_c.py
                --theta-step 6; 21864 DOFs); sigma_max, the joint's edge stress of thesis 7.4.3 read
                from the interface (scripts/postprocess_model_c.py), against the finest run
+    ch9        chapter 9 CR (Matsuoka-Nakai concrete at its tensile cap, 4810 DOFs) under the
+               thesis's tension rule and under TENSION=closest-point (the "mesh" column names the
+               rule); the largest principal stress against the finest run
 
 Every feps process runs under `nice -n 5`, one at a time. Runs that take less than
 --repeat-below seconds are repeated --repeats times and the median time is kept. Results go to
@@ -223,8 +226,8 @@ def model_c_deck(case):
     (21 864 DOFs; input/modelC now uses 3 deg, docs/verification.md, model C mesh sensitivity)."""
     sys.path.insert(0, os.path.join(ROOT, "scripts"))
     import make_model_c
-    G, nu, beta = make_model_c.parse_case(case)
-    src = make_model_c.deck(G, nu, beta, theta_step=6.0)
+    G, nu, beta, soil_E = make_model_c.parse_case(case)
+    src = make_model_c.deck(G, nu, beta, theta_step=6.0, soil_E=soil_E)
 
     def make(element, n, steps, tol, method):
         return rewrite_stages(src, steps, tol)
@@ -265,6 +268,23 @@ def q_sigma_max(f):
     step = last_step(f)
     return float(pmc.edge_stress(f["mesh/coordinates"][...], f["mesh/groups/joint/connectivity"][...],
                                  step["interface/joint"][...])[0])
+
+
+def q_max_s1(f):
+    return float(np.max(last_step(f)["principal/pipe"][:, 0]))
+
+
+def ch9_deck():
+    """input/chapter9/CR.dat; n = 1 selects TENSION=closest-point (n = 0: the thesis's rule)."""
+    src = open(os.path.join(ROOT, "input", "chapter9", "CR.dat")).read()
+
+    def make(element, n, steps, tol, method):
+        text = rewrite_stages(src, steps, tol)
+        if n == 1:
+            text, count = re.subn(r"(MATSUOKA,.*FT=5\.)", r"\1, TENSION=closest-point", text)
+            assert count == 1
+        return text
+    return make
 
 
 def q_rotation(f):
@@ -356,7 +376,7 @@ def plans(quick, check=False):
             "fe1": [("hex8", 0, "initial-stiffness", 50, 1e-4, "cholmod"),
                     ("hex8", 0, "initial-stiffness", 100, 1e-4, "skyline"),
                     ("hex8", 0, "initial-stiffness", 400, 1e-4, "cholmod")],
-            "modelc": []}
+            "modelc": [], "ch9": []}
     if quick:
         fast = list(grid([("hex8", 2)], ["cholmod"], ["modified-euler", "initial-stiffness"],
                          [10, 100], [1e-6]))
@@ -364,7 +384,7 @@ def plans(quick, check=False):
             "block": fast + list(grid([("hex20", 2)], ["skyline"], ["newton-raphson"], [10], [1e-6])),
             "interface": list(grid([("hex8", 1)], ["cholmod"], ["euler", "modified-newton-raphson"],
                                    [10, 100], [1e-3])),
-            "fe1": [], "modelc": []}
+            "fe1": [], "modelc": [], "ch9": []}
     # coarse meshes: the full grid; finer meshes and hex20: fewer steps (the error of these
     # homogeneous scenes does not depend on the mesh; the finer meshes show the cost)
     block = []
@@ -398,7 +418,14 @@ def plans(quick, check=False):
               ("hex8", 0, "newton-raphson", 100, 1e-4, "cholmod"),
               ("hex8", 0, "full-newton-raphson", 50, 1e-6, "cholmod"),
               ("hex8", 0, "full-newton-raphson", 100, 1e-6, "cholmod")]
-    return {"block": block, "interface": inter, "fe1": fe1, "modelc": modelc}
+    # chapter 9 CR (4810 DOFs, 1-160 s a run): the thesis's rule with its method at several step
+    # counts and full Newton at 10 steps (it cycles across the rule's jump); the continuous rule
+    # under full Newton from 2 steps and with the thesis's method at 400
+    ch9 = [("hex8", 0, "modified-newton-raphson", s, 1e-6, "cholmod") for s in (50, 100, 200, 400, 1000)]
+    ch9 += [("hex8", 0, "full-newton-raphson", 10, 1e-6, "cholmod")]
+    ch9 += [("hex8", 1, "full-newton-raphson", s, 1e-6, "cholmod") for s in (2, 5, 10, 50, 400)]
+    ch9 += [("hex8", 1, "modified-newton-raphson", 400, 1e-6, "cholmod")]
+    return {"block": block, "interface": inter, "fe1": fe1, "modelc": modelc, "ch9": ch9}
 
 
 def scenes():
@@ -411,6 +438,8 @@ def scenes():
                     reference=None, reference_kind="finest run", title="model B FE1, rotation_deflection_deg"),
         "modelc": dict(deck=model_c_deck(MODEL_C), quantity=q_sigma_max, reference=None, reference_kind="finest run",
                        title="model C G_p = 300, nu_p = 0.4, beta = 0.27, sigma_max (MPa)"),
+        "ch9": dict(deck=ch9_deck(), quantity=q_max_s1, reference=None, reference_kind="finest run",
+                    title="chapter 9 CR, max s1 (MPa), by tension rule"),
     }
 
 
@@ -419,6 +448,8 @@ def mesh_name(scene, element, n):
         return f"{element} {n}x{n}x{max(1, n // 2)}"
     if scene == "interface":
         return f"{element} {n}x{n}"
+    if scene == "ch9":
+        return "TENSION=closest-point" if n == 1 else "thesis tension rule"
     return "deck"
 
 
@@ -679,7 +710,7 @@ def main():
     ap.add_argument("--feps", default=os.path.join(ROOT, "feps"),
                     help="feps executable (default ./feps; e.g. a copy of `fpm run --runner echo`)")
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "tradeoff"))
-    ap.add_argument("--scenes", nargs="+", default=["block", "interface", "fe1", "modelc"])
+    ap.add_argument("--scenes", nargs="+", default=["block", "interface", "fe1", "modelc", "ch9"])
     ap.add_argument("--quick", action="store_true", help="a tiny subset (writes OUT/quick_*)")
     ap.add_argument("--check", action="store_true",
                     help="a small subset for comparing builds (writes OUT/check_*)")

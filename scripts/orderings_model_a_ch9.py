@@ -157,7 +157,10 @@ def ordering_rows(results_dir):
 
 
 def main():
-    results_dir = sys.argv[1] if len(sys.argv) > 1 else "."
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("results_dir", nargs="?", default=".", help="the folder of the model A and chapter 9 HDF5 files")
+    results_dir = ap.parse_args().results_dir
     rows = ordering_rows(results_dir)
     w = max((len(r[0]) for r in rows), default=10)
     for case, quantity, larger, smaller in rows:

@@ -104,7 +104,10 @@ def ordering_rows(results_dir):
 
 
 def main():
-    results_dir = sys.argv[1] if len(sys.argv) > 1 else "."
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("results_dir", nargs="?", default=".", help="the folder of the model B and model C HDF5 files")
+    results_dir = ap.parse_args().results_dir
     rows = ordering_rows(results_dir)
     if not rows:
         print(f"no model B or model C results in {results_dir}")

@@ -150,6 +150,18 @@ c = h5py.File(sys.argv[1])["materials/concrete"].attrs
 assert c["kind"] in (b"matsuoka", "matsuoka") and c["tension"] in (b"closest-point", "closest-point")
 assert c["phi"] == 54.9 and c["ft"] == 5.0, dict(c)
 PY
+# A prestressed group records its prestress; --check names it in its stage line.
+"$feps" test/data/prestress_block.dat --quiet --output "$tmp/ps.h5" >/dev/null 2>&1
+python3 - "$tmp/ps.h5" <<'PY' && ok "PRESTRESS: tendon force and /mesh/groups attribute" || bad "PRESTRESS: tendon force and /mesh/groups attribute"
+import sys, h5py
+f = h5py.File(sys.argv[1])
+assert f["mesh/groups/tendons"].attrs["prestress"] == 10.0
+assert "prestress" not in f["mesh/groups/block"].attrs
+n = f["steps"][sorted(f["steps"])[-1]]["bar/tendons"][:, 0]
+assert abs(n - 10.0 * 10000 / 10080).max() < 1e-9, n   # N0 k_b / (k_b + 4 k_t)
+PY
+"$feps" test/data/prestress_block.dat --check >"$tmp/out" 2>&1 && grep -q "born: tendons; prestress tendons 1.000E+01 N" "$tmp/out" \
+  && ok "--check names the prestress" || bad "--check names the prestress: $(cat "$tmp/out")"
 
 # The CalculiX exporter takes a thesis deck (its PARAMETERS are labels) and refuses, with the
 # deck's line, what it cannot write (a second load variation).

@@ -10,11 +10,17 @@ input/chapter9/<case>.dat for
 
     python3 scripts/make_chapter9.py [--outdir input/chapter9] [--steps 400]
                                      [--tension closest-point] [--method full-newton-raphson]
+                                     [--band pretensioned]
 
 --tension closest-point writes the concrete with the continuous tension rule (not in the thesis;
 docs/verification.md, "The tension zone of the Matsuoka-Nakai model"), with which a few
 full-Newton steps reproduce the thesis's 400: e.g. --steps 5 --tension closest-point --method
-full-newton-raphson. The defaults write the thesis's decks (input/chapter9).
+full-newton-raphson. --band pretensioned (not in the thesis) models PR1 and PR2's band as a
+pretensioned band bonded to the pipe: its bars exist from the start and stage 1 prestresses them
+(PRESTRESS) to the hoop force q R b that would press the band's width b = 13 mm with q; bonded,
+the band then loses force as the concrete under it contracts (about 13% for PR1). The thesis's
+model, the default, is a post-tensioned band: the pressure q on the plain pipe, then the band
+born stress-free. The defaults write the thesis's decks (input/chapter9).
 
 Geometry, material and loads follow SPEC section 8 and thesis 9.1-9.3; the choices the thesis
 leaves to its figures are written into each deck's comments (DECISIONS below).
@@ -37,6 +43,7 @@ BAND_AREAS = (4.5, 9.0, 4.5)        # mm2 at z = 219, 225.5, 232 (thesis 9.3, Fi
 REBAR_R = {"RE1": 3, "RE2": 1}      # r index: 93.75 (cover 6.25 to the outside), 81.25
 REBAR_Z = (24, 25)                  # z index: 219 and 225.5 (13 and 6.5 mm below the loaded end)
 PRESTRESS = {"PR1": 5.0, "PR2": 1.0}
+BAND_R, BAND_WIDTH = 100.0, 13.0    # the band on the external surface, z = 219 .. 232
 
 DECISIONS = """\
 ! Choices the thesis leaves to its figures (Figures 8.6, 8.7, 9.1, 9.2, 9.5 are not in the text):
@@ -71,6 +78,16 @@ BAND_NOTE = """\
 !   (STAGE ..., ACTIVATE=band_edges:band_middle): they carry nothing in stage 1 and enter stage 2
 !   stress-free, so the whole of q prestresses the concrete. The bottom is fixed in both stages
 !   (the thesis had it pinned in stage 1; the band is 219 mm away from it)."""
+
+TENDON_NOTE = """\
+! * Prestressing band (PR1, PR2): 13 mm wide on the external surface from z = 219 to the loaded end
+!   z = 232, three hoop rings of 3-node bars at r = 100: 4.5 mm2 at z = 219 and 232, 9 mm2 at
+!   z = 225.5 (18 mm2 in all), E = 200 GPa.
+! * --band pretensioned (not the thesis's model, which applies the pressure q to the plain pipe
+!   and adds the band afterwards): the band's bars exist from the start and stage 1 prestresses
+!   them (PRESTRESS, 50 steps) to the hoop force T = q R b that would press the band's width
+!   b = 13 mm at R = 100 with q: the same stress T / 18 mm2 in all three rings. Bonded, the band
+!   loses force as the concrete under it contracts."""
 
 
 def node(ir, it, iz):
@@ -109,7 +126,7 @@ def hoop_ring_block(ir, izs):
     return lines
 
 
-def deck(case, steps=400, tension="proportional", method="modified-newton-raphson"):
+def deck(case, steps=400, tension="proportional", method="modified-newton-raphson", band="pressure"):
     out = [
         f"! feps deck: back analysis of the laboratory tests (thesis chapter 9), case {case}.",
         "! Written by scripts/make_chapter9.py.",
@@ -120,7 +137,7 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
     if case.startswith("RE"):
         out.append(REBAR_NOTE)
     if case.startswith("PR"):
-        out.append(BAND_NOTE)
+        out.append(BAND_NOTE if band == "pressure" else TENDON_NOTE)
     titles = {"CR": "plain pipe", "RE1": "hoop bars near the external surface",
               "RE2": "hoop bars near the internal surface",
               "PR1": "prestressing band, q = 5 MPa", "PR2": "prestressing band, q = 1 MPa"}
@@ -154,7 +171,18 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
             "! --- loads ---",
             "FSET, top, GROUP=pipe, CSYS=2, Z=232., TOL=0.01"]
     out += ["", f"CONTROLS, METHOD={method}, MAXIT={30 if method == 'full-newton-raphson' else 10}"]
-    if case.startswith("PR"):
+    if case.startswith("PR") and band == "pretensioned":
+        q = PRESTRESS[case]
+        stress = q * BAND_R * BAND_WIDTH / sum(BAND_AREAS)
+        out += ["", f"! stage 1: the band's bars prestressed to T = q R b = {q * BAND_R * BAND_WIDTH:g} N "
+                f"(q = {q:g} MPa), {stress:.6g} MPa",
+                "STAGE, prestress, STEPS=50",
+                f"PRESTRESS, band_edges, STRESS={stress:.6g}",
+                f"PRESTRESS, band_middle, STRESS={stress:.6g}", "",
+                "! stage 2: the end load (the bonded band keeps its prestress)",
+                f"STAGE, load, STEPS={steps}",
+                f"PRESSURE, top, TOTAL={P_QUARTER:g}, VARY=X, ZERO=0., PEAK=-100."]
+    elif case.startswith("PR"):
         q = PRESTRESS[case]
         out += ["FSET, band, GROUP=pipe, CSYS=3, R=100., Z=219.:232., TOL=0.01", "",
                 f"! stage 1: the band's prestress, a uniform radial pressure q = {q:g} MPa under the band",
@@ -178,6 +206,9 @@ def main():
                     help="the concrete's tension rule (thesis: proportional)")
     ap.add_argument("--method", choices=["modified-newton-raphson", "full-newton-raphson"],
                     default="modified-newton-raphson", help="solution method (thesis: modified-newton-raphson)")
+    ap.add_argument("--band", choices=["pressure", "pretensioned"], default="pressure",
+                    help="PR1/PR2's prestress: pressure q on the plain pipe, then the band born "
+                         "(thesis), or the band's bars pretensioned to q R b and bonded (pretensioned)")
     args = ap.parse_args()
     if args.steps < 1:
         ap.error(f"--steps {args.steps}: at least one step is needed")
@@ -185,7 +216,7 @@ def main():
     cases = ["CR", "RE1", "RE2", "PR1", "PR2"]
     for case in cases:
         with open(os.path.join(args.outdir, f"{case}.dat"), "w") as f:
-            f.write(deck(case, args.steps, args.tension, args.method))
+            f.write(deck(case, args.steps, args.tension, args.method, args.band))
     print(f"wrote {len(cases)} decks to {args.outdir}")
 
 

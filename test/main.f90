@@ -16,6 +16,7 @@ program tester
   use test_matsuoka, only: collect_matsuoka
   use test_joint_models, only: collect_joint_models
   use test_activation, only: collect_activation
+  use test_prestress, only: collect_prestress
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
@@ -37,7 +38,8 @@ program tester
     new_testsuite('bars', collect_bars), &
     new_testsuite('matsuoka', collect_matsuoka), &
     new_testsuite('joint_models', collect_joint_models), &
-    new_testsuite('activation', collect_activation) &
+    new_testsuite('activation', collect_activation), &
+    new_testsuite('prestress', collect_prestress) &
     ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1

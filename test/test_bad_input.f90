@@ -53,7 +53,11 @@ contains
       new_unittest('ELASTIC with both E and G', test_elastic_e_and_g), &
       new_unittest('a MATERIAL parameter given twice', test_material_key_twice), &
       new_unittest('a material name with a slash', test_material_name_slash), &
-      new_unittest('a group name with a slash', test_group_name_slash) &
+      new_unittest('a group name with a slash', test_group_name_slash), &
+      new_unittest('PRESTRESS on a group of solids', test_prestress_on_solid), &
+      new_unittest('PRESTRESS before its group is born', test_prestress_before_birth), &
+      new_unittest('PRESTRESS with FORCE= and STRESS=', test_prestress_force_and_stress), &
+      new_unittest('PRESTRESS with a bare number', test_prestress_bare_value) &
       ]
   end subroutine collect_bad_input
 
@@ -362,5 +366,35 @@ contains
     call expect_failure('test/data/bad/parameter_bad_name.dat', err_input, &
                         [character(len=40) :: 'parameter_bad_name.dat:15:', 'field 3', '"2nd_soil"'], error)
   end subroutine test_parameter_bad_name
+
+  !> Only bars take a prestress.
+  subroutine test_prestress_on_solid(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/prestress_on_solid.dat', err_input, &
+                        [character(len=60) :: 'prestress_on_solid.dat:33:', 'field 2', 'acts on bars', &
+                         'group "block" holds hex8'], error)
+  end subroutine test_prestress_on_solid
+
+  !> A prestress in a stage before its bars are born would act on nothing.
+  subroutine test_prestress_before_birth(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/prestress_before_birth.dat', err_input, &
+                        [character(len=60) :: 'prestress_before_birth.dat:32:', 'acts in stage load', &
+                         'before the group is born (ACTIVATE in stage prestress)'], error)
+  end subroutine test_prestress_before_birth
+
+  subroutine test_prestress_force_and_stress(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/prestress_force_and_stress.dat', err_input, &
+                        [character(len=60) :: 'prestress_force_and_stress.dat:33:', 'field 4', &
+                         'one of FORCE= and STRESS='], error)
+  end subroutine test_prestress_force_and_stress
+
+  subroutine test_prestress_bare_value(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/prestress_bare_value.dat', err_input, &
+                        [character(len=60) :: 'prestress_bare_value.dat:33:', 'field 3', &
+                         'expected FORCE=axial force or STRESS=axial stress', 'got "100."'], error)
+  end subroutine test_prestress_bare_value
 
 end module test_bad_input

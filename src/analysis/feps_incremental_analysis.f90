@@ -68,8 +68,9 @@ module feps_incremental_analysis
     real(dp), allocatable :: sig_t(:, :), eps_t(:, :)
     integer, allocatable :: state_t(:)
     real(dp), allocatable :: dtan(:, :, :), dtan_t(:, :, :)   !! nonlinear groups only
-    !> Carries point state: a nonlinear material, or a group born in a later stage (whose
-    !! strains count from its activation, so it cannot join the total-strain linear part).
+    !> Carries point state: a nonlinear material, a group born in a later stage (whose
+    !! strains count from its activation) or a prestressed one (whose force is not K u), so
+    !! it cannot join the total-strain linear part.
     logical :: nonlinear = .false.
   end type group_state_t
 
@@ -194,7 +195,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     class(observer_t), intent(inout), optional :: observer   !! gets one line per stage
     type(analysis_t) :: an
-    real(dp), allocatable :: df(:, :), duc(:, :)
+    real(dp), allocatable :: df(:, :), duc(:, :), dps(:)
     real(dp) :: t0, f(3)
     integer :: s, g
     logical :: changed
@@ -207,7 +208,7 @@ contains
     summary%linear = is_linear_model(model, an%materials)
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
-    allocate (an%f_ref(3, model%nnode), df(3, model%nnode), duc(3, model%nnode))
+    allocate (an%f_ref(3, model%nnode), df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)))
     call nodal_load_vector(model, an%kernels, an%f_ref, error, stage=0)
     if (allocated(error)) return
     summary%time_assembly = wall_clock() - t0
@@ -218,7 +219,7 @@ contains
       call start_elastic_stage(model, an, s, summary, changed, error, observer=observer, &
                                name_failed_step=.not. summary%linear)
       if (allocated(error)) return
-      call stage_increments(model, an, s, df, duc, error)
+      call stage_increments(model, an, s, df, duc, dps, error)
       if (allocated(error)) return
       summary%steps = summary%steps + model%stages(s)%steps
       f = sum(df, dim=2)
@@ -232,6 +233,11 @@ contains
         line = line // '; load increment' // trim(buf) // ' N; ' // str(count(duc /= 0.0_dp)) // ' DOFs moved'
         do g = 1, size(model%groups)
           if (model%groups(g)%activate_stage == s .and. s > 1) line = line // '; born: ' // model%groups(g)%name
+        end do
+        do g = 1, size(model%groups)
+          if (dps(g) == 0.0_dp) cycle
+          write (buf, '(es10.3)') dps(g)
+          line = line // '; prestress ' // model%groups(g)%name // ' ' // trim(adjustl(buf)) // ' N'
         end do
       end associate
       call observer%progress(line)
@@ -366,7 +372,7 @@ contains
       nc = an%kernels(g)%ncomp
       associate (s => an%states(g))
         s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear() .or. &
-                      model%groups(g)%activate_stage > 1
+                      model%groups(g)%activate_stage > 1 .or. model%is_prestressed(g)
         if (.not. s%nonlinear) then
           an%lin%present = .true.
           cycle
@@ -542,14 +548,16 @@ contains
   end subroutine check_born_nodes
 
   !> Increments of one whole stage: external forces (global) and constrained values (nodal).
-  subroutine stage_increments(model, an, s, df, duc, error)
+  subroutine stage_increments(model, an, s, df, duc, dps, error)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: an
     integer, intent(in) :: s
     real(dp), intent(out) :: df(:, :), duc(:, :)
+    real(dp), intent(out) :: dps(:)      !! prestress force added to each group's bars
     type(error_t), allocatable, intent(out) :: error
     integer :: c, k, n
     real(dp) :: frac
+    dps = model%stage_prestress(s)
     call nodal_load_vector(model, an%kernels, df, error, stage=s)
     if (allocated(error)) return
     frac = model%stages(s)%load_fraction
@@ -581,12 +589,12 @@ contains
     class(observer_t), intent(inout) :: observer
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
-    real(dp), allocatable :: df(:, :), duc(:, :), r(:)
-    real(dp) :: t0, rnorm, pnorm
+    real(dp), allocatable :: df(:, :), duc(:, :), dps(:), r(:)
+    real(dp) :: t0, rnorm, pnorm, r_scale
     integer :: s, step
     logical :: changed
 
-    allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq))
+    allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%map%neq))
     step = 0
     do s = 1, size(model%stages)
       call start_elastic_stage(model, an, s, summary, changed, error, observer=observer)
@@ -595,21 +603,25 @@ contains
         deallocate (r)
         allocate (r(an%map%neq))
       end if
-      call stage_increments(model, an, s, df, duc, error)
+      call stage_increments(model, an, s, df, duc, dps, error)
       if (allocated(error)) return
       an%f_applied = an%f_applied + df
       an%uc = an%uc + duc
       ! Move the constrained DOFs, then one solve for the free ones.
       call set_trial(model, an)
-      call update_points(model, an)
+      call update_points(model, an, dps)
       call residual(an, r, rnorm, pnorm)
+      r_scale = rnorm
       t0 = wall_clock()
       call an%solver%solve(r, error)
       if (allocated(error)) return
       summary%time_solve = summary%time_solve + wall_clock() - t0
       call add_free(an, r, an%u_t)
-      call update_points(model, an)
+      call update_points(model, an, dps)
       call residual(an, r, rnorm, pnorm)
+      ! A stage loaded only by a prestress (a band on a free pipe) has no load and no
+      ! reaction: its initial out-of-balance force is the scale, as in substep.
+      if (pnorm <= 1.0e-8_dp * r_scale) pnorm = r_scale
       call commit(an)
       step = step + model%stages(s)%steps
       summary%steps = step
@@ -631,14 +643,15 @@ contains
     class(observer_t), intent(inout) :: observer
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
-    real(dp), allocatable :: df(:, :), duc(:, :), r(:)
+    real(dp), allocatable :: df(:, :), duc(:, :), dps(:), r(:)
     real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
     integer :: s, k, step, iters, cut, nfact0, iters_step, opened
     character(len=:), allocatable :: step_notes, run_notes
     logical :: ok, need_factor, have_factor, step_unconverged, born, changed
     logical, allocatable :: fully_open(:)
 
-    allocate (df(3, model%nnode), duc(3, model%nnode), r(an%map%neq), fully_open(size(model%groups)))
+    allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%map%neq), &
+              fully_open(size(model%groups)))
     fully_open = .false.
     step = 0
     have_factor = .false.
@@ -662,7 +675,7 @@ contains
           if (s > 1 .and. c%method == method_initial_stiffness) have_factor = .false.
           if (s > 1) rel_prev = huge(1.0_dp)
         end if
-        call stage_increments(model, an, s, df, duc, error)
+        call stage_increments(model, an, s, df, duc, dps, error)
         if (allocated(error)) return
         call observer%progress('stage ' // st%name // ': ' // str(st%steps) // ' steps, method ' // &
                                trim(method_names(c%method)) // ', at most ' // str(c%max_iterations) // &
@@ -696,8 +709,8 @@ contains
               end if
               have_factor = .true.
             end if
-            call substep(model, an, c, df * (h / st%steps), duc * (h / st%steps), r, rnorm, pnorm, iters, ok, &
-                         summary, error, step_notes)
+            call substep(model, an, c, df * (h / st%steps), duc * (h / st%steps), dps * (h / st%steps), r, &
+                         rnorm, pnorm, iters, ok, summary, error, step_notes)
             if (allocated(error)) return
             iters_step = iters_step + iters
             if (ok) then
@@ -792,11 +805,12 @@ contains
   !> One (sub)step: move the constrained DOFs by duc, apply df, iterate on the residual.
   !! ok is false when the step diverges (non-finite or growing residual, or iterations run out
   !! far from convergence).
-  subroutine substep(model, an, c, df, duc, r, rnorm, pnorm, iters, ok, summary, error, notes)
+  subroutine substep(model, an, c, df, duc, dps, r, rnorm, pnorm, iters, ok, summary, error, notes)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     type(controls_t), intent(in) :: c
     real(dp), intent(in) :: df(:, :), duc(:, :)
+    real(dp), intent(in) :: dps(:)          !! prestress force added to each group's bars
     real(dp), intent(inout) :: r(:)
     real(dp), intent(out) :: rnorm, pnorm
     integer, intent(out) :: iters
@@ -819,7 +833,7 @@ contains
     an%f_applied = an%f_applied + df
     an%uc = an%uc + duc
     call set_trial(model, an)
-    call update_points(model, an)
+    call update_points(model, an, dps)
     call collect_point_notes(model, an, .true., notes)
     call residual(an, r, rnorm, pnorm)
     if (allocated(r_carry)) r = r - r_carry
@@ -856,7 +870,7 @@ contains
       call add_free(an, r, an%u_t)
       if (use_bfgs) s_hist(:, npairs + 1) = r
       t0 = wall_clock()
-      call update_points(model, an)
+      call update_points(model, an, dps)
       call collect_point_notes(model, an, .true., notes)
       summary%time_update = summary%time_update + wall_clock() - t0
       call residual(an, r, rnorm, pnorm)
@@ -1008,10 +1022,12 @@ contains
   end subroutine add_free
 
   !> Update every point from the committed state with the strain of u_t - u, and sum the
-  !! internal forces of the trial state.
-  subroutine update_points(model, an)
+  !! internal forces of the trial state. The bars of group g start from their committed force
+  !! plus the prestress increment dps(g).
+  subroutine update_points(model, an, dps)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
+    real(dp), intent(in) :: dps(:)
     integer :: g, e, q, q0, np, nn, nc
     real(dp), allocatable :: xe(:, :), due(:), deps(:, :), fe(:), dtan(:, :)
     an%fint = 0.0_dp
@@ -1030,8 +1046,14 @@ contains
           call element_strains(an%kernels(g), xe, due, deps)
           q0 = (e - 1) * np
           do q = 1, np
-            call mat%update(s%sig(:, q0 + q), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), s%sig_t(:, q0 + q), &
-                            s%state_t(q0 + q), dtan)
+            if (dps(g) == 0.0_dp) then
+              call mat%update(s%sig(:, q0 + q), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), &
+                              s%sig_t(:, q0 + q), s%state_t(q0 + q), dtan)
+            else
+              ! only bars are prestressed: one component, the axial force
+              call mat%update(s%sig(:, q0 + q) + dps(g), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), &
+                              s%sig_t(:, q0 + q), s%state_t(q0 + q), dtan)
+            end if
             s%eps_t(:, q0 + q) = s%eps(:, q0 + q) + deps(:, q)
             s%dtan_t(:, :, q0 + q) = dtan
           end do

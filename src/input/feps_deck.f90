@@ -14,7 +14,7 @@ module feps_deck
                         constraint_t, nodal_load_t, face_load_t, region_t, in_region, &
                         load_pressure, load_traction, name_len, stage_t, controls_t, method_names, &
                         method_euler, method_modified_euler, method_newton_raphson, method_full_newton_raphson, &
-                        is_2d_type, report_t, &
+                        is_2d_type, report_t, prestress_t, &
                         output_fields_t, field_names
   implicit none
   private
@@ -59,6 +59,7 @@ contains
     model%systems = default_coordinate_systems()
     allocate (model%groups(0), model%materials(0), model%node_sets(0), model%face_sets(0))
     allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0), model%stages(0), model%reports(0))
+    allocate (model%prestresses(0))
     allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0), st%set_group(0))
     allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0))
     st%mesh%nnode = 0
@@ -137,6 +138,8 @@ contains
       call read_force(records(pos), model, st%current_stage, error)
     case ('PRESSURE', 'TRACTION')
       call read_face_load(records(pos), model, st%current_stage, error)
+    case ('PRESTRESS')
+      call read_prestress(records(pos), model, st%current_stage, error)
     case ('CONTROLS')
       call read_controls(records(pos), 2, model%controls, error)
     case ('REPORT')
@@ -712,6 +715,61 @@ contains
     call move_alloc(tmp, model%nodal_loads)
   end subroutine read_force
 
+  !> PRESTRESS, group, FORCE=N | STRESS=s: bars of the group prestressed by an axial force
+  !! (tension positive; STRESS= is multiplied by the bars' area when the deck is finished).
+  !! Before any STAGE a reference scaled by each stage's LOAD=, after one that stage's own.
+  subroutine read_prestress(rec, model, stage, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
+    type(error_t), allocatable, intent(out) :: error
+    type(prestress_t) :: p
+    integer :: i, eq, given
+    character(len=:), allocatable :: f, name
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    name = field_text(rec, 2)
+    p%group = model%find_group(name)
+    if (p%group == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined element group "' // name // '"', 2)
+      return
+    end if
+    if (element_family(model%groups(p%group)%element_type) /= 'bar') then
+      call input_error(error, rec%file, rec%line, 'PRESTRESS acts on bars; group "' // name // '" holds ' // &
+                       model%groups(p%group)%element_type // ' elements', 2)
+      return
+    end if
+    given = 0
+    do i = 3, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      select case (to_upper(f(:max(eq - 1, 0))))
+      case ('FORCE', 'STRESS')
+        given = given + 1
+        if (given > 1) then
+          call input_error(error, rec%file, rec%line, 'PRESTRESS takes one of FORCE= and STRESS=, once', i)
+          return
+        end if
+        call parse_real(f(eq + 1:), p%force, error, rec, i)
+        if (allocated(error)) return
+        p%per_area = to_upper(f(:eq - 1)) == 'STRESS'
+      case default
+        call input_error(error, rec%file, rec%line, 'expected FORCE=axial force or STRESS=axial stress ' // &
+                         '(tension positive), got "' // f // '"', i)
+        return
+      end select
+    end do
+    if (given == 0) then
+      call input_error(error, rec%file, rec%line, 'PRESTRESS needs FORCE=axial force or STRESS=axial stress', 3)
+      return
+    end if
+    p%stage = stage
+    p%file = rec%file
+    p%line = rec%line
+    model%prestresses = [model%prestresses, p]
+  end subroutine read_prestress
+
   !> PRESSURE, fset, VALUE=p | TOTAL=P [, VARY=coord, ZERO=a, PEAK=b, VARY_CSYS=n]
   !! TRACTION, fset, [CSYS=n,] DIR=value ..., [TOTAL=P,] [VARY=...]
   subroutine read_face_load(rec, model, stage, error)
@@ -1051,7 +1109,37 @@ contains
     if (allocated(error)) return
     call finish_stages(model)
     call resolve_activations(model, error)
+    if (.not. allocated(error)) call resolve_prestresses(model, error)
   end subroutine finish_model
+
+  !> STRESS= values become forces (times the bar material's area A), and every stage a
+  !! prestress acts in must have the group's elements: a prestress before its group is born
+  !! (ACTIVATE) would have nothing to act on.
+  subroutine resolve_prestresses(model, error)
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i, s, born
+    real(dp) :: area
+    logical :: found
+    do i = 1, size(model%prestresses)
+      associate (p => model%prestresses(i), g => model%groups(model%prestresses(i)%group))
+        if (p%per_area) then
+          call model%materials(g%material)%get('a', area, found)
+          p%force = p%force * area      ! without A: an error when the materials are built
+          p%per_area = .false.
+        end if
+        born = max(1, g%activate_stage)
+        do s = 1, born - 1
+          if (p%stage == s .or. (p%stage == 0 .and. model%stages(s)%load_fraction /= 0.0_dp)) then
+            call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '" acts in stage ' // &
+                             model%stages(s)%name // ', before the group is born (ACTIVATE in stage ' // &
+                             model%stages(born)%name // ')', 2)
+            return
+          end if
+        end do
+      end associate
+    end do
+  end subroutine resolve_prestresses
 
   !> Each group named by a stage's ACTIVATE is born in that stage: it must exist and be
   !! activated once only.

@@ -91,6 +91,18 @@ module feps_model
     real(dp) :: components(3) = 0.0_dp
   end type nodal_load_t
 
+  !> Prestress of the bars of one group: an axial force, tension positive, added to every
+  !! point of the group in equal parts over the stage's steps (PRESTRESS record). The bars
+  !! are bonded: after the prestress their force changes with their strain as before.
+  type, public :: prestress_t
+    integer :: stage = 0                     !! 0: reference, scaled by LOAD=; s: increment in stage s
+    integer :: group = 0
+    real(dp) :: force = 0.0_dp               !! axial force (STRESS= times the bars' area)
+    logical :: per_area = .false.            !! given as STRESS= (the deck reader converts it)
+    character(len=:), allocatable :: file
+    integer :: line = 0
+  end type prestress_t
+
   integer, parameter, public :: load_pressure = 1, load_traction = 2
 
   !> Distributed load on a face set. Pressure acts against the outward normal; a traction has
@@ -206,6 +218,7 @@ module feps_model
     type(constraint_t), allocatable :: constraints(:)
     type(nodal_load_t), allocatable :: nodal_loads(:)
     type(face_load_t), allocatable :: face_loads(:)
+    type(prestress_t), allocatable :: prestresses(:)       !! PRESTRESS records (bars)
     type(stage_t), allocatable :: stages(:)
     type(report_t), allocatable :: reports(:)
     type(controls_t) :: controls                           !! defaults for the stages
@@ -220,6 +233,7 @@ module feps_model
     procedure :: nelem => model_nelem
     procedure :: has_interfaces
     procedure :: supports_change
+    procedure :: stage_prestress, is_prestressed
     procedure :: find_node_set, find_face_set, find_material, find_group
   end type model_t
 
@@ -340,6 +354,34 @@ contains
   end function has_interfaces
 
   !> Some DOF is held or freed from stage s on (FIX or RELEASE after the STAGE record of s).
+  !> Axial force that stage s adds to the bars of each group by prestress: the stage's own
+  !! PRESTRESS records plus its LOAD= fraction of the reference ones (0 for other groups).
+  pure function stage_prestress(self, s) result(force)
+    class(model_t), intent(in) :: self
+    integer, intent(in) :: s
+    real(dp) :: force(size(self%groups))
+    integer :: i
+    force = 0.0_dp
+    if (.not. allocated(self%prestresses)) return
+    do i = 1, size(self%prestresses)
+      associate (p => self%prestresses(i))
+        if (p%stage == 0) then
+          force(p%group) = force(p%group) + self%stages(s)%load_fraction * p%force
+        else if (p%stage == s) then
+          force(p%group) = force(p%group) + p%force
+        end if
+      end associate
+    end do
+  end function stage_prestress
+
+  !> True if a PRESTRESS record names group g.
+  pure logical function is_prestressed(self, g)
+    class(model_t), intent(in) :: self
+    integer, intent(in) :: g
+    is_prestressed = .false.
+    if (allocated(self%prestresses)) is_prestressed = any(self%prestresses(:)%group == g)
+  end function is_prestressed
+
   pure logical function supports_change(self, s)
     class(model_t), intent(in) :: self
     integer, intent(in) :: s

@@ -50,6 +50,7 @@ module feps_results_file
     procedure :: write_summary_real
     procedure :: write_summary_int
     procedure :: write_group_int
+    procedure :: write_group_real
     procedure :: write_material
     procedure :: close => close_file
     procedure :: discard
@@ -396,6 +397,27 @@ contains
     call h5gclose_f(group_id, hdferr2)
     if (allocated(error)) error%message = 'cannot write attribute /mesh/groups/' // name // '/' // key
   end subroutine write_group_int
+
+  !> Real attribute `key` on `/mesh/groups/<name>` (a group written before).
+  subroutine write_group_real(self, name, key, value, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: name, key
+    real(dp), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id
+    integer :: hdferr, hdferr2
+
+    call require_open(self, error)
+    if (allocated(error)) return
+    call h5gopen_f(self%file_id, '/mesh/groups/' // name, group_id, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot open /mesh/groups/' // name // ' in ' // self%part_path)
+      return
+    end if
+    call write_real_attribute(group_id, key, value, error)
+    call h5gclose_f(group_id, hdferr2)
+    if (allocated(error)) error%message = 'cannot write attribute /mesh/groups/' // name // '/' // key
+  end subroutine write_group_real
 
   !> Group `/materials/<name>` with a string attribute `kind` and one attribute per parameter
   !! as the MATERIAL record gave it: a real, or a string where `texts(i)` is not empty.

@@ -532,8 +532,23 @@ contains
       call h5%write_group_int(model%groups(g)%name, 'point_state_bytes', summary%state_bytes(g), error)
       if (.not. allocated(error)) call h5%write_group_int(model%groups(g)%name, 'point_state_bytes_per_element', &
         summary%state_bytes(g) / max(1_i8, int(summary%group_elements(g), i8)), error)
+      if (.not. allocated(error) .and. model%is_prestressed(g)) &
+        call h5%write_group_real(model%groups(g)%name, 'prestress', total_prestress(model, g), error)
     end do
   end subroutine write_summary
+
+  !> The axial force the PRESTRESS records add to group g's bars over all stages.
+  pure real(dp) function total_prestress(model, g)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: g
+    integer :: s
+    real(dp) :: f(size(model%groups))
+    total_prestress = 0.0_dp
+    do s = 1, size(model%stages)
+      f = model%stage_prestress(s)
+      total_prestress = total_prestress + f(g)
+    end do
+  end function total_prestress
 
   !> Each MATERIAL record as /materials/<name>: its kind and its parameters as given.
   subroutine write_materials(h5, model, error)

@@ -57,7 +57,8 @@ contains
       new_unittest('PRESTRESS on a group of solids', test_prestress_on_solid), &
       new_unittest('PRESTRESS before its group is born', test_prestress_before_birth), &
       new_unittest('PRESTRESS with FORCE= and STRESS=', test_prestress_force_and_stress), &
-      new_unittest('PRESTRESS with a bare number', test_prestress_bare_value) &
+      new_unittest('PRESTRESS with a bare number', test_prestress_bare_value), &
+      new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow) &
       ]
   end subroutine collect_bad_input
 
@@ -396,5 +397,12 @@ contains
                         [character(len=60) :: 'prestress_bare_value.dat:33:', 'field 3', &
                          'expected FORCE=axial force or STRESS=axial stress', 'got "100."'], error)
   end subroutine test_prestress_bare_value
+
+  subroutine test_prestress_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/prestress_overflow.dat', err_input, &
+                        [character(len=60) :: 'prestress_overflow.dat:33:', 'field 3', &
+                         'STRESS times the area A of material strand overflows'], error)
+  end subroutine test_prestress_overflow
 
 end module test_bad_input

@@ -5,7 +5,8 @@
 !! Matsuoka-Nakai block that stays elastic), under every solution method.
 module test_prestress
   use feps_kinds, only: dp
-  use feps_testing, only: error_t, unittest_t, new_unittest, check
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_error, only: err_solver
   use feps_model, only: model_t, method_euler, method_modified_euler, method_newton_raphson, &
                         method_modified_newton_raphson, method_initial_stiffness, method_full_newton_raphson, &
                         method_names
@@ -24,7 +25,8 @@ contains
     tests = [ &
       new_unittest("tendon_in_series_with_a_spring", test_series), &
       new_unittest("block_with_tendons_born_prestressed_every_method", test_block), &
-      new_unittest("deck_records_prestress_forces", test_deck) &
+      new_unittest("deck_records_prestress_forces", test_deck), &
+      new_unittest("forces_near_huge_stop_clearly", test_overflow) &
       ]
   end subroutine collect_prestress
 
@@ -149,5 +151,28 @@ contains
     f = model%stage_prestress(1)
     call check(error, f(2), 2.5_dp, 'a reference prestress times LOAD=0.25', rel=1.0e-14_dp)
   end subroutine test_deck
+
+  !> A prestress of 1e299 N crushes the block. The support reactions' sum of squares used to
+  !! overflow, which made the reference force infinite and every relative residual zero: the
+  !! run "converged" with the tendons at 1e298 N on a block at zero stress. It must stop with
+  !! the clear message instead.
+  subroutine test_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(analysis_summary_t) :: summary
+    type(all_steps_t) :: obs
+    type(error_t), allocatable :: run_error
+    call read_deck('test/data/prestress_block.dat', model, error)
+    if (allocated(error)) return
+    model%prestresses(1)%force = 1.0e299_dp
+    call run_analysis(model, 'cholmod', obs, summary, run_error)
+    if (.not. allocated(run_error)) then
+      call test_failed(error, 'a prestress of 1e299 N on a 10 mm block ran to the end')
+      return
+    end if
+    call check(error, run_error%code, err_solver, 'a numerical stop: ' // run_error%message)
+    if (allocated(error)) return
+    call check(error, index(run_error%message, 'does not converge') > 0, 'the clear stop: ' // run_error%message)
+  end subroutine test_overflow
 
 end module test_prestress

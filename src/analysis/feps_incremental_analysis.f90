@@ -1071,22 +1071,26 @@ contains
     type(analysis_t), intent(in) :: an
     real(dp), intent(out) :: r(:)
     real(dp), intent(out) :: rnorm, pnorm
-    real(dp), allocatable :: p(:)
-    real(dp) :: react2, fl(3)
-    integer :: n, d
-    allocate (p(size(r)))
+    real(dp), allocatable :: p(:), react(:)
+    real(dp) :: fl(3)
+    integer :: n, d, k
+    allocate (p(size(r)), react(3 * size(an%fint, 2)))
     call to_equations(an%map, an%f_applied - an%fint, r)
     call to_equations(an%map, an%f_applied, p)
     rnorm = norm2(r)
-    react2 = 0.0_dp
+    ! norm2 scales: a sum of squares would overflow for forces near huge() and make the
+    ! relative residual zero
+    k = 0
     do n = 1, size(an%fint, 2)
       if (.not. any(an%map%constrained(:, n))) cycle
       fl = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
       do d = 1, 3
-        if (an%map%constrained(d, n)) react2 = react2 + fl(d)**2
+        if (.not. an%map%constrained(d, n)) cycle
+        k = k + 1
+        react(k) = fl(d)
       end do
     end do
-    pnorm = max(norm2(p), sqrt(react2), tiny(1.0_dp))
+    pnorm = max(norm2(p), norm2(react(1:k)), tiny(1.0_dp))
   end subroutine residual
 
   subroutine commit(an)

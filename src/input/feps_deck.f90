@@ -1127,6 +1127,11 @@ contains
           call model%materials(g%material)%get('a', area, found)
           p%force = p%force * area      ! without A: an error when the materials are built
           p%per_area = .false.
+          if (.not. abs(p%force) <= huge(1.0_dp)) then
+            call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '": STRESS times ' // &
+                             'the area A of material ' // g%material_name // ' overflows', 3)
+            return
+          end if
         end if
         born = max(1, g%activate_stage)
         do s = 1, born - 1

@@ -26,7 +26,8 @@ contains
       new_unittest("tendon_in_series_with_a_spring", test_series), &
       new_unittest("block_with_tendons_born_prestressed_every_method", test_block), &
       new_unittest("deck_records_prestress_forces", test_deck), &
-      new_unittest("forces_near_huge_stop_clearly", test_overflow) &
+      new_unittest("forces_near_huge_stop_clearly", test_overflow), &
+      new_unittest("band_on_a_lame_cylinder", test_ring) &
       ]
   end subroutine collect_prestress
 
@@ -151,6 +152,66 @@ contains
     f = model%stage_prestress(1)
     call check(error, f(2), 2.5_dp, 'a reference prestress times LOAD=0.25', rel=1.0e-14_dp)
   end subroutine test_deck
+
+  !> Two prestressed hoop rings of bar2 chords (E A = 8e6 N, N0 = 1e5 N each) on the outer
+  !! nodes of a plane-strain Lame cylinder (test/data/prestress_ring.dat, a = 600, b = 715,
+  !! h = 25, 8 x 11.25 deg). (1) A polygon ring in tension N pulls each node in by
+  !! 2 N sin(dtheta / 2), which is exactly the nodal load of a pressure p0 = 2 N0 / (b h
+  !! cos(dtheta / 2)) on the hex8 faces: the same mesh with stress-free bars and p0 must move
+  !! identically (1e-10), its bars carrying N - N0. (2) Lame: u_r(b) = -C p with
+  !! C = b (1 + nu) ((1 - 2 nu) b^2 + a^2) / (E (b^2 - a^2)), and the ring's compatibility
+  !! N = N0 + E A u_r(b) / b give N = N0 / (1 + 2 E A C / (b^2 h cos(dtheta / 2))); 4 hex8
+  !! through the wall are 0.2% stiffer than Lame (u_r 0.18% low), so the loss of force N0 - N
+  !! and u_r(b) are checked within 0.5%.
+  subroutine test_ring(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: a = 600.0_dp, b = 715.0_dp, e = 40000.0_dp, nu = 0.2_dp, h = 25.0_dp, &
+                           ea = 8.0e6_dp, n0 = 1.0e5_dp, dtheta = 11.25_dp * acos(-1.0_dp) / 180.0_dp
+    type(model_t) :: model
+    type(analysis_summary_t) :: summary
+    type(all_steps_t) :: obs_ps, obs_p
+    real(dp) :: c, n_closed, ur_closed, r, ur
+    integer :: n, q, nouter
+    call read_deck('test/data/prestress_ring.dat', model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs_ps, summary, error)
+    if (allocated(error)) return
+    ! the same mesh: stress-free bars and the equivalent pressure
+    call read_deck('test/data/prestress_ring.dat', model, error)
+    if (allocated(error)) return
+    model%prestresses(1)%force = 0.0_dp
+    model%face_loads(1)%value = 2.0_dp * n0 / (b * h * cos(dtheta / 2.0_dp))
+    call run_analysis(model, 'cholmod', obs_p, summary, error)
+    if (allocated(error)) return
+    associate (u_ps => obs_ps%steps(1)%displacement, u_p => obs_p%steps(1)%displacement, &
+               bar_ps => obs_ps%steps(1)%groups(2)%stress, bar_p => obs_p%steps(1)%groups(2)%stress)
+      call check(error, maxval(abs(u_ps - u_p)), 0.0_dp, 'prestressed rings = their equivalent pressure', &
+                 abs=1.0e-10_dp * maxval(abs(u_p)))
+      if (allocated(error)) return
+      do q = 1, size(bar_ps, 2)
+        call check(error, bar_ps(1, q) - n0, bar_p(1, q), 'bar force: N0 + that of the pressure', &
+                   rel=1.0e-9_dp)
+        if (allocated(error)) return
+      end do
+      c = b * (1.0_dp + nu) * ((1.0_dp - 2.0_dp * nu) * b**2 + a**2) / (e * (b**2 - a**2))
+      n_closed = n0 / (1.0_dp + 2.0_dp * ea * c / (b**2 * h * cos(dtheta / 2.0_dp)))
+      ur_closed = -c * 2.0_dp * n_closed / (b * h * cos(dtheta / 2.0_dp))
+      do q = 1, size(bar_ps, 2)
+        call check(error, n0 - bar_ps(1, q), n0 - n_closed, 'loss of force against Lame', rel=5.0e-3_dp)
+        if (allocated(error)) return
+      end do
+      nouter = 0
+      do n = 1, size(u_ps, 2)
+        r = hypot(model%coords(1, n), model%coords(2, n))
+        if (abs(r - b) > 1.0e-6_dp) cycle
+        nouter = nouter + 1
+        ur = (u_ps(1, n) * model%coords(1, n) + u_ps(2, n) * model%coords(2, n)) / r
+        call check(error, ur, ur_closed, 'u_r(b) against Lame', rel=5.0e-3_dp)
+        if (allocated(error)) return
+      end do
+      call check(error, nouter, 18, 'outer nodes checked')
+    end associate
+  end subroutine test_ring
 
   !> A prestress of 1e299 N crushes the block. The support reactions' sum of squares used to
   !! overflow, which made the reference force infinite and every relative residual zero: the

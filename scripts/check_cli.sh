@@ -252,5 +252,19 @@ python3 scripts/plot_campaign.py "results/$camp/summary.csv" --x E_s --y nu_p -o
   && ok "plot_campaign.py names a missing column" || bad "plot_campaign.py names a missing column: $(cat "$tmp/out")"
 rm -rf "results/$camp"
 
+# The prestress study end to end, 2 steps: CR and a q = 1 MPa band built both ways (PRESTRESS for
+# the pretensioned one); the band lowers the external layer's peak tension (thesis 9.3, PR2).
+camp="check_cli_prestress_$$"
+FEPS="$PWD/$feps" JOBS=2 python3 scripts/study_prestress.py --q 1 --steps 2 --name "$camp" >"$tmp/out" 2>&1
+python3 - "results/$camp/prestress.csv" <<'PY' && [ -s "results/$camp/prestress.png" ] \
+  && ok "study_prestress.py: a q = 1 band, both ways, against CR" || bad "study_prestress.py: $(tail -5 "$tmp/out")"
+import csv, sys
+rows = {r["case"]: r for r in csv.DictReader(open(sys.argv[1]))}
+cr = float(rows["CR"]["max_s1_external"])
+for band in ("pressure", "pretensioned"):
+    assert float(rows[f"PR_{band}_q1"]["max_s1_external"]) < cr, rows
+PY
+rm -rf "results/$camp"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

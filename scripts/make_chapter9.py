@@ -126,7 +126,14 @@ def hoop_ring_block(ir, izs):
     return lines
 
 
-def deck(case, steps=400, tension="proportional", method="modified-newton-raphson", band="pressure"):
+def deck(case, steps=400, tension="proportional", method="modified-newton-raphson", band="pressure", q=None):
+    """The deck of one case. For PR1/PR2, `q` (MPa) replaces the thesis's band pressure and the
+    deck is labelled PARAMETERS q, band (scripts/study_prestress.py)."""
+    if q is not None and not case.startswith("PR"):
+        raise ValueError(f"q applies to the band cases PR1 and PR2, not {case}")
+    labelled = q is not None
+    if q is None and case.startswith("PR"):
+        q = PRESTRESS[case]
     out = [
         f"! feps deck: back analysis of the laboratory tests (thesis chapter 9), case {case}.",
         "! Written by scripts/make_chapter9.py.",
@@ -139,8 +146,9 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
     if case.startswith("PR"):
         out.append(BAND_NOTE if band == "pressure" else TENDON_NOTE)
     titles = {"CR": "plain pipe", "RE1": "hoop bars near the external surface",
-              "RE2": "hoop bars near the internal surface",
-              "PR1": "prestressing band, q = 5 MPa", "PR2": "prestressing band, q = 1 MPa"}
+              "RE2": "hoop bars near the internal surface"}
+    if case.startswith("PR"):
+        titles[case] = f"prestressing band, q = {q:g} MPa"
     out += [f"TITLE, Chapter 9 back analysis {case}: {titles[case]}, P = 200 kN (quarter: 50 kN)", "",
             "! --- nodes: r fastest (5), then theta (13), then z (27) ---"]
     out += node_block()
@@ -159,6 +167,8 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
     if tension != "proportional":
         concrete += f", TENSION={tension}"
     out += ["E,", "", concrete]
+    if labelled:
+        out += [f"PARAMETERS, q={q:g}, band={band}"]
     if case.startswith("RE"):
         out.append(f"MATERIAL, hoop_bar, BAR, E=200000., A={HOOP_AREA}")
     if case.startswith("PR"):
@@ -172,7 +182,6 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
             "FSET, top, GROUP=pipe, CSYS=2, Z=232., TOL=0.01"]
     out += ["", f"CONTROLS, METHOD={method}, MAXIT={30 if method == 'full-newton-raphson' else 10}"]
     if case.startswith("PR") and band == "pretensioned":
-        q = PRESTRESS[case]
         stress = q * BAND_R * BAND_WIDTH / sum(BAND_AREAS)
         out += ["", f"! stage 1: the band's bars prestressed to T = q R b = {q * BAND_R * BAND_WIDTH:g} N "
                 f"(q = {q:g} MPa), {stress:.6g} MPa",
@@ -183,7 +192,6 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
                 f"STAGE, load, STEPS={steps}",
                 f"PRESSURE, top, TOTAL={P_QUARTER:g}, VARY=X, ZERO=0., PEAK=-100."]
     elif case.startswith("PR"):
-        q = PRESTRESS[case]
         out += ["FSET, band, GROUP=pipe, CSYS=3, R=100., Z=219.:232., TOL=0.01", "",
                 f"! stage 1: the band's prestress, a uniform radial pressure q = {q:g} MPa under the band",
                 "STAGE, prestress, STEPS=50",

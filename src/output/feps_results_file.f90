@@ -384,17 +384,12 @@ contains
     integer(i8), intent(in) :: value
     type(error_t), allocatable, intent(out) :: error
     integer(hid_t) :: group_id
-    integer :: hdferr, hdferr2
+    integer :: hdferr
 
-    call require_open(self, error)
+    call open_mesh_group(self, name, group_id, error)
     if (allocated(error)) return
-    call h5gopen_f(self%file_id, '/mesh/groups/' // name, group_id, hdferr)
-    if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot open /mesh/groups/' // name // ' in ' // self%part_path)
-      return
-    end if
     call write_int8_attribute(group_id, key, value, error)
-    call h5gclose_f(group_id, hdferr2)
+    call h5gclose_f(group_id, hdferr)
     if (allocated(error)) error%message = 'cannot write attribute /mesh/groups/' // name // '/' // key
   end subroutine write_group_int
 
@@ -405,19 +400,27 @@ contains
     real(dp), intent(in) :: value
     type(error_t), allocatable, intent(out) :: error
     integer(hid_t) :: group_id
-    integer :: hdferr, hdferr2
+    integer :: hdferr
 
+    call open_mesh_group(self, name, group_id, error)
+    if (allocated(error)) return
+    call write_real_attribute(group_id, key, value, error)
+    call h5gclose_f(group_id, hdferr)
+    if (allocated(error)) error%message = 'cannot write attribute /mesh/groups/' // name // '/' // key
+  end subroutine write_group_real
+
+  !> Open `/mesh/groups/<name>` of the open file (the caller closes it).
+  subroutine open_mesh_group(self, name, group_id, error)
+    class(results_file_t), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer(hid_t), intent(out) :: group_id
+    type(error_t), allocatable, intent(out) :: error
+    integer :: hdferr
     call require_open(self, error)
     if (allocated(error)) return
     call h5gopen_f(self%file_id, '/mesh/groups/' // name, group_id, hdferr)
-    if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot open /mesh/groups/' // name // ' in ' // self%part_path)
-      return
-    end if
-    call write_real_attribute(group_id, key, value, error)
-    call h5gclose_f(group_id, hdferr2)
-    if (allocated(error)) error%message = 'cannot write attribute /mesh/groups/' // name // '/' // key
-  end subroutine write_group_real
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot open /mesh/groups/' // name // ' in ' // self%part_path)
+  end subroutine open_mesh_group
 
   !> Group `/materials/<name>` with a string attribute `kind` and one attribute per parameter
   !! as the MATERIAL record gave it: a real, or a string where `texts(i)` is not empty.

@@ -151,6 +151,17 @@ contains
     model%stages(1)%load_fraction = 0.25_dp
     f = model%stage_prestress(1)
     call check(error, f(2), 2.5_dp, 'a reference prestress times LOAD=0.25', rel=1.0e-14_dp)
+    if (allocated(error)) return
+    ! records on one group add up: the reference share plus a stage's own
+    model%prestresses = [model%prestresses, model%prestresses(1)]
+    model%prestresses(2)%stage = 1
+    model%prestresses(2)%force = -4.0_dp
+    f = model%stage_prestress(1)
+    call check(error, f(2), 2.5_dp - 4.0_dp, 'two records on one group add up', rel=1.0e-14_dp)
+    if (allocated(error)) return
+    f = model%stage_prestress(2)
+    call check(error, f(2), 10.0_dp * model%stages(2)%load_fraction, 'stage 2: only the reference share', &
+               abs=1.0e-14_dp)
   end subroutine test_deck
 
   !> Two prestressed hoop rings of bar2 chords (E A = 8e6 N, N0 = 1e5 N each) on the outer

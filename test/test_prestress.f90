@@ -27,7 +27,8 @@ contains
       new_unittest("block_with_tendons_born_prestressed_every_method", test_block), &
       new_unittest("deck_records_prestress_forces", test_deck), &
       new_unittest("forces_near_huge_stop_clearly", test_overflow), &
-      new_unittest("band_on_a_lame_cylinder", test_ring) &
+      new_unittest("band_on_a_lame_cylinder", test_ring), &
+      new_unittest("tendons_against_a_block_at_its_plateau", test_plateau) &
       ]
   end subroutine collect_prestress
 
@@ -223,6 +224,43 @@ contains
       call check(error, nouter, 18, 'outer nodes checked')
     end associate
   end subroutine test_ring
+
+  !> The block of test_block with 50 times the prestress (STRESS = 5000: N0 = 500 N per
+  !! tendon): the concrete reaches its uniaxial compressive strength fc = 2 M sin(phi) /
+  !! (1 - sin(phi)) = 15 MPa (M = ft / 2 (1 + 1 / sin(phi)) = 7.5, phi = 30) and flows at that
+  !! plateau until the tendons, losing k_t = 20 N/mm each as it shortens, are in equilibrium
+  !! with it: 4 N + p1 A = fc A gives N = 350 N, and the face moves by -p1 L / E - (N0 - N) / k_t
+  !! = -7.51 mm. Steps cut back while the block flows, so this also checks that the prestress
+  !! follows the cut-backs' fractions of a step.
+  subroutine test_plateau(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: sin_phi = 0.5_dp, ft = 5.0_dp
+    type(model_t) :: model
+    type(analysis_summary_t) :: summary
+    type(all_steps_t) :: obs
+    real(dp) :: fc
+    integer :: last, q
+    call read_deck('test/data/prestress_block.dat', model, error)
+    if (allocated(error)) return
+    model%prestresses(1)%force = 500.0_dp
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%cutbacks > 0, 'the flow makes steps cut back')
+    if (allocated(error)) return
+    fc = 2.0_dp * (ft / 2.0_dp * (1.0_dp + 1.0_dp / sin_phi)) * sin_phi / (1.0_dp - sin_phi)
+    last = size(obs%steps)
+    do q = 1, size(obs%steps(last)%groups(1)%stress, 2)
+      call check(error, obs%steps(last)%groups(1)%stress(1, q), -fc, 'block sxx at the plateau -fc', rel=1.0e-6_dp)
+      if (allocated(error)) return
+    end do
+    do q = 1, size(obs%steps(last)%groups(2)%stress, 2)
+      call check(error, obs%steps(last)%groups(2)%stress(1, q), (fc - 1.0_dp) * 100.0_dp / 4.0_dp, &
+                 'tendon force (fc - p1) A / 4', rel=1.0e-6_dp)
+      if (allocated(error)) return
+    end do
+    call check(error, obs%steps(last)%displacement(1, 2), -0.01_dp - (500.0_dp - 350.0_dp) / 20.0_dp, &
+               'loaded face ux', rel=1.0e-6_dp)
+  end subroutine test_plateau
 
   !> A prestress of 1e299 N crushes the block. The support reactions' sum of squares used to
   !! overflow, which made the reference force infinite and every relative residual zero: the

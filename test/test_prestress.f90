@@ -1,8 +1,9 @@
 !> Prestressed bars (PRESTRESS, group, FORCE= | STRESS=): the prestress is added to the bars'
 !! axial force in equal parts over the stage's steps, and the bars stay bonded afterwards.
-!! Checked against closed forms of springs in series and in parallel, on the linear path (bars
-!! only) and on the nonlinear path (tendons born in the stage that prestresses them, on a
-!! Matsuoka-Nakai block that stays elastic), under every solution method.
+!! Checked against closed forms: springs in series on the linear path (bars only); tendons born
+!! in the stage that prestresses them on a Matsuoka-Nakai block, elastic under every solution
+!! method and flowing at its compressive plateau through cut-backs; a band of hoop rings on a
+!! Lame cylinder. Also: the deck's records, and forces near huge() stopping clearly.
 module test_prestress
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed

@@ -162,6 +162,9 @@ assert abs(n - 10.0 * 10000 / 10080).max() < 1e-9, n   # N0 k_b / (k_b + 4 k_t)
 PY
 "$feps" test/data/prestress_block.dat --check >"$tmp/out" 2>&1 && grep -q "born: tendons; prestress tendons 1.000E+01 N" "$tmp/out" \
   && ok "--check names the prestress" || bad "--check names the prestress: $(cat "$tmp/out")"
+"$feps" test/data/prestress_post.dat --check >"$tmp/out" 2>&1 \
+  && grep -q "post-tension tendons 1.000E+01 N (bonded next stage)" "$tmp/out" && grep -q "stage more: .*born: tendons" "$tmp/out" \
+  && ok "--check names the post-tension and the bonding stage" || bad "--check names the post-tension: $(cat "$tmp/out")"
 
 # The CalculiX exporter takes a thesis deck (its PARAMETERS are labels) and refuses, with the
 # deck's line, what it cannot write (a second load variation).

@@ -10,7 +10,7 @@ input/chapter9/<case>.dat for
 
     python3 scripts/make_chapter9.py [--outdir input/chapter9] [--steps 400]
                                      [--tension closest-point] [--method full-newton-raphson]
-                                     [--band pretensioned]
+                                     [--band pretensioned | posttensioned]
 
 --tension closest-point writes the concrete with the continuous tension rule (not in the thesis;
 docs/verification.md, "The tension zone of the Matsuoka-Nakai model"), with which a few
@@ -20,7 +20,9 @@ pretensioned band bonded to the pipe: its bars exist from the start and stage 1 
 (PRESTRESS) to the hoop force q R b that would press the band's width b = 13 mm with q; bonded,
 the band then loses force as the concrete under it contracts (about 13% for PR1). The thesis's
 model, the default, is a post-tensioned band: the pressure q on the plain pipe, then the band
-born stress-free. The defaults write the thesis's decks (input/chapter9).
+born stress-free. --band posttensioned builds that model with the band's own force (PRESTRESS
+..., BOND=after: the unbonded band pulls on its nodes in stage 1 and is born carrying T). The
+defaults write the thesis's decks (input/chapter9).
 
 Geometry, material and loads follow SPEC section 8 and thesis 9.1-9.3; the choices the thesis
 leaves to its figures are written into each deck's comments (DECISIONS below).
@@ -78,6 +80,15 @@ BAND_NOTE = """\
 !   (STAGE ..., ACTIVATE=band_edges:band_middle): they carry nothing in stage 1 and enter stage 2
 !   stress-free, so the whole of q prestresses the concrete. The bottom is fixed in both stages
 !   (the thesis had it pinned in stage 1; the band is 219 mm away from it)."""
+
+POST_NOTE = """\
+! * Prestressing band (PR1, PR2): 13 mm wide on the external surface from z = 219 to the loaded end
+!   z = 232, three hoop rings of 3-node bars at r = 100: 4.5 mm2 at z = 219 and 232, 9 mm2 at
+!   z = 225.5 (18 mm2 in all), E = 200 GPa.
+! * --band posttensioned (the thesis's model, built with PRESTRESS ..., BOND=after): stage 1
+!   tensions the band to the hoop force T = q R b that presses its width b = 13 mm at R = 100 with
+!   q (the same stress T / 18 mm2 in all three rings) while it is not bonded, so its pull on the
+!   rings' nodes stands in for the pressure q; it is bonded from stage 2 on, carrying T."""
 
 TENDON_NOTE = """\
 ! * Prestressing band (PR1, PR2): 13 mm wide on the external surface from z = 219 to the loaded end
@@ -144,7 +155,7 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
     if case.startswith("RE"):
         out.append(REBAR_NOTE)
     if case.startswith("PR"):
-        out.append(BAND_NOTE if band == "pressure" else TENDON_NOTE)
+        out.append({"pressure": BAND_NOTE, "pretensioned": TENDON_NOTE, "posttensioned": POST_NOTE}[band])
     titles = {"CR": "plain pipe", "RE1": "hoop bars near the external surface",
               "RE2": "hoop bars near the internal surface"}
     if case.startswith("PR"):
@@ -181,13 +192,14 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
             "! --- loads ---",
             "FSET, top, GROUP=pipe, CSYS=2, Z=232., TOL=0.01"]
     out += ["", f"CONTROLS, METHOD={method}, MAXIT={30 if method == 'full-newton-raphson' else 10}"]
-    if case.startswith("PR") and band == "pretensioned":
+    if case.startswith("PR") and band in ("pretensioned", "posttensioned"):
         stress = q * BAND_R * BAND_WIDTH / sum(BAND_AREAS)
+        bond = ", BOND=after" if band == "posttensioned" else ""
         out += ["", f"! stage 1: the band's bars prestressed to T = q R b = {q * BAND_R * BAND_WIDTH:g} N "
-                f"(q = {q:g} MPa), {stress:.6g} MPa",
+                f"(q = {q:g} MPa), {stress:.6g} MPa" + (", bonded from stage 2" if bond else ""),
                 "STAGE, prestress, STEPS=50",
-                f"PRESTRESS, band_edges, STRESS={stress:.6g}",
-                f"PRESTRESS, band_middle, STRESS={stress:.6g}", "",
+                f"PRESTRESS, band_edges, STRESS={stress:.6g}{bond}",
+                f"PRESTRESS, band_middle, STRESS={stress:.6g}{bond}", "",
                 "! stage 2: the end load (the bonded band keeps its prestress)",
                 f"STAGE, load, STEPS={steps}",
                 f"PRESSURE, top, TOTAL={P_QUARTER:g}, VARY=X, ZERO=0., PEAK=-100."]
@@ -214,9 +226,11 @@ def main():
                     help="the concrete's tension rule (thesis: proportional)")
     ap.add_argument("--method", choices=["modified-newton-raphson", "full-newton-raphson"],
                     default="modified-newton-raphson", help="solution method (thesis: modified-newton-raphson)")
-    ap.add_argument("--band", choices=["pressure", "pretensioned"], default="pressure",
+    ap.add_argument("--band", choices=["pressure", "pretensioned", "posttensioned"], default="pressure",
                     help="PR1/PR2's prestress: pressure q on the plain pipe, then the band born "
-                         "(thesis), or the band's bars pretensioned to q R b and bonded (pretensioned)")
+                         "(thesis), or the band's bars pretensioned to q R b and bonded (pretensioned), or "
+                         "tensioned to q R b and bonded from stage 2 (posttensioned, the thesis's model with "
+                         "the band's own force)")
     args = ap.parse_args()
     if args.steps < 1:
         ap.error(f"--steps {args.steps}: at least one step is needed")

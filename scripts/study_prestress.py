@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How much prestress: chapter 9's band swept over its pressure q, for both ways to build it.
 
-    python3 scripts/study_prestress.py [--q 0 1 2 3 4 5 6] [--bands pressure pretensioned]
+    python3 scripts/study_prestress.py [--q 0 1 2 3 4 5 6] [--bands pressure pretensioned [posttensioned]]
                                        [--name prestress] [--steps 400] [--plots-only]
 
 Thesis 9.3 and 10 conclude that "the magnitude of the prestress should be well controlled": its
@@ -11,8 +11,9 @@ q; this sweeps q and shows where the external surface gets worse than the plain 
 
 For every q and band model it writes a chapter 9 PR deck (scripts/make_chapter9.py: `pressure`,
 the thesis's post-tensioned band, q on the plain pipe and the band born afterwards;
-`pretensioned`, the band's bars prestressed to the hoop force q R b and bonded, PRESTRESS), plus
-CR, and runs them with scripts/campaign.sh NAME (parallel, resumable: results/NAME/<case>/).
+`pretensioned`, the band's bars prestressed to the hoop force q R b and bonded, PRESTRESS;
+`posttensioned` on request, the thesis's model with the band's own force, PRESTRESS ...,
+BOND=after), plus CR, and runs them with scripts/campaign.sh NAME (parallel, resumable: results/NAME/<case>/).
 Then, from each case's last step (scripts/orderings_model_a_ch9.py's measures): the largest
 most-tensile principal stress s1 in the concrete, its largest value in the external Gauss layer,
 and the volume with s1 >= 0.8 ft, the thesis's "high tension domain". It writes
@@ -96,7 +97,7 @@ def write_outputs(campaign, rows):
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     for ax, key, label in ((axes[0], "max_s1_external", "max s1 in the external layer (MPa)"),
                            (axes[1], "high_volume_mm3", "volume with s1 >= 0.8 ft (mm$^3$)")):
-        for band, marker in (("pressure", "o"), ("pretensioned", "s")):
+        for band, marker in (("pressure", "o"), ("pretensioned", "s"), ("posttensioned", "^")):
             pts = sorted((float(r["q"]), float(r[key])) for r in rows if r["band"] == band)
             if pts:
                 ax.plot(*zip(*pts), marker=marker, label=f"band: {band}")
@@ -116,7 +117,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--q", type=float, nargs="+", default=[0, 1, 2, 3, 4, 5, 6],
                     help="band pressures q (MPa), each >= 0")
-    ap.add_argument("--bands", nargs="+", choices=["pressure", "pretensioned"],
+    ap.add_argument("--bands", nargs="+", choices=["pressure", "pretensioned", "posttensioned"],
                     default=["pressure", "pretensioned"])
     ap.add_argument("--name", default="prestress", help="campaign name: results/NAME")
     ap.add_argument("--steps", type=int, default=400, help="steps of the loading stage (thesis: 400)")

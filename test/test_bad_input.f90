@@ -58,7 +58,10 @@ contains
       new_unittest('PRESTRESS before its group is born', test_prestress_before_birth), &
       new_unittest('PRESTRESS with FORCE= and STRESS=', test_prestress_force_and_stress), &
       new_unittest('PRESTRESS with a bare number', test_prestress_bare_value), &
-      new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow) &
+      new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow), &
+      new_unittest('PRESTRESS, BOND=AFTER in the last stage', test_prestress_bond_last_stage), &
+      new_unittest('PRESTRESS, BOND=AFTER on a group ACTIVATEd in another stage', test_prestress_bond_activate), &
+      new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word) &
       ]
   end subroutine collect_bad_input
 
@@ -381,7 +384,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/prestress_before_birth.dat', err_input, &
                         [character(len=60) :: 'prestress_before_birth.dat:32:', 'acts in stage load', &
-                         'before the group is born (ACTIVATE in stage prestress)'], error)
+                         'before the group is born (in stage prestress: ACTIVATE'], error)
   end subroutine test_prestress_before_birth
 
   subroutine test_prestress_force_and_stress(error)
@@ -404,5 +407,27 @@ contains
                         [character(len=60) :: 'prestress_overflow.dat:33:', 'field 3', &
                          'STRESS times the area A of material strand overflows'], error)
   end subroutine test_prestress_overflow
+
+  !> Post-tensioned bars are bonded at the start of the next stage: there must be one.
+  subroutine test_prestress_bond_last_stage(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/prestress_bond_last_stage.dat', err_input, &
+                        [character(len=70) :: 'prestress_bond_last_stage.dat:33:', 'field 4', &
+                         'bonds it at the start of the next', 'another STAGE follows'], error)
+  end subroutine test_prestress_bond_last_stage
+
+  subroutine test_prestress_bond_activate(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/prestress_bond_activate.dat', err_input, &
+                        [character(len=70) :: 'prestress_bond_activate.dat:33:', 'field 4', &
+                         'at the start of stage more, but it is born in stage tension'], error)
+  end subroutine test_prestress_bond_activate
+
+  subroutine test_prestress_bond_word(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/prestress_bond_word.dat', err_input, &
+                        [character(len=70) :: 'prestress_bond_word.dat:33:', 'field 4', &
+                         'BOND is BEFORE', 'not "later"'], error)
+  end subroutine test_prestress_bond_word
 
 end module test_bad_input

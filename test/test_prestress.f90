@@ -29,7 +29,8 @@ contains
       new_unittest("deck_records_prestress_forces", test_deck), &
       new_unittest("forces_near_huge_stop_clearly", test_overflow), &
       new_unittest("band_on_a_lame_cylinder", test_ring), &
-      new_unittest("tendons_against_a_block_at_its_plateau", test_plateau) &
+      new_unittest("tendons_against_a_block_at_its_plateau", test_plateau), &
+      new_unittest("post_tensioned_tendons_every_method", test_post) &
       ]
   end subroutine collect_prestress
 
@@ -262,6 +263,67 @@ contains
     call check(error, obs%steps(last)%displacement(1, 2), -0.01_dp - (500.0_dp - 350.0_dp) / 20.0_dp, &
                'loaded face ux', rel=1.0e-6_dp)
   end subroutine test_plateau
+
+  !> test/data/prestress_post.dat: the block's tendons post-tensioned (BOND=after) to N0 = 10 N
+  !! in stage 2, bonded from stage 3. Stage 2, step k of 5: the tendons are not bonded, carry
+  !! nothing themselves and pull the faces together with k / 5 of 4 N0: sxx = -1 - 4 (k / 5) N0 /
+  !! A_b, ux = sxx L / E. Stage 3, p3 = 2 MPa more, shared with the now bonded tendons: du = -p3 A_b
+  !! / (k_b + 4 k_t), each tendon N0 + k_t du, sxx = -1.4 - p3 k_b / (k_b + 4 k_t). Every method.
+  subroutine test_post(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: methods(6) = [method_euler, method_modified_euler, method_newton_raphson, &
+                                        method_modified_newton_raphson, method_initial_stiffness, &
+                                        method_full_newton_raphson]
+    real(dp), parameter :: kb = 10000.0_dp, kt = 20.0_dp, n0 = 10.0_dp, p3 = 2.0_dp
+    type(model_t) :: model
+    type(analysis_summary_t) :: summary
+    type(all_steps_t) :: obs
+    real(dp) :: sxx, du
+    integer :: m, k, q, last
+    character(len=:), allocatable :: what
+    do m = 1, size(methods)
+      call read_deck('test/data/prestress_post.dat', model, error)
+      if (allocated(error)) return
+      call check(error, model%groups(2)%activate_stage, 3, 'BOND=after in stage 2: the tendons are born in stage 3')
+      if (allocated(error)) return
+      model%stages(:)%controls%method = methods(m)
+      model%stages(:)%controls%max_iterations = merge(1, 50, methods(m) == method_euler .or. &
+                                                             methods(m) == method_modified_euler)
+      if (allocated(obs%steps)) deallocate (obs%steps)
+      call run_analysis(model, 'cholmod', obs, summary, error)
+      if (allocated(error)) return
+      what = trim(method_names(methods(m))) // ': '
+      call check(error, size(obs%steps), 7, what // 'stage 1, every step of stage 2, stage 3')
+      if (allocated(error)) return
+      do k = 1, 5
+        sxx = -1.0_dp - 4.0_dp * (k / 5.0_dp) * n0 / 100.0_dp
+        call check(error, maxval(abs(obs%steps(k + 1)%groups(2)%stress)), 0.0_dp, &
+                   what // 'unbonded tendons carry nothing themselves', abs=1.0e-12_dp)
+        if (allocated(error)) return
+        do q = 1, size(obs%steps(k + 1)%groups(1)%stress, 2)
+          call check(error, obs%steps(k + 1)%groups(1)%stress(1, q), sxx, what // 'stage 2: sxx', rel=1.0e-9_dp)
+          if (allocated(error)) return
+        end do
+        call check(error, obs%steps(k + 1)%displacement(1, 2), sxx * 10.0_dp / 1000.0_dp, what // 'stage 2: ux', &
+                   rel=1.0e-9_dp)
+        if (allocated(error)) return
+      end do
+      last = size(obs%steps)
+      du = -p3 * 100.0_dp / (kb + 4.0_dp * kt)
+      do q = 1, size(obs%steps(last)%groups(2)%stress, 2)
+        call check(error, obs%steps(last)%groups(2)%stress(1, q), n0 + kt * du, &
+                   what // 'stage 3: bonded tendons N0 + k_t du', rel=1.0e-9_dp)
+        if (allocated(error)) return
+      end do
+      do q = 1, size(obs%steps(last)%groups(1)%stress, 2)
+        call check(error, obs%steps(last)%groups(1)%stress(1, q), -1.4_dp - p3 * kb / (kb + 4.0_dp * kt), &
+                   what // 'stage 3: sxx', rel=1.0e-9_dp)
+        if (allocated(error)) return
+      end do
+      call check(error, obs%steps(last)%displacement(1, 2), -0.014_dp + du, what // 'stage 3: ux', rel=1.0e-9_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_post
 
   !> A prestress of 1e299 N crushes the block. The support reactions' sum of squares used to
   !! overflow, which made the reference force infinite and every relative residual zero: the

@@ -195,7 +195,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     class(observer_t), intent(inout), optional :: observer   !! gets one line per stage
     type(analysis_t) :: an
-    real(dp), allocatable :: df(:, :), duc(:, :), dps(:)
+    real(dp), allocatable :: df(:, :), duc(:, :), dps(:), post(:)
     real(dp) :: t0, f(3)
     integer :: s, g
     logical :: changed
@@ -238,6 +238,12 @@ contains
           if (dps(g) == 0.0_dp) cycle
           write (buf, '(es10.3)') dps(g)
           line = line // '; prestress ' // model%groups(g)%name // ' ' // trim(adjustl(buf)) // ' N'
+        end do
+        post = model%stage_posttension(s)
+        do g = 1, size(model%groups)
+          if (post(g) == 0.0_dp) cycle
+          write (buf, '(es10.3)') post(g)
+          line = line // '; post-tension ' // model%groups(g)%name // ' ' // trim(adjustl(buf)) // ' N (bonded next stage)'
         end do
       end associate
       call observer%progress(line)
@@ -498,20 +504,55 @@ contains
   end subroutine start_elastic_stage
 
   !> Activate the groups born in stage s (true if there are any). Their point states are still
-  !! zero, so their strains count from the displacement at the start of the stage.
+  !! zero, so their strains count from the displacement at the start of the stage. Bars
+  !! post-tensioned in stage s - 1 are born carrying that force, which until now loaded their
+  !! nodes: the load goes, and the same forces are now the bars' own, so the balance holds.
   subroutine activate_groups(model, an, s, any_born)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     integer, intent(in) :: s
     logical, intent(out) :: any_born
+    real(dp) :: tension(size(model%groups))
     integer :: g
     any_born = .false.
+    tension = 0.0_dp
+    if (s > 1) tension = model%stage_posttension(s - 1)
     do g = 1, size(model%groups)
       if (model%groups(g)%activate_stage /= s .or. s == 1) cycle
       an%active(g) = .true.
       any_born = .true.
+      if (tension(g) /= 0.0_dp) then
+        an%states(g)%sig = tension(g)
+        an%states(g)%sig_t = tension(g)
+      end if
     end do
+    call add_bar_forces(model, an, merge(tension, 0.0_dp, model%groups(:)%activate_stage == s), 1.0_dp, &
+                        an%f_applied)
   end subroutine activate_groups
+
+  !> f <- f + sign * the nodal forces of the bars of each group g at the axial force force(g)
+  !! (global components; groups with force(g) = 0 are skipped).
+  subroutine add_bar_forces(model, an, force, sign, f)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(in) :: force(:)
+    real(dp), intent(in) :: sign
+    real(dp), intent(inout) :: f(:, :)
+    real(dp), allocatable :: sig(:, :), fe(:)
+    integer :: g, e
+    do g = 1, size(model%groups)
+      if (force(g) == 0.0_dp) cycle
+      associate (conn => model%groups(g)%connectivity, k => an%kernels(g))
+        allocate (sig(k%ncomp, k%npoints), fe(3 * k%nnodes))
+        sig = force(g)
+        do e = 1, size(conn, 2)
+          call element_internal_force(k, model%coords(:, conn(:, e)), sig, fe)
+          f(:, conn(:, e)) = f(:, conn(:, e)) + sign * reshape(fe, [3, k%nnodes])
+        end do
+        deallocate (sig, fe)
+      end associate
+    end do
+  end subroutine add_bar_forces
 
   !> A free DOF whose node touches no active element has no stiffness: name it (and the group
   !! that will bring it) rather than let the factorization find a zero pivot.
@@ -560,6 +601,8 @@ contains
     dps = model%stage_prestress(s)
     call nodal_load_vector(model, an%kernels, df, error, stage=s)
     if (allocated(error)) return
+    ! Post-tensioned bars, not yet bonded: their force pulls on their nodes as a load.
+    call add_bar_forces(model, an, model%stage_posttension(s), -1.0_dp, df)
     frac = model%stages(s)%load_fraction
     df = df + frac * an%f_ref
     if (allocated(an%release_force)) df = df + an%release_force

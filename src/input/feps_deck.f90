@@ -754,9 +754,22 @@ contains
         call parse_real(f(eq + 1:), p%force, error, rec, i)
         if (allocated(error)) return
         p%per_area = to_upper(f(:eq - 1)) == 'STRESS'
+      case ('BOND')
+        select case (to_upper(f(eq + 1:)))
+        case ('BEFORE')
+          p%bond_after = .false.
+        case ('AFTER')
+          p%bond_after = .true.
+          p%bond_field = i
+        case default
+          call input_error(error, rec%file, rec%line, 'BOND is BEFORE (pretensioned: bonded while ' // &
+                           'prestressed) or AFTER (post-tensioned: bonded from the next stage), not "' // &
+                           f(eq + 1:) // '"', i)
+          return
+        end select
       case default
         call input_error(error, rec%file, rec%line, 'expected FORCE=axial force or STRESS=axial stress ' // &
-                         '(tension positive), got "' // f // '"', i)
+                         '(tension positive) or BOND=BEFORE|AFTER, got "' // f // '"', i)
         return
       end select
     end do
@@ -1112,15 +1125,35 @@ contains
     if (.not. allocated(error)) call resolve_prestresses(model, error)
   end subroutine finish_model
 
-  !> STRESS= values become forces (times the bar material's area A), and every stage a
-  !! prestress acts in must have the group's elements: a prestress before its group is born
-  !! (ACTIVATE) would have nothing to act on.
+  !> STRESS= values become forces (times the bar material's area A). A post-tensioned
+  !! (BOND=after) group is born at the start of the stage after its record's, which must exist.
+  !! Every stage a bonded prestress acts in must have the group's elements: a prestress before
+  !! its group is born (ACTIVATE) would have nothing to act on.
   subroutine resolve_prestresses(model, error)
     type(model_t), intent(inout) :: model
     type(error_t), allocatable, intent(out) :: error
     integer :: i, s, born
     real(dp) :: area
     logical :: found
+    do i = 1, size(model%prestresses)
+      if (.not. model%prestresses(i)%bond_after) cycle
+      associate (p => model%prestresses(i), g => model%groups(model%prestresses(i)%group))
+        if (p%stage == 0 .or. p%stage == size(model%stages)) then
+          call input_error(error, p%file, p%line, 'PRESTRESS with BOND=AFTER tensions group "' // g%name // &
+                           '" in a stage and bonds it at the start of the next: it belongs after a STAGE ' // &
+                           'record that another STAGE follows', p%bond_field)
+          return
+        end if
+        if (g%activate_stage /= 0 .and. g%activate_stage /= p%stage + 1) then
+          call input_error(error, p%file, p%line, 'PRESTRESS with BOND=AFTER bonds group "' // g%name // &
+                           '" at the start of stage ' // model%stages(p%stage + 1)%name // ', but it is ' // &
+                           'born in stage ' // model%stages(max(1, g%activate_stage))%name // ' (ACTIVATE or ' // &
+                           'another BOND=AFTER)', p%bond_field)
+          return
+        end if
+        g%activate_stage = p%stage + 1
+      end associate
+    end do
     do i = 1, size(model%prestresses)
       associate (p => model%prestresses(i), g => model%groups(model%prestresses(i)%group))
         if (p%per_area) then
@@ -1133,12 +1166,13 @@ contains
             return
           end if
         end if
+        if (p%bond_after) cycle
         born = max(1, g%activate_stage)
         do s = 1, born - 1
           if (p%stage == s .or. (p%stage == 0 .and. model%stages(s)%load_fraction /= 0.0_dp)) then
             call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '" acts in stage ' // &
-                             model%stages(s)%name // ', before the group is born (ACTIVATE in stage ' // &
-                             model%stages(born)%name // ')', 2)
+                             model%stages(s)%name // ', before the group is born (in stage ' // &
+                             model%stages(born)%name // ': ACTIVATE or BOND=AFTER)', 2)
             return
           end if
         end do

@@ -537,7 +537,8 @@ contains
     end do
   end subroutine write_summary
 
-  !> The axial force the PRESTRESS records add to group g's bars over all stages.
+  !> The axial force the PRESTRESS records add to group g's bars over all stages (bonded
+  !! before or after).
   pure real(dp) function total_prestress(model, g)
     type(model_t), intent(in) :: model
     integer, intent(in) :: g
@@ -545,7 +546,7 @@ contains
     real(dp) :: f(size(model%groups))
     total_prestress = 0.0_dp
     do s = 1, size(model%stages)
-      f = model%stage_prestress(s)
+      f = model%stage_prestress(s) + model%stage_posttension(s)
       total_prestress = total_prestress + f(g)
     end do
   end function total_prestress

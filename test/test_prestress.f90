@@ -30,7 +30,8 @@ contains
       new_unittest("forces_near_huge_stop_clearly", test_overflow), &
       new_unittest("band_on_a_lame_cylinder", test_ring), &
       new_unittest("tendons_against_a_block_at_its_plateau", test_plateau), &
-      new_unittest("post_tensioned_tendons_every_method", test_post) &
+      new_unittest("post_tensioned_tendons_every_method", test_post), &
+      new_unittest("post_tensioned_tendon_in_series_with_a_spring", test_series_post) &
       ]
   end subroutine collect_prestress
 
@@ -324,6 +325,36 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_post
+
+  !> test/data/prestress_series_post.dat (the linear path): stage 1, the unbonded tendon's 90 N
+  !! held by the spring alone, u2 = -90 / k2 = -0.45; stage 2, bonded carrying 90 N, F = 30 N:
+  !! u2 = -0.35, tendon 100 N, spring 70 N (pretensioned, test_series: 60, 70 and 40 N).
+  subroutine test_series_post(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(analysis_summary_t) :: summary
+    type(all_steps_t) :: obs
+    call read_deck('test/data/prestress_series_post.dat', model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%linear, 'bars only: the linear path')
+    if (allocated(error)) return
+    call check(error, obs%steps(1)%displacement(1, 2), -0.45_dp, 'stage 1: u2 = -N0 / k2', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, obs%steps(1)%groups(1)%stress(1, 1), 0.0_dp, 'stage 1: the unbonded tendon is not a bar yet')
+    if (allocated(error)) return
+    call check(error, obs%steps(1)%groups(2)%stress(1, 1), 90.0_dp, 'stage 1: spring N0', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, obs%steps(2)%displacement(1, 2), -0.35_dp, 'stage 2: u2 + F / (k1 + k2)', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, obs%steps(2)%groups(1)%stress(1, 1), 100.0_dp, 'stage 2: tendon N0 + k1 du', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, obs%steps(2)%groups(2)%stress(1, 1), 70.0_dp, 'stage 2: spring N0 - k2 du', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, obs%steps(2)%reaction(1, 1), -100.0_dp, 'stage 2: the tendon''s anchor reaction', &
+               rel=1.0e-12_dp)
+  end subroutine test_series_post
 
   !> A prestress of 1e299 N crushes the block. The support reactions' sum of squares used to
   !! overflow, which made the reference force infinite and every relative residual zero: the

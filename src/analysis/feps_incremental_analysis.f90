@@ -239,7 +239,7 @@ contains
           write (buf, '(es10.3)') dps(g)
           line = line // '; prestress ' // model%groups(g)%name // ' ' // trim(adjustl(buf)) // ' N'
         end do
-        post = model%stage_posttension(s)
+        post = model%stage_prestress(s, after=.true.)
         do g = 1, size(model%groups)
           if (post(g) == 0.0_dp) cycle
           write (buf, '(es10.3)') post(g)
@@ -516,7 +516,7 @@ contains
     integer :: g
     any_born = .false.
     tension = 0.0_dp
-    if (s > 1) tension = model%stage_posttension(s - 1)
+    if (s > 1) tension = model%stage_prestress(s - 1, after=.true.)
     do g = 1, size(model%groups)
       if (model%groups(g)%activate_stage /= s .or. s == 1) cycle
       an%active(g) = .true.
@@ -602,7 +602,7 @@ contains
     call nodal_load_vector(model, an%kernels, df, error, stage=s)
     if (allocated(error)) return
     ! Post-tensioned bars, not yet bonded: their force pulls on their nodes as a load.
-    call add_bar_forces(model, an, model%stage_posttension(s), -1.0_dp, df)
+    call add_bar_forces(model, an, model%stage_prestress(s, after=.true.), -1.0_dp, df)
     frac = model%stages(s)%load_fraction
     df = df + frac * an%f_ref
     if (allocated(an%release_force)) df = df + an%release_force

@@ -238,7 +238,7 @@ module feps_model
     procedure :: nelem => model_nelem
     procedure :: has_interfaces
     procedure :: supports_change
-    procedure :: stage_prestress, stage_posttension, is_prestressed
+    procedure :: stage_prestress, is_prestressed
     procedure :: find_node_set, find_face_set, find_material, find_group
   end type model_t
 
@@ -359,19 +359,25 @@ contains
   end function has_interfaces
 
   !> Some DOF is held or freed from stage s on (FIX or RELEASE after the STAGE record of s).
-  !> Axial force that stage s adds to the bonded bars of each group by prestress: the stage's
-  !! own PRESTRESS records plus its LOAD= fraction of the reference ones (0 for other groups;
-  !! post-tensioned records are in stage_posttension).
-  pure function stage_prestress(self, s) result(force)
+  !> Axial force that stage s adds to the bars of each group by prestress: the stage's own
+  !! PRESTRESS records plus its LOAD= fraction of the reference ones (0 for other groups). By
+  !! default the bonded (pretensioned) records; with after = .true. the post-tensioned ones
+  !! (BOND=after, never reference records), whose force loads the bars' nodes during stage s
+  !! and which the bars carry when they are born at the start of the next.
+  pure function stage_prestress(self, s, after) result(force)
     class(model_t), intent(in) :: self
     integer, intent(in) :: s
+    logical, intent(in), optional :: after
     real(dp) :: force(size(self%groups))
+    logical :: want_after
     integer :: i
     force = 0.0_dp
+    want_after = .false.
+    if (present(after)) want_after = after
     if (.not. allocated(self%prestresses)) return
     do i = 1, size(self%prestresses)
       associate (p => self%prestresses(i))
-        if (p%bond_after) cycle
+        if (p%bond_after .neqv. want_after) cycle
         if (p%stage == 0) then
           force(p%group) = force(p%group) + self%stages(s)%load_fraction * p%force
         else if (p%stage == s) then
@@ -380,22 +386,6 @@ contains
       end associate
     end do
   end function stage_prestress
-
-  !> Force of the post-tensioned (BOND=after) PRESTRESS records of stage s, per group: it
-  !! loads the bars' nodes during stage s, and the bars are born carrying it.
-  pure function stage_posttension(self, s) result(force)
-    class(model_t), intent(in) :: self
-    integer, intent(in) :: s
-    real(dp) :: force(size(self%groups))
-    integer :: i
-    force = 0.0_dp
-    if (.not. allocated(self%prestresses)) return
-    do i = 1, size(self%prestresses)
-      associate (p => self%prestresses(i))
-        if (p%bond_after .and. p%stage == s) force(p%group) = force(p%group) + p%force
-      end associate
-    end do
-  end function stage_posttension
 
   !> True if a PRESTRESS record names group g.
   pure logical function is_prestressed(self, g)

@@ -546,7 +546,7 @@ contains
     real(dp) :: f(size(model%groups))
     total_prestress = 0.0_dp
     do s = 1, size(model%stages)
-      f = model%stage_prestress(s) + model%stage_posttension(s)
+      f = model%stage_prestress(s) + model%stage_prestress(s, after=.true.)
       total_prestress = total_prestress + f(g)
     end do
   end function total_prestress

@@ -35,6 +35,16 @@ contains
       ]
   end subroutine collect_prestress
 
+  !> Every stage of `model` solved by `method`, with the iterations the presets allow it
+  !! (one for the Euler methods, 50 for the others).
+  subroutine use_method(model, method)
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: method
+    model%stages(:)%controls%method = method
+    model%stages(:)%controls%max_iterations = merge(1, 50, method == method_euler .or. &
+                                                           method == method_modified_euler)
+  end subroutine use_method
+
   !> Tendon k1 = 100 N/mm prestressed by N0 = 90 N in series with a spring k2 = 200 N/mm
   !! between fixed ends (test/data/prestress_series.dat): u2 = -N0 / (k1 + k2) = -0.3 and
   !! N = N0 k2 / (k1 + k2) = 60 N in both, the reactions -60 and +60. Then F = 30 N on the
@@ -94,9 +104,7 @@ contains
     do m = 1, size(methods)
       call read_deck('test/data/prestress_block.dat', model, error)
       if (allocated(error)) return
-      model%stages(:)%controls%method = methods(m)
-      model%stages(:)%controls%max_iterations = merge(1, 50, methods(m) == method_euler .or. &
-                                                             methods(m) == method_modified_euler)
+      call use_method(model, methods(m))
       if (allocated(obs%steps)) deallocate (obs%steps)
       call run_analysis(model, 'cholmod', obs, summary, error)
       if (allocated(error)) return
@@ -287,9 +295,7 @@ contains
       if (allocated(error)) return
       call check(error, model%groups(2)%activate_stage, 3, 'BOND=after in stage 2: the tendons are born in stage 3')
       if (allocated(error)) return
-      model%stages(:)%controls%method = methods(m)
-      model%stages(:)%controls%max_iterations = merge(1, 50, methods(m) == method_euler .or. &
-                                                             methods(m) == method_modified_euler)
+      call use_method(model, methods(m))
       if (allocated(obs%steps)) deallocate (obs%steps)
       call run_analysis(model, 'cholmod', obs, summary, error)
       if (allocated(error)) return

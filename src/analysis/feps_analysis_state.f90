@@ -1,0 +1,793 @@
+!> The state an incremental analysis works on, and the operations on it that do not decide
+!! how a step is solved: setting up (kernels, materials, DOF map, pattern, solver), point
+!! states and the linear part, supports that change and groups born between stages, a
+!! stage's increments, trial displacements and point updates, the residual, commit and
+!! restore, and the assembly and factorization of the tangent (exact, LU, or its nearest
+!! symmetric positive semi-definite stand-in). feps_incremental_analysis decides what to do
+!! with them (thesis 2.6); feps_step_report says what happened.
+module feps_analysis_state
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t, fatal_error, err_model, str
+  use feps_clock, only: wall_clock
+  use feps_model, only: model_t
+  use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
+  use feps_sparse_matrix, only: csr_matrix_t, full_pattern
+  use feps_umfpack_solver, only: umfpack_solver_t
+  use feps_assembly, only: group_kernel_t, build_kernels, build_materials, build_pattern, check_jacobians, &
+                           element_dofs, element_stiffness, element_strains, element_internal_force, &
+                           scatter_element_matrix, rotate_matrix
+  use feps_loads, only: resolve_face_sets, nodal_load_vector, to_equations
+  use feps_material, only: material_slot_t
+  use feps_tangent_symmetry, only: nearest_symmetric_psd
+  use feps_linear_solver, only: linear_solver_t
+  use feps_solver_factory, only: new_linear_solver
+  use feps_observer, only: observer_t
+  implicit none
+  private
+
+  !> Totals of a run, for the summary.
+  type, public :: analysis_summary_t
+    logical :: linear = .false.
+    integer :: neq = 0
+    integer :: unused_nodes = 0
+    integer :: steps = 0
+    integer :: iterations = 0
+    integer :: factorizations = 0
+    integer :: lu_factorizations = 0        !! LU factorizations of exact non-symmetric tangents (full Newton)
+    integer :: cutbacks = 0
+    integer :: unconverged_steps = 0         !! steps accepted with |R| / |P| above delta1 (carried on)
+    integer(i8) :: matrix_nnz = 0
+    integer(i8) :: factor_nnz = 0
+    real(dp) :: flops = 0.0_dp
+    real(dp) :: min_pivot_ratio = 0.0_dp
+    real(dp) :: max_pivot_ratio = 0.0_dp
+    real(dp) :: min_detj = 0.0_dp
+    real(dp) :: time_assembly = 0.0_dp
+    real(dp) :: time_factorization = 0.0_dp
+    real(dp) :: time_solve = 0.0_dp
+    real(dp) :: time_update = 0.0_dp
+    real(dp) :: max_displacement = 0.0_dp
+    integer :: max_displacement_node = 0
+    real(dp) :: applied_force(3) = 0.0_dp
+    real(dp) :: reaction_force(3) = 0.0_dp
+    character(len=:), allocatable :: solver
+    logical :: condition_warning = .false.   !! max/min pivot ratio passed condition_warning
+    integer(i8), allocatable :: state_bytes(:)  !! per group: bytes of point state (0: elastic, none kept)
+  end type analysis_summary_t
+
+  !> Above this max/min pivot ratio the results may have lost digits: say so.
+  real(dp), parameter, public :: condition_warning = 1.0e12_dp
+
+  !> Point states of one group: committed (end of the last step) and trial.
+  type, public :: group_state_t
+    real(dp), allocatable :: sig(:, :), eps(:, :)
+    integer, allocatable :: state(:)
+    real(dp), allocatable :: sig_t(:, :), eps_t(:, :)
+    integer, allocatable :: state_t(:)
+    real(dp), allocatable :: dtan(:, :, :), dtan_t(:, :, :)   !! nonlinear groups only
+    !> Carries point state: a nonlinear material, a group born in a later stage (whose
+    !! strains count from its activation) or a prestressed one (whose force is not K u), so
+    !! it cannot join the total-strain linear part.
+    logical :: nonlinear = .false.
+  end type group_state_t
+
+  !> Internal forces of all linear groups as one product K_lin u (global Cartesian DOFs of
+  !! every node in an element): linear elements carry no point state at all, and their
+  !! stresses are computed only for the steps written.
+  type, public :: linear_part_t
+    logical :: present = .false.
+    type(dof_map_t) :: map
+    type(csr_matrix_t) :: k
+  end type linear_part_t
+
+  !> Everything the analysis works on.
+  type, public :: analysis_t
+    type(group_kernel_t), allocatable :: kernels(:)
+    type(material_slot_t), allocatable :: materials(:)
+    type(dof_map_t) :: map
+    type(csr_matrix_t) :: a
+    class(linear_solver_t), allocatable :: solver
+    type(group_state_t), allocatable :: states(:)
+    real(dp), allocatable :: u(:, :), u_t(:, :)        !! committed and trial displacements (global)
+    real(dp), allocatable :: fint(:, :)                !! internal forces of the trial state (global)
+    real(dp), allocatable :: f_ref(:, :)               !! reference (stage-0) loads (global)
+    real(dp), allocatable :: f_applied(:, :)           !! external load applied so far (global)
+    real(dp), allocatable :: uc(:, :)                  !! constrained values reached (nodal systems)
+    logical :: symmetrized = .false.
+    logical :: warned_condition = .false.
+    type(csr_matrix_t) :: a_full                       !! both triangles: the exact non-symmetric tangent
+    type(umfpack_solver_t) :: lu                       !! its LU factors (full Newton, psi /= phi)
+    logical :: use_lu = .false.                        !! solve with lu, not solver (set by factorize_tangent)
+    integer :: lu_singular = 0                         !! exact tangents found singular (the stand-in was used)
+    type(linear_part_t) :: lin
+    logical, allocatable :: active(:)                  !! groups active in the current stage
+    real(dp), allocatable :: release_force(:, :)       !! load increment of the stage that removes released supports' forces
+  end type analysis_t
+
+  public :: is_linear_model, set_up, init_states, state_bytes
+  public :: change_supports, activate_groups, check_born_nodes, stage_increments
+  public :: set_trial, add_free, update_points, residual, committed_residual, commit, restore
+  public :: factorize_tangent
+
+contains
+
+  !> All materials linear and no interfaces: one factorization, one solve per stage.
+  logical function is_linear_model(model, materials)
+    type(model_t), intent(in) :: model
+    type(material_slot_t), intent(in) :: materials(:)
+    integer :: m
+    is_linear_model = .not. model%has_interfaces()
+    do m = 1, size(materials)
+      if (.not. materials(m)%m%is_linear()) is_linear_model = .false.
+    end do
+  end function is_linear_model
+
+  !> Kernels, materials, Jacobians, face sets, DOF map, pattern and the solver's analysis.
+  subroutine set_up(model, solver_name, an, summary, error)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: solver_name
+    type(analysis_t), intent(inout) :: an
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+
+    call build_kernels(model, an%kernels, error)
+    if (allocated(error)) return
+    call build_materials(model, an%materials, error)
+    if (allocated(error)) return
+    call check_jacobians(model, an%kernels, summary%min_detj, error)
+    if (allocated(error)) return
+    call resolve_face_sets(model, an%kernels, error)
+    if (allocated(error)) return
+    call build_dof_map(model, an%map, error)
+    if (allocated(error)) return
+    summary%neq = an%map%neq
+    summary%unused_nodes = an%map%unused_nodes
+    if (an%map%neq == 0) then
+      call fatal_error(error, err_model, model%deck_file // ': the model has no free degree of freedom')
+      return
+    end if
+    call check_later_supports(model, error)
+    if (allocated(error)) return
+    call build_pattern(model, an%map, an%a)
+    if (allocated(an%a_full%row_ptr)) deallocate (an%a_full%row_ptr, an%a_full%col, an%a_full%val)
+    summary%matrix_nnz = an%a%nnz()
+    call new_linear_solver(solver_name, an%solver, error)
+    if (allocated(error)) return
+    summary%solver = an%solver%name()
+    call an%solver%analyze(an%a, error)
+  end subroutine set_up
+
+  !> The supports of every later stage whose supports change are valid (RELEASE records)
+  !! and leave a free DOF: input errors before any solving.
+  subroutine check_later_supports(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(dof_map_t) :: map
+    integer :: s
+    do s = 2, size(model%stages)
+      if (.not. model%supports_change(s)) cycle
+      call build_dof_map(model, map, error, stage=s)
+      if (allocated(error)) return
+      if (map%neq == 0) then
+        call fatal_error(error, err_model, model%deck_file // ': stage ' // model%stages(s)%name // &
+                         ': the supports leave no free degree of freedom')
+        return
+      end if
+    end do
+  end subroutine check_later_supports
+
+  !> At the start of stage s, when FIX or RELEASE records change the supports: number the
+  !! equations of the new set; a DOF held from now on stays where it is (its target is its
+  !! current displacement), and a released DOF's support force becomes a load at once
+  !! (nothing moves) that the stage's increments remove in equal parts over its steps; then
+  !! the new pattern is analysed (the caller factorizes). changed is false when nothing changes.
+  subroutine change_supports(model, an, s, changed, summary, error, observer)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer, intent(in) :: s
+    logical, intent(out) :: changed
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    class(observer_t), intent(inout), optional :: observer
+    type(dof_map_t) :: new
+    real(dp) :: ul(3), support(3)
+    integer :: n, d, nheld, nfreed
+
+    an%release_force = 0.0_dp
+    changed = model%supports_change(s)
+    if (.not. changed) return
+    call build_dof_map(model, new, error, stage=s)
+    if (allocated(error)) return
+    nheld = 0
+    nfreed = 0
+    do n = 1, model%nnode
+      if (.not. new%used(n)) cycle
+      if (all(new%constrained(:, n) .eqv. an%map%constrained(:, n))) cycle
+      ul = matmul(transpose(an%map%basis(:, :, n)), an%u(:, n))
+      support = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
+      do d = 1, 3
+        if (new%constrained(d, n) .and. .not. an%map%constrained(d, n)) then
+          an%uc(d, n) = ul(d)
+          nheld = nheld + 1
+        else if (an%map%constrained(d, n) .and. .not. new%constrained(d, n)) then
+          an%f_applied(:, n) = an%f_applied(:, n) + support(d) * an%map%basis(:, d, n)
+          an%release_force(:, n) = an%release_force(:, n) - support(d) * an%map%basis(:, d, n)
+          nfreed = nfreed + 1
+        end if
+      end do
+    end do
+    an%map = new
+    summary%neq = an%map%neq
+    call build_pattern(model, an%map, an%a)
+    if (allocated(an%a_full%row_ptr)) deallocate (an%a_full%row_ptr, an%a_full%col, an%a_full%val)
+    summary%matrix_nnz = an%a%nnz()
+    call an%solver%analyze(an%a, error)
+    if (allocated(error)) return
+    if (.not. present(observer)) return
+    if (nfreed > 0) then
+      call observer%progress('stage ' // model%stages(s)%name // ': supports change: ' // str(nheld) // &
+                             ' DOFs held from here, ' // str(nfreed) // ' released (their support forces ' // &
+                             'removed over the stage); ' // str(an%map%neq) // ' equations')
+    else
+      call observer%progress('stage ' // model%stages(s)%name // ': supports change: ' // str(nheld) // &
+                             ' DOFs held from here; ' // str(an%map%neq) // ' equations')
+    end if
+  end subroutine change_supports
+
+  !> Point states of the groups that carry them (zero, with the elastic tangent), the
+  !! assembled stiffness of the linear part, the active groups of stage 1, and zero
+  !! displacements and forces.
+  subroutine init_states(model, an)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer :: g, np, nc, q, e
+    real(dp), allocatable :: ke(:, :), d(:, :, :)
+    integer, allocatable :: dofs(:)
+    allocate (an%states(size(model%groups)))
+    do g = 1, size(model%groups)
+      np = an%kernels(g)%npoints * size(model%groups(g)%connectivity, 2)
+      nc = an%kernels(g)%ncomp
+      associate (s => an%states(g))
+        s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear() .or. &
+                      model%groups(g)%activate_stage > 1 .or. model%is_prestressed(g)
+        if (.not. s%nonlinear) then
+          an%lin%present = .true.
+          cycle
+        end if
+        allocate (s%sig(nc, np), s%eps(nc, np), s%state(np), s%sig_t(nc, np), s%eps_t(nc, np), s%state_t(np))
+        s%sig = 0.0_dp
+        s%eps = 0.0_dp
+        s%state = 0
+        s%sig_t = 0.0_dp
+        s%eps_t = 0.0_dp
+        s%state_t = 0
+        if (s%nonlinear) then
+          allocate (s%dtan(nc, nc, np), s%dtan_t(nc, nc, np))
+          do q = 1, np
+            call an%materials(model%groups(g)%material)%m%elastic_tangent(s%dtan(:, :, q))
+          end do
+          s%dtan_t = s%dtan
+        end if
+      end associate
+    end do
+    if (an%lin%present) then
+      ! K_lin: the elastic stiffness of the linear groups over all DOFs, global directions.
+      call build_all_dofs_map(model, an%lin%map)
+      call build_pattern(model, an%lin%map, an%lin%k, only_groups=.not. nonlinear_groups(an))
+      do g = 1, size(model%groups)
+        if (an%states(g)%nonlinear) cycle
+        np = an%kernels(g)%npoints
+        nc = an%kernels(g)%ncomp
+        allocate (ke(3 * an%kernels(g)%nnodes, 3 * an%kernels(g)%nnodes), d(nc, nc, np), dofs(3 * an%kernels(g)%nnodes))
+        do q = 1, np
+          call an%materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, q))
+        end do
+        do e = 1, size(model%groups(g)%connectivity, 2)
+          call element_stiffness(an%kernels(g), model%coords(:, model%groups(g)%connectivity(:, e)), d, ke)
+          call element_dofs(an%lin%map, model%groups(g)%connectivity(:, e), dofs)
+          call scatter_element_matrix(dofs, ke, an%lin%k)
+        end do
+        deallocate (ke, d, dofs)
+      end do
+    end if
+    allocate (an%active(size(model%groups)))
+    an%active = model%groups(:)%activate_stage <= 1
+    allocate (an%u(3, model%nnode), an%u_t(3, model%nnode), an%fint(3, model%nnode), an%uc(3, model%nnode))
+    an%u = 0.0_dp
+    an%u_t = 0.0_dp
+    an%fint = 0.0_dp
+    an%uc = 0.0_dp
+    allocate (an%release_force(3, model%nnode))
+    an%release_force = 0.0_dp
+  end subroutine init_states
+
+  !> Memory held per group for point states (stresses, strains, flags, tangents; committed
+  !! and trial), to show that elastic groups keep none.
+  pure function state_bytes(states) result(bytes)
+    type(group_state_t), intent(in) :: states(:)
+    integer(i8) :: bytes(size(states))
+    integer :: g
+    bytes = 0
+    do g = 1, size(states)
+      associate (s => states(g))
+        if (allocated(s%sig)) bytes(g) = bytes(g) + 2 * storage_size(s%sig, i8) / 8 * size(s%sig, kind=i8)
+        if (allocated(s%eps)) bytes(g) = bytes(g) + 2 * storage_size(s%eps, i8) / 8 * size(s%eps, kind=i8)
+        if (allocated(s%state)) bytes(g) = bytes(g) + 2 * storage_size(s%state, i8) / 8 * size(s%state, kind=i8)
+        if (allocated(s%dtan)) bytes(g) = bytes(g) + 2 * storage_size(s%dtan, i8) / 8 * size(s%dtan, kind=i8)
+      end associate
+    end do
+  end function state_bytes
+
+  !> Which groups carry point state.
+  pure function nonlinear_groups(an) result(mask)
+    type(analysis_t), intent(in) :: an
+    logical :: mask(size(an%states))
+    integer :: g
+    do g = 1, size(an%states)
+      mask(g) = an%states(g)%nonlinear
+    end do
+  end function nonlinear_groups
+
+  !> f <- f + K_lin u for the linear groups (global Cartesian components).
+  subroutine add_linear_forces(an, u, f)
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(in) :: u(:, :)
+    real(dp), intent(inout) :: f(:, :)
+    real(dp), allocatable :: x(:), y(:)
+    integer :: n, d
+    if (.not. an%lin%present) return
+    allocate (x(an%lin%map%neq), y(an%lin%map%neq))
+    do n = 1, size(u, 2)
+      do d = 1, 3
+        if (an%lin%map%eq(d, n) > 0) x(an%lin%map%eq(d, n)) = u(d, n)
+      end do
+    end do
+    call an%lin%k%multiply(x, y)
+    do n = 1, size(u, 2)
+      do d = 1, 3
+        if (an%lin%map%eq(d, n) > 0) f(d, n) = f(d, n) + y(an%lin%map%eq(d, n))
+      end do
+    end do
+  end subroutine add_linear_forces
+
+  !> Activate the groups born in stage s (true if there are any). Their point states are still
+  !! zero, so their strains count from the displacement at the start of the stage. Bars
+  !! post-tensioned in stage s - 1 are born carrying that force, which until now loaded their
+  !! nodes: the load goes, and the same forces are now the bars' own, so the balance holds.
+  subroutine activate_groups(model, an, s, any_born)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer, intent(in) :: s
+    logical, intent(out) :: any_born
+    real(dp) :: tension(size(model%groups))
+    integer :: g
+    any_born = .false.
+    tension = 0.0_dp
+    if (s > 1) tension = model%stage_prestress(s - 1, after=.true.)
+    do g = 1, size(model%groups)
+      if (model%groups(g)%activate_stage /= s .or. s == 1) cycle
+      an%active(g) = .true.
+      any_born = .true.
+      if (tension(g) /= 0.0_dp) then
+        an%states(g)%sig = tension(g)
+        an%states(g)%sig_t = tension(g)
+      end if
+    end do
+    call add_bar_forces(model, an, merge(tension, 0.0_dp, model%groups(:)%activate_stage == s), 1.0_dp, &
+                        an%f_applied)
+  end subroutine activate_groups
+
+  !> f <- f + sign * the nodal forces of the bars of each group g at the axial force force(g)
+  !! (global components; groups with force(g) = 0 are skipped).
+  subroutine add_bar_forces(model, an, force, sign, f)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(in) :: force(:)
+    real(dp), intent(in) :: sign
+    real(dp), intent(inout) :: f(:, :)
+    real(dp), allocatable :: sig(:, :), fe(:)
+    integer :: g, e
+    do g = 1, size(model%groups)
+      if (force(g) == 0.0_dp) cycle
+      associate (conn => model%groups(g)%connectivity, k => an%kernels(g))
+        allocate (sig(k%ncomp, k%npoints), fe(3 * k%nnodes))
+        sig = force(g)
+        do e = 1, size(conn, 2)
+          call element_internal_force(k, model%coords(:, conn(:, e)), sig, fe)
+          f(:, conn(:, e)) = f(:, conn(:, e)) + sign * reshape(fe, [3, k%nnodes])
+        end do
+        deallocate (sig, fe)
+      end associate
+    end do
+  end subroutine add_bar_forces
+
+  !> A free DOF whose node touches no active element has no stiffness: name it (and the group
+  !! that will bring it) rather than let the factorization find a zero pivot.
+  subroutine check_born_nodes(model, an, s, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: s
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: carried(:)
+    integer :: g, n, d, later
+    if (all(an%active)) return
+    allocate (carried(model%nnode))
+    carried = .false.
+    do g = 1, size(model%groups)
+      if (an%active(g)) carried(pack(model%groups(g)%connectivity, .true.)) = .true.
+    end do
+    do n = 1, model%nnode
+      if (carried(n)) cycle
+      do d = 1, 3
+        if (an%map%eq(d, n) == 0) cycle
+        later = 0
+        do g = 1, size(model%groups)
+          if (.not. an%active(g) .and. any(model%groups(g)%connectivity == n)) later = g
+        end do
+        if (later == 0) cycle   ! a node of no element at all: the DOF map does not number it
+        call fatal_error(error, err_model, model%deck_file // ': stage ' // model%stages(s)%name // ': ' // &
+                         an%map%dof_name(an%map%eq(d, n)) // ' has no stiffness: its node belongs only to ' // &
+                         'elements not yet active (group ' // model%groups(later)%name // ', ACTIVATE in stage ' // &
+                         model%stages(model%groups(later)%activate_stage)%name // '); hold it (FIX, DISPLACE) ' // &
+                         'or activate its elements earlier', item=an%map%eq(d, n))
+        return
+      end do
+    end do
+  end subroutine check_born_nodes
+
+  !> Increments of one whole stage: external forces (global) and constrained values (nodal).
+  subroutine stage_increments(model, an, s, df, duc, dps, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: s
+    real(dp), intent(out) :: df(:, :), duc(:, :)
+    real(dp), intent(out) :: dps(:)      !! prestress force added to each group's bars
+    type(error_t), allocatable, intent(out) :: error
+    integer :: c, k, n
+    real(dp) :: frac
+    dps = model%stage_prestress(s)
+    call nodal_load_vector(model, an%kernels, df, error, stage=s)
+    if (allocated(error)) return
+    ! Post-tensioned bars, not yet bonded: their force pulls on their nodes as a load.
+    call add_bar_forces(model, an, model%stage_prestress(s, after=.true.), -1.0_dp, df)
+    frac = model%stages(s)%load_fraction
+    df = df + frac * an%f_ref
+    if (allocated(an%release_force)) df = df + an%release_force
+    duc = 0.0_dp
+    do c = 1, size(model%constraints)
+      associate (con => model%constraints(c))
+        if (con%stage /= 0 .and. con%stage /= s) cycle
+        do k = 1, size(model%node_sets(con%node_set)%nodes)
+          n = model%node_sets(con%node_set)%nodes(k)
+          if (con%stage == 0) then
+            duc(con%dof, n) = frac * con%value
+          else
+            duc(con%dof, n) = con%value
+          end if
+        end do
+      end associate
+    end do
+  end subroutine stage_increments
+
+  !> Residual of the committed state (R_n of eq. 2.6.3) on the free equations.
+  subroutine committed_residual(model, an, r)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    real(dp), intent(out) :: r(:)
+    real(dp), allocatable :: f(:, :), rf(:)
+    integer :: g, e, q0, np
+    real(dp), allocatable :: fe(:)
+    allocate (f(3, model%nnode))
+    f = 0.0_dp
+    call add_linear_forces(an, an%u, f)
+    do g = 1, size(model%groups)
+      if (.not. an%states(g)%nonlinear) cycle
+      np = an%kernels(g)%npoints
+      allocate (fe(3 * an%kernels(g)%nnodes))
+      do e = 1, size(model%groups(g)%connectivity, 2)
+        q0 = (e - 1) * np
+        call element_internal_force(an%kernels(g), model%coords(:, model%groups(g)%connectivity(:, e)), &
+                                    an%states(g)%sig(:, q0 + 1:q0 + np), fe)
+        f(:, model%groups(g)%connectivity(:, e)) = f(:, model%groups(g)%connectivity(:, e)) + &
+                                                   reshape(fe, [3, an%kernels(g)%nnodes])
+      end do
+      deallocate (fe)
+    end do
+    allocate (rf(size(r)))
+    call to_equations(an%map, an%f_applied - f, rf)
+    r = rf
+  end subroutine committed_residual
+
+  !> Trial displacements: the committed ones with the constrained DOFs moved to their
+  !! current targets an%uc (nodal systems).
+  subroutine set_trial(model, an)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    integer :: n, d
+    real(dp) :: ul(3)
+    do n = 1, model%nnode
+      if (.not. any(an%map%constrained(:, n))) then
+        an%u_t(:, n) = an%u(:, n)
+        cycle
+      end if
+      ul = matmul(transpose(an%map%basis(:, :, n)), an%u(:, n))
+      do d = 1, 3
+        if (an%map%constrained(d, n)) ul(d) = an%uc(d, n)
+      end do
+      an%u_t(:, n) = matmul(an%map%basis(:, :, n), ul)
+    end do
+  end subroutine set_trial
+
+  !> u <- u + dx on the free equations (dx in nodal systems).
+  pure subroutine add_free(an, x, u)
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(inout) :: u(:, :)
+    integer :: n, d
+    real(dp) :: dl(3)
+    do n = 1, size(u, 2)
+      if (all(an%map%eq(:, n) == 0)) cycle
+      dl = 0.0_dp
+      do d = 1, 3
+        if (an%map%eq(d, n) > 0) dl(d) = x(an%map%eq(d, n))
+      end do
+      u(:, n) = u(:, n) + matmul(an%map%basis(:, :, n), dl)
+    end do
+  end subroutine add_free
+
+  !> Update every point from the committed state with the strain of u_t - u, and sum the
+  !! internal forces of the trial state. The bars of group g start from their committed force
+  !! plus the prestress increment dps(g).
+  subroutine update_points(model, an, dps)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    real(dp), intent(in) :: dps(:)
+    integer :: g, e, q, q0, np, nn, nc
+    real(dp), allocatable :: xe(:, :), due(:), deps(:, :), fe(:), dtan(:, :)
+    an%fint = 0.0_dp
+    call add_linear_forces(an, an%u_t, an%fint)
+    do g = 1, size(model%groups)
+      if (.not. an%states(g)%nonlinear .or. .not. an%active(g)) cycle
+      np = an%kernels(g)%npoints
+      nn = an%kernels(g)%nnodes
+      nc = an%kernels(g)%ncomp
+      allocate (xe(3, nn), due(3 * nn), deps(nc, np), fe(3 * nn), dtan(nc, nc))
+      associate (s => an%states(g), mat => an%materials(model%groups(g)%material)%m, &
+                 conn => model%groups(g)%connectivity)
+        do e = 1, size(conn, 2)
+          xe = model%coords(:, conn(:, e))
+          due = reshape(an%u_t(:, conn(:, e)) - an%u(:, conn(:, e)), [3 * nn])
+          call element_strains(an%kernels(g), xe, due, deps)
+          q0 = (e - 1) * np
+          do q = 1, np
+            if (dps(g) == 0.0_dp) then
+              call mat%update(s%sig(:, q0 + q), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), &
+                              s%sig_t(:, q0 + q), s%state_t(q0 + q), dtan)
+            else
+              ! only bars are prestressed: one component, the axial force
+              call mat%update(s%sig(:, q0 + q) + dps(g), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), &
+                              s%sig_t(:, q0 + q), s%state_t(q0 + q), dtan)
+            end if
+            s%eps_t(:, q0 + q) = s%eps(:, q0 + q) + deps(:, q)
+            s%dtan_t(:, :, q0 + q) = dtan
+          end do
+          call element_internal_force(an%kernels(g), xe, s%sig_t(:, q0 + 1:q0 + np), fe)
+          an%fint(:, conn(:, e)) = an%fint(:, conn(:, e)) + reshape(fe, [3, nn])
+        end do
+      end associate
+      deallocate (xe, due, deps, fe, dtan)
+    end do
+  end subroutine update_points
+
+  !> R = P - F_int on the free equations; |R| and the reference |P| (the larger of the applied
+  !! load and the support reactions, so displacement-driven steps have a scale too).
+  subroutine residual(an, r, rnorm, pnorm)
+    type(analysis_t), intent(in) :: an
+    real(dp), intent(out) :: r(:)
+    real(dp), intent(out) :: rnorm, pnorm
+    real(dp), allocatable :: p(:), react(:)
+    real(dp) :: fl(3)
+    integer :: n, d, k
+    allocate (p(size(r)), react(3 * size(an%fint, 2)))
+    call to_equations(an%map, an%f_applied - an%fint, r)
+    call to_equations(an%map, an%f_applied, p)
+    rnorm = norm2(r)
+    ! norm2 scales: a sum of squares would overflow for forces near huge() and make the
+    ! relative residual zero
+    k = 0
+    do n = 1, size(an%fint, 2)
+      if (.not. any(an%map%constrained(:, n))) cycle
+      fl = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
+      do d = 1, 3
+        if (.not. an%map%constrained(d, n)) cycle
+        k = k + 1
+        react(k) = fl(d)
+      end do
+    end do
+    pnorm = max(norm2(p), norm2(react(1:k)), tiny(1.0_dp))
+  end subroutine residual
+
+  !> Accept the trial state: it becomes the committed one.
+  subroutine commit(an)
+    type(analysis_t), intent(inout) :: an
+    integer :: g
+    an%u = an%u_t
+    do g = 1, size(an%states)
+      if (.not. an%states(g)%nonlinear) cycle
+      associate (s => an%states(g))
+        s%sig = s%sig_t
+        s%eps = s%eps_t
+        s%state = s%state_t
+        s%dtan = s%dtan_t
+      end associate
+    end do
+  end subroutine commit
+
+  !> Back to the committed state after a failed step.
+  subroutine restore(an)
+    type(analysis_t), intent(inout) :: an
+    integer :: g
+    an%u_t = an%u
+    do g = 1, size(an%states)
+      if (.not. an%states(g)%nonlinear) cycle
+      associate (s => an%states(g))
+        s%sig_t = s%sig
+        s%eps_t = s%eps
+        s%state_t = s%state
+        s%dtan_t = s%dtan
+      end associate
+    end do
+  end subroutine restore
+
+  !> Assemble and factorize the stiffness: elastic (initial), the committed tangent, or (trial)
+  !! the tangent of the current iterate (full Newton-Raphson).
+  subroutine factorize_tangent(model, an, elastic, summary, error, trial, exact)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    logical, intent(in) :: elastic
+    logical, intent(in), optional :: trial   !! the tangent of the current iterate, not of the committed state
+    logical, intent(in), optional :: exact   !! also factorize a non-symmetric tangent as it is (LU)
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    type(error_t), allocatable :: lu_error
+    integer :: ieq
+    real(dp) :: t0
+    logical :: use_trial, nonsymmetric
+    use_trial = .false.
+    if (present(trial)) use_trial = trial
+    ! Non-symmetric points under full Newton: factorize the exact tangent (UMFPACK LU) and
+    ! solve with it. Where it is singular (a body held only by faces sliding without
+    ! dilation, a neutral equilibrium) the symmetric stand-in below is used instead.
+    an%use_lu = .false.
+    nonsymmetric = .false.
+    if (present(exact) .and. .not. elastic) then
+      if (exact) nonsymmetric = any_nonsymmetric_tangent(model, an, use_trial)
+    end if
+    if (nonsymmetric) then
+      t0 = wall_clock()
+      if (.not. allocated(an%a_full%row_ptr)) call full_pattern(an%a, an%a_full)
+      call assemble_tangent(model, an, elastic, use_trial, .true., an%a_full, nonsymmetric)
+      summary%time_assembly = summary%time_assembly + wall_clock() - t0
+      t0 = wall_clock()
+      call an%lu%factorize(an%a_full, lu_error)
+      summary%time_factorization = summary%time_factorization + wall_clock() - t0
+      if (.not. allocated(lu_error)) then
+        an%use_lu = .true.
+        summary%lu_factorizations = an%lu%factorizations
+        summary%factorizations = an%solver%factorizations + an%lu%factorizations
+        return
+      end if
+      if (lu_error%code /= err_model) then
+        call move_alloc(lu_error, error)
+        return
+      end if
+      an%lu_singular = an%lu_singular + 1
+    end if
+
+    t0 = wall_clock()
+    call assemble_tangent(model, an, elastic, use_trial, .false., an%a, nonsymmetric)
+    summary%time_assembly = summary%time_assembly + wall_clock() - t0
+    if (nonsymmetric) an%symmetrized = .true.
+
+    t0 = wall_clock()
+    call an%solver%factorize(an%a, error)
+    summary%time_factorization = summary%time_factorization + wall_clock() - t0
+    if (allocated(error)) then
+      ieq = error%item   ! fatal_error reallocates error: keep the item first
+      if (ieq > 0 .and. ieq <= an%map%neq) then
+        call fatal_error(error, err_model, model%deck_file // ': the stiffness matrix is singular at ' // &
+                         an%map%dof_name(ieq) // ': that DOF is not held (an unconstrained rigid-body mode ' // &
+                         'or a missing support), or held only through a stiffness contrast beyond double ' // &
+                         'precision (pivot below 1e-11 of its diagonal)', item=ieq)
+      end if
+      return
+    end if
+    summary%factorizations = an%solver%factorizations + an%lu%factorizations
+    if (.not. an%warned_condition .and. an%solver%min_pivot_ratio > 0.0_dp) then
+      if (an%solver%max_pivot_ratio / an%solver%min_pivot_ratio > condition_warning) then
+        an%warned_condition = .true.
+        summary%condition_warning = .true.
+      end if
+    end if
+  end subroutine factorize_tangent
+
+  !> A point tangent that differs from its transpose beyond rounding.
+  pure logical function is_nonsymmetric(d)
+    real(dp), intent(in) :: d(:, :)
+    is_nonsymmetric = any(abs(d - transpose(d)) > 1.0e-12_dp * maxval(abs(d)))
+  end function is_nonsymmetric
+
+  !> Whether any point tangent of the active nonlinear groups (committed, or of the current
+  !! iterate with `use_trial`) is non-symmetric: a pass over the points, no element matrices.
+  pure logical function any_nonsymmetric_tangent(model, an, use_trial) result(found)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    logical, intent(in) :: use_trial
+    integer :: g, q
+    found = .false.
+    do g = 1, size(model%groups)
+      if (.not. an%active(g) .or. .not. an%states(g)%nonlinear) cycle
+      do q = 1, size(an%states(g)%dtan, 3)
+        if (use_trial) then
+          found = is_nonsymmetric(an%states(g)%dtan_t(:, :, q))
+        else
+          found = is_nonsymmetric(an%states(g)%dtan(:, :, q))
+        end if
+        if (found) return
+      end do
+    end do
+  end function any_nonsymmetric_tangent
+
+  !> Assemble the tangent stiffness into `a`: the lower triangle with every non-symmetric point
+  !! tangent replaced by its nearest symmetric positive semi-definite stand-in, or (`exact`)
+  !! both triangles with the point tangents as they are. `nonsymmetric` tells whether any
+  !! point tangent was non-symmetric.
+  subroutine assemble_tangent(model, an, elastic, use_trial, exact, a, nonsymmetric)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    logical, intent(in) :: elastic, use_trial, exact
+    type(csr_matrix_t), intent(inout) :: a
+    logical, intent(out) :: nonsymmetric
+    integer :: g, e, q, np, nn, nc, q0
+    real(dp), allocatable :: ke(:, :), d(:, :, :)
+    integer, allocatable :: dofs(:)
+    nonsymmetric = .false.
+    a%val = 0.0_dp
+    do g = 1, size(model%groups)
+      if (.not. an%active(g)) cycle   ! not yet born: no stiffness
+      np = an%kernels(g)%npoints
+      nn = an%kernels(g)%nnodes
+      nc = an%kernels(g)%ncomp
+      allocate (ke(3 * nn, 3 * nn), d(nc, nc, np), dofs(3 * nn))
+      associate (s => an%states(g), conn => model%groups(g)%connectivity)
+        if (elastic .or. .not. s%nonlinear) then
+          do q = 1, np
+            call an%materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, q))
+          end do
+        end if
+        do e = 1, size(conn, 2)
+          if (.not. (elastic .or. .not. s%nonlinear)) then
+            q0 = (e - 1) * np
+            do q = 1, np
+              if (use_trial) then
+                d(:, :, q) = s%dtan_t(:, :, q0 + q)
+              else
+                d(:, :, q) = s%dtan(:, :, q0 + q)
+              end if
+              if (is_nonsymmetric(d(:, :, q))) then
+                nonsymmetric = .true.
+                if (.not. exact) call nearest_symmetric_psd(d(:, :, q))
+              end if
+            end do
+          end if
+          call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
+          if (an%map%has_rotations()) call rotate_matrix(an%map, conn(:, e), ke)
+          call element_dofs(an%map, conn(:, e), dofs)
+          call scatter_element_matrix(dofs, ke, a, both_triangles=exact)
+        end do
+      end associate
+      deallocate (ke, d, dofs)
+    end do
+  end subroutine assemble_tangent
+
+end module feps_analysis_state

@@ -1,0 +1,265 @@
+!> Field helpers of the input deck's readers: required fields, numbers and ranges with the
+!! file, line and field of a bad one, KEY=value options, coordinate names, coordinate-system
+!! options, result names and the element and material families.
+module feps_deck_fields
+  use feps_strings, only: to_upper
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, input_error, str
+  use feps_records, only: record_t, keyword, nfields, field_text
+  use feps_coordinate_system, only: csys_cylindrical
+  use feps_model, only: model_t
+  implicit none
+  private
+
+  public :: require_fields, get_real, get_int, parse_real, parse_int, parse_range_real, parse_range_int
+  public :: option_text, option_real, get_csys_option, dof_index, dof_names, check_result_name
+  public :: resolve_path, element_family, material_family
+
+contains
+
+  subroutine require_fields(rec, n, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: n
+    type(error_t), allocatable, intent(out) :: error
+    if (nfields(rec) < n) call input_error(error, rec%file, rec%line, keyword(rec) // ' needs at least ' // &
+                                           str(n - 1) // ' fields after the keyword; field ' // str(nfields(rec) + 1) &
+                                           // ' is missing', nfields(rec) + 1)
+  end subroutine require_fields
+
+  subroutine get_real(rec, i, v, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    real(dp), intent(out) :: v
+    type(error_t), allocatable, intent(out) :: error
+    call parse_real(field_text(rec, i), v, error, rec, i)
+  end subroutine get_real
+
+  subroutine get_int(rec, i, v, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer, intent(out) :: v
+    type(error_t), allocatable, intent(out) :: error
+    call parse_int(field_text(rec, i), v, error, rec, i)
+  end subroutine get_int
+
+  subroutine parse_real(text, v, error, rec, i)
+    character(len=*), intent(in) :: text
+    real(dp), intent(out) :: v
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: ios
+    v = 0.0_dp
+    ios = 1
+    if (len_trim(text) > 0 .and. verify(trim(text), '0123456789+-.eEdD') == 0) read (text, *, iostat=ios) v
+    if (ios /= 0 .or. v /= v .or. abs(v) > huge(v)) then
+      call input_error(error, rec%file, rec%line, 'expected a number, got "' // trim(text) // '"', i)
+    end if
+  end subroutine parse_real
+
+  subroutine parse_int(text, v, error, rec, i)
+    character(len=*), intent(in) :: text
+    integer, intent(out) :: v
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: ios
+    v = 0
+    ios = 1
+    if (len_trim(text) > 0 .and. verify(trim(text), '0123456789+-') == 0) read (text, *, iostat=ios) v
+    if (ios /= 0) call input_error(error, rec%file, rec%line, 'expected an integer, got "' // trim(text) // '"', i)
+  end subroutine parse_int
+
+  subroutine parse_range_real(text, lo, hi, error, rec, i)
+    character(len=*), intent(in) :: text
+    real(dp), intent(out) :: lo, hi
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: c
+    c = index(text, ':')
+    if (c == 0) then
+      call parse_real(text, lo, error, rec, i)
+      hi = lo
+      return
+    end if
+    call parse_real(text(:c - 1), lo, error, rec, i)
+    if (allocated(error)) return
+    call parse_real(text(c + 1:), hi, error, rec, i)
+    if (allocated(error)) return
+    if (hi < lo) call input_error(error, rec%file, rec%line, 'empty range "' // text // '" (from > to)', i)
+  end subroutine parse_range_real
+
+  subroutine parse_range_int(text, lo, hi, error, rec, i)
+    character(len=*), intent(in) :: text
+    integer, intent(out) :: lo, hi
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    integer :: c
+    c = index(text, ':')
+    if (c == 0) then
+      call parse_int(text, lo, error, rec, i)
+      hi = lo
+      return
+    end if
+    call parse_int(text(:c - 1), lo, error, rec, i)
+    if (allocated(error)) return
+    call parse_int(text(c + 1:), hi, error, rec, i)
+  end subroutine parse_range_int
+
+  !> The text after KEY= in the first field of that key (case-insensitive).
+  subroutine option_text(rec, key, text, ifield, found)
+    type(record_t), intent(in) :: rec
+    character(len=*), intent(in) :: key
+    character(len=:), allocatable, intent(out) :: text
+    integer, intent(out) :: ifield
+    logical, intent(out) :: found
+    integer :: i, eq
+    character(len=:), allocatable :: f
+    found = .false.
+    ifield = 0
+    text = ''
+    do i = 2, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) cycle
+      if (to_upper(f(:eq - 1)) == key) then
+        text = f(eq + 1:)
+        ifield = i
+        found = .true.
+        return
+      end if
+    end do
+  end subroutine option_text
+
+  subroutine option_real(rec, key, value, found, error)
+    type(record_t), intent(in) :: rec
+    character(len=*), intent(in) :: key
+    real(dp), intent(inout) :: value
+    logical, intent(out) :: found
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    call option_text(rec, key, text, ifield, found)
+    if (found) call parse_real(text, value, error, rec, ifield)
+  end subroutine option_real
+
+  subroutine get_csys_option(rec, model, key, default, cs, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: key
+    integer, intent(in) :: default
+    integer, intent(out) :: cs
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    cs = default
+    call option_text(rec, key, text, ifield, found)
+    if (.not. found) return
+    call parse_int(text, cs, error, rec, ifield)
+    if (allocated(error)) return
+    if (cs < 1 .or. cs > size(model%systems)) then
+      call input_error(error, rec%file, rec%line, 'undefined coordinate system ' // str(cs), ifield)
+    end if
+  end subroutine get_csys_option
+
+  !> Direction or coordinate index from its name in a system of kind `kind`; 0 if unknown.
+  pure subroutine dof_index(name, kind, dof)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: kind
+    integer, intent(out) :: dof
+    dof = 0
+    select case (name)
+    case ('1', 'U1')
+      dof = 1
+    case ('2', 'U2')
+      dof = 2
+    case ('3', 'U3')
+      dof = 3
+    end select
+    if (dof /= 0) return
+    if (kind == csys_cylindrical) then
+      select case (name)
+      case ('R', 'UR')
+        dof = 1
+      case ('T', 'THETA', 'UT')
+        dof = 2
+      case ('Z', 'UZ')
+        dof = 3
+      end select
+    else
+      select case (name)
+      case ('X', 'UX')
+        dof = 1
+      case ('Y', 'UY')
+        dof = 2
+      case ('Z', 'UZ')
+        dof = 3
+      end select
+    end if
+  end subroutine dof_index
+
+  pure function dof_names(kind) result(s)
+    integer, intent(in) :: kind
+    character(len=:), allocatable :: s
+    if (kind == csys_cylindrical) then
+      s = 'R, THETA, Z'
+    else
+      s = 'X, Y, Z'
+    end if
+  end function dof_names
+
+  !> Group and material names become HDF5 paths (/mesh/groups/<name>, /materials/<name>) and
+  !! XDMF (XML) text: no '/', no XML markup characters, not '.' or '..'.
+  subroutine check_result_name(rec, what, name, error)
+    type(record_t), intent(in) :: rec
+    character(len=*), intent(in) :: what, name
+    type(error_t), allocatable, intent(out) :: error
+    if (scan(name, '/<>&"''') > 0 .or. name == '.' .or. name == '..') then
+      call input_error(error, rec%file, rec%line, 'the ' // what // ' name "' // name // '" may not contain ' // &
+                       '/ < > & " or '' nor be . or .. (it names a group in the results file)', 2)
+    end if
+  end subroutine check_result_name
+
+  !> A path relative to the directory of the file that names it.
+  pure function resolve_path(base, path) result(full)
+    character(len=*), intent(in) :: base, path
+    character(len=:), allocatable :: full
+    integer :: slash
+    if (len(path) > 0) then
+      if (path(1:1) == '/') then
+        full = path
+        return
+      end if
+    end if
+    slash = index(base, '/', back=.true.)
+    full = base(:slash) // path
+  end function resolve_path
+
+  !> 'interface', 'bar' or 'solid' for an element type and for a material kind.
+  pure function element_family(element_type) result(family)
+    character(len=*), intent(in) :: element_type
+    character(len=:), allocatable :: family
+    if (index(element_type, 'interface-') == 1) then
+      family = 'interface'
+    else if (index(element_type, 'bar') == 1) then
+      family = 'bar'
+    else
+      family = 'solid'
+    end if
+  end function element_family
+
+  pure function material_family(kind) result(family)
+    character(len=*), intent(in) :: kind
+    character(len=:), allocatable :: family
+    select case (kind)
+    case ('interface', 'bar')
+      family = kind
+    case default
+      family = 'solid'
+    end select
+  end function material_family
+
+end module feps_deck_fields

@@ -1,0 +1,384 @@
+!> The deck's support and load records: FIX and RELEASE, DISPLACE, FORCE, PRESTRESS, and
+!! PRESSURE and TRACTION with their variations. Before the first STAGE record a record is a
+!! reference scaled by each stage's LOAD=; after one it belongs to that stage.
+module feps_deck_loads
+  use feps_strings, only: to_upper
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, input_error
+  use feps_records, only: record_t, keyword, nfields, field_text
+  use feps_coordinate_system, only: csys_cartesian, csys_cylindrical
+  use feps_model, only: model_t, constraint_t, nodal_load_t, face_load_t, load_pressure, load_traction, prestress_t
+  use feps_deck_fields, only: dof_index, dof_names, get_csys_option, option_text, require_fields, parse_real, &
+                              element_family
+  implicit none
+  private
+
+  public :: read_fix, read_displace, read_force, read_prestress, read_face_load
+
+contains
+
+  !> FIX, set, dof [, dof ...] [, CSYS=n]: dofs X Y Z (Cartesian) or R T Z (cylindrical), or ALL.
+  subroutine read_fix(rec, model, stage, release, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage         !! 0 before any STAGE record: held in every stage
+    logical, intent(in) :: release       !! RELEASE: free the DOFs from this stage on
+    type(error_t), allocatable, intent(out) :: error
+    integer :: iset, cs, i, dof, from
+    character(len=:), allocatable :: f
+
+    if (release .and. stage <= 1) then
+      call input_error(error, rec%file, rec%line, 'RELEASE frees supports from a stage on: put it after the ' // &
+                       'STAGE record of a later stage than the first (in the first stage, leave the FIX out)', 1)
+      return
+    end if
+    from = max(stage, 1)
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    call get_node_set(rec, model, iset, error)
+    if (allocated(error)) return
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
+    if (allocated(error)) return
+    do i = 3, nfields(rec)
+      f = to_upper(field_text(rec, i))
+      if (index(f, '=') > 0) cycle
+      if (f == 'ALL') then
+        do dof = 1, 3
+          call add_hold(dof)
+        end do
+        cycle
+      end if
+      call dof_index(f, model%systems(cs)%kind, dof)
+      if (dof == 0) then
+        call input_error(error, rec%file, rec%line, 'unknown degree of freedom "' // f // '" for this system (' &
+                         // dof_names(model%systems(cs)%kind) // ' or ALL)', i)
+        return
+      end if
+      call add_hold(dof)
+    end do
+  contains
+    !> A FIX after a STAGE record holds from that stage on (at the value reached: its
+    !! increment in the stage is zero); a RELEASE frees from that stage on.
+    subroutine add_hold(d)
+      integer, intent(in) :: d
+      call add_constraint(model, rec, iset, cs, d, 0.0_dp, merge(from, 0, from > 1))
+      model%constraints(size(model%constraints))%active_from = from
+      model%constraints(size(model%constraints))%release = release
+    end subroutine add_hold
+  end subroutine read_fix
+
+  !> DISPLACE, set, DOF=value [, DOF=value ...] [, CSYS=n]
+  subroutine read_displace(rec, model, stage, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
+    type(error_t), allocatable, intent(out) :: error
+    integer :: iset, cs, i, dof, eq
+    character(len=:), allocatable :: f
+    real(dp) :: v
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    call get_node_set(rec, model, iset, error)
+    if (allocated(error)) return
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
+    if (allocated(error)) return
+    do i = 3, nfields(rec)
+      f = to_upper(field_text(rec, i))
+      eq = index(f, '=')
+      if (eq == 0) then
+        call input_error(error, rec%file, rec%line, 'expected DOF=value, got "' // f // '"', i)
+        return
+      end if
+      if (f(:eq - 1) == 'CSYS') cycle
+      call dof_index(f(:eq - 1), model%systems(cs)%kind, dof)
+      if (dof == 0) then
+        call input_error(error, rec%file, rec%line, 'unknown degree of freedom "' // f(:eq - 1) // &
+                         '" for this system (' // dof_names(model%systems(cs)%kind) // ')', i)
+        return
+      end if
+      call parse_real(f(eq + 1:), v, error, rec, i)
+      if (allocated(error)) return
+      call add_constraint(model, rec, iset, cs, dof, v, stage)
+      model%constraints(size(model%constraints))%prescribed = .true.
+    end do
+  end subroutine read_displace
+
+  !> FORCE, set, DOF=value ... [, CSYS=n]: the same force on every node of the set.
+  subroutine read_force(rec, model, stage, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
+    type(error_t), allocatable, intent(out) :: error
+    type(nodal_load_t) :: l
+    type(nodal_load_t), allocatable :: tmp(:)
+    integer :: i, dof, eq
+    character(len=:), allocatable :: f
+    real(dp) :: v
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    l%stage = stage
+    call get_node_set(rec, model, l%node_set, error)
+    if (allocated(error)) return
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
+    if (allocated(error)) return
+    do i = 3, nfields(rec)
+      f = to_upper(field_text(rec, i))
+      eq = index(f, '=')
+      if (eq == 0) then
+        call input_error(error, rec%file, rec%line, 'expected DOF=value, got "' // f // '"', i)
+        return
+      end if
+      if (f(:eq - 1) == 'CSYS') cycle
+      call dof_index(f(:eq - 1), model%systems(l%csys)%kind, dof)
+      if (dof == 0) then
+        call input_error(error, rec%file, rec%line, 'unknown direction "' // f(:eq - 1) // '" (' // &
+                         dof_names(model%systems(l%csys)%kind) // ')', i)
+        return
+      end if
+      call parse_real(f(eq + 1:), v, error, rec, i)
+      if (allocated(error)) return
+      l%components(dof) = v
+    end do
+    tmp = [model%nodal_loads, l]
+    call move_alloc(tmp, model%nodal_loads)
+  end subroutine read_force
+
+  !> PRESTRESS, group, FORCE=N | STRESS=s: bars of the group prestressed by an axial force
+  !! (tension positive; STRESS= is multiplied by the bars' area when the deck is finished).
+  !! Before any STAGE a reference scaled by each stage's LOAD=, after one that stage's own.
+  subroutine read_prestress(rec, model, stage, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
+    type(error_t), allocatable, intent(out) :: error
+    type(prestress_t) :: p
+    integer :: i, eq, given
+    character(len=:), allocatable :: f, name
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    name = field_text(rec, 2)
+    p%group = model%find_group(name)
+    if (p%group == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined element group "' // name // '"', 2)
+      return
+    end if
+    if (element_family(model%groups(p%group)%element_type) /= 'bar') then
+      call input_error(error, rec%file, rec%line, 'PRESTRESS acts on bars; group "' // name // '" holds ' // &
+                       model%groups(p%group)%element_type // ' elements', 2)
+      return
+    end if
+    given = 0
+    do i = 3, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      select case (to_upper(f(:max(eq - 1, 0))))
+      case ('FORCE', 'STRESS')
+        given = given + 1
+        if (given > 1) then
+          call input_error(error, rec%file, rec%line, 'PRESTRESS takes one of FORCE= and STRESS=, once', i)
+          return
+        end if
+        call parse_real(f(eq + 1:), p%force, error, rec, i)
+        if (allocated(error)) return
+        p%per_area = to_upper(f(:eq - 1)) == 'STRESS'
+      case ('BOND')
+        select case (to_upper(f(eq + 1:)))
+        case ('BEFORE')
+          p%bond_after = .false.
+        case ('AFTER')
+          p%bond_after = .true.
+          p%bond_field = i
+        case default
+          call input_error(error, rec%file, rec%line, 'BOND is BEFORE (pretensioned: bonded while ' // &
+                           'prestressed) or AFTER (post-tensioned: bonded from the next stage), not "' // &
+                           f(eq + 1:) // '"', i)
+          return
+        end select
+      case default
+        call input_error(error, rec%file, rec%line, 'expected FORCE=axial force or STRESS=axial stress ' // &
+                         '(tension positive) or BOND=BEFORE|AFTER, got "' // f // '"', i)
+        return
+      end select
+    end do
+    if (given == 0) then
+      call input_error(error, rec%file, rec%line, 'PRESTRESS needs FORCE=axial force or STRESS=axial stress', 3)
+      return
+    end if
+    p%stage = stage
+    p%file = rec%file
+    p%line = rec%line
+    model%prestresses = [model%prestresses, p]
+  end subroutine read_prestress
+
+  !> PRESSURE, fset, VALUE=p | TOTAL=P [, VARY=coord, ZERO=a, PEAK=b, VARY_CSYS=n]
+  !! TRACTION, fset, [CSYS=n,] DIR=value ..., [TOTAL=P,] [VARY=...]
+  subroutine read_face_load(rec, model, stage, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
+    type(error_t), allocatable, intent(out) :: error
+    type(face_load_t) :: l
+    type(face_load_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: text, f, k
+    integer :: ifield, i, eq, dof
+    logical :: found, has_value
+    real(dp) :: v
+
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    l%face_set = model%find_face_set(field_text(rec, 2))
+    if (l%face_set == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined face set "' // field_text(rec, 2) // '"', 2)
+      return
+    end if
+    l%file = rec%file
+    l%line = rec%line
+    l%stage = stage
+    l%kind = merge(load_pressure, load_traction, keyword(rec) == 'PRESSURE')
+    call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
+    if (allocated(error)) return
+    has_value = .false.
+    do i = 3, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) then
+        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
+        return
+      end if
+      k = to_upper(f(:eq - 1))
+      select case (k)
+      case ('CSYS', 'VARY', 'VARY_CSYS', 'VARY2', 'VARY2_CSYS')
+        cycle
+      case ('VALUE', 'TOTAL', 'ZERO', 'PEAK', 'ZERO2', 'PEAK2')
+        call parse_real(f(eq + 1:), v, error, rec, i)
+        if (allocated(error)) return
+        select case (k)
+        case ('VALUE')
+          if (l%kind == load_traction) then
+            call input_error(error, rec%file, rec%line, 'TRACTION takes components (e.g. Z=1.0), not VALUE=', i)
+            return
+          end if
+          l%value = v
+          has_value = .true.
+        case ('TOTAL')
+          l%total = v
+          l%use_total = .true.
+        case ('ZERO')
+          l%zero = v
+        case ('PEAK')
+          l%peak_at = v
+        case ('ZERO2')
+          l%zero2 = v
+        case ('PEAK2')
+          l%peak2_at = v
+        end select
+      case default
+        if (l%kind == load_pressure) then
+          call input_error(error, rec%file, rec%line, 'unknown PRESSURE option "' // k // &
+                           '" (VALUE, TOTAL, VARY, ZERO, PEAK, VARY_CSYS, VARY2, ZERO2, PEAK2, VARY2_CSYS)', i)
+          return
+        end if
+        call dof_index(k, model%systems(l%csys)%kind, dof)
+        if (dof == 0) then
+          call input_error(error, rec%file, rec%line, 'unknown TRACTION option or direction "' // k // '"', i)
+          return
+        end if
+        call parse_real(f(eq + 1:), v, error, rec, i)
+        if (allocated(error)) return
+        l%components(dof) = v
+        has_value = .true.
+      end select
+    end do
+    if (l%kind == load_pressure .and. has_value .eqv. l%use_total) then
+      call input_error(error, rec%file, rec%line, 'PRESSURE needs exactly one of VALUE= and TOTAL=')
+      return
+    end if
+    if (l%kind == load_traction .and. .not. has_value) then
+      call input_error(error, rec%file, rec%line, 'TRACTION needs at least one component (e.g. Z=1.0)')
+      return
+    end if
+    if (l%kind == load_traction .and. l%use_total .and. norm2(l%components) == 0.0_dp) then
+      call input_error(error, rec%file, rec%line, 'TRACTION with TOTAL= needs a nonzero direction')
+      return
+    end if
+    ! A linear variation in one coordinate, and optionally in a second one (the product)
+    call read_ramp('', l%vary_csys, l%vary_coord, l%zero, l%peak_at)
+    if (allocated(error)) return
+    call read_ramp('2', l%vary2_csys, l%vary2_coord, l%zero2, l%peak2_at)
+    if (allocated(error)) return
+    if (l%vary2_coord > 0 .and. l%vary_coord == 0) then
+      call input_error(error, rec%file, rec%line, 'VARY2 is the second variation: give VARY= too')
+      return
+    end if
+    tmp = [model%face_loads, l]
+    call move_alloc(tmp, model%face_loads)
+  contains
+    !> VARY<n>=coordinate with ZERO<n>= and PEAK<n>= (and VARY<n>_CSYS=), n = '' or '2'.
+    subroutine read_ramp(n, csys, coord, zero, peak_at)
+      character(len=*), intent(in) :: n
+      integer, intent(inout) :: csys, coord
+      real(dp), intent(in) :: zero, peak_at
+      integer :: default_csys
+      call option_text(rec, 'VARY' // n, text, ifield, found)
+      if (.not. found) return
+      csys = csys_cartesian
+      select case (to_upper(text))
+      case ('X')
+        coord = 1
+      case ('Y')
+        coord = 2
+      case ('Z')
+        coord = 3
+      case ('R')
+        coord = 1
+        csys = csys_cylindrical
+      case ('THETA', 'T')
+        coord = 2
+        csys = csys_cylindrical
+      case default
+        call input_error(error, rec%file, rec%line, 'VARY' // n // ' takes X, Y, Z, R or THETA, not "' // text // &
+                         '"', ifield)
+        return
+      end select
+      default_csys = csys
+      call get_csys_option(rec, model, 'VARY' // n // '_CSYS', default_csys, csys, error)
+      if (allocated(error)) return
+      if (peak_at == zero) then
+        call input_error(error, rec%file, rec%line, 'VARY' // n // ' needs ZERO' // n // '= and PEAK' // n // &
+                         '= at different places')
+        return
+      end if
+    end subroutine read_ramp
+  end subroutine read_face_load
+
+  subroutine add_constraint(model, rec, iset, cs, dof, value, stage)
+    type(model_t), intent(inout) :: model
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: iset, cs, dof, stage
+    real(dp), intent(in) :: value
+    type(constraint_t) :: c
+    type(constraint_t), allocatable :: tmp(:)
+    c%node_set = iset
+    c%csys = cs
+    c%dof = dof
+    c%value = value
+    c%stage = stage
+    c%file = rec%file
+    c%line = rec%line
+    tmp = [model%constraints, c]
+    call move_alloc(tmp, model%constraints)
+  end subroutine add_constraint
+
+  subroutine get_node_set(rec, model, iset, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    integer, intent(out) :: iset
+    type(error_t), allocatable, intent(out) :: error
+    iset = model%find_node_set(field_text(rec, 2))
+    if (iset == 0) call input_error(error, rec%file, rec%line, 'undefined node set "' // field_text(rec, 2) // '"', 2)
+  end subroutine get_node_set
+
+end module feps_deck_loads

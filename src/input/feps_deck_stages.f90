@@ -1,0 +1,242 @@
+!> The deck's solution records: CONTROLS (the methods and their tolerances), STAGE and
+!! REPORT (the quantities printed beside the thesis's values).
+module feps_deck_stages
+  use feps_strings, only: to_upper, to_lower
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, input_error
+  use feps_records, only: record_t, nfields, field_text
+  use feps_model, only: model_t, name_len, stage_t, controls_t, method_names, report_t
+  use feps_deck_fields, only: option_real, option_text, require_fields, parse_real, parse_int
+  implicit none
+  private
+
+  public :: read_stage, read_controls, read_report
+
+contains
+
+  !> STAGE, name, STEPS=n, LOAD=fraction, OUTPUT=k, ACTIVATE=g1[:g2...], and any CONTROLS
+  !! option. ACTIVATE may be repeated; the group names are resolved once all groups are known.
+  subroutine read_stage(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(stage_t) :: st
+    type(stage_t), allocatable :: tmp(:)
+    integer :: i, eq, colon
+    character(len=:), allocatable :: f, k, names
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    st%name = field_text(rec, 2)
+    st%file = rec%file
+    st%line = rec%line
+    st%load_fraction = -1.0_dp    ! default decided once all stages are known
+    st%controls = model%controls
+    allocate (st%activate(0), st%activate_field(0))
+    do i = 3, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) then
+        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
+        return
+      end if
+      k = to_upper(f(:eq - 1))
+      select case (k)
+      case ('STEPS')
+        call parse_int(f(eq + 1:), st%steps, error, rec, i)
+        if (allocated(error)) return
+        if (st%steps < 1) then
+          call input_error(error, rec%file, rec%line, 'STEPS must be at least 1', i)
+          return
+        end if
+      case ('LOAD')
+        call parse_real(f(eq + 1:), st%load_fraction, error, rec, i)
+        if (allocated(error)) return
+      case ('OUTPUT')
+        call parse_int(f(eq + 1:), st%output_every, error, rec, i)
+        if (allocated(error)) return
+        if (st%output_every < 0) then
+          call input_error(error, rec%file, rec%line, 'OUTPUT (every k steps) must not be negative', i)
+          return
+        end if
+      case ('ACTIVATE')
+        names = f(eq + 1:)
+        do
+          colon = index(names, ':')
+          if (colon == 0) colon = len(names) + 1
+          if (len_trim(names(:colon - 1)) == 0 .or. colon - 1 > name_len) then
+            call input_error(error, rec%file, rec%line, 'ACTIVATE takes group names separated by ":", got "' // &
+                             f(eq + 1:) // '"', i)
+            return
+          end if
+          st%activate = [character(len=name_len) :: st%activate, names(:colon - 1)]
+          st%activate_field = [st%activate_field, i]
+          if (colon > len(names)) exit
+          names = names(colon + 1:)
+        end do
+      case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE', 'ACCELERATION')
+      case default
+        call input_error(error, rec%file, rec%line, 'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
+                         'ACTIVATE, METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ' // &
+                         'ACCELERATION)', i)
+        return
+      end select
+    end do
+    call read_controls(rec, 3, st%controls, error)
+    if (allocated(error)) return
+    tmp = [model%stages, st]
+    call move_alloc(tmp, model%stages)
+  end subroutine read_stage
+
+  !> CONTROLS, METHOD=name, MAXIT=n, DELTA1..DELTA4=value, CUTBACKS=n (also inside STAGE).
+  subroutine read_controls(rec, first, c, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: first
+    type(controls_t), intent(inout) :: c
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i, eq, m
+    character(len=:), allocatable :: f, k, v
+    real(dp) :: x
+    do i = first, nfields(rec)
+      f = field_text(rec, i)
+      eq = index(f, '=')
+      if (eq < 2) then
+        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
+        return
+      end if
+      k = to_upper(f(:eq - 1))
+      v = f(eq + 1:)
+      select case (k)
+      case ('METHOD')
+        c%method = 0
+        do m = 1, size(method_names)
+          if (to_lower(v) == trim(method_names(m))) c%method = m
+        end do
+        if (c%method == 0) then
+          call input_error(error, rec%file, rec%line, 'unknown METHOD "' // v // '" (euler, modified-euler, ' // &
+                           'newton-raphson, modified-newton-raphson, initial-stiffness, full-newton-raphson)', i)
+          return
+        end if
+      case ('MAXIT', 'CUTBACKS')
+        call parse_int(v, m, error, rec, i)
+        if (allocated(error)) return
+        if (m < merge(1, 0, k == 'MAXIT')) then
+          call input_error(error, rec%file, rec%line, k // ' must be ' // merge('>= 1', '>= 0', k == 'MAXIT'), i)
+          return
+        end if
+        if (k == 'MAXIT') then
+          c%max_iterations = m
+          c%max_iterations_set = .true.
+        else
+          c%max_cutbacks = m
+        end if
+      case ('ACCELERATION')
+        select case (to_lower(v))
+        case ('bfgs')
+          c%bfgs = .true.
+        case ('none')
+          c%bfgs = .false.
+        case default
+          call input_error(error, rec%file, rec%line, 'unknown ACCELERATION "' // v // '" (none, bfgs)', i)
+          return
+        end select
+      case ('DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE')
+        call parse_real(v, x, error, rec, i)
+        if (allocated(error)) return
+        if (x < 0.0_dp) then
+          call input_error(error, rec%file, rec%line, k // ' must not be negative', i)
+          return
+        end if
+        select case (k)
+        case ('DELTA1')
+          c%delta1 = x
+        case ('DELTA2')
+          c%delta2 = x
+        case ('DELTA3')
+          c%delta3 = x
+        case ('DELTA4')
+          c%delta4 = x
+        case ('DIVERGENCE')
+          c%divergence = x
+        end select
+      case default
+        if (first == 2) then
+          call input_error(error, rec%file, rec%line, 'unknown CONTROLS option "' // k // &
+                           '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ACCELERATION)', i)
+          return
+        end if
+      end select
+    end do
+  end subroutine read_controls
+
+  !> REPORT, ROTATION, NAME=n, GROUP=g, R=radius, Z=section [, FROM=x0, TO=x1]
+  !! [, REFERENCE=value in degrees], or REPORT, TILT, NAME=n, GROUP=g, FROM=z0, TO=z1
+  !! [, REFERENCE=...]: the tilt of the group's axis between two sections (thesis Table 7.2).
+  subroutine read_report(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(report_t) :: r
+    type(report_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: text, kind
+    integer :: ifield
+    logical :: found, has_to
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    r%kind = to_lower(field_text(rec, 2))
+    if (r%kind /= 'rotation' .and. r%kind /= 'tilt') then
+      call input_error(error, rec%file, rec%line, 'unknown REPORT "' // field_text(rec, 2) // '" (ROTATION, TILT)', 2)
+      return
+    end if
+    kind = to_upper(r%kind)
+    r%file = rec%file
+    r%line = rec%line
+    call option_text(rec, 'NAME', text, ifield, found)
+    r%name = r%kind
+    if (found) r%name = text
+    call option_text(rec, 'GROUP', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'REPORT, ' // kind // ' needs GROUP=<the pipe group>')
+      return
+    end if
+    r%group = model%find_group(text)
+    if (r%group == 0) then
+      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
+      return
+    end if
+    call option_real(rec, 'REFERENCE', r%reference, r%has_reference, error)
+    if (allocated(error)) return
+    call option_real(rec, 'FROM', r%x_from, r%has_span, error)
+    if (allocated(error)) return
+    call option_real(rec, 'TO', r%x_to, has_to, error)
+    if (allocated(error)) return
+
+    if (r%kind == 'tilt') then
+      ! FROM= and TO= are the two sections z whose mean ux give the axis tilt.
+      if (.not. (r%has_span .and. has_to) .or. r%x_from == r%x_to) then
+        call input_error(error, rec%file, rec%line, 'REPORT, TILT needs FROM= and TO= (two different sections z)')
+        return
+      end if
+    else
+      call option_real(rec, 'R', r%r, found, error)
+      if (allocated(error)) return
+      if (.not. found) then
+        call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs R=<radius>')
+        return
+      end if
+      call option_real(rec, 'Z', r%z, found, error)
+      if (allocated(error)) return
+      if (.not. found) then
+        call input_error(error, rec%file, rec%line, 'REPORT, ROTATION needs Z=<section>')
+        return
+      end if
+      if (r%has_span .neqv. has_to .or. (has_to .and. r%x_from == r%x_to)) then
+        call input_error(error, rec%file, rec%line, 'REPORT, ROTATION takes both FROM= and TO= (different x), ' // &
+                         'or neither')
+        return
+      end if
+    end if
+    tmp = [model%reports, r]
+    call move_alloc(tmp, model%reports)
+  end subroutine read_report
+
+end module feps_deck_stages

@@ -190,6 +190,14 @@ rm -rf "results/$camp"
 python3 scripts/make_model_c.py --outdir "$tmp/mc_grid" --Gp 300,900 --nup 0.1,0.4,-0.3 --beta 0.09,0.27 >/dev/null \
   && diff -r input/modelC "$tmp/mc_grid" >/dev/null \
   && ok "model C grid over the thesis's values = input/modelC" || bad "model C grid over the thesis's values = input/modelC"
+# The mesh study's decks (--wall-elements, --z-refine) are valid meshes of the counted size:
+# 61 theta node lines x (4 + 5 soil/wall rings) x 39 z layers below the joint, 61 x 5 x (4 + 62 + 1)
+# above it.
+python3 scripts/make_model_c.py --outdir "$tmp/mc_fine" --cases C_G300_nu0.1_b0.09 --wall-elements 4 --z-refine 2 \
+  >/dev/null && "$feps" "$tmp/mc_fine/C_G300_nu0.1_b0.09.dat" --check >"$tmp/out" 2>&1 \
+  && grep -q "^nodes *$((61 * 9 * 39 + 61 * 5 * 67))$" "$tmp/out" \
+  && ok "model C with 4 wall elements and z cut in 2: $((61 * 9 * 39 + 61 * 5 * 67)) nodes, --check passes" \
+  || bad "model C with 4 wall elements and z cut in 2: $(grep -E '^nodes|error' "$tmp/out")"
 # The speed-accuracy study builds the deck of every scene (it once broke when a generator's
 # signature changed, and nothing ran it).
 python3 - <<'PY' && ok "study_tradeoff.py builds every scene's deck" || bad "study_tradeoff.py builds every scene's deck"

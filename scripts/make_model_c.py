@@ -4,6 +4,7 @@ C_G<G_p>_nu<nu_p>_b<beta> (G_p = 300, 900 MPa; nu_p = 0.1, 0.4, -0.3; beta = 0.0
 
     python3 scripts/make_model_c.py [--outdir input/modelC] [--cases C_G300_nu0.1_b0.09,...]
                                     [--steps N] [--soil-radius 2000] [--theta-step 3]
+                                    [--wall-elements 2] [--z-refine 1]
 
 Parametric campaigns beyond the thesis's twelve cases: give lists, and a deck is written for every
 combination (the thesis's own cases among them are the same decks as above):
@@ -60,6 +61,7 @@ def theta_steps(theta_step=THETA_STEP):
 # bottom block z (0 = mid-length of the bottom pipe, a symmetry plane) graded towards the joint
 Z_BOTTOM_STEPS = [150.0] * 4 + [100.0] * 3 + [50.0] * 4 + [25.0] * 4 + [12.5] * 4   # 0 .. 1250
 PACKING_LAYERS = 2
+WALL_ELEMENTS = 2          # hex8 through the pipe wall (--wall-elements: the mesh study)
 # top pipe z from 1265, fine at the joint, a node layer at the mid-length section A-A (2515)
 Z_TOP_STEPS = [12.5] * 4 + [25.0] * 4 + [50.0] * 4 + [100.0] * 3 + [150.0] * 4 \
     + [150.0] * 5 + [100.0] * 3 + [50.0] * 4                                         # 1265 .. 3765
@@ -145,25 +147,35 @@ def direction(steps, axis, label, first=True, start=0.0):
     return lines
 
 
-class Mesh:
-    """Node numbering of the two DATAIN node blocks (theta fastest, then r, then z in each)."""
+def split(steps, k):
+    """Each increment of `steps` cut into k equal ones (the mesh refined k times along it)."""
+    return [d / k for d in steps for _ in range(k)]
 
-    def __init__(self, r_soil, thetas):
+
+class Mesh:
+    """Node numbering of the two DATAIN node blocks (theta fastest, then r, then z in each);
+    `wall` elements through the pipe wall, every z increment cut into `z_refine`."""
+
+    def __init__(self, r_soil, thetas, wall=WALL_ELEMENTS, z_refine=1):
         self.nt = len(thetas) + 1                          # nodes along theta
-        self.r_bottom = [R_IN, R_IN + 57.5, R_OUT]
+        self.wall = wall
+        self.r_bottom = [R_IN + (R_OUT - R_IN) * i / wall for i in range(wall + 1)]
         for d in soil_layers(r_soil):
             self.r_bottom.append(self.r_bottom[-1] + d)
-        self.nr_bottom = len(self.r_bottom)                # 7
-        self.nz_bottom = len(Z_BOTTOM_STEPS) + 1           # 20
-        self.nr_top = 3
-        self.nz_top = PACKING_LAYERS + len(Z_TOP_STEPS) + 1
+        self.nr_bottom = len(self.r_bottom)                # 7 with 2 wall elements
+        self.z_bottom = split(Z_BOTTOM_STEPS, z_refine)
+        self.z_top = split(Z_TOP_STEPS, z_refine)
+        self.packing_layers = PACKING_LAYERS * z_refine
+        self.nz_bottom = len(self.z_bottom) + 1            # 20 unrefined
+        self.nr_top = wall + 1
+        self.nz_top = self.packing_layers + len(self.z_top) + 1
         self.bottom_nodes = self.nt * self.nr_bottom * self.nz_bottom
 
     def bottom(self, it, ir, iz):
         return 1 + it + self.nt * (ir + self.nr_bottom * iz)
 
     def top(self, it, ir, iz):
-        """Top block: iz = 0 is z = 1250 (the packing's lower face), PACKING_LAYERS is z = 1265."""
+        """Top block: iz = 0 is z = 1250 (the packing's lower face), packing_layers is z = 1265."""
         return self.bottom_nodes + 1 + it + self.nt * (ir + self.nr_top * iz)
 
 
@@ -174,18 +186,21 @@ def hex_record(node, it, ir, iz):
     return "A, 8, " + ", ".join(str(n) for n in face + top) + ","
 
 
-def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=SOIL_E):
-    """The deck text of one case; theta_step is the element size (deg) beyond theta = 12."""
+def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=SOIL_E,
+         wall=WALL_ELEMENTS, z_refine=1):
+    """The deck text of one case; theta_step is the element size (deg) beyond theta = 12, wall the
+    elements through the pipe wall, z_refine the number of parts each z element is cut into."""
     check_parameters(G, nu, beta, soil_E)
     thetas = theta_steps(theta_step)
-    m = Mesh(r_soil, thetas)
+    m = Mesh(r_soil, thetas, wall, z_refine)
     name = case_name(G, nu, beta, soil_E)
     delta = L_PIPE * math.tan(math.radians(beta))
     nsteps = steps or stage2_steps(G, beta)
     E_p = 2.0 * G * (1.0 + nu)
     ntheta = len(thetas)
-    nzb = len(Z_BOTTOM_STEPS)
-    nzt = len(Z_TOP_STEPS)
+    nzb = len(m.z_bottom)
+    nzt = len(m.z_top)
+    npl = m.packing_layers
     stride_r_b, stride_z_b = m.nt, m.nt * m.nr_bottom
     stride_r_t, stride_z_t = m.nt, m.nt * m.nr_top
     out = [
@@ -200,7 +215,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
         "!   extent). Pipe and soil are BONDED (shared nodes): thesis 6.2 says there was just one interface",
         "!   in the model, the one between the packing and the bottom pipe, and 6.3 calls stage 1 linear.",
         f"! - packing: {PACKING:g} mm thick (SPEC 8: derived from Table 7.4's Australian columns), z = 1250..1265,",
-        f"!   r = 600..715, {PACKING_LAYERS} hex8 layers, bonded to the top pipe (shared nodes at z = 1265).",
+        f"!   r = 600..715, {npl} hex8 layers, bonded to the top pipe (shared nodes at z = 1265).",
         "! - one layer of interface-quad4 between the bottom pipe's end face (lower layer, normal +z) and the",
         "!   packing (upper layer): coincident nodes at z = 1250 (two node blocks: the bottom one ends at",
         "!   z = 1250, the top one starts there). Kn = 800, Ks = 400 MPa/mm, phi = psi = 20 deg, c = 0.05 MPa.",
@@ -216,9 +231,10 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
         "!   Stage 1: 20% of q in 1 step, the end held at ux = 0 ('without rotation'); stage 2: the other 80%",
         f"!   and delta together in {nsteps} steps (thesis 6.3/6.4), initial stiffness, at most 10 iterations;",
         "!   stage 3: equilibrium iterations (see the solution controls below).",
-        "! - mesh: hex8, 2 elements through the wall; theta 4 x 3 deg at the loaded edge (theta = 0,",
+        f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg at the loaded edge (theta = 0,",
         "!   x = +715: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then " + f"{len(thetas) - 4} x {thetas[-1]:g} deg;",
-        "!   z graded 150/100/50/25/12.5 mm towards the joint on both sides; a node layer at z = 2515, the",
+        "!   z graded 150/100/50/25/12.5 mm towards the joint on both sides" +
+        ("" if z_refine == 1 else f", each cut into {z_refine}") + "; a node layer at z = 2515, the",
         "!   top pipe's mid-length section A-A of thesis Fig. 7.7.",
         "! The misalignment rotation is about +y: the joint closes at x = +715 (theta = 0) and may open",
         "! towards x = -715 (theta = 180), as thesis Figs. 6.4 and 6.11.",
@@ -229,37 +245,39 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
         f"A, 3, {R_IN:g}., 0., 0.,",
     ]
+    wall_record = f"%, {wall + 1}, {(R_OUT - R_IN) / wall:g}, 0., 0.,".ljust(30) + \
+        "! pipe wall r = " + ", ".join(f"{r:g}" for r in m.r_bottom[:wall + 1])
     out += direction(thetas, 1, "theta")
-    out.append("%, 3, 57.5, 0., 0.,".ljust(30) + "! pipe wall r = 600, 657.5, 715")
+    out.append(wall_record)
     for d in soil_layers(r_soil):
         out.append(f"%, -1, {d:.4f}, 0., 0.,".ljust(30) + "! soil layer")
-    out += direction(Z_BOTTOM_STEPS, 2, "z")
+    out += direction(m.z_bottom, 2, "z")
     out += ["E,", "",
             "! --- node block 2: the packing's lower face at z = 1250 (coincident with the bottom pipe's",
             "! end face: the interface's two layers), the packing and the top pipe ---",
             f"A, 3, {R_IN:g}., 0., {Z_JOINT:g}.,"]
     out += direction(thetas, 1, "theta")
-    out.append("%, 3, 57.5, 0., 0.,".ljust(30) + "! pipe wall r = 600, 657.5, 715")
-    out += direction([PACKING / PACKING_LAYERS] * PACKING_LAYERS, 2, "z (packing)", start=Z_JOINT)
-    out += direction(Z_TOP_STEPS, 2, "z", first=False, start=Z_TOP_BOTTOM)
+    out.append(wall_record)
+    out += direction([PACKING / npl] * npl, 2, "z (packing)", start=Z_JOINT)
+    out += direction(m.z_top, 2, "z", first=False, start=Z_TOP_BOTTOM)
     out += ["E,", ""]
     out += ["GROUP, bottom_pipe, TYPE=hex8, MATERIAL=concrete", hex_record(m.bottom, 0, 0, 0),
-            f"%, {ntheta}, *, 8, 1,", f"%, 2, *, 8, {stride_r_b},", f"%, {nzb}, *, 8, {stride_z_b},", "E,", "",
-            "GROUP, soil, TYPE=hex8, MATERIAL=soil", hex_record(m.bottom, 0, 2, 0),
-            f"%, {ntheta}, *, 8, 1,", f"%, {m.nr_bottom - 3}, *, 8, {stride_r_b},",
+            f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {stride_r_b},", f"%, {nzb}, *, 8, {stride_z_b},", "E,", "",
+            "GROUP, soil, TYPE=hex8, MATERIAL=soil", hex_record(m.bottom, 0, wall, 0),
+            f"%, {ntheta}, *, 8, 1,", f"%, {m.nr_bottom - wall - 1}, *, 8, {stride_r_b},",
             f"%, {nzb}, *, 8, {stride_z_b},", "E,", "",
             "GROUP, packing, TYPE=hex8, MATERIAL=packing", hex_record(m.top, 0, 0, 0),
-            f"%, {ntheta}, *, 8, 1,", f"%, 2, *, 8, {stride_r_t},", f"%, {PACKING_LAYERS}, *, 8, {stride_z_t},",
+            f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {stride_r_t},", f"%, {npl}, *, 8, {stride_z_t},",
             "E,", "",
-            "GROUP, top_pipe, TYPE=hex8, MATERIAL=concrete", hex_record(m.top, 0, 0, PACKING_LAYERS),
-            f"%, {ntheta}, *, 8, 1,", f"%, 2, *, 8, {stride_r_t},", f"%, {nzt}, *, 8, {stride_z_t},", "E,", ""]
+            "GROUP, top_pipe, TYPE=hex8, MATERIAL=concrete", hex_record(m.top, 0, 0, npl),
+            f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {stride_r_t},", f"%, {nzt}, *, 8, {stride_z_t},", "E,", ""]
     lo = [m.bottom(0, 0, nzb), m.bottom(0, 1, nzb), m.bottom(1, 1, nzb), m.bottom(1, 0, nzb)]
     up = [m.top(0, 0, 0), m.top(0, 1, 0), m.top(1, 1, 0), m.top(1, 0, 0)]
     out += ["! lower layer = the bottom pipe's end face (counter-clockwise seen from +z: e1 along r, e2 along",
             "! theta, normal +z), upper layer = the packing's lower face; theta strides agree in both blocks",
             "GROUP, joint, TYPE=interface-quad4, MATERIAL=pipe_packing",
             "A, 8, " + ", ".join(str(n) for n in lo + up) + ",",
-            f"%, {ntheta}, *, 8, 1,", f"%, 2, *, 8, {m.nt},", "E,",
+            f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {m.nt},", "E,",
             "E,", "",
             "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2",
             f"MATERIAL, soil, ELASTIC, E={soil_E:g}{'.' if float(soil_E).is_integer() else ''}, NU=0.2",
@@ -331,6 +349,10 @@ def main():
     ap.add_argument("--soil-radius", type=float, default=2000.0)
     ap.add_argument("--theta-step", type=float, default=THETA_STEP,
                     help=f"element size (deg) from theta = 12 to 180 (default {THETA_STEP:g}; it must divide 168)")
+    ap.add_argument("--wall-elements", type=int, default=WALL_ELEMENTS,
+                    help=f"hex8 elements through the pipe wall (default {WALL_ELEMENTS}; the mesh study)")
+    ap.add_argument("--z-refine", type=int, default=1,
+                    help="cut every z element (pipes and packing) into this many (default 1; the mesh study)")
     grid = ap.add_argument_group("parametric grid (every combination; any list left out keeps the thesis's values)")
     grid.add_argument("--Gp", type=number_list, help="packing shear moduli G_p (MPa), e.g. 300,600,900")
     grid.add_argument("--nup", type=number_list, help="packing Poisson's ratios nu_p, e.g. 0.1,0.4,-0.3")
@@ -341,6 +363,8 @@ def main():
         theta_steps(args.theta_step)
     except ValueError as e:
         ap.error(str(e))
+    if args.wall_elements < 1 or args.z_refine < 1:
+        ap.error("--wall-elements and --z-refine must be at least 1")
     if args.cases and any(v is not None for v in (args.Gp, args.nup, args.beta, args.soil_E)):
         ap.error("give either --cases or the grid lists (--Gp, --nup, --beta, --soil-E), not both")
     try:
@@ -358,7 +382,8 @@ def main():
     os.makedirs(args.outdir, exist_ok=True)
     for G, nu, beta, soil_E in cases:
         with open(os.path.join(args.outdir, f"{case_name(G, nu, beta, soil_E)}.dat"), "w") as f:
-            f.write(deck(G, nu, beta, args.soil_radius, args.steps, args.theta_step, soil_E))
+            f.write(deck(G, nu, beta, args.soil_radius, args.steps, args.theta_step, soil_E,
+                         args.wall_elements, args.z_refine))
     print(f"wrote {len(cases)} decks to {args.outdir}")
 
 

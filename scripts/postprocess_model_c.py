@@ -17,7 +17,7 @@ From the last step of a model C run (decks by scripts/make_model_c.py):
   z = 1250, from the displacements of the coincident node pairs): D(x) = -(w_AA - jump), positive
   in compression. tan(beta_bar) is the least-squares slope dD/dx over the nodes with x >= 250 mm.
   Variants printed: the secant slope between x = 250 and 715 (linear interpolation), and the
-  slope of D averaged over the three radii of the wall.
+  slope of D averaged over the node radii of the wall (600, 657.5 and 715 in the decks).
 - Z (7.4.3): on each of the four lines of interface Gauss points across the wall (2x2 Gauss per
   quad, the first natural direction, along r, fastest; positions from the lower-layer nodes), the
   front of the contact zone is where sigma_n reaches zero going from x = +715 towards x = -715:
@@ -131,9 +131,12 @@ def beta_bar(coords, conn_top, conn_joint, u):
     sel = x >= X_REGION - TOL
     slope = _lsq_line(x[sel], d[sel])[1]
     secant = (np.interp(R_OUT, x, d) - np.interp(X_REGION, x, d)) / (R_OUT - X_REGION)
-    # every radius of the wall: D(theta) averaged over r, x taken on the mid radius
+    # every node radius of the wall (600, 657.5, 715 with the decks' 2 elements through it):
+    # D(theta) averaged over r, x taken on the mid radius
+    radii = np.hypot(coords[:, 0], coords[:, 1])
+    wall_radii = sorted(set(np.round(radii[(radii > R_IN - TOL) & (radii < R_OUT + TOL)], 6)))
     ds = []
-    for radius in (R_IN, 0.5 * (R_IN + R_OUT), R_OUT):
+    for radius in wall_radii:
         xr, dr = joint_deformation(coords, conn_top, conn_joint, u, radius)
         ds.append((xr / radius, dr))
     cos_t = ds[0][0]

@@ -189,7 +189,7 @@ def contact_width(coords, conn_joint, traction):
     state = traction[:, 3]
     theta = np.degrees(np.arctan2(xg[:, 1], xg[:, 0]))
     # line id: the element's inner radius (rounded) and the Gauss point's first index
-    r_node = np.round(np.hypot(coords[conn_joint[:, 0] - 1, 0], coords[conn_joint[:, 0] - 1, 1]), 1)
+    r_node = np.round(np.hypot(coords[conn_joint[:, 0] - 1, 0], coords[conn_joint[:, 0] - 1, 1]), 6)
     line_of = [(float(r_node[p // 4]), (p % 4) % 2) for p in range(len(xg))]
     lines = sorted(set(line_of))
     zeros = []
@@ -228,7 +228,7 @@ def contact_width_centres(coords, conn_joint, traction):
     element's centre, up to half an element beyond the Gauss-point front."""
     sn = traction[:, 2].reshape(-1, 4).mean(axis=1)
     centres = np.array([coords[elem[:4] - 1].mean(axis=0) for elem in conn_joint])
-    rings = np.round(np.hypot(coords[conn_joint[:, 0] - 1, 0], coords[conn_joint[:, 0] - 1, 1]), 1)
+    rings = np.round(np.hypot(coords[conn_joint[:, 0] - 1, 0], coords[conn_joint[:, 0] - 1, 1]), 6)
     widths = []
     for ring in sorted(set(rings)):
         idx = np.nonzero(rings == ring)[0]

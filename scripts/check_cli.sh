@@ -218,6 +218,10 @@ python3 scripts/make_chapter9.py --outdir "$tmp/c9cp" --steps 5 --tension closes
   && grep -q "nonlinear: 5 steps, .* 0 cut-backs, 0 steps not converged" "$tmp/out" \
   && ok "CR, TENSION=closest-point: 5 full-Newton steps converge" \
   || bad "CR, TENSION=closest-point: 5 full-Newton steps converge: $(grep analysis "$tmp/out")"
+# A list that starts with a negative ratio (auxetic packing, the thesis's -0.3) is a list, not an option.
+python3 scripts/make_model_c.py --outdir "$tmp/mc_neg" --Gp 300 --nup -0.3,0.4 --beta 0.09 >/dev/null 2>"$tmp/err" \
+  && [ -f "$tmp/mc_neg/C_G300_nu-0.3_b0.09.dat" ] && [ -f "$tmp/mc_neg/C_G300_nu0.4_b0.09.dat" ] \
+  && ok "make_model_c.py --nup -0.3,0.4 writes both decks" || bad "make_model_c.py --nup -0.3,0.4: $(head -c 300 "$tmp/err")"
 expect_status "make_model_c.py --nup 0.5" 2 python3 scripts/make_model_c.py --outdir "$tmp/x" --nup 0.5
 grep -q "nu_p = 0.5" "$tmp/err" && ok "the error names nu_p" || bad "the error names nu_p: $(head -c 300 "$tmp/err")"
 expect_status "make_model_b.py --psi above --phi" 2 python3 scripts/make_model_b.py --outdir "$tmp/x" --soil-E 144 \

@@ -25,6 +25,8 @@ post-processing of Tables 7.3 and 7.4 is scripts/postprocess_model_c.py.
 import argparse
 import math
 import os
+import re
+import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -358,7 +360,7 @@ def main():
     grid.add_argument("--nup", type=number_list, help="packing Poisson's ratios nu_p, e.g. 0.1,0.4,-0.3")
     grid.add_argument("--beta", type=number_list, help="applied misalignment angles (deg), e.g. 0.09,0.18")
     grid.add_argument("--soil-E", type=number_list, help=f"soil Young's moduli (MPa; default {SOIL_E:g})")
-    args = ap.parse_args()
+    args = ap.parse_args(attach_negative_lists(sys.argv[1:]))
     try:
         theta_steps(args.theta_step)
     except ValueError as e:
@@ -385,6 +387,19 @@ def main():
             f.write(deck(G, nu, beta, args.soil_radius, args.steps, args.theta_step, soil_E,
                          args.wall_elements, args.z_refine))
     print(f"wrote {len(cases)} decks to {args.outdir}")
+
+
+def attach_negative_lists(argv):
+    """Glue a list that starts with a negative number to the option before it ('--nup',
+    '-0.3,0.4' -> '--nup=-0.3,0.4'): argparse knows single negative numbers, but takes
+    '-0.3,0.4' for an option and stops with "expected one argument"."""
+    out = []
+    for a in argv:
+        if out and out[-1].startswith("--") and "=" not in out[-1] and re.fullmatch(r"-[0-9.][^,]*(,[^,]+)+", a):
+            out[-1] += "=" + a
+        else:
+            out.append(a)
+    return out
 
 
 def number_list(text):

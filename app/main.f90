@@ -197,8 +197,12 @@ contains
           str(s%iterations) // ' iterations, ' // str(s%factorizations) // ' factorizations, ' // &
           str(s%cutbacks) // ' cut-backs, ' // str(s%unconverged_steps) // &
           ' steps not converged (residual carried on)'
-        if (s%lu_factorizations > 0) write (output_unit, '(a)') 'unsymmetric LU   ' // str(s%lu_factorizations) // &
-          ' of the factorizations (UMFPACK: exact non-symmetric tangents)'
+        if (s%lu_factorizations > 0) then
+          write (buf, '(es9.2)') s%lu_min_rcond
+          write (output_unit, '(a)') 'unsymmetric LU   ' // str(s%lu_factorizations) // &
+            ' of the factorizations (UMFPACK: exact non-symmetric tangents; smallest rcond ' // &
+            trim(adjustl(buf)) // ')'
+        end if
       end if
       write (buf, '(i0)') s%matrix_nnz
       write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'

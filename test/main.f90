@@ -17,6 +17,7 @@ program tester
   use test_joint_models, only: collect_joint_models
   use test_activation, only: collect_activation
   use test_prestress, only: collect_prestress
+  use test_analysis_state, only: collect_analysis_state
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
@@ -39,7 +40,8 @@ program tester
     new_testsuite('matsuoka', collect_matsuoka), &
     new_testsuite('joint_models', collect_joint_models), &
     new_testsuite('activation', collect_activation), &
-    new_testsuite('prestress', collect_prestress) &
+    new_testsuite('prestress', collect_prestress), &
+    new_testsuite('analysis_state', collect_analysis_state) &
     ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1

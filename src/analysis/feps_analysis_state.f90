@@ -34,6 +34,7 @@ module feps_analysis_state
     integer :: iterations = 0
     integer :: factorizations = 0
     integer :: lu_factorizations = 0        !! LU factorizations of exact non-symmetric tangents (full Newton)
+    real(dp) :: lu_min_rcond = 0.0_dp        !! the smallest reciprocal condition estimate of those LU factors
     integer :: cutbacks = 0
     integer :: unconverged_steps = 0         !! steps accepted with |R| / |P| above delta1 (carried on)
     integer(i8) :: matrix_nnz = 0
@@ -674,6 +675,7 @@ contains
       if (.not. allocated(lu_error)) then
         an%use_lu = .true.
         summary%lu_factorizations = an%lu%factorizations
+        summary%lu_min_rcond = an%lu%min_rcond
         summary%factorizations = an%solver%factorizations + an%lu%factorizations
         return
       end if

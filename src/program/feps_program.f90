@@ -53,6 +53,7 @@ module feps_program
     integer :: iterations = 0
     integer :: factorizations = 0
     integer :: lu_factorizations = 0       !! of them, LU factorizations of exact non-symmetric tangents
+    real(dp) :: lu_min_rcond = 0.0_dp      !! the smallest reciprocal condition estimate of those LU factors
     integer :: cutbacks = 0
     integer :: unconverged_steps = 0
     real(dp) :: max_displacement = 0.0_dp
@@ -170,6 +171,7 @@ contains
     summary%iterations = an%iterations
     summary%factorizations = an%factorizations
     summary%lu_factorizations = an%lu_factorizations
+    summary%lu_min_rcond = an%lu_min_rcond
     summary%cutbacks = an%cutbacks
     summary%unconverged_steps = an%unconverged_steps
     summary%dofs = an%neq
@@ -518,6 +520,8 @@ contains
     if (.not. allocated(error)) call h5%write_summary_int('iterations', int(summary%iterations, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('factorizations', int(summary%factorizations, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('lu_factorizations', int(summary%lu_factorizations, i8), error)
+    if (.not. allocated(error) .and. summary%lu_factorizations > 0) &
+      call h5%write_summary_real('lu_min_rcond', summary%lu_min_rcond, error)
     if (.not. allocated(error)) call h5%write_summary_int('cutbacks', int(summary%cutbacks, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('unconverged_steps', int(summary%unconverged_steps, i8), &
                                                           error)

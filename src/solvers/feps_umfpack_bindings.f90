@@ -5,7 +5,8 @@ module feps_umfpack_bindings
   implicit none
   private
 
-  public :: feps_umf_create, feps_umf_free, feps_umf_factorize, feps_umf_solve, feps_umf_status, feps_umf_flops
+  public :: feps_umf_create, feps_umf_free, feps_umf_factorize, feps_umf_solve, feps_umf_status, feps_umf_flops, &
+            feps_umf_rcond
 
   !> Return codes of factorize and solve (must match the enum in the shim).
   integer(c_int), parameter, public :: umf_ok = 0          !! success
@@ -52,6 +53,13 @@ module feps_umfpack_bindings
       type(c_ptr), value :: handle
       integer(c_int) :: status
     end function feps_umf_status
+
+    !> UMFPACK's reciprocal condition estimate (min / max |diag(U)|) of the last factorization.
+    function feps_umf_rcond(handle) result(rcond) bind(C, name="feps_umf_rcond")
+      import :: c_ptr, c_double
+      type(c_ptr), value :: handle
+      real(c_double) :: rcond
+    end function feps_umf_rcond
 
     !> Floating-point operations of the last numeric factorization.
     function feps_umf_flops(handle) result(flops) bind(C, name="feps_umf_flops")

@@ -34,6 +34,7 @@ typedef struct {
     double *x;                /* solution workspace */
     int status;               /* last UMFPACK status */
     double flops;             /* flops of the last numeric factorization */
+    double rcond;             /* UMFPACK's reciprocal condition estimate of the last one */
 } feps_umf_handle;
 
 void *feps_umf_create(void)
@@ -106,6 +107,7 @@ int feps_umf_factorize(void *handle, int64_t n, const int64_t *row_ptr, const in
     }
     h->status = umfpack_dl_numeric(h->ap, h->ai, h->ax, h->symbolic, &h->numeric, h->control, h->info);
     h->flops = h->info[UMFPACK_FLOPS];
+    h->rcond = h->info[UMFPACK_RCOND];
     if (h->status == UMFPACK_WARNING_singular_matrix) {
         umfpack_dl_free_numeric(&h->numeric);
         return FEPS_UMF_SINGULAR;
@@ -115,6 +117,15 @@ int feps_umf_factorize(void *handle, int64_t n, const int64_t *row_ptr, const in
         return FEPS_UMF_ERROR;
     }
     return FEPS_UMF_OK;
+}
+
+/* UMFPACK's reciprocal condition estimate of the last numeric factorization: min / max of
+ * |diag(U)| after its row scaling.  A matrix singular but for rounding passes UMFPACK's own test
+ * (an exactly zero pivot) with an estimate near machine precision. */
+double feps_umf_rcond(void *handle)
+{
+    feps_umf_handle *h = handle;
+    return h == NULL ? 0.0 : h->rcond;
 }
 
 /* Solve A x = b in place (b becomes x). */

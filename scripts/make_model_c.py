@@ -160,7 +160,6 @@ class Mesh:
 
     def __init__(self, r_soil, thetas, wall=WALL_ELEMENTS, z_refine=1):
         self.nt = len(thetas) + 1                          # nodes along theta
-        self.wall = wall
         self.r_bottom = [R_IN + (R_OUT - R_IN) * i / wall for i in range(wall + 1)]
         for d in soil_layers(r_soil):
             self.r_bottom.append(self.r_bottom[-1] + d)
@@ -247,7 +246,8 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
         f"A, 3, {R_IN:g}., 0., 0.,",
     ]
-    wall_record = f"%, {wall + 1}, {(R_OUT - R_IN) / wall:g}, 0., 0.,".ljust(30) + \
+    # 12 digits: a wall of 3 elements must still end on r = 715 (38.3333 x 3 would not)
+    wall_record = f"%, {wall + 1}, {(R_OUT - R_IN) / wall:.12g}, 0., 0.,".ljust(30) + \
         "! pipe wall r = " + ", ".join(f"{r:g}" for r in m.r_bottom[:wall + 1])
     out += direction(thetas, 1, "theta")
     out.append(wall_record)

@@ -17,7 +17,7 @@ module feps_umfpack_solver
 
   !> Below this reciprocal condition estimate the matrix is singular but for rounding: a body
   !! held only by faces sliding without dilation leaves about 1e-14 (test_analysis_state),
-  !! where the model B and chapter 3 tangents give 1e-4 to 1e-2. UMFPACK itself flags only
+  !! where the model B, chapter 3 and test tangents give 3e-4 to 2e-2. UMFPACK itself flags only
   !! an exactly zero pivot, and the solve of such a factor is rounding noise amplified 1e14 times.
   real(dp), parameter, public :: lu_singular_rcond = 1.0e-12_dp
 

@@ -9,7 +9,7 @@ module test_bars
   use feps_error, only: err_input, str
   use feps_gauss, only: gauss_legendre
   use feps_lapack, only: dgesv, dsyev
-  use feps_model, only: material_spec_t
+  use feps_material_testing, only: material_spec, expect_material_rejected
   use feps_material, only: material_t, state_elastic, state_plastic
   use feps_bar_element, only: bar_element_t, new_bar_element, is_bar_type, max_bar_nodes
   use feps_elastic_bar, only: elastic_bar_t, new_elastic_bar
@@ -965,46 +965,13 @@ contains
     call check(error, mat%symmetric_tangent(), 'symmetric tangent')
   end subroutine test_material_update
 
-  function spec_of(keys, values) result(spec)
-    character(len=*), intent(in) :: keys(:)
-    real(dp), intent(in) :: values(:)
-    type(material_spec_t) :: spec
-    integer :: i
-    spec%name = 'rebar'
-    spec%kind = 'bar'
-    spec%file = 'pipe.inp'
-    spec%line = 23
-    allocate (spec%keys(size(keys)))
-    do i = 1, size(keys)
-      spec%keys(i) = keys(i)
-    end do
-    spec%values = values
-  end function spec_of
-
-  !> A bad parameter set must fail with file:line and the parameter named in the message.
-  subroutine expect_rejected(error, keys, values, param)
-    type(error_t), allocatable, intent(out) :: error
-    character(len=*), intent(in) :: keys(:)
-    real(dp), intent(in) :: values(:)
-    character(len=*), intent(in) :: param
-    class(material_t), allocatable :: mat
-    type(error_t), allocatable :: err
-    call new_elastic_bar(spec_of(keys, values), mat, err)
-    if (.not. allocated(err)) then
-      call test_failed(error, 'bad ' // param // ' accepted')
-      return
-    end if
-    call check(error, err%code == err_input .and. index(err%message, 'pipe.inp:23') > 0 .and. &
-               index(err%message, param) > 0 .and. index(err%message, 'rebar') > 0, &
-               'message "' // err%message // '" names file:line, material and ' // param)
-  end subroutine expect_rejected
 
   subroutine test_material_validator(error)
     type(error_t), allocatable, intent(out) :: error
     class(material_t), allocatable :: mat
     type(error_t), allocatable :: err
     real(dp) :: nan, inf
-    call new_elastic_bar(spec_of(['a', 'e'], [314.0_dp, 2.0e5_dp]), mat, err)
+    call new_elastic_bar(material_spec('rebar', 'bar', ['a', 'e'], [314.0_dp, 2.0e5_dp]), mat, err)
     if (allocated(err)) then
       call test_failed(error, 'valid parameters rejected: ' // err%message)
       return
@@ -1018,23 +985,23 @@ contains
     if (allocated(error)) return
     nan = ieee_value(nan, ieee_quiet_nan)
     inf = ieee_value(inf, ieee_positive_inf)
-    call expect_rejected(error, ['a'], [314.0_dp], 'E')
+    call expect_material_rejected(error, 'rebar', 'bar', ['a'], [314.0_dp], 'E')
     if (allocated(error)) return
-    call expect_rejected(error, ['e'], [2.0e5_dp], 'A')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e'], [2.0e5_dp], 'A')
     if (allocated(error)) return
-    call expect_rejected(error, ['e', 'a'], [0.0_dp, 314.0_dp], 'E')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [0.0_dp, 314.0_dp], 'E')
     if (allocated(error)) return
-    call expect_rejected(error, ['e', 'a'], [-2.0e5_dp, 314.0_dp], 'E')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [-2.0e5_dp, 314.0_dp], 'E')
     if (allocated(error)) return
-    call expect_rejected(error, ['e', 'a'], [nan, 314.0_dp], 'E')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [nan, 314.0_dp], 'E')
     if (allocated(error)) return
-    call expect_rejected(error, ['e', 'a'], [2.0e5_dp, 0.0_dp], 'A')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, 0.0_dp], 'A')
     if (allocated(error)) return
-    call expect_rejected(error, ['e', 'a'], [2.0e5_dp, -1.0_dp], 'A')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, -1.0_dp], 'A')
     if (allocated(error)) return
-    call expect_rejected(error, ['e', 'a'], [2.0e5_dp, inf], 'A')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, inf], 'A')
     if (allocated(error)) return
-    call expect_rejected(error, ['e ', 'a ', 'nu'], [2.0e5_dp, 314.0_dp, 0.3_dp], 'NU')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e ', 'a ', 'nu'], [2.0e5_dp, 314.0_dp, 0.3_dp], 'NU')
   end subroutine test_material_validator
 
 end module test_bars

@@ -6,7 +6,8 @@ module test_interface_mc
   use feps_kinds, only: dp, rad2deg, deg2rad
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_error, only: str
-  use feps_model, only: material_spec_t, name_len
+  use feps_material_testing, only: material_spec, expect_material_rejected
+  use feps_model, only: name_len
   use feps_material, only: material_t, state_elastic, state_plastic, state_open
   use feps_interface_mohr_coulomb, only: interface_mohr_coulomb_t, new_interface_mohr_coulomb, &
                                          default_gap_factor
@@ -686,38 +687,6 @@ contains
                'psi < phi: dtan non-symmetric')
   end subroutine test_symmetric
 
-  function spec_of(keys, values) result(spec)
-    character(len=*), intent(in) :: keys(:)
-    real(dp), intent(in) :: values(:)
-    type(material_spec_t) :: spec
-    integer :: i
-    spec%name = 'joint'
-    spec%kind = 'interface'
-    spec%file = 'deck.inp'
-    spec%line = 17
-    allocate (spec%keys(size(keys)))
-    do i = 1, size(keys)
-      spec%keys(i) = keys(i)
-    end do
-    spec%values = values
-  end function spec_of
-
-  !> A bad parameter set must fail with file:line and the parameter named in the message.
-  subroutine expect_rejected(error, keys, values, param)
-    type(error_t), allocatable, intent(out) :: error
-    character(len=*), intent(in) :: keys(:)
-    real(dp), intent(in) :: values(:)
-    character(len=*), intent(in) :: param
-    class(material_t), allocatable :: mat
-    type(error_t), allocatable :: err
-    call new_interface_mohr_coulomb(spec_of(keys, values), mat, err)
-    if (.not. allocated(err)) then
-      call test_failed(error, 'bad ' // param // ' accepted')
-      return
-    end if
-    call check(error, index(err%message, 'deck.inp:17') > 0 .and. index(err%message, param) > 0, &
-               'message "' // err%message // '" names file:line and ' // param)
-  end subroutine expect_rejected
 
   subroutine test_validator(error)
     type(error_t), allocatable, intent(out) :: error
@@ -725,7 +694,8 @@ contains
     type(error_t), allocatable :: err
     character(len=name_len), parameter :: k3(3) = [character(len=name_len) :: 'kn', 'ks', 'phi']
     character(len=name_len), parameter :: k5(5) = [character(len=name_len) :: 'kn', 'ks', 'c', 'phi', 'psi']
-    call new_interface_mohr_coulomb(spec_of(k5, [2000.0_dp, 1000.0_dp, 5.0_dp, 30.0_dp, 10.0_dp]), mat, err)
+    call new_interface_mohr_coulomb(material_spec('joint', 'interface', k5, &
+                                  [2000.0_dp, 1000.0_dp, 5.0_dp, 30.0_dp, 10.0_dp]), mat, err)
     if (allocated(err)) then
       call test_failed(error, 'valid parameters rejected: ' // err%message)
       return
@@ -738,7 +708,7 @@ contains
       call test_failed(error, 'wrong material type')
     end select
     if (allocated(error)) return
-    call new_interface_mohr_coulomb(spec_of(k3, [2000.0_dp, 1000.0_dp, 30.0_dp]), mat, err)
+    call new_interface_mohr_coulomb(material_spec('joint', 'interface', k3, [2000.0_dp, 1000.0_dp, 30.0_dp]), mat, err)
     if (allocated(err)) then
       call test_failed(error, 'c and psi should default: ' // err%message)
       return
@@ -750,27 +720,28 @@ contains
       call test_failed(error, 'wrong material type')
     end select
     if (allocated(error)) return
-    call expect_rejected(error, ['ks ', 'phi'], [1000.0_dp, 30.0_dp], 'KN')
+    call expect_material_rejected(error, 'joint', 'interface', ['ks ', 'phi'], [1000.0_dp, 30.0_dp], 'KN')
     if (allocated(error)) return
-    call expect_rejected(error, ['kn ', 'phi'], [1000.0_dp, 30.0_dp], 'KS')
+    call expect_material_rejected(error, 'joint', 'interface', ['kn ', 'phi'], [1000.0_dp, 30.0_dp], 'KS')
     if (allocated(error)) return
-    call expect_rejected(error, ['kn', 'ks'], [1000.0_dp, 30.0_dp], 'PHI')
+    call expect_material_rejected(error, 'joint', 'interface', ['kn', 'ks'], [1000.0_dp, 30.0_dp], 'PHI')
     if (allocated(error)) return
-    call expect_rejected(error, k5, [0.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 0.0_dp], 'KN')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [0.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 0.0_dp], 'KN')
     if (allocated(error)) return
-    call expect_rejected(error, k5, [2000.0_dp, -1.0_dp, 0.0_dp, 30.0_dp, 0.0_dp], 'KS')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, -1.0_dp, 0.0_dp, 30.0_dp, 0.0_dp], 'KS')
     if (allocated(error)) return
-    call expect_rejected(error, k5, [2000.0_dp, 1000.0_dp, -1.0_dp, 30.0_dp, 0.0_dp], 'C = ')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, -1.0_dp, 30.0_dp, 0.0_dp], 'C = ')
     if (allocated(error)) return
-    call expect_rejected(error, k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 90.0_dp, 0.0_dp], 'PHI')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 90.0_dp, 0.0_dp], 'PHI')
     if (allocated(error)) return
-    call expect_rejected(error, k5, [2000.0_dp, 1000.0_dp, 0.0_dp, -5.0_dp, 0.0_dp], 'PHI')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, -5.0_dp, 0.0_dp], 'PHI')
     if (allocated(error)) return
-    call expect_rejected(error, k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 31.0_dp], 'PSI')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 31.0_dp], 'PSI')
     if (allocated(error)) return
-    call expect_rejected(error, k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, -1.0_dp], 'PSI')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, -1.0_dp], 'PSI')
     if (allocated(error)) return
-    call expect_rejected(error, ['kn ', 'ks ', 'phi', 'ps '], [2000.0_dp, 1000.0_dp, 30.0_dp, 10.0_dp], 'unknown parameter PS ')
+    call expect_material_rejected(error, 'joint', 'interface', ['kn ', 'ks ', 'phi', 'ps '], &
+                                  [2000.0_dp, 1000.0_dp, 30.0_dp, 10.0_dp], 'unknown parameter PS ')
   end subroutine test_validator
 
   !> Steps 1e6 times the elastic limit (u = 0.1 for sigma_n = -200, tan phi = 0.5) in shear,

@@ -9,6 +9,7 @@ module test_matsuoka
   use feps_kinds, only: dp, deg2rad
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_error, only: str
+  use feps_material_testing, only: material_spec, expect_material_rejected
   use feps_model, only: material_spec_t, name_len
   use feps_material, only: material_t, state_elastic, state_plastic, state_tension
   use feps_matsuoka_nakai, only: matsuoka_nakai_t, new_matsuoka_nakai, apex_from_tensile_strength, &
@@ -806,38 +807,6 @@ contains
     end do
   end subroutine test_huge_steps
 
-  function spec_of(keys, values) result(spec)
-    character(len=*), intent(in) :: keys(:)
-    real(dp), intent(in) :: values(:)
-    type(material_spec_t) :: spec
-    integer :: i
-    spec%name = 'concrete'
-    spec%kind = 'matsuoka'
-    spec%file = 'deck.inp'
-    spec%line = 23
-    allocate (spec%keys(size(keys)))
-    do i = 1, size(keys)
-      spec%keys(i) = keys(i)
-    end do
-    spec%values = values
-  end function spec_of
-
-  !> The validator must fail naming `what` and the record's place.
-  subroutine expect_rejected(error, keys, values, what)
-    type(error_t), allocatable, intent(out) :: error
-    character(len=*), intent(in) :: keys(:)
-    real(dp), intent(in) :: values(:)
-    character(len=*), intent(in) :: what
-    class(material_t), allocatable :: mat
-    type(error_t), allocatable :: err
-    call new_matsuoka_nakai(spec_of(keys, values), mat, err)
-    if (.not. allocated(err)) then
-      call test_failed(error, 'accepted bad parameters (expected an error about ' // what // ')')
-      return
-    end if
-    call check(error, index(err%message, what) > 0 .and. index(err%message, 'deck.inp:23:') == 1 .and. &
-               index(err%message, 'concrete') > 0, 'message "' // err%message // '" names ' // what)
-  end subroutine expect_rejected
 
   !> Accepts E, NU, PHI, PSI with FT or C (apex eq. 2.4.5); rejects missing, out-of-range,
   !! doubly given and unknown parameters, naming them.
@@ -849,7 +818,7 @@ contains
     character(len=name_len), parameter :: kc(5) = [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'c']
     character(len=name_len), parameter :: k6(6) = [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'c']
     real(dp) :: sn
-    call new_matsuoka_nakai(spec_of(kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp]), mat, err)
+    call new_matsuoka_nakai(material_spec('concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp]), mat, err)
     if (allocated(err)) then
       call test_failed(error, 'valid parameters rejected: ' // err%message)
       return
@@ -865,7 +834,7 @@ contains
       call test_failed(error, 'wrong material type')
     end select
     if (allocated(error)) return
-    call new_matsuoka_nakai(spec_of(kc, [1.0e4_dp, 0.2_dp, 45.0_dp, 0.0_dp, 5.0_dp]), mat, err)
+    call new_matsuoka_nakai(material_spec('concrete', 'matsuoka', kc, [1.0e4_dp, 0.2_dp, 45.0_dp, 0.0_dp, 5.0_dp]), mat, err)
     if (allocated(err)) then
       call test_failed(error, 'valid parameters (C) rejected: ' // err%message)
       return
@@ -877,33 +846,36 @@ contains
       call test_failed(error, 'wrong material type')
     end select
     if (allocated(error)) return
-    call expect_rejected(error, kft, [0.0_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E = ')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [0.0_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E = ')
     if (allocated(error)) return
-    call expect_rejected(error, kft(2:5), [0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E is missing')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft(2:5), [0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E is missing')
     if (allocated(error)) return
-    call expect_rejected(error, kft, [1.0e4_dp, 0.5_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.5_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU')
     if (allocated(error)) return
-    call expect_rejected(error, kft, [1.0e4_dp, -1.0_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, -1.0_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU')
     if (allocated(error)) return
-    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 0.0_dp, 0.0_dp, 6.0_dp], 'PHI')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 0.0_dp, 0.0_dp, 6.0_dp], 'PHI')
     if (allocated(error)) return
-    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 90.0_dp, 10.0_dp, 6.0_dp], 'PHI')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 90.0_dp, 10.0_dp, 6.0_dp], 'PHI')
     if (allocated(error)) return
-    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 31.0_dp, 6.0_dp], 'PSI')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 31.0_dp, 6.0_dp], 'PSI')
     if (allocated(error)) return
-    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 30.0_dp, -1.0_dp, 6.0_dp], 'PSI')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, -1.0_dp, 6.0_dp], 'PSI')
     if (allocated(error)) return
-    call expect_rejected(error, [kft(1:3), kft(5)], [1.0e4_dp, 0.2_dp, 30.0_dp, 6.0_dp], 'PSI is missing')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', [kft(1:3), kft(5)], &
+                                  [1.0e4_dp, 0.2_dp, 30.0_dp, 6.0_dp], 'PSI is missing')
     if (allocated(error)) return
-    call expect_rejected(error, kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 0.0_dp], 'FT')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 0.0_dp], 'FT')
     if (allocated(error)) return
-    call expect_rejected(error, kc, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, -2.0_dp], 'C = ')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kc, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, -2.0_dp], 'C = ')
     if (allocated(error)) return
-    call expect_rejected(error, k6, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 3.0_dp], 'only one of FT and C')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', k6, &
+                                  [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 3.0_dp], 'only one of FT and C')
     if (allocated(error)) return
-    call expect_rejected(error, kft(1:4), [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp], 'FT or C is missing')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft(1:4), &
+                                  [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp], 'FT or C is missing')
     if (allocated(error)) return
-    call expect_rejected(error, [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'kn'], &
+    call expect_material_rejected(error, 'concrete', 'matsuoka', [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'kn'], &
                          [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp], 'unknown parameter KN')
     if (allocated(error)) return
     ! TENSION: a rule's name, the default the thesis's
@@ -922,7 +894,7 @@ contains
   function spec_with_tension(word) result(spec)
     character(len=*), intent(in) :: word
     type(material_spec_t) :: spec
-    spec = spec_of([character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'tension'], &
+    spec = material_spec('concrete', 'matsuoka', [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'tension'], &
                    [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp])
     spec%texts = [character(len=name_len) :: '', '', '', '', '', word]
   end function spec_with_tension
@@ -934,7 +906,7 @@ contains
     type(error_t), allocatable :: err
     rule = -1
     if (word == '') then
-      call new_matsuoka_nakai(spec_of([character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft'], &
+      call new_matsuoka_nakai(material_spec('concrete', 'matsuoka', [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft'], &
                                       [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp]), mat, err)
     else
       call new_matsuoka_nakai(spec_with_tension(word), mat, err)

@@ -33,6 +33,7 @@ contains
       new_unittest('nu = -1 rejected', test_nu_minus_one), &
       new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
       new_unittest('unknown result field name', test_unknown_field), &
+      new_unittest('a DOF=value field without its DOF', test_option_without_key), &
       new_unittest('REPORT, TILT without two sections', test_tilt_no_span), &
       new_unittest('ACTIVATE of an undefined group', test_activate_unknown), &
       new_unittest('ACTIVATE of a group twice', test_activate_twice), &
@@ -156,6 +157,14 @@ contains
     call expect_failure('test/data/bad/unknown_field.dat', err_input, &
                         [character(len=40) :: 'unknown_field.dat:24:', 'field 3', 'stresses'], error)
   end subroutine test_unknown_field
+
+  !> '=value' with nothing before the '=' is refused as such, not looked up as a DOF named ''.
+  subroutine test_option_without_key(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/option_without_key.dat', err_input, &
+                        [character(len=40) :: 'option_without_key.dat:25:', 'field 3', &
+                         'expected DOF=value, got "=-100."'], error)
+  end subroutine test_option_without_key
 
   subroutine test_unknown_record(error)
     type(error_t), allocatable, intent(out) :: error

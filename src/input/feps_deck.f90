@@ -13,7 +13,7 @@ module feps_deck
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, is_2d_type, output_fields_t, field_names
   use feps_deck_fields, only: require_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
-                              parse_range_int, option_text, get_csys_option, dof_index, dof_names, &
+                              parse_range_int, key_value, option_text, get_csys_option, dof_index, dof_names, &
                               check_result_name, resolve_path, element_family, material_family
   use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
   use feps_deck_stages, only: read_stage, read_controls, read_report
@@ -382,8 +382,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(material_spec_t) :: m
     type(material_spec_t), allocatable :: tmp(:)
-    integer :: i, eq
-    character(len=:), allocatable :: f, key, word
+    integer :: i
+    character(len=:), allocatable :: key, text, word
     real(dp) :: v
 
     call require_fields(rec, 3, error)
@@ -400,13 +400,9 @@ contains
     m%line = rec%line
     allocate (m%keys(0), m%values(0), m%texts(0))
     do i = 4, nfields(rec)
-      f = field_text(rec, i)
-      eq = index(f, '=')
-      if (eq < 2) then
-        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
-        return
-      end if
-      key = to_lower(f(:eq - 1))
+      call key_value(rec, i, 'KEY=value', key, text, error)
+      if (allocated(error)) return
+      key = to_lower(key)
       if (any(m%keys == key)) then
         call input_error(error, rec%file, rec%line, to_upper(key) // ' is given twice', i)
         return
@@ -414,9 +410,9 @@ contains
       word = ''
       v = 0.0_dp
       if (any(key == text_material_keys)) then
-        word = to_lower(f(eq + 1:))   ! a word (the material checks it)
+        word = to_lower(text)   ! a word (the material checks it)
       else
-        call parse_real(f(eq + 1:), v, error, rec, i)
+        call parse_real(text, v, error, rec, i)
         if (allocated(error)) return
       end if
       m%keys = [character(len=name_len) :: m%keys, key]
@@ -943,24 +939,19 @@ contains
     type(model_t), intent(in) :: model
     type(region_t), intent(out) :: r
     type(error_t), allocatable, intent(out) :: error
-    integer :: i, eq, k
+    integer :: i, k
     character(len=:), allocatable :: f, key
 
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, r%csys, error)
     if (allocated(error)) return
     do i = 3, nfields(rec)
-      f = field_text(rec, i)
-      eq = index(f, '=')
-      if (eq < 2) then
-        call input_error(error, rec%file, rec%line, 'expected COORDINATE=value or =from:to, got "' // f // '"', i)
-        return
-      end if
-      key = to_upper(f(:eq - 1))
+      call key_value(rec, i, 'COORDINATE=value or =from:to', key, f, error)
+      if (allocated(error)) return
       select case (key)
       case ('CSYS', 'GROUP')
         cycle
       case ('TOL')
-        call parse_real(f(eq + 1:), r%tol, error, rec, i)
+        call parse_real(f, r%tol, error, rec, i)
         if (allocated(error)) return
         cycle
       end select
@@ -970,7 +961,7 @@ contains
                          dof_names(model%systems(r%csys)%kind) // ')', i)
         return
       end if
-      call parse_range_real(f(eq + 1:), r%lo(k), r%hi(k), error, rec, i)
+      call parse_range_real(f, r%lo(k), r%hi(k), error, rec, i)
       if (allocated(error)) return
       r%active(k) = .true.
     end do

@@ -12,7 +12,7 @@ module feps_deck_fields
   private
 
   public :: require_fields, get_real, get_int, parse_real, parse_int, parse_range_real, parse_range_int
-  public :: option_text, option_real, get_csys_option, dof_index, dof_names, check_result_name
+  public :: key_value, option_text, option_real, get_csys_option, dof_index, dof_names, check_result_name
   public :: resolve_path, element_family, material_family
 
 contains
@@ -107,6 +107,26 @@ contains
     if (allocated(error)) return
     call parse_int(text(c + 1:), hi, error, rec, i)
   end subroutine parse_range_int
+
+  !> Field `i` of `rec` as KEY=value: `key` upper-cased, `value` as written. A field without
+  !! '=' or with nothing before it is an error naming the field: 'expected <expected>, got ...'.
+  subroutine key_value(rec, i, expected, key, value, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    character(len=*), intent(in) :: expected   !! what the field should look like, e.g. 'KEY=value'
+    character(len=:), allocatable, intent(out) :: key, value
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: f
+    integer :: eq
+    f = field_text(rec, i)
+    eq = index(f, '=')
+    if (eq < 2) then
+      call input_error(error, rec%file, rec%line, 'expected ' // expected // ', got "' // f // '"', i)
+      return
+    end if
+    key = to_upper(f(:eq - 1))
+    value = f(eq + 1:)
+  end subroutine key_value
 
   !> The text after KEY= in the first field of that key (case-insensitive).
   subroutine option_text(rec, key, text, ifield, found)

@@ -8,7 +8,7 @@ module feps_deck_loads
   use feps_records, only: record_t, keyword, nfields, field_text
   use feps_coordinate_system, only: csys_cartesian, csys_cylindrical
   use feps_model, only: model_t, constraint_t, nodal_load_t, face_load_t, load_pressure, load_traction, prestress_t
-  use feps_deck_fields, only: dof_index, dof_names, get_csys_option, option_text, require_fields, parse_real, &
+  use feps_deck_fields, only: key_value, dof_index, dof_names, get_csys_option, option_text, require_fields, parse_real, &
                               element_family
   implicit none
   private
@@ -73,8 +73,8 @@ contains
     type(model_t), intent(inout) :: model
     integer, intent(in) :: stage
     type(error_t), allocatable, intent(out) :: error
-    integer :: iset, cs, i, dof, eq
-    character(len=:), allocatable :: f
+    integer :: iset, cs, i, dof
+    character(len=:), allocatable :: f, k
     real(dp) :: v
 
     call require_fields(rec, 3, error)
@@ -84,20 +84,16 @@ contains
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
     if (allocated(error)) return
     do i = 3, nfields(rec)
-      f = to_upper(field_text(rec, i))
-      eq = index(f, '=')
-      if (eq == 0) then
-        call input_error(error, rec%file, rec%line, 'expected DOF=value, got "' // f // '"', i)
-        return
-      end if
-      if (f(:eq - 1) == 'CSYS') cycle
-      call dof_index(f(:eq - 1), model%systems(cs)%kind, dof)
+      call key_value(rec, i, 'DOF=value', k, f, error)
+      if (allocated(error)) return
+      if (k == 'CSYS') cycle
+      call dof_index(k, model%systems(cs)%kind, dof)
       if (dof == 0) then
-        call input_error(error, rec%file, rec%line, 'unknown degree of freedom "' // f(:eq - 1) // &
+        call input_error(error, rec%file, rec%line, 'unknown degree of freedom "' // k // &
                          '" for this system (' // dof_names(model%systems(cs)%kind) // ')', i)
         return
       end if
-      call parse_real(f(eq + 1:), v, error, rec, i)
+      call parse_real(f, v, error, rec, i)
       if (allocated(error)) return
       call add_constraint(model, rec, iset, cs, dof, v, stage)
       model%constraints(size(model%constraints))%prescribed = .true.
@@ -112,8 +108,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(nodal_load_t) :: l
     type(nodal_load_t), allocatable :: tmp(:)
-    integer :: i, dof, eq
-    character(len=:), allocatable :: f
+    integer :: i, dof
+    character(len=:), allocatable :: f, k
     real(dp) :: v
 
     call require_fields(rec, 3, error)
@@ -124,20 +120,16 @@ contains
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
     if (allocated(error)) return
     do i = 3, nfields(rec)
-      f = to_upper(field_text(rec, i))
-      eq = index(f, '=')
-      if (eq == 0) then
-        call input_error(error, rec%file, rec%line, 'expected DOF=value, got "' // f // '"', i)
-        return
-      end if
-      if (f(:eq - 1) == 'CSYS') cycle
-      call dof_index(f(:eq - 1), model%systems(l%csys)%kind, dof)
+      call key_value(rec, i, 'DOF=value', k, f, error)
+      if (allocated(error)) return
+      if (k == 'CSYS') cycle
+      call dof_index(k, model%systems(l%csys)%kind, dof)
       if (dof == 0) then
-        call input_error(error, rec%file, rec%line, 'unknown direction "' // f(:eq - 1) // '" (' // &
+        call input_error(error, rec%file, rec%line, 'unknown direction "' // k // '" (' // &
                          dof_names(model%systems(l%csys)%kind) // ')', i)
         return
       end if
-      call parse_real(f(eq + 1:), v, error, rec, i)
+      call parse_real(f, v, error, rec, i)
       if (allocated(error)) return
       l%components(dof) = v
     end do
@@ -223,7 +215,7 @@ contains
     type(face_load_t) :: l
     type(face_load_t), allocatable :: tmp(:)
     character(len=:), allocatable :: text, f, k
-    integer :: ifield, i, eq, dof
+    integer :: ifield, i, dof
     logical :: found, has_value
     real(dp) :: v
 
@@ -242,18 +234,13 @@ contains
     if (allocated(error)) return
     has_value = .false.
     do i = 3, nfields(rec)
-      f = field_text(rec, i)
-      eq = index(f, '=')
-      if (eq < 2) then
-        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
-        return
-      end if
-      k = to_upper(f(:eq - 1))
+      call key_value(rec, i, 'KEY=value', k, f, error)
+      if (allocated(error)) return
       select case (k)
       case ('CSYS', 'VARY', 'VARY_CSYS', 'VARY2', 'VARY2_CSYS')
         cycle
       case ('VALUE', 'TOTAL', 'ZERO', 'PEAK', 'ZERO2', 'PEAK2')
-        call parse_real(f(eq + 1:), v, error, rec, i)
+        call parse_real(f, v, error, rec, i)
         if (allocated(error)) return
         select case (k)
         case ('VALUE')
@@ -286,7 +273,7 @@ contains
           call input_error(error, rec%file, rec%line, 'unknown TRACTION option or direction "' // k // '"', i)
           return
         end if
-        call parse_real(f(eq + 1:), v, error, rec, i)
+        call parse_real(f, v, error, rec, i)
         if (allocated(error)) return
         l%components(dof) = v
         has_value = .true.

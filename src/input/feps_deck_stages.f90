@@ -6,7 +6,7 @@ module feps_deck_stages
   use feps_error, only: error_t, input_error
   use feps_records, only: record_t, nfields, field_text
   use feps_model, only: model_t, name_len, stage_t, controls_t, method_names, report_t
-  use feps_deck_fields, only: option_real, option_text, require_fields, parse_real, parse_int
+  use feps_deck_fields, only: key_value, option_real, option_text, require_fields, parse_real, parse_int
   implicit none
   private
 
@@ -22,8 +22,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(stage_t) :: st
     type(stage_t), allocatable :: tmp(:)
-    integer :: i, eq, colon
-    character(len=:), allocatable :: f, k, names
+    integer :: i, colon
+    character(len=:), allocatable :: k, v, names
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     st%name = field_text(rec, 2)
@@ -33,39 +33,34 @@ contains
     st%controls = model%controls
     allocate (st%activate(0), st%activate_field(0))
     do i = 3, nfields(rec)
-      f = field_text(rec, i)
-      eq = index(f, '=')
-      if (eq < 2) then
-        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
-        return
-      end if
-      k = to_upper(f(:eq - 1))
+      call key_value(rec, i, 'KEY=value', k, v, error)
+      if (allocated(error)) return
       select case (k)
       case ('STEPS')
-        call parse_int(f(eq + 1:), st%steps, error, rec, i)
+        call parse_int(v, st%steps, error, rec, i)
         if (allocated(error)) return
         if (st%steps < 1) then
           call input_error(error, rec%file, rec%line, 'STEPS must be at least 1', i)
           return
         end if
       case ('LOAD')
-        call parse_real(f(eq + 1:), st%load_fraction, error, rec, i)
+        call parse_real(v, st%load_fraction, error, rec, i)
         if (allocated(error)) return
       case ('OUTPUT')
-        call parse_int(f(eq + 1:), st%output_every, error, rec, i)
+        call parse_int(v, st%output_every, error, rec, i)
         if (allocated(error)) return
         if (st%output_every < 0) then
           call input_error(error, rec%file, rec%line, 'OUTPUT (every k steps) must not be negative', i)
           return
         end if
       case ('ACTIVATE')
-        names = f(eq + 1:)
+        names = v
         do
           colon = index(names, ':')
           if (colon == 0) colon = len(names) + 1
           if (len_trim(names(:colon - 1)) == 0 .or. colon - 1 > name_len) then
             call input_error(error, rec%file, rec%line, 'ACTIVATE takes group names separated by ":", got "' // &
-                             f(eq + 1:) // '"', i)
+                             v // '"', i)
             return
           end if
           st%activate = [character(len=name_len) :: st%activate, names(:colon - 1)]
@@ -93,18 +88,12 @@ contains
     integer, intent(in) :: first
     type(controls_t), intent(inout) :: c
     type(error_t), allocatable, intent(out) :: error
-    integer :: i, eq, m
-    character(len=:), allocatable :: f, k, v
+    integer :: i, m
+    character(len=:), allocatable :: k, v
     real(dp) :: x
     do i = first, nfields(rec)
-      f = field_text(rec, i)
-      eq = index(f, '=')
-      if (eq < 2) then
-        call input_error(error, rec%file, rec%line, 'expected KEY=value, got "' // f // '"', i)
-        return
-      end if
-      k = to_upper(f(:eq - 1))
-      v = f(eq + 1:)
+      call key_value(rec, i, 'KEY=value', k, v, error)
+      if (allocated(error)) return
       select case (k)
       case ('METHOD')
         c%method = 0

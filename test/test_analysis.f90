@@ -48,6 +48,7 @@ contains
       new_unittest('REPORT, TILT: axis tilt of a cantilever column against Timoshenko', test_tilt_report), &
       new_unittest('feps --check: the run''s model and factorization, no step, no file', test_check_only), &
       new_unittest('PRESSURE with VARY and VARY2: bilinear load, exact nodal forces', test_bilinear_load), &
+      new_unittest('TRACTION by components alone: the pressure''s nodal forces, resultant t A', test_traction_components), &
       new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus) &
       ]
   end subroutine collect_analysis
@@ -380,6 +381,36 @@ contains
     call check(error, sum(res%applied_force(3, :) * model%coords(1, :)) / sum(res%applied_force(3, :)), &
                20.0_dp / 3.0_dp, 'x of the resultant (mm)', rel=1.0e-12_dp)
   end subroutine test_bilinear_load
+
+  !> test/data/traction_components.dat: TRACTION, top, X=3., Z=-100. (no TOTAL=) on the 10 x 10
+  !! top face of cube.dat. Its z forces are the nodal forces of cube.dat's PRESSURE VALUE=100,
+  !! its x forces 3/100 of those (a uniform traction), and the resultant is t A.
+  subroutine test_traction_components(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(step_result_t) :: res, pressure
+    integer :: n
+    call read_deck('test/data/cube.dat', model, error)
+    if (allocated(error)) return
+    call solve(model, 'cholmod', pressure, error)
+    if (allocated(error)) return
+    call read_deck('test/data/traction_components.dat', model, error)
+    if (allocated(error)) return
+    call solve(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    call check(error, sum(res%applied_force(1, :)), 300.0_dp, 'x resultant (N)', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, sum(res%applied_force(3, :)), -10000.0_dp, 'z resultant (N)', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    do n = 1, model%nnode
+      call check(error, res%applied_force(3, n), pressure%applied_force(3, n), 'z force at node ' // str(n), &
+                 abs=1.0e-9_dp)
+      if (allocated(error)) return
+      call check(error, res%applied_force(1, n), -0.03_dp * pressure%applied_force(3, n), &
+                 'x force at node ' // str(n), abs=1.0e-9_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_traction_components
 
   !> `feps --check` on a linear deck and on a staged one with element birth: the same DOFs,
   !! matrix and factor (nonzeros and flops of one factorization) as the run, the same total

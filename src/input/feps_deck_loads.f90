@@ -279,7 +279,7 @@ contains
         has_value = .true.
       end select
     end do
-    if (l%kind == load_pressure .and. has_value .eqv. l%use_total) then
+    if (l%kind == load_pressure .and. (has_value .eqv. l%use_total)) then
       call input_error(error, rec%file, rec%line, 'PRESSURE needs exactly one of VALUE= and TOTAL=')
       return
     end if

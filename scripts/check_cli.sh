@@ -150,6 +150,17 @@ c = h5py.File(sys.argv[1])["materials/concrete"].attrs
 assert c["kind"] in (b"matsuoka", "matsuoka") and c["tension"] in (b"closest-point", "closest-point")
 assert c["phi"] == 54.9 and c["ft"] == 5.0, dict(c)
 PY
+# PARAMETERS values are numbers only when written as one and finite; '100-1' (which a
+# list-directed read takes as 10) and '1e400' are labels, kept as written.
+sed 's/^TITLE, cube under pressure$/&\nPARAMETERS, a=2.5, b=100-1, c=1e400, d=S1/' test/data/cube.dat >"$tmp/params.dat"
+"$feps" "$tmp/params.dat" --quiet --output "$tmp/params.h5" >/dev/null 2>&1
+python3 - "$tmp/params.h5" <<'PY' && ok "PARAMETERS: numbers as reals, anything else as written" || bad "PARAMETERS: numbers as reals, anything else as written"
+import sys, h5py
+a = h5py.File(sys.argv[1])["summary"].attrs
+assert a["parameter_a"] == 2.5, dict(a)
+for k, v in (("b", "100-1"), ("c", "1e400"), ("d", "S1")):
+    assert a["parameter_" + k] in (v, v.encode()), (k, a["parameter_" + k])
+PY
 # A prestressed group records its prestress; --check names it in its stage line.
 "$feps" test/data/prestress_block.dat --quiet --output "$tmp/ps.h5" >/dev/null 2>&1
 python3 - "$tmp/ps.h5" <<'PY' && ok "PRESTRESS: tendon force and /mesh/groups attribute" || bad "PRESTRESS: tendon force and /mesh/groups attribute"

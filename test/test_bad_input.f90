@@ -34,6 +34,7 @@ contains
       new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
       new_unittest('unknown result field name', test_unknown_field), &
       new_unittest('a DOF=value field without its DOF', test_option_without_key), &
+      new_unittest('a number with an exponent but no E (200000-1)', test_exponent_without_e), &
       new_unittest('REPORT, TILT without two sections', test_tilt_no_span), &
       new_unittest('ACTIVATE of an undefined group', test_activate_unknown), &
       new_unittest('ACTIVATE of a group twice', test_activate_twice), &
@@ -165,6 +166,14 @@ contains
                         [character(len=40) :: 'option_without_key.dat:25:', 'field 3', &
                          'expected DOF=value, got "=-100."'], error)
   end subroutine test_option_without_key
+
+  !> Fortran's list-directed read takes '200000-1' as 2e4; feps checks the syntax first.
+  subroutine test_exponent_without_e(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/number_exponent_without_e.dat', err_input, &
+                        [character(len=40) :: 'number_exponent_without_e.dat:15:', 'field 4', &
+                         'expected a number, got "200000-1"'], error)
+  end subroutine test_exponent_without_e
 
   subroutine test_unknown_record(error)
     type(error_t), allocatable, intent(out) :: error

@@ -5,7 +5,7 @@ module feps_deck_fields
   use feps_strings, only: to_upper
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
-  use feps_records, only: record_t, keyword, nfields, field_text
+  use feps_records, only: record_t, keyword, nfields, field_text, is_real_text, is_integer_text
   use feps_coordinate_system, only: csys_cylindrical
   use feps_model, only: model_t
   implicit none
@@ -51,7 +51,8 @@ contains
     integer :: ios
     v = 0.0_dp
     ios = 1
-    if (len_trim(text) > 0 .and. verify(trim(text), '0123456789+-.eEdD') == 0) read (text, *, iostat=ios) v
+    ! The syntax first: a list-directed read alone takes '100-1' as 100e-1.
+    if (is_real_text(trim(adjustl(text)))) read (text, *, iostat=ios) v
     if (ios /= 0 .or. v /= v .or. abs(v) > huge(v)) then
       call input_error(error, rec%file, rec%line, 'expected a number, got "' // trim(text) // '"', i)
     end if
@@ -66,7 +67,7 @@ contains
     integer :: ios
     v = 0
     ios = 1
-    if (len_trim(text) > 0 .and. verify(trim(text), '0123456789+-') == 0) read (text, *, iostat=ios) v
+    if (is_integer_text(trim(adjustl(text)))) read (text, *, iostat=ios) v
     if (ios /= 0) call input_error(error, rec%file, rec%line, 'expected an integer, got "' // trim(text) // '"', i)
   end subroutine parse_int
 

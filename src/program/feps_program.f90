@@ -7,6 +7,7 @@ module feps_program
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson
   use feps_deck, only: read_deck
+  use feps_records, only: is_real_text
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
   use feps_clock, only: wall_clock
   use feps_incremental_analysis, only: analysis_summary_t, run_analysis, check_analysis
@@ -585,8 +586,9 @@ contains
     integer :: i, ios
     if (.not. allocated(model%parameter_names)) return
     do i = 1, size(model%parameter_names)
-      read (model%parameter_values(i), *, iostat=ios) v
-      if (ios == 0 .and. verify(trim(model%parameter_values(i)), '0123456789+-.eEdD') == 0) then
+      ios = 1
+      if (is_real_text(trim(model%parameter_values(i)))) read (model%parameter_values(i), *, iostat=ios) v
+      if (ios == 0 .and. abs(v) <= huge(v)) then
         call h5%write_summary_real('parameter_' // trim(model%parameter_names(i)), v, error)
       else
         call h5%write_summary_string('parameter_' // trim(model%parameter_names(i)), &

@@ -35,6 +35,9 @@ contains
       new_unittest('unknown result field name', test_unknown_field), &
       new_unittest('a DOF=value field without its DOF', test_option_without_key), &
       new_unittest('a number with an exponent but no E (200000-1)', test_exponent_without_e), &
+      new_unittest('CSYS: theta reference along the axis', test_csys_reference_parallel), &
+      new_unittest('CSYS: theta reference of two components', test_csys_reference_partial), &
+      new_unittest('CSYS: a field too many', test_csys_extra_field), &
       new_unittest('REPORT, TILT without two sections', test_tilt_no_span), &
       new_unittest('ACTIVATE of an undefined group', test_activate_unknown), &
       new_unittest('ACTIVATE of a group twice', test_activate_twice), &
@@ -174,6 +177,26 @@ contains
                         [character(len=40) :: 'number_exponent_without_e.dat:15:', 'field 4', &
                          'expected a number, got "200000-1"'], error)
   end subroutine test_exponent_without_e
+
+  !> A reference along the axis has no part normal to it: theta = 0 would be NaN everywhere.
+  subroutine test_csys_reference_parallel(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_reference_parallel.dat', err_input, &
+                        [character(len=40) :: 'csys_reference_parallel.dat:24:', 'field 10', 'parallel'], error)
+  end subroutine test_csys_reference_parallel
+
+  !> Two of rx, ry, rz used to leave the default reference in place without a word.
+  subroutine test_csys_reference_partial(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_reference_partial.dat', err_input, &
+                        [character(len=40) :: 'csys_reference_partial.dat:24:', 'field 12', 'rx, ry, rz'], error)
+  end subroutine test_csys_reference_partial
+
+  subroutine test_csys_extra_field(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_extra_field.dat', err_input, &
+                        [character(len=40) :: 'csys_extra_field.dat:24:', 'field 7', 'one too many'], error)
+  end subroutine test_csys_extra_field
 
   subroutine test_unknown_record(error)
     type(error_t), allocatable, intent(out) :: error

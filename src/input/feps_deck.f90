@@ -12,7 +12,7 @@ module feps_deck
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, is_2d_type, output_fields_t, field_names
-  use feps_deck_fields, only: require_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
+  use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
                               parse_range_int, key_value, option_text, get_csys_option, dof_index, dof_names, &
                               check_result_name, resolve_path, element_family, material_family
   use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
@@ -258,17 +258,35 @@ contains
         return
       end if
       ref = [1.0_dp, 0.0_dp, 0.0_dp]
-      if (nfields(rec) >= 12) then
+      if (nfields(rec) > 9) then
+        ! all three components or none: two would silently leave the default in place
+        if (nfields(rec) < 12) then
+          call input_error(error, rec%file, rec%line, 'the theta reference takes all three of rx, ry, rz ' // &
+                           '(fields 10 to 12) or none; field ' // str(nfields(rec) + 1) // ' is missing', &
+                           nfields(rec) + 1)
+          return
+        end if
+        call forbid_extra_fields(rec, 12, error)
+        if (allocated(error)) return
         do i = 1, 3
           call get_real(rec, 9 + i, ref(i), error)
           if (allocated(error)) return
         end do
+        ! theta = 0 is the part of the reference normal to the axis: it must have one
+        if (norm2(ref - dot_product(ref, v(4:6)) / dot_product(v(4:6), v(4:6)) * v(4:6)) <= &
+            1.0e-9_dp * norm2(ref) .or. norm2(ref) == 0.0_dp) then
+          call input_error(error, rec%file, rec%line, 'the theta reference (rx, ry, rz) is zero or parallel ' // &
+                           'to the axis, so it gives no direction for theta = 0', 10)
+          return
+        end if
       else if (abs(v(4)) > 0.9_dp * norm2(v(4:6))) then
         ref = [0.0_dp, 1.0_dp, 0.0_dp]
       end if
       cs = cylindrical_about(v(1:3), v(4:6), ref)
     case ('CARTESIAN')
       call require_fields(rec, 6, error)
+      if (allocated(error)) return
+      call forbid_extra_fields(rec, 6, error)
       if (allocated(error)) return
       do i = 1, 3
         call get_real(rec, 3 + i, v(i), error)

@@ -11,7 +11,7 @@ module feps_deck_fields
   implicit none
   private
 
-  public :: require_fields, get_real, get_int, parse_real, parse_int, parse_range_real, parse_range_int
+  public :: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, parse_range_int
   public :: key_value, option_text, option_real, get_csys_option, dof_index, dof_names, check_result_name
   public :: resolve_path, element_family, material_family
 
@@ -25,6 +25,17 @@ contains
                                            str(n - 1) // ' fields after the keyword; field ' // str(nfields(rec) + 1) &
                                            // ' is missing', nfields(rec) + 1)
   end subroutine require_fields
+
+  !> A record with more than `n` fields (keyword included) is an error naming the first extra
+  !! one: a field feps would otherwise ignore is a mistake the user should see.
+  subroutine forbid_extra_fields(rec, n, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: n
+    type(error_t), allocatable, intent(out) :: error
+    if (nfields(rec) > n) call input_error(error, rec%file, rec%line, keyword(rec) // ' takes at most ' // &
+                                           str(n - 1) // ' fields after the keyword; "' // field_text(rec, n + 1) // &
+                                           '" is one too many', n + 1)
+  end subroutine forbid_extra_fields
 
   subroutine get_real(rec, i, v, error)
     type(record_t), intent(in) :: rec

@@ -49,6 +49,7 @@ contains
       new_unittest('feps --check: the run''s model and factorization, no step, no file', test_check_only), &
       new_unittest('PRESSURE with VARY and VARY2: bilinear load, exact nodal forces', test_bilinear_load), &
       new_unittest('TRACTION by components alone: the pressure''s nodal forces, resultant t A', test_traction_components), &
+      new_unittest('STAGE with a negative LOAD= unloads: half the cube''s pressure taken off', test_stage_unload), &
       new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus) &
       ]
   end subroutine collect_analysis
@@ -411,6 +412,22 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_traction_components
+
+  !> test/data/stage_unload.dat: LOAD=1 then LOAD=-0.5 of cube.dat's 100 MPa. A negative LOAD=
+  !! used to be taken for "not given" and replaced by the default 0.
+  subroutine test_stage_unload(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(step_result_t) :: res
+    real(dp), parameter :: p = 100.0_dp, e = 200000.0_dp, l = 10.0_dp
+    call read_deck('test/data/stage_unload.dat', model, error)
+    if (allocated(error)) return
+    call check(error, model%stages(2)%load_fraction, -0.5_dp, 'LOAD= of the second stage', abs=0.0_dp)
+    if (allocated(error)) return
+    call solve(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    call check(error, res%displacement(3, 27), -0.5_dp * p * l / e, 'uz at the top corner', rel=1.0e-10_dp)
+  end subroutine test_stage_unload
 
   !> `feps --check` on a linear deck and on a staged one with element birth: the same DOFs,
   !! matrix and factor (nonzeros and flops of one factorization) as the run, the same total

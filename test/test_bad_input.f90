@@ -38,6 +38,17 @@ contains
       new_unittest('CSYS: theta reference along the axis', test_csys_reference_parallel), &
       new_unittest('CSYS: theta reference of two components', test_csys_reference_partial), &
       new_unittest('CSYS: a field too many', test_csys_extra_field), &
+      new_unittest('STAGE without STEPS=', test_stage_without_steps), &
+      new_unittest('an option given twice in one record', test_option_given_twice), &
+      new_unittest('a direction given twice under two names', test_direction_given_twice), &
+      new_unittest('CONTROLS after a STAGE', test_controls_after_stage), &
+      new_unittest('FIX with a KEY=value other than CSYS', test_fix_option), &
+      new_unittest('REPORT with an unknown option', test_report_unknown_option), &
+      new_unittest('two SOLVER records', test_solver_twice), &
+      new_unittest('an E record with a field', test_extra_field_on_e), &
+      new_unittest('NSET by NODE= with a coordinate', test_nset_node_with_options), &
+      new_unittest('GROUP with an unknown option', test_group_unknown_option), &
+      new_unittest('NODE with a fourth coordinate', test_node_extra_field), &
       new_unittest('REPORT, TILT without two sections', test_tilt_no_span), &
       new_unittest('ACTIVATE of an undefined group', test_activate_unknown), &
       new_unittest('ACTIVATE of a group twice', test_activate_twice), &
@@ -197,6 +208,79 @@ contains
     call expect_failure('test/data/bad/csys_extra_field.dat', err_input, &
                         [character(len=40) :: 'csys_extra_field.dat:24:', 'field 7', 'one too many'], error)
   end subroutine test_csys_extra_field
+
+  !> STEPS is in the syntax without brackets; it used to default to 1.
+  subroutine test_stage_without_steps(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/stage_without_steps.dat', err_input, &
+                        [character(len=40) :: 'stage_without_steps.dat:24:', 'needs STEPS=n'], error)
+  end subroutine test_stage_without_steps
+
+  !> The last of two Z= used to win without a word.
+  subroutine test_option_given_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/option_given_twice.dat', err_input, &
+                        [character(len=40) :: 'option_given_twice.dat:25:', 'field 4', 'Z is given twice'], error)
+  end subroutine test_option_given_twice
+
+  !> Z and UZ name the same DOF.
+  subroutine test_direction_given_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/direction_given_twice.dat', err_input, &
+                        [character(len=40) :: 'direction_given_twice.dat:25:', 'field 4', 'same direction'], error)
+  end subroutine test_direction_given_twice
+
+  !> Each stage copies the controls when it is read: a later CONTROLS changed nothing for it.
+  subroutine test_controls_after_stage(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/controls_after_stage.dat', err_input, &
+                        [character(len=40) :: 'controls_after_stage.dat:25:', 'would not apply'], error)
+  end subroutine test_controls_after_stage
+
+  !> FIX used to skip every field with an '=' in it, a misspelt CSYS= too.
+  subroutine test_fix_option(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fix_option.dat', err_input, &
+                        [character(len=40) :: 'fix_option.dat:25:', 'field 4', 'Y=0.5'], error)
+  end subroutine test_fix_option
+
+  !> A misspelt REFERENCE= used to drop the reference from the summary silently.
+  subroutine test_report_unknown_option(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/report_unknown_option.dat', err_input, &
+                        [character(len=40) :: 'report_unknown_option.dat:24:', 'field 7', 'REFERNCE'], error)
+  end subroutine test_report_unknown_option
+
+  subroutine test_solver_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/solver_twice.dat', err_input, &
+                        [character(len=40) :: 'solver_twice.dat:25:', 'given twice', 'line 24'], error)
+  end subroutine test_solver_twice
+
+  subroutine test_extra_field_on_e(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/extra_field_on_e.dat', err_input, &
+                        [character(len=40) :: 'extra_field_on_e.dat:24:', 'field 2', 'one too many'], error)
+  end subroutine test_extra_field_on_e
+
+  !> The coordinate used to be ignored.
+  subroutine test_nset_node_with_options(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/nset_node_with_options.dat', err_input, &
+                        [character(len=40) :: 'nset_node_with_options.dat:24:', 'field 4', 'NODE='], error)
+  end subroutine test_nset_node_with_options
+
+  subroutine test_group_unknown_option(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/group_unknown_option.dat', err_input, &
+                        [character(len=40) :: 'group_unknown_option.dat:8:', 'field 5', 'COLOR'], error)
+  end subroutine test_group_unknown_option
+
+  subroutine test_node_extra_field(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/node_extra_field.dat', err_input, &
+                        [character(len=40) :: 'node_extra_field.dat:24:', 'field 6', '7.'], error)
+  end subroutine test_node_extra_field
 
   subroutine test_unknown_record(error)
     type(error_t), allocatable, intent(out) :: error

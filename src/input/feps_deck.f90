@@ -13,10 +13,10 @@ module feps_deck
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, is_2d_type, output_fields_t, field_names
   use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
-                              parse_range_int, key_value, option_text, get_csys_option, dof_index, dof_names, &
+                              parse_range_int, key_value, check_option_keys, option_text, get_csys_option, dof_index, dof_names, &
                               check_result_name, resolve_path, element_family, material_family
   use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
-  use feps_deck_stages, only: read_stage, read_controls, read_report
+  use feps_deck_stages, only: read_stage, read_controls_record, read_report
   implicit none
   private
 
@@ -38,6 +38,7 @@ module feps_deck
     type(record_t), allocatable :: set_records(:)
     integer :: current_stage = 0                 !! stage that loads and displacements belong to
     logical :: fields_given = .false.            !! a FIELDS record came: only what it names
+    integer :: solver_line = 0                   !! line of the SOLVER record (0: none yet)
   end type deck_state_t
 
 contains
@@ -100,7 +101,9 @@ contains
       return
     end if
     if (key == 'E') then
-      ! The closing E of a DATAIN mesh: nothing more to do.
+      ! The closing E of a DATAIN mesh: nothing more to do, and nothing may follow it.
+      call forbid_extra_fields(records(pos), 1, error)
+      if (allocated(error)) return
       pos = pos + 1
       return
     end if
@@ -142,13 +145,19 @@ contains
     case ('PRESTRESS')
       call read_prestress(records(pos), model, st%current_stage, error)
     case ('CONTROLS')
-      call read_controls(records(pos), 2, model%controls, error)
+      call read_controls_record(records(pos), model, error)
     case ('REPORT')
       call read_report(records(pos), model, error)
     case ('STAGE')
       call read_stage(records(pos), model, error)
       st%current_stage = size(model%stages)
     case ('SOLVER')
+      if (st%solver_line > 0) then
+        call input_error(error, records(pos)%file, records(pos)%line, 'SOLVER is given twice (first at line ' // &
+                         str(st%solver_line) // ')', 1)
+        return
+      end if
+      st%solver_line = records(pos)%line
       call read_solver(records(pos), model, error)
     case ('FIELDS')
       call read_fields(records(pos), model, st, error)
@@ -379,6 +388,8 @@ contains
       call get_real(rec, 2 + i, c(i), error)
       if (allocated(error)) return
     end do
+    call check_option_keys(rec, 6, error, allowed=['CSYS'], expected='CSYS=n after x, y, z')
+    if (allocated(error)) return
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
     if (allocated(error)) return
     if (any(st%explicit_ids(1:st%explicit_nodes) == id)) then
@@ -462,6 +473,8 @@ contains
       call input_error(error, rec%file, rec%line, 'group "' // g%name // '" is defined twice', 2)
       return
     end if
+    call check_option_keys(rec, 3, error, allowed=[character(len=8) :: 'TYPE', 'MATERIAL', 'BLOCKS'])
+    if (allocated(error)) return
     call option_text(rec, 'TYPE', text, ifield, found)
     if (.not. found) then
       call input_error(error, rec%file, rec%line, 'GROUP needs TYPE=<element type>')
@@ -526,6 +539,11 @@ contains
     node = 0
     call option_text(rec, 'NODE', text, ifield, found)
     if (found) then
+      if (nfields(rec) > 3) then
+        call input_error(error, rec%file, rec%line, 'NODE= selects one node and takes no other option', &
+                         merge(4, 3, ifield == 3))
+        return
+      end if
       call parse_int(text, node, error, rec, ifield)
       if (allocated(error)) return
       if (node < 1) then
@@ -595,6 +613,8 @@ contains
     type(model_t), intent(inout) :: model
     type(error_t), allocatable, intent(out) :: error
     call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    call forbid_extra_fields(rec, 2, error)
     if (allocated(error)) return
     model%solver = to_lower(field_text(rec, 2))
     if (model%solver /= 'cholmod' .and. model%solver /= 'skyline') then
@@ -891,7 +911,7 @@ contains
       model%stages(1)%line = 0
     end if
     do s = 1, size(model%stages)
-      if (model%stages(s)%load_fraction < 0.0_dp) model%stages(s)%load_fraction = &
+      if (.not. model%stages(s)%load_given) model%stages(s)%load_fraction = &
         merge(1.0_dp, 0.0_dp, size(model%stages) == 1)
       associate (c => model%stages(s)%controls)
         select case (c%method)
@@ -962,6 +982,8 @@ contains
 
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, r%csys, error)
     if (allocated(error)) return
+    call check_option_keys(rec, 3, error)
+    if (allocated(error)) return
     do i = 3, nfields(rec)
       call key_value(rec, i, 'COORDINATE=value or =from:to', key, f, error)
       if (allocated(error)) return
@@ -977,6 +999,11 @@ contains
       if (k == 0) then
         call input_error(error, rec%file, rec%line, 'unknown coordinate "' // key // '" for this system (' // &
                          dof_names(model%systems(r%csys)%kind) // ')', i)
+        return
+      end if
+      if (r%active(k)) then
+        call input_error(error, rec%file, rec%line, 'coordinate ' // key // ' names the same coordinate as ' // &
+                         'another field of the selection', i)
         return
       end if
       call parse_range_real(f, r%lo(k), r%hi(k), error, rec, i)

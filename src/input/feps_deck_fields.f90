@@ -12,7 +12,7 @@ module feps_deck_fields
   private
 
   public :: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, parse_range_int
-  public :: key_value, option_text, option_real, get_csys_option, dof_index, dof_names, check_result_name
+  public :: key_value, check_option_keys, option_text, option_real, get_csys_option, dof_index, dof_names, check_result_name
   public :: resolve_path, element_family, material_family
 
 contains
@@ -32,9 +32,13 @@ contains
     type(record_t), intent(in) :: rec
     integer, intent(in) :: n
     type(error_t), allocatable, intent(out) :: error
-    if (nfields(rec) > n) call input_error(error, rec%file, rec%line, keyword(rec) // ' takes at most ' // &
-                                           str(n - 1) // ' fields after the keyword; "' // field_text(rec, n + 1) // &
-                                           '" is one too many', n + 1)
+    character(len=:), allocatable :: most
+    if (nfields(rec) <= n) return
+    most = 'at most ' // str(n - 1) // ' fields'
+    if (n == 2) most = 'at most 1 field'
+    if (n == 1) most = 'no field'
+    call input_error(error, rec%file, rec%line, keyword(rec) // ' takes ' // most // ' after the keyword; "' // &
+                     field_text(rec, n + 1) // '" is one too many', n + 1)
   end subroutine forbid_extra_fields
 
   subroutine get_real(rec, i, v, error)
@@ -139,6 +143,48 @@ contains
     key = to_upper(f(:eq - 1))
     value = f(eq + 1:)
   end subroutine key_value
+
+  !> Fields `first`.. of `rec` must be KEY=value options, each given once (but for the keys in
+  !! `repeatable`) and, when `allowed` is given, one of those keys (upper case). A reader that
+  !! looks its options up by name would otherwise ignore a misspelt or repeated one.
+  subroutine check_option_keys(rec, first, error, allowed, repeatable, expected)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: first
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: allowed(:)
+    character(len=*), intent(in), optional :: repeatable(:)
+    character(len=*), intent(in), optional :: expected   !! the form of a field (default 'KEY=value')
+    character(len=:), allocatable :: key, value, other, list, form
+    integer :: i, j
+    form = 'KEY=value'
+    if (present(expected)) form = expected
+    do i = first, nfields(rec)
+      call key_value(rec, i, form, key, value, error)
+      if (allocated(error)) return
+      if (present(allowed)) then
+        if (.not. any(allowed == key)) then
+          list = trim(allowed(1))
+          do j = 2, size(allowed)
+            list = list // ', ' // trim(allowed(j))
+          end do
+          call input_error(error, rec%file, rec%line, 'unknown ' // keyword(rec) // ' option "' // key // &
+                           '" (' // list // ')', i)
+          return
+        end if
+      end if
+      if (present(repeatable)) then
+        if (any(repeatable == key)) cycle
+      end if
+      do j = first, i - 1
+        call key_value(rec, j, 'KEY=value', other, value, error)
+        if (other == key) then
+          call input_error(error, rec%file, rec%line, key // ' is given twice (fields ' // str(j) // ' and ' // &
+                           str(i) // ')', i)
+          return
+        end if
+      end do
+    end do
+  end subroutine check_option_keys
 
   !> The text after KEY= in the first field of that key (case-insensitive).
   subroutine option_text(rec, key, text, ifield, found)

@@ -4,12 +4,12 @@
 module feps_deck_loads
   use feps_strings, only: to_upper
   use feps_kinds, only: dp
-  use feps_error, only: error_t, input_error
+  use feps_error, only: error_t, input_error, str
   use feps_records, only: record_t, keyword, nfields, field_text
   use feps_coordinate_system, only: csys_cartesian, csys_cylindrical
   use feps_model, only: model_t, constraint_t, nodal_load_t, face_load_t, load_pressure, load_traction, prestress_t
-  use feps_deck_fields, only: key_value, dof_index, dof_names, get_csys_option, option_text, require_fields, parse_real, &
-                              element_family
+  use feps_deck_fields, only: key_value, check_option_keys, dof_index, dof_names, get_csys_option, option_text, &
+                              require_fields, parse_real, element_family
   implicit none
   private
 
@@ -41,7 +41,12 @@ contains
     if (allocated(error)) return
     do i = 3, nfields(rec)
       f = to_upper(field_text(rec, i))
-      if (index(f, '=') > 0) cycle
+      if (index(f, '=') > 0) then
+        if (f(:index(f, '=') - 1) == 'CSYS') cycle
+        call input_error(error, rec%file, rec%line, keyword(rec) // ' takes DOF names and CSYS=n, not "' // &
+                         field_text(rec, i) // '"', i)
+        return
+      end if
       if (f == 'ALL') then
         do dof = 1, 3
           call add_hold(dof)
@@ -73,7 +78,7 @@ contains
     type(model_t), intent(inout) :: model
     integer, intent(in) :: stage
     type(error_t), allocatable, intent(out) :: error
-    integer :: iset, cs, i, dof
+    integer :: iset, cs, i, dof, given(3)
     character(len=:), allocatable :: f, k
     real(dp) :: v
 
@@ -83,6 +88,9 @@ contains
     if (allocated(error)) return
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
     if (allocated(error)) return
+    call check_option_keys(rec, 3, error, expected='DOF=value')
+    if (allocated(error)) return
+    given = 0
     do i = 3, nfields(rec)
       call key_value(rec, i, 'DOF=value', k, f, error)
       if (allocated(error)) return
@@ -93,6 +101,8 @@ contains
                          '" for this system (' // dof_names(model%systems(cs)%kind) // ')', i)
         return
       end if
+      call claim_dof(rec, given, dof, i, error)
+      if (allocated(error)) return
       call parse_real(f, v, error, rec, i)
       if (allocated(error)) return
       call add_constraint(model, rec, iset, cs, dof, v, stage)
@@ -108,7 +118,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(nodal_load_t) :: l
     type(nodal_load_t), allocatable :: tmp(:)
-    integer :: i, dof
+    integer :: i, dof, given(3)
     character(len=:), allocatable :: f, k
     real(dp) :: v
 
@@ -119,6 +129,9 @@ contains
     if (allocated(error)) return
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
     if (allocated(error)) return
+    call check_option_keys(rec, 3, error, expected='DOF=value')
+    if (allocated(error)) return
+    given = 0
     do i = 3, nfields(rec)
       call key_value(rec, i, 'DOF=value', k, f, error)
       if (allocated(error)) return
@@ -129,6 +142,8 @@ contains
                          dof_names(model%systems(l%csys)%kind) // ')', i)
         return
       end if
+      call claim_dof(rec, given, dof, i, error)
+      if (allocated(error)) return
       call parse_real(f, v, error, rec, i)
       if (allocated(error)) return
       l%components(dof) = v
@@ -136,6 +151,20 @@ contains
     tmp = [model%nodal_loads, l]
     call move_alloc(tmp, model%nodal_loads)
   end subroutine read_force
+
+  !> Field `i` of `rec` sets `dof`; another field that set it before (Z and UZ, say) is an error.
+  subroutine claim_dof(rec, given, dof, i, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(inout) :: given(3)   !! the field that set each DOF (0: none yet)
+    integer, intent(in) :: dof, i
+    type(error_t), allocatable, intent(out) :: error
+    if (given(dof) > 0) then
+      call input_error(error, rec%file, rec%line, 'fields ' // str(given(dof)) // ' and ' // str(i) // &
+                       ' set the same direction', i)
+      return
+    end if
+    given(dof) = i
+  end subroutine claim_dof
 
   !> PRESTRESS, group, FORCE=N | STRESS=s: bars of the group prestressed by an axial force
   !! (tension positive; STRESS= is multiplied by the bars' area when the deck is finished).
@@ -215,7 +244,7 @@ contains
     type(face_load_t) :: l
     type(face_load_t), allocatable :: tmp(:)
     character(len=:), allocatable :: text, f, k
-    integer :: ifield, i, dof
+    integer :: ifield, i, dof, given(3)
     logical :: found, has_value
     real(dp) :: v
 
@@ -232,7 +261,10 @@ contains
     l%kind = merge(load_pressure, load_traction, keyword(rec) == 'PRESSURE')
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
     if (allocated(error)) return
+    call check_option_keys(rec, 3, error)
+    if (allocated(error)) return
     has_value = .false.
+    given = 0
     do i = 3, nfields(rec)
       call key_value(rec, i, 'KEY=value', k, f, error)
       if (allocated(error)) return
@@ -273,6 +305,8 @@ contains
           call input_error(error, rec%file, rec%line, 'unknown TRACTION option or direction "' // k // '"', i)
           return
         end if
+        call claim_dof(rec, given, dof, i, error)
+        if (allocated(error)) return
         call parse_real(f, v, error, rec, i)
         if (allocated(error)) return
         l%components(dof) = v

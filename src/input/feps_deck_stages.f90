@@ -6,11 +6,11 @@ module feps_deck_stages
   use feps_error, only: error_t, input_error
   use feps_records, only: record_t, nfields, field_text
   use feps_model, only: model_t, name_len, stage_t, controls_t, method_names, report_t
-  use feps_deck_fields, only: key_value, option_real, option_text, require_fields, parse_real, parse_int
+  use feps_deck_fields, only: key_value, check_option_keys, option_real, option_text, require_fields, parse_real, parse_int
   implicit none
   private
 
-  public :: read_stage, read_controls, read_report
+  public :: read_stage, read_controls, read_controls_record, read_report
 
 contains
 
@@ -24,14 +24,21 @@ contains
     type(stage_t), allocatable :: tmp(:)
     integer :: i, colon
     character(len=:), allocatable :: k, v, names
+    logical :: found
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     st%name = field_text(rec, 2)
     st%file = rec%file
     st%line = rec%line
-    st%load_fraction = -1.0_dp    ! default decided once all stages are known
     st%controls = model%controls
     allocate (st%activate(0), st%activate_field(0))
+    call check_option_keys(rec, 3, error, repeatable=['ACTIVATE'])
+    if (allocated(error)) return
+    call option_text(rec, 'STEPS', v, i, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'STAGE ' // st%name // ' needs STEPS=n')
+      return
+    end if
     do i = 3, nfields(rec)
       call key_value(rec, i, 'KEY=value', k, v, error)
       if (allocated(error)) return
@@ -46,6 +53,7 @@ contains
       case ('LOAD')
         call parse_real(v, st%load_fraction, error, rec, i)
         if (allocated(error)) return
+        st%load_given = .true.   ! else the default, decided once all stages are known
       case ('OUTPUT')
         call parse_int(v, st%output_every, error, rec, i)
         if (allocated(error)) return
@@ -81,6 +89,24 @@ contains
     tmp = [model%stages, st]
     call move_alloc(tmp, model%stages)
   end subroutine read_stage
+
+  !> The CONTROLS record: the default controls of the STAGE records after it. Each stage takes
+  !! its copy when its STAGE record is read, so a CONTROLS after a STAGE would change nothing
+  !! for the stages before it: an error rather than a silent no-op.
+  subroutine read_controls_record(rec, model, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    if (size(model%stages) > 0) then
+      call input_error(error, rec%file, rec%line, 'CONTROLS after STAGE ' // model%stages(1)%name // &
+                       ' would not apply to it: put CONTROLS before the first STAGE, or give the options ' // &
+                       'on the STAGE records', 1)
+      return
+    end if
+    call check_option_keys(rec, 2, error)
+    if (allocated(error)) return
+    call read_controls(rec, 2, model%controls, error)
+  end subroutine read_controls_record
 
   !> CONTROLS, METHOD=name, MAXIT=n, DELTA1..DELTA4=value, CUTBACKS=n (also inside STAGE).
   subroutine read_controls(rec, first, c, error)
@@ -177,6 +203,13 @@ contains
       return
     end if
     kind = to_upper(r%kind)
+    if (r%kind == 'tilt') then
+      call check_option_keys(rec, 3, error, allowed=[character(len=9) :: 'NAME', 'GROUP', 'FROM', 'TO', 'REFERENCE'])
+    else
+      call check_option_keys(rec, 3, error, &
+                             allowed=[character(len=9) :: 'NAME', 'GROUP', 'R', 'Z', 'FROM', 'TO', 'REFERENCE'])
+    end if
+    if (allocated(error)) return
     r%file = rec%file
     r%line = rec%line
     call option_text(rec, 'NAME', text, ifield, found)

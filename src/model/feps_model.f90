@@ -164,6 +164,7 @@ module feps_model
     character(len=:), allocatable :: name
     integer :: steps = 1
     real(dp) :: load_fraction = 1.0_dp
+    logical :: load_given = .false.          !! LOAD= was given (else the default of the deck)
     integer :: output_every = 0              !! write every k steps (0: the stage's last step)
     type(controls_t) :: controls
     character(len=name_len), allocatable :: activate(:)  !! groups born at the start of this stage

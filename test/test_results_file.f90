@@ -5,6 +5,7 @@ module test_results_file
   use feps_error, only: err_internal
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_results_file, only: results_file_t, step_group_name
+  use feps_program, only: run_options_t, run_summary_t, run_feps
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, &
                   h5dopen_f, h5dread_f, h5dclose_f, h5dget_space_f, h5sget_simple_extent_ndims_f, &
                   h5sget_simple_extent_dims_f, h5sclose_f, h5aopen_by_name_f, h5aread_f, h5aclose_f, &
@@ -30,7 +31,8 @@ contains
       new_unittest("mesh-only xdmf", test_mesh_only_xdmf), &
       new_unittest("discard leaves no file", test_discard), &
       new_unittest("contract violations are errors", test_contract_errors), &
-      new_unittest("step group names", test_step_names) &
+      new_unittest("step group names", test_step_names), &
+      new_unittest("summary analysis is the bare word", test_summary_analysis_word) &
     ]
   end subroutine collect_results_file
 
@@ -580,5 +582,38 @@ contains
     if (.not. allocated(error)) call check(error, step_group_name(120) == '0120', 'step 120')
     if (.not. allocated(error)) call check(error, step_group_name(12345) == '12345', 'step 12345')
   end subroutine test_step_names
+
+  !> /summary analysis of a linear and a nonlinear run: exactly 'linear' and 'nonlinear', as
+  !! every other string attribute (it used to be 'linear   ', padded to the longer word).
+  subroutine test_summary_analysis_word(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: decks(2) = [character(len=40) :: 'test/data/cube.dat', &
+                                                                    'test/data/block_contact.dat']
+    character(len=*), parameter :: words(2) = [character(len=9) :: 'linear', 'nonlinear']
+    character(len=:), allocatable :: path, value
+    type(run_options_t) :: options
+    type(run_summary_t) :: summary
+    integer(hid_t) :: file_id
+    integer :: hdferr, k
+
+    path = scratch_path('analysis.h5')
+    do k = 1, 2
+      options%deck = trim(decks(k))
+      options%output = path
+      options%quiet = .true.
+      call run_feps(options, summary, error)
+      if (allocated(error)) return
+      call open_read(path, file_id, error)
+      if (allocated(error)) return
+      value = string_attribute(file_id, '/summary', 'analysis')
+      call h5fclose_f(file_id, hdferr)
+      call delete_file(path)
+      call delete_file(scratch_path('analysis.xmf'))
+      ! compare the lengths too: Fortran's == ignores trailing blanks
+      call check(error, value == trim(words(k)) .and. len(value) == len_trim(words(k)), &
+                 trim(decks(k)) // ": /summary analysis is '" // value // "', expected '" // trim(words(k)) // "'")
+      if (allocated(error)) return
+    end do
+  end subroutine test_summary_analysis_word
 
 end module test_results_file

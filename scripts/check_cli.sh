@@ -32,6 +32,13 @@ expect_status "--method full-newton-raphson" 0 "$feps" test/data/joint_c0.dat --
   --output "$tmp/jc0.h5"
 grep -q "method full-newton-raphson" "$tmp/out" && grep -q "0 cut-backs, 0 steps not converged\|0 cut-backs)" "$tmp/out" \
   && ok "full Newton: no cut-back, every step converged" || bad "full Newton: no cut-back, every step converged: $(grep analysis "$tmp/out")"
+# The XDMF file goes beside the results as <name>.xmf: a results name ending in .xmf would lose it.
+for opt in --output -o; do
+  expect_status "$opt FILE.xmf" 2 "$feps" test/data/cube.dat $opt "$tmp/cube.xmf"
+  [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: $opt .*cube.xmf.* must not end in .xmf" "$tmp/err" \
+    && [ ! -e "$tmp/cube.xmf" ] && [ ! -e "$tmp/cube.xmf.part" ] \
+    && ok "$opt FILE.xmf: one line naming the option, no file" || bad "$opt FILE.xmf: $(head -c 300 "$tmp/err")"
+done
 expect_status "bad --maxit" 2 "$feps" test/data/cube.dat --maxit many
 grep -q "\-\-maxit takes a whole number" "$tmp/err" && ok "bad --maxit says what it takes" || bad "bad --maxit says what it takes"
 # --maxit overrides the deck's MAXIT=200 both ways: 3 iterations cannot follow the unzipping

@@ -574,6 +574,14 @@ contains
     call file%discard()
     if (.not. allocated(error)) call check(error, .not. file_exists(path // '.part') .and. &
                                            .not. file_exists(path), 'nothing left after discard')
+    if (allocated(error)) return
+    ! a results file named like its XDMF file would be replaced by it
+    call file%create(scratch_path('contract.XMF'), failure)
+    call check(error, allocated(failure), 'a results file name ending in .xmf fails')
+    if (allocated(failure)) deallocate (failure)
+    call file%discard()
+    if (.not. allocated(error)) call check(error, .not. file_exists(scratch_path('contract.XMF.part')), &
+                                           'no .part for a .xmf name')
   end subroutine test_contract_errors
 
   subroutine test_step_names(error)

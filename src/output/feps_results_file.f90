@@ -13,7 +13,7 @@ module feps_results_file
   use feps_kinds, only: dp, i8
   use feps_error, only: error_t, fatal_error, err_io, err_internal, str
   use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_type, &
-                       xdmf_topology_path, count_words
+                       xdmf_topology_path, count_words, is_xdmf_name
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
@@ -92,6 +92,11 @@ contains
     end if
     if (len_trim(path) == 0) then
       call fatal_error(error, err_io, 'results file name is empty')
+      return
+    end if
+    if (is_xdmf_name(path)) then
+      call fatal_error(error, err_io, 'results file name ' // trim(path) // ' ends in .xmf: the XDMF file ' // &
+                       'written beside it would replace it')
       return
     end if
     self%path = trim(path)

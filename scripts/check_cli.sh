@@ -149,6 +149,24 @@ assert a["mesh/groups/pipe"].attrs["material"] in (b"concrete", "concrete")
 c = a["materials/concrete"].attrs
 assert c["kind"] in (b"elastic", "elastic") and c["e"] == 40000.0 and c["nu"] == 0.2, dict(c)
 PY
+# Step names have at least 4 digits ('0001' ... '9999', '10000'): readers order them by number. The
+# bar of stage_supports_incremental.dat pulled in 10001 steps, written every 5000: u_top = 2 mm at
+# the end, 2 * 5000 / 10001 at step 5000.
+sed -n '1,/^FORCE, top/p' test/data/stage_supports_incremental.dat \
+  | sed 's/^STAGE, pull, STEPS=1$/STAGE, pull, STEPS=10001, OUTPUT=5000/' >"$tmp/many_steps.dat"
+"$feps" "$tmp/many_steps.dat" --quiet --output "$tmp/many.h5" >/dev/null 2>&1
+python3 - "$tmp/many.h5" <<'PY' && ok "10001 steps: feps_results orders steps by number" || bad "10001 steps: feps_results orders steps by number"
+import sys
+sys.path.insert(0, "scripts")
+import feps_results as fr
+with fr.open_result(sys.argv[1]) as f:
+    assert fr.steps(f) == ["5000", "10000", "10001"], fr.steps(f)
+    assert fr.last_step(f) == "10001" and fr.pick_step(f) == "10001" and fr.pick_step(f, 10000) == "10000"
+    top = fr.coordinates(f)[:, 2] == 200.0
+    for step, u in ((None, 2.0), (5000, 2.0 * 5000 / 10001)):
+        uz = f[f"steps/{fr.pick_step(f, step)}/displacement"][:, 2][top]
+        assert abs(uz - u).max() < 1e-9 * u, (step, uz, u)
+PY
 # A word-valued material parameter (TENSION) is stored as a string.
 "$feps" test/data/beam_tension_cap.dat --quiet --output "$tmp/beam.h5" >/dev/null 2>&1
 python3 - "$tmp/beam.h5" <<'PY' && ok "/materials holds TENSION as a string" || bad "/materials holds TENSION as a string"
@@ -164,7 +182,7 @@ import sys, h5py
 f = h5py.File(sys.argv[1])
 assert f["mesh/groups/tendons"].attrs["prestress"] == 10.0
 assert "prestress" not in f["mesh/groups/block"].attrs
-n = f["steps"][sorted(f["steps"])[-1]]["bar/tendons"][:, 0]
+n = f["steps"][sorted(f["steps"], key=int)[-1]]["bar/tendons"][:, 0]
 assert abs(n - 10.0 * 10000 / 10080).max() < 1e-9, n   # N0 k_b / (k_b + 4 k_t)
 PY
 "$feps" test/data/prestress_block.dat --check >"$tmp/out" 2>&1 && grep -q "born: tendons; prestress tendons 1.000E+01 N" "$tmp/out" \
@@ -246,7 +264,7 @@ python3 - "$tmp/p_SE2.h5" "$tmp/p_SE50.h5" "$tmp/p_SE1.h5" <<'PY' && ok "SE_Es50
 import sys, h5py
 def peak(p):
     with h5py.File(p) as f:
-        return f["steps"][sorted(f["steps"])[-1]]["principal/pipe"][:, 0].max()
+        return f["steps"][sorted(f["steps"], key=int)[-1]]["principal/pipe"][:, 0].max()
 soft, mid, typical = (peak(p) for p in sys.argv[1:4])
 print(f"    peak s1: E_s = 14.4 {soft:.3f}, 50 {mid:.3f}, 144 {typical:.3f} MPa")
 assert soft > mid > typical

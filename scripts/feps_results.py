@@ -49,8 +49,9 @@ def text(value):
 
 
 def steps(f):
-    """Names of the stored steps ('0001', ...), in order."""
-    return sorted(f["steps"].keys()) if "steps" in f else []
+    """Names of the stored steps ('0001', ..., '9999', '10000', ...), in step order. The names have
+    at least 4 digits, so order them by number: as strings '10000' comes before '5000'."""
+    return sorted(f["steps"].keys(), key=int) if "steps" in f else []
 
 
 def last_step(f):

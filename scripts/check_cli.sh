@@ -167,6 +167,157 @@ with fr.open_result(sys.argv[1]) as f:
         uz = f[f"steps/{fr.pick_step(f, step)}/displacement"][:, 2][top]
         assert abs(uz - u).max() < 1e-9 * u, (step, uz, u)
 PY
+# feps_results.gauss_points() for the element types beyond hex8/hex20 and the quad/tri interfaces:
+# the rows of each Gauss-point dataset against fields computed independently at the reader's
+# points, which fails if a point is misplaced or out of feps's order (the fields vary within the
+# elements). hex8b: the Lame cylinder, stresses from the nodal displacements with the B-bar
+# strain; tri6 and tri6-6: the 2D contact under a linearly varying pressure, plane-strain stresses
+# from the nodal displacements; interface-line2/line3 (Gauss and -nodal): the relative
+# displacement (upper minus lower) interpolated at the points has the length of the stored one;
+# bars: straight bars of equally spaced nodes, where the points are x1 + (1 + g) (xn - x1) / 2 for
+# the n - 1 Gauss-Legendre points g in ascending order.
+sed 's/TYPE=hex8,/TYPE=hex8b,/' test/data/lame_hex8.dat >"$tmp/gp_hex8b.dat"
+sed 's/^PRESSURE, top, VALUE=1\.$/PRESSURE, top, VALUE=1., VARY=X, ZERO=-10., PEAK=10./' test/data/contact_2d.dat \
+  >"$tmp/gp_line3.dat"
+sed 's/TYPE=interface-line3,/TYPE=interface-line3-nodal,/' "$tmp/gp_line3.dat" >"$tmp/gp_line3n.dat"
+sed -e 's/TYPE=tri6,/TYPE=tri6-6,/; s/TYPE=interface-line3,/TYPE=interface-line2,/' \
+  -e '/^GROUP, joint/,/^E,/{s/^A, 6, 21, 23, 22, 26, 28, 27,/A, 4, 21, 22, 26, 27,/; s/^%, 2, \*, 6, 2,/%, 4, *, 4, 1,/}' \
+  "$tmp/gp_line3.dat" >"$tmp/gp_line2.dat"
+sed 's/TYPE=interface-line2,/TYPE=interface-line2-nodal,/' "$tmp/gp_line2.dat" >"$tmp/gp_line2n.dat"
+cat >"$tmp/gp_bars.dat" <<'DECK'
+TITLE, straight bars of 2 to 5 nodes in a row along x, nodes 10 mm apart
+A, 2, 0., 0., 0.,
+%, 11, 10., 0., 0.,
+E,
+GROUP, b2, TYPE=bar2, MATERIAL=steel
+A, 2, 1, 2,
+E,
+GROUP, b3, TYPE=bar3, MATERIAL=steel
+A, 3, 2, 3, 4,
+E,
+GROUP, b4, TYPE=bar4, MATERIAL=steel
+A, 4, 4, 5, 6, 7,
+E,
+GROUP, b5, TYPE=bar5, MATERIAL=steel
+A, 5, 7, 8, 9, 10, 11,
+E,
+E,
+MATERIAL, steel, BAR, E=200000., A=10.
+NSET, all, X=0.:100.
+NSET, start, X=0.
+NSET, tip, X=100.
+FIX, all, Y, Z
+FIX, start, X
+FORCE, tip, X=100.
+DECK
+for d in gp_hex8b gp_line3 gp_line3n gp_line2 gp_line2n gp_bars; do
+  "$feps" "$tmp/$d.dat" --quiet --output "$tmp/$d.h5" >"$tmp/out" 2>&1 || echo "    $d.dat: $(cat "$tmp/out")" >&2
+done
+python3 - "$tmp" <<'PY' && ok "gauss_points: hex8b, tri6, tri6-6, interface-line2/3 (-nodal), bar2-bar5 in feps's order" \
+  || bad "gauss_points: hex8b, tri6, tri6-6, interface-line2/3 (-nodal), bar2-bar5 in feps's order"
+import math, sys
+import numpy as np
+sys.path.insert(0, "scripts")
+import feps_results as fr
+tmp = sys.argv[1]
+seen = set()
+
+
+def rows(f, kind, group):
+    """A Gauss-point dataset of the last step; its points lie in their elements (lower layer)."""
+    ds = f[f"steps/{fr.last_step(f)}/{kind}/{group}"]
+    xg = fr.gauss_points(f, group, ds)                  # raises for a type it does not know
+    ppe = int(ds.attrs["points_per_element"])
+    x = fr.coordinates(f)[fr.connectivity(f, group)]
+    half = x.shape[1] // 2 if kind.startswith("interface") else x.shape[1]
+    lo, hi = x[:, :half].min(axis=1), x[:, :half].max(axis=1)
+    xe = xg.reshape(-1, ppe, 3)
+    assert np.all(xe >= lo[:, None] - 1e-9) and np.all(xe <= hi[:, None] + 1e-9), f"{group}: a point outside"
+    seen.add(fr.element_type(f, group))
+    return ds[...], ppe
+
+
+def stresses(f, group, eps):
+    """Isotropic elastic stresses [sxx syy szz syz sxz sxy] of strains (npts, 3, 3)."""
+    material = fr.text(f[f"mesh/groups/{group}"].attrs["material"])
+    m = f[f"materials/{material}"].attrs
+    lam, mu = m["e"] * m["nu"] / ((1 + m["nu"]) * (1 - 2 * m["nu"])), m["e"] / (2 * (1 + m["nu"]))
+    s = 2 * mu * eps + lam * np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3)
+    return s[:, [0, 1, 2, 1, 0, 0], [0, 1, 2, 2, 2, 1]]
+
+
+def check_solid(f, group, dn, dims):
+    """Stored stresses against those of the nodal displacements at the reader's points; dn(xi)
+    gives the (nodes, dims) shape-function derivatives; hex8b takes the mean dilatation."""
+    stored, ppe = rows(f, "stress", group)
+    etype = fr.element_type(f, group)
+    xi, _ = fr.integration_points(etype, ppe)
+    conn = fr.connectivity(f, group)
+    x = fr.coordinates(f)[conn][:, :, :dims]
+    u = f[f"steps/{fr.last_step(f)}/displacement"][...][conn][:, :, :dims]
+    eps = np.zeros((len(conn), ppe, 3, 3))
+    vol = np.zeros((len(conn), ppe))
+    for g in range(ppe):
+        d = dn(xi[g])                                    # (nodes, dims)
+        jac = np.einsum("ena,nb->eab", x, d)             # dx_a / dxi_b
+        grad = np.einsum("ena,nb,ebc->eac", u, d, np.linalg.inv(jac))
+        eps[:, g, :dims, :dims] = 0.5 * (grad + grad.transpose(0, 2, 1))
+        vol[:, g] = np.linalg.det(jac)
+    if etype == "hex8b":                                 # B-bar: the element's mean dilatation
+        tr = np.trace(eps, axis1=2, axis2=3)
+        mean = (tr * vol).sum(axis=1) / vol.sum(axis=1)
+        eps += ((mean[:, None] - tr) / 3.0)[:, :, None, None] * np.eye(3)
+    expected = stresses(f, group, eps.reshape(-1, 3, 3))
+    scale = np.abs(stored).max()
+    err = np.abs(stored - expected).max()
+    spread = np.abs(np.diff(stored.reshape(-1, ppe, 6), axis=1)).max()
+    assert err < 1e-8 * scale and spread > 1e-3 * scale, (group, etype, err, spread, scale)
+
+
+def hex8_dn(xi):
+    c = fr._HEX8_XI
+    f = 1.0 + c * xi
+    return np.column_stack([c[:, k] * np.prod(np.delete(f, k, axis=1), axis=1) for k in range(3)]) / 8.0
+
+
+def tri6_dn(s):
+    l1, l2, l3 = 1.0 - s[0] - s[1], s[0], s[1]
+    return np.array([[1 - 4 * l1, 1 - 4 * l1], [4 * l2 - 1, 0], [0, 4 * l3 - 1],
+                     [4 * (l1 - l2), -4 * l2], [4 * l3, 4 * l2], [-4 * l3, 4 * (l1 - l3)]])
+
+
+with fr.open_result(f"{tmp}/gp_hex8b.h5") as f:
+    check_solid(f, "wall", hex8_dn, 3)
+for name in ("gp_line3", "gp_line3n", "gp_line2", "gp_line2n"):
+    with fr.open_result(f"{tmp}/{name}.h5") as f:
+        for group in ("lower", "upper"):
+            check_solid(f, group, tri6_dn, 2)
+        stored, ppe = rows(f, "interface_strain", "joint")
+        etype = fr.element_type(f, "joint")
+        shapes, nodes = fr.integration_shapes(etype, ppe)
+        conn = fr.connectivity(f, "joint")
+        u = f[f"steps/{fr.last_step(f)}/displacement"][...]
+        du = np.einsum("gn,enk->egk", shapes, u[conn[:, nodes:]] - u[conn[:, :nodes]]).reshape(-1, 3)
+        err = np.abs(np.linalg.norm(stored, axis=1) - np.linalg.norm(du, axis=1)).max()
+        scale = np.linalg.norm(du, axis=1).max()
+        spread = np.ptp(np.linalg.norm(stored, axis=1).reshape(-1, ppe), axis=1).max()
+        assert err < 1e-9 * scale and spread > 1e-3 * scale, (name, etype, err, spread, scale)
+root = {3: math.sqrt(3 / 7 - 2 / 7 * math.sqrt(1.2)), 4: math.sqrt(3 / 7 + 2 / 7 * math.sqrt(1.2))}
+legendre = {1: [0.0], 2: [-1 / math.sqrt(3), 1 / math.sqrt(3)], 3: [-math.sqrt(0.6), 0.0, math.sqrt(0.6)],
+            4: [-root[4], -root[3], root[3], root[4]]}
+with fr.open_result(f"{tmp}/gp_bars.h5") as f:
+    for group in ("b2", "b3", "b4", "b5"):
+        stored, ppe = rows(f, "bar", group)
+        n = int(group[1])
+        x = fr.coordinates(f)[fr.connectivity(f, group)]
+        g = np.array(legendre[n - 1])
+        expected = x[:, :1] + (1.0 + g)[None, :, None] / 2 * (x[:, -1:] - x[:, :1])
+        assert ppe == n - 1 and np.abs(fr.gauss_points(f, group) - expected.reshape(-1, 3)).max() < 1e-12, group
+        assert np.abs(stored - 100.0).max() < 1e-9, (group, stored)   # the tip force in every bar
+want = {"hex8b", "tri6", "tri6-6", "interface-line2", "interface-line2-nodal", "interface-line3",
+        "interface-line3-nodal", "bar2", "bar3", "bar4", "bar5"}
+assert seen >= want, want - seen
+PY
 # A word-valued material parameter (TENSION) is stored as a string.
 "$feps" test/data/beam_tension_cap.dat --quiet --output "$tmp/beam.h5" >/dev/null 2>&1
 python3 - "$tmp/beam.h5" <<'PY' && ok "/materials holds TENSION as a string" || bad "/materials holds TENSION as a string"

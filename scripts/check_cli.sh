@@ -53,12 +53,20 @@ expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.data
 grep -q "nodes *3375" "$tmp/out" && grep -q "elements *2496" "$tmp/out" && ok "Table 2.1 counts reported" \
   || bad "Table 2.1 counts reported"
 grep -q "min Jacobian" "$tmp/out" && ok "smallest Jacobian reported" || bad "smallest Jacobian reported"
-python3 - "$tmp/t21.h5" <<'PY' && ok "mesh-only HDF5 has /mesh" || bad "mesh-only HDF5 has /mesh"
-import sys, h5py
+python3 - "$tmp/t21.h5" <<'PY' && ok "mesh-only HDF5: /mesh, /xdmf, /summary (program, input_file) and the .xmf, as documented" \
+  || bad "mesh-only HDF5: /mesh, /xdmf, /summary (program, input_file) and the .xmf, as documented"
+import os, sys, h5py
 f = h5py.File(sys.argv[1])
 assert f["mesh/coordinates"].shape == (3375, 3)
 assert f["mesh/groups/block1/connectivity"].shape == (2496, 8)
 assert list(f["mesh/groups/block1/connectivity"][0]) == [1, 2, 7, 6, 126, 127, 132, 131]
+# docs/output-format.md: exactly these groups and summary attributes, and the XDMF file beside it
+assert sorted(f) == ["mesh", "summary", "xdmf"], sorted(f)
+assert sorted(f["summary"].attrs) == ["input_file", "program"], sorted(f["summary"].attrs)
+g = f["mesh/groups/block1"].attrs
+assert g["element_type"] in (b"hex8", "hex8") and g["material"] in (b"", "", b"\0"), dict(g)
+assert (f["xdmf/block1/topology"][...] == f["mesh/groups/block1/connectivity"][...] - 1).all()
+assert os.path.exists(os.path.splitext(sys.argv[1])[0] + ".xmf")
 PY
 
 # Every bad deck: exit status 2, a one-line error naming the file, no result file.

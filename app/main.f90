@@ -6,6 +6,7 @@ program feps_main
   use feps_error, only: error_t, err_input, err_model, str
   use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version
   use feps_strings, only: sci
+  use feps_xdmf, only: is_xdmf_name
   implicit none
 
   interface
@@ -101,6 +102,12 @@ contains
           end if
         else
           options%output = argument(i)
+          if (is_xdmf_name(options%output)) then
+            write (error_unit, '(a)') 'feps: error: ' // arg // ' "' // options%output // &
+              '": the results file must not end in .xmf (the XDMF file beside it takes that name)'
+            status = 2
+            return
+          end if
         end if
       case default
         if (len(arg) > 0 .and. arg(1:1) == '-') then
@@ -152,7 +159,8 @@ contains
       '', &
       '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
       '  -o, --output FILE    HDF5 results file (overrides the deck''s OUTPUT record);', &
-      '                       an XDMF file for ParaView is written beside it', &
+      '                       an XDMF file for ParaView is written beside it (FILE with .xmf', &
+      '                       for its extension, so FILE must not end in .xmf)', &
       '      --solver NAME    linear solver: cholmod (supernodal, METIS) or skyline (LDL^T, RCM)', &
       '      --method NAME    solve every stage by one method: euler, modified-euler, newton-raphson,', &
       '                       modified-newton-raphson, initial-stiffness, full-newton-raphson', &

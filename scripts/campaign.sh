@@ -152,7 +152,7 @@ for stem in stems:
                     row[key[len("parameter_"):]] = v.decode() if isinstance(v, bytes) else f"{float(v):.6g}"
                     if key not in parameters:
                         parameters.append(key)
-            steps = sorted(f["steps"]) if "steps" in f else []
+            steps = sorted(f["steps"], key=int) if "steps" in f else []   # by number: "10000" < "5000" as text
             if steps:
                 row["load_factor"] = f"{float(f['steps/' + steps[-1]].attrs['load_factor']):.6g}"
                 path = f"steps/{steps[-1]}/principal/{peak_group}"

@@ -32,6 +32,13 @@ expect_status "--method full-newton-raphson" 0 "$feps" test/data/joint_c0.dat --
   --output "$tmp/jc0.h5"
 grep -q "method full-newton-raphson" "$tmp/out" && grep -q "0 cut-backs, 0 steps not converged\|0 cut-backs)" "$tmp/out" \
   && ok "full Newton: no cut-back, every step converged" || bad "full Newton: no cut-back, every step converged: $(grep analysis "$tmp/out")"
+# The XDMF file goes beside the results as <name>.xmf: a results name ending in .xmf would lose it.
+for opt in --output -o; do
+  expect_status "$opt FILE.xmf" 2 "$feps" test/data/cube.dat $opt "$tmp/cube.xmf"
+  [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: $opt .*cube.xmf.* must not end in .xmf" "$tmp/err" \
+    && [ ! -e "$tmp/cube.xmf" ] && [ ! -e "$tmp/cube.xmf.part" ] \
+    && ok "$opt FILE.xmf: one line naming the option, no file" || bad "$opt FILE.xmf: $(head -c 300 "$tmp/err")"
+done
 expect_status "bad --maxit" 2 "$feps" test/data/cube.dat --maxit many
 grep -q "\-\-maxit takes a whole number" "$tmp/err" && ok "bad --maxit says what it takes" || bad "bad --maxit says what it takes"
 # --maxit overrides the deck's MAXIT=200 both ways: 3 iterations cannot follow the unzipping
@@ -46,12 +53,20 @@ expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.data
 grep -q "nodes *3375" "$tmp/out" && grep -q "elements *2496" "$tmp/out" && ok "Table 2.1 counts reported" \
   || bad "Table 2.1 counts reported"
 grep -q "min Jacobian" "$tmp/out" && ok "smallest Jacobian reported" || bad "smallest Jacobian reported"
-python3 - "$tmp/t21.h5" <<'PY' && ok "mesh-only HDF5 has /mesh" || bad "mesh-only HDF5 has /mesh"
-import sys, h5py
+python3 - "$tmp/t21.h5" <<'PY' && ok "mesh-only HDF5: /mesh, /xdmf, /summary (program, input_file) and the .xmf, as documented" \
+  || bad "mesh-only HDF5: /mesh, /xdmf, /summary (program, input_file) and the .xmf, as documented"
+import os, sys, h5py
 f = h5py.File(sys.argv[1])
 assert f["mesh/coordinates"].shape == (3375, 3)
 assert f["mesh/groups/block1/connectivity"].shape == (2496, 8)
 assert list(f["mesh/groups/block1/connectivity"][0]) == [1, 2, 7, 6, 126, 127, 132, 131]
+# docs/output-format.md: exactly these groups and summary attributes, and the XDMF file beside it
+assert sorted(f) == ["mesh", "summary", "xdmf"], sorted(f)
+assert sorted(f["summary"].attrs) == ["input_file", "program"], sorted(f["summary"].attrs)
+g = f["mesh/groups/block1"].attrs
+assert g["element_type"] in (b"hex8", "hex8") and g["material"] in (b"", "", b"\0"), dict(g)
+assert (f["xdmf/block1/topology"][...] == f["mesh/groups/block1/connectivity"][...] - 1).all()
+assert os.path.exists(os.path.splitext(sys.argv[1])[0] + ".xmf")
 PY
 
 # Every bad deck: exit status 2, a one-line error naming the file, no result file.
@@ -142,6 +157,175 @@ assert a["mesh/groups/pipe"].attrs["material"] in (b"concrete", "concrete")
 c = a["materials/concrete"].attrs
 assert c["kind"] in (b"elastic", "elastic") and c["e"] == 40000.0 and c["nu"] == 0.2, dict(c)
 PY
+# Step names have at least 4 digits ('0001' ... '9999', '10000'): readers order them by number. The
+# bar of stage_supports_incremental.dat pulled in 10001 steps, written every 5000: u_top = 2 mm at
+# the end, 2 * 5000 / 10001 at step 5000.
+sed -n '1,/^FORCE, top/p' test/data/stage_supports_incremental.dat \
+  | sed 's/^STAGE, pull, STEPS=1$/STAGE, pull, STEPS=10001, OUTPUT=5000/' >"$tmp/many_steps.dat"
+"$feps" "$tmp/many_steps.dat" --quiet --output "$tmp/many.h5" >/dev/null 2>&1
+python3 - "$tmp/many.h5" <<'PY' && ok "10001 steps: feps_results orders steps by number" || bad "10001 steps: feps_results orders steps by number"
+import sys
+sys.path.insert(0, "scripts")
+import feps_results as fr
+with fr.open_result(sys.argv[1]) as f:
+    assert fr.steps(f) == ["5000", "10000", "10001"], fr.steps(f)
+    assert fr.last_step(f) == "10001" and fr.pick_step(f) == "10001" and fr.pick_step(f, 10000) == "10000"
+    top = fr.coordinates(f)[:, 2] == 200.0
+    for step, u in ((None, 2.0), (5000, 2.0 * 5000 / 10001)):
+        uz = f[f"steps/{fr.pick_step(f, step)}/displacement"][:, 2][top]
+        assert abs(uz - u).max() < 1e-9 * u, (step, uz, u)
+PY
+# feps_results.gauss_points() for the element types beyond hex8/hex20 and the quad/tri interfaces:
+# the rows of each Gauss-point dataset against fields computed independently at the reader's
+# points, which fails if a point is misplaced or out of feps's order (the fields vary within the
+# elements). hex8b: the Lame cylinder, stresses from the nodal displacements with the B-bar
+# strain; tri6 and tri6-6: the 2D contact under a linearly varying pressure, plane-strain stresses
+# from the nodal displacements; interface-line2/line3 (Gauss and -nodal): the relative
+# displacement (upper minus lower) interpolated at the points has the length of the stored one;
+# bars: straight bars of equally spaced nodes, where the points are x1 + (1 + g) (xn - x1) / 2 for
+# the n - 1 Gauss-Legendre points g in ascending order.
+sed 's/TYPE=hex8,/TYPE=hex8b,/' test/data/lame_hex8.dat >"$tmp/gp_hex8b.dat"
+sed 's/^PRESSURE, top, VALUE=1\.$/PRESSURE, top, VALUE=1., VARY=X, ZERO=-10., PEAK=10./' test/data/contact_2d.dat \
+  >"$tmp/gp_line3.dat"
+sed 's/TYPE=interface-line3,/TYPE=interface-line3-nodal,/' "$tmp/gp_line3.dat" >"$tmp/gp_line3n.dat"
+sed -e 's/TYPE=tri6,/TYPE=tri6-6,/; s/TYPE=interface-line3,/TYPE=interface-line2,/' \
+  -e '/^GROUP, joint/,/^E,/{s/^A, 6, 21, 23, 22, 26, 28, 27,/A, 4, 21, 22, 26, 27,/; s/^%, 2, \*, 6, 2,/%, 4, *, 4, 1,/}' \
+  "$tmp/gp_line3.dat" >"$tmp/gp_line2.dat"
+sed 's/TYPE=interface-line2,/TYPE=interface-line2-nodal,/' "$tmp/gp_line2.dat" >"$tmp/gp_line2n.dat"
+cat >"$tmp/gp_bars.dat" <<'DECK'
+TITLE, straight bars of 2 to 5 nodes in a row along x, nodes 10 mm apart
+A, 2, 0., 0., 0.,
+%, 11, 10., 0., 0.,
+E,
+GROUP, b2, TYPE=bar2, MATERIAL=steel
+A, 2, 1, 2,
+E,
+GROUP, b3, TYPE=bar3, MATERIAL=steel
+A, 3, 2, 3, 4,
+E,
+GROUP, b4, TYPE=bar4, MATERIAL=steel
+A, 4, 4, 5, 6, 7,
+E,
+GROUP, b5, TYPE=bar5, MATERIAL=steel
+A, 5, 7, 8, 9, 10, 11,
+E,
+E,
+MATERIAL, steel, BAR, E=200000., A=10.
+NSET, all, X=0.:100.
+NSET, start, X=0.
+NSET, tip, X=100.
+FIX, all, Y, Z
+FIX, start, X
+FORCE, tip, X=100.
+DECK
+for d in gp_hex8b gp_line3 gp_line3n gp_line2 gp_line2n gp_bars; do
+  "$feps" "$tmp/$d.dat" --quiet --output "$tmp/$d.h5" >"$tmp/out" 2>&1 || echo "    $d.dat: $(cat "$tmp/out")" >&2
+done
+python3 - "$tmp" <<'PY' && ok "gauss_points: hex8b, tri6, tri6-6, interface-line2/3 (-nodal), bar2-bar5 in feps's order" \
+  || bad "gauss_points: hex8b, tri6, tri6-6, interface-line2/3 (-nodal), bar2-bar5 in feps's order"
+import math, sys
+import numpy as np
+sys.path.insert(0, "scripts")
+import feps_results as fr
+tmp = sys.argv[1]
+seen = set()
+
+
+def rows(f, kind, group):
+    """A Gauss-point dataset of the last step; its points lie in their elements (lower layer)."""
+    ds = f[f"steps/{fr.last_step(f)}/{kind}/{group}"]
+    xg = fr.gauss_points(f, group, ds)                  # raises for a type it does not know
+    ppe = int(ds.attrs["points_per_element"])
+    x = fr.coordinates(f)[fr.connectivity(f, group)]
+    half = x.shape[1] // 2 if kind.startswith("interface") else x.shape[1]
+    lo, hi = x[:, :half].min(axis=1), x[:, :half].max(axis=1)
+    xe = xg.reshape(-1, ppe, 3)
+    assert np.all(xe >= lo[:, None] - 1e-9) and np.all(xe <= hi[:, None] + 1e-9), f"{group}: a point outside"
+    seen.add(fr.element_type(f, group))
+    return ds[...], ppe
+
+
+def stresses(f, group, eps):
+    """Isotropic elastic stresses [sxx syy szz syz sxz sxy] of strains (npts, 3, 3)."""
+    material = fr.text(f[f"mesh/groups/{group}"].attrs["material"])
+    m = f[f"materials/{material}"].attrs
+    lam, mu = m["e"] * m["nu"] / ((1 + m["nu"]) * (1 - 2 * m["nu"])), m["e"] / (2 * (1 + m["nu"]))
+    s = 2 * mu * eps + lam * np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3)
+    return s[:, [0, 1, 2, 1, 0, 0], [0, 1, 2, 2, 2, 1]]
+
+
+def check_solid(f, group, dn, dims):
+    """Stored stresses against those of the nodal displacements at the reader's points; dn(xi)
+    gives the (nodes, dims) shape-function derivatives; hex8b takes the mean dilatation."""
+    stored, ppe = rows(f, "stress", group)
+    etype = fr.element_type(f, group)
+    xi, _ = fr.integration_points(etype, ppe)
+    conn = fr.connectivity(f, group)
+    x = fr.coordinates(f)[conn][:, :, :dims]
+    u = f[f"steps/{fr.last_step(f)}/displacement"][...][conn][:, :, :dims]
+    eps = np.zeros((len(conn), ppe, 3, 3))
+    vol = np.zeros((len(conn), ppe))
+    for g in range(ppe):
+        d = dn(xi[g])                                    # (nodes, dims)
+        jac = np.einsum("ena,nb->eab", x, d)             # dx_a / dxi_b
+        grad = np.einsum("ena,nb,ebc->eac", u, d, np.linalg.inv(jac))
+        eps[:, g, :dims, :dims] = 0.5 * (grad + grad.transpose(0, 2, 1))
+        vol[:, g] = np.linalg.det(jac)
+    if etype == "hex8b":                                 # B-bar: the element's mean dilatation
+        tr = np.trace(eps, axis1=2, axis2=3)
+        mean = (tr * vol).sum(axis=1) / vol.sum(axis=1)
+        eps += ((mean[:, None] - tr) / 3.0)[:, :, None, None] * np.eye(3)
+    expected = stresses(f, group, eps.reshape(-1, 3, 3))
+    scale = np.abs(stored).max()
+    err = np.abs(stored - expected).max()
+    spread = np.abs(np.diff(stored.reshape(-1, ppe, 6), axis=1)).max()
+    assert err < 1e-8 * scale and spread > 1e-3 * scale, (group, etype, err, spread, scale)
+
+
+def hex8_dn(xi):
+    c = fr._HEX8_XI
+    f = 1.0 + c * xi
+    return np.column_stack([c[:, k] * np.prod(np.delete(f, k, axis=1), axis=1) for k in range(3)]) / 8.0
+
+
+def tri6_dn(s):
+    l1, l2, l3 = 1.0 - s[0] - s[1], s[0], s[1]
+    return np.array([[1 - 4 * l1, 1 - 4 * l1], [4 * l2 - 1, 0], [0, 4 * l3 - 1],
+                     [4 * (l1 - l2), -4 * l2], [4 * l3, 4 * l2], [-4 * l3, 4 * (l1 - l3)]])
+
+
+with fr.open_result(f"{tmp}/gp_hex8b.h5") as f:
+    check_solid(f, "wall", hex8_dn, 3)
+for name in ("gp_line3", "gp_line3n", "gp_line2", "gp_line2n"):
+    with fr.open_result(f"{tmp}/{name}.h5") as f:
+        for group in ("lower", "upper"):
+            check_solid(f, group, tri6_dn, 2)
+        stored, ppe = rows(f, "interface_strain", "joint")
+        etype = fr.element_type(f, "joint")
+        shapes, nodes = fr.integration_shapes(etype, ppe)
+        conn = fr.connectivity(f, "joint")
+        u = f[f"steps/{fr.last_step(f)}/displacement"][...]
+        du = np.einsum("gn,enk->egk", shapes, u[conn[:, nodes:]] - u[conn[:, :nodes]]).reshape(-1, 3)
+        err = np.abs(np.linalg.norm(stored, axis=1) - np.linalg.norm(du, axis=1)).max()
+        scale = np.linalg.norm(du, axis=1).max()
+        spread = np.ptp(np.linalg.norm(stored, axis=1).reshape(-1, ppe), axis=1).max()
+        assert err < 1e-9 * scale and spread > 1e-3 * scale, (name, etype, err, spread, scale)
+root = {3: math.sqrt(3 / 7 - 2 / 7 * math.sqrt(1.2)), 4: math.sqrt(3 / 7 + 2 / 7 * math.sqrt(1.2))}
+legendre = {1: [0.0], 2: [-1 / math.sqrt(3), 1 / math.sqrt(3)], 3: [-math.sqrt(0.6), 0.0, math.sqrt(0.6)],
+            4: [-root[4], -root[3], root[3], root[4]]}
+with fr.open_result(f"{tmp}/gp_bars.h5") as f:
+    for group in ("b2", "b3", "b4", "b5"):
+        stored, ppe = rows(f, "bar", group)
+        n = int(group[1])
+        x = fr.coordinates(f)[fr.connectivity(f, group)]
+        g = np.array(legendre[n - 1])
+        expected = x[:, :1] + (1.0 + g)[None, :, None] / 2 * (x[:, -1:] - x[:, :1])
+        assert ppe == n - 1 and np.abs(fr.gauss_points(f, group) - expected.reshape(-1, 3)).max() < 1e-12, group
+        assert np.abs(stored - 100.0).max() < 1e-9, (group, stored)   # the tip force in every bar
+want = {"hex8b", "tri6", "tri6-6", "interface-line2", "interface-line2-nodal", "interface-line3",
+        "interface-line3-nodal", "bar2", "bar3", "bar4", "bar5"}
+assert seen >= want, want - seen
+PY
 # A word-valued material parameter (TENSION) is stored as a string.
 "$feps" test/data/beam_tension_cap.dat --quiet --output "$tmp/beam.h5" >/dev/null 2>&1
 python3 - "$tmp/beam.h5" <<'PY' && ok "/materials holds TENSION as a string" || bad "/materials holds TENSION as a string"
@@ -168,7 +352,7 @@ import sys, h5py
 f = h5py.File(sys.argv[1])
 assert f["mesh/groups/tendons"].attrs["prestress"] == 10.0
 assert "prestress" not in f["mesh/groups/block"].attrs
-n = f["steps"][sorted(f["steps"])[-1]]["bar/tendons"][:, 0]
+n = f["steps"][sorted(f["steps"], key=int)[-1]]["bar/tendons"][:, 0]
 assert abs(n - 10.0 * 10000 / 10080).max() < 1e-9, n   # N0 k_b / (k_b + 4 k_t)
 PY
 "$feps" test/data/prestress_block.dat --check >"$tmp/out" 2>&1 && grep -q "born: tendons; prestress tendons 1.000E+01 N" "$tmp/out" \
@@ -250,7 +434,7 @@ python3 - "$tmp/p_SE2.h5" "$tmp/p_SE50.h5" "$tmp/p_SE1.h5" <<'PY' && ok "SE_Es50
 import sys, h5py
 def peak(p):
     with h5py.File(p) as f:
-        return f["steps"][sorted(f["steps"])[-1]]["principal/pipe"][:, 0].max()
+        return f["steps"][sorted(f["steps"], key=int)[-1]]["principal/pipe"][:, 0].max()
 soft, mid, typical = (peak(p) for p in sys.argv[1:4])
 print(f"    peak s1: E_s = 14.4 {soft:.3f}, 50 {mid:.3f}, 144 {typical:.3f} MPa")
 assert soft > mid > typical

@@ -49,8 +49,9 @@ def text(value):
 
 
 def steps(f):
-    """Names of the stored steps ('0001', ...), in order."""
-    return sorted(f["steps"].keys()) if "steps" in f else []
+    """Names of the stored steps ('0001', ..., '9999', '10000', ...), in step order. The names have
+    at least 4 digits, so order them by number: as strings '10000' comes before '5000'."""
+    return sorted(f["steps"].keys(), key=int) if "steps" in f else []
 
 
 def last_step(f):
@@ -145,40 +146,96 @@ def _tri_shape(s, nodes):
                             4 * l1 * l2, 4 * l2 * l3, 4 * l3 * l1])
 
 
+def _line_shape(s, nodes, ends_first=False):
+    """(npts, nodes) Lagrange shape functions of a line with nodes at equally spaced s in [-1, 1],
+    in order along the line (bars), or with `ends_first` the two ends, then the middle
+    (interface-line3)."""
+    sn = np.linspace(-1.0, 1.0, nodes)
+    if ends_first:
+        sn = np.concatenate([sn[[0, -1]], sn[1:-1]])
+    n = np.ones((s.shape[0], nodes))
+    for i in range(nodes):
+        for j in range(nodes):
+            if j != i:
+                n[:, i] *= (s[:, 0] - sn[j]) / (sn[i] - sn[j])
+    return n
+
+
 def _tensor_points(g, dims):
     """Tensor-product points, the first coordinate fastest."""
     grids = np.meshgrid(*([g] * dims), indexing="ij")
     return np.column_stack([grid.ravel(order="F") for grid in grids])
 
 
-def integration_shapes(etype, points_per_element=None):
-    """(shape matrix (npts, nodes used), number of nodes used) of the rule feps uses for etype.
-    Interface elements use their lower layer (the first nodes)."""
+def _tri_orbit(a):
+    """The points (a, a), (1 - 2a, a), (a, 1 - 2a) of a symmetric triangle rule, in feps's order."""
+    return np.array([[a, a], [1 - 2 * a, a], [a, 1 - 2 * a]])
+
+
+def integration_points(etype, points_per_element=None):
+    """(natural coordinates (npts, dims) of the integration points feps uses for etype, in feps's
+    order; number of nodes the shape functions use). Interface elements use their lower layer (the
+    first nodes); bars their n - 1 Gauss-Legendre points in ascending s."""
     etype = etype.lower()
-    if etype == "hex8":
-        return _hex8_shape(_tensor_points(_G2, 3)), 8
+    if etype in ("hex8", "hex8b"):
+        return _tensor_points(_G2, 3), 8
     if etype in ("hex20", "hex20r"):
         reduced = etype == "hex20r" or points_per_element == 8
-        return _hex20_shape(_tensor_points(_G2 if reduced else _G3, 3)), 20
+        return _tensor_points(_G2 if reduced else _G3, 3), 20
+    if etype in ("tri6", "tri6-6"):
+        if etype == "tri6-6" or points_per_element == 6:
+            return np.vstack([_tri_orbit(_TRI_A), _tri_orbit(_TRI_B)]), 6
+        return _tri_orbit(1.0 / 6.0), 6
+    if etype in ("bar2", "bar3", "bar4", "bar5"):
+        nodes = int(etype[3:])
+        return np.polynomial.legendre.leggauss(nodes - 1)[0][:, None], nodes   # ascending
     if etype.startswith("interface-"):
         nodal = etype.endswith("-nodal")
         shape = etype[len("interface-"):].replace("-nodal", "")
         if shape == "quad4":
-            s = _QUAD_S[:4] if nodal else _tensor_points(_G2, 2)
-            return _quad_shape(s, 4), 4
+            return (_QUAD_S[:4] if nodal else _tensor_points(_G2, 2)), 4
         if shape == "quad8":
-            s = np.vstack([_QUAD_S, [0.0, 0.0]]) if nodal else _tensor_points(_G3, 2)
-            return _quad_shape(s, 8), 8
+            return (np.vstack([_QUAD_S, [0.0, 0.0]]) if nodal else _tensor_points(_G3, 2)), 8
         if shape == "tri3":
-            s = np.array([[0, 0], [1, 0], [0, 1]], float) if nodal else \
-                np.array([[1, 1], [4, 1], [1, 4]], float) / 6.0
-            return _tri_shape(s, 3), 3
+            return (np.array([[0, 0], [1, 0], [0, 1]], float) if nodal else _tri_orbit(1.0 / 6.0)), 3
         if shape == "tri6":
-            a, b = _TRI_A, _TRI_B
-            s = np.array([[0.5, 0], [0.5, 0.5], [0, 0.5]]) if nodal else \
-                np.array([[a, a], [1 - 2 * a, a], [a, 1 - 2 * a], [b, b], [1 - 2 * b, b], [b, 1 - 2 * b]])
-            return _tri_shape(s, 6), 6
+            return (np.array([[0.5, 0], [0.5, 0.5], [0, 0.5]]) if nodal else
+                    np.vstack([_tri_orbit(_TRI_A), _tri_orbit(_TRI_B)])), 6
+        if shape == "line2":
+            return (np.array([[-1.0], [1.0]]) if nodal else _G2[:, None]), 2
+        if shape == "line3":
+            return (np.array([[-1.0], [1.0], [0.0]]) if nodal else _G3[:, None]), 3
     raise ValueError(f"no integration rule known here for element type '{etype}'")
+
+
+def shape_functions(etype, points):
+    """(npts, nodes used) shape functions of etype at natural points (npts, dims); interface
+    elements: those of one layer."""
+    etype = etype.lower()
+    if etype in ("hex8", "hex8b"):
+        return _hex8_shape(points)
+    if etype in ("hex20", "hex20r"):
+        return _hex20_shape(points)
+    if etype in ("tri6", "tri6-6"):
+        return _tri_shape(points, 6)
+    if etype in ("bar2", "bar3", "bar4", "bar5"):
+        return _line_shape(points, int(etype[3:]))
+    if etype.startswith("interface-"):
+        shape = etype[len("interface-"):].replace("-nodal", "")
+        if shape in ("quad4", "quad8"):
+            return _quad_shape(points, int(shape[4:]))
+        if shape in ("tri3", "tri6"):
+            return _tri_shape(points, int(shape[3:]))
+        if shape in ("line2", "line3"):
+            return _line_shape(points, int(shape[4:]), ends_first=True)
+    raise ValueError(f"no shape functions known here for element type '{etype}'")
+
+
+def integration_shapes(etype, points_per_element=None):
+    """(shape matrix (npts, nodes used), number of nodes used) of the rule feps uses for etype.
+    Interface elements use their lower layer (the first nodes)."""
+    points, nodes = integration_points(etype, points_per_element)
+    return shape_functions(etype, points), nodes
 
 
 def gauss_points(f, group, dataset=None):

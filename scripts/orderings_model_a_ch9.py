@@ -51,7 +51,7 @@ NODE_XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
 
 
 def last_step(f):
-    return sorted(f["steps"].keys())[-1]
+    return sorted(f["steps"].keys(), key=int)[-1]   # by number: names have 4 or more digits
 
 
 def hex8_gauss_points(coords, conn):

@@ -249,7 +249,7 @@ def file_deck(path):
 # quantities
 # ----------------------------------------------------------------------------------------------
 def last_step(f):
-    return f["steps"][sorted(f["steps"].keys())[-1]]
+    return f["steps"][sorted(f["steps"].keys(), key=int)[-1]]   # by number: names have 4 or more digits
 
 
 def q_block(f):

@@ -82,7 +82,7 @@ def inplane_s1(stress):
 
 
 def last_step(f):
-    return sorted(f["steps"].keys())[-1]
+    return sorted(f["steps"].keys(), key=int)[-1]   # by number: names have 4 or more digits
 
 
 def summarise(path):

@@ -18,6 +18,7 @@ program tester
   use test_activation, only: collect_activation
   use test_prestress, only: collect_prestress
   use test_analysis_state, only: collect_analysis_state
+  use test_principal, only: collect_principal
   implicit none
   type(testsuite_t), allocatable :: suites(:)
   character(len=256) :: only
@@ -41,7 +42,8 @@ program tester
     new_testsuite('joint_models', collect_joint_models), &
     new_testsuite('activation', collect_activation), &
     new_testsuite('prestress', collect_prestress), &
-    new_testsuite('analysis_state', collect_analysis_state) &
+    new_testsuite('analysis_state', collect_analysis_state), &
+    new_testsuite('principal', collect_principal) &
     ]
   nfail = run_testsuites(suites, trim(only))
   if (nfail > 0) error stop 1

@@ -77,7 +77,8 @@ contains
       new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow), &
       new_unittest('PRESTRESS, BOND=AFTER in the last stage', test_prestress_bond_last_stage), &
       new_unittest('PRESTRESS, BOND=AFTER on a group ACTIVATEd in another stage', test_prestress_bond_activate), &
-      new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word) &
+      new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word), &
+      new_unittest('OUTPUT naming a .xmf file (the XDMF file would replace it)', test_output_xmf) &
       ]
   end subroutine collect_bad_input
 
@@ -281,6 +282,15 @@ contains
     call expect_failure('test/data/bad/node_extra_field.dat', err_input, &
                         [character(len=40) :: 'node_extra_field.dat:24:', 'field 6', '7.'], error)
   end subroutine test_node_extra_field
+
+  !> The XDMF file is written beside the results as <name>.xmf: an OUTPUT record ending in .xmf
+  !! used to lose the XDMF file silently (the HDF5 file replaced it).
+  subroutine test_output_xmf(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/output_xmf.dat', err_input, &
+                        [character(len=60) :: 'output_xmf.dat:25: field 2:', 'cube_results.xmf', &
+                         'must not end in .xmf'], error)
+  end subroutine test_output_xmf
 
   subroutine test_unknown_record(error)
     type(error_t), allocatable, intent(out) :: error

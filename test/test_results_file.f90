@@ -2,9 +2,10 @@
 !! with the HDF5 API and compared exactly with the values written (all are exact binary fractions).
 module test_results_file
   use feps_kinds, only: dp, i8
-  use feps_error, only: err_internal
+  use feps_error, only: err_internal, str
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_results_file, only: results_file_t, step_group_name
+  use feps_program, only: run_options_t, run_summary_t, run_feps
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, &
                   h5dopen_f, h5dread_f, h5dclose_f, h5dget_space_f, h5sget_simple_extent_ndims_f, &
                   h5sget_simple_extent_dims_f, h5sclose_f, h5aopen_by_name_f, h5aread_f, h5aclose_f, &
@@ -30,7 +31,9 @@ contains
       new_unittest("mesh-only xdmf", test_mesh_only_xdmf), &
       new_unittest("discard leaves no file", test_discard), &
       new_unittest("contract violations are errors", test_contract_errors), &
-      new_unittest("step group names", test_step_names) &
+      new_unittest("step group names", test_step_names), &
+      new_unittest("summary analysis is the bare word", test_summary_analysis_word), &
+      new_unittest("xdmf topology of every element type", test_xdmf_every_type) &
     ]
   end subroutine collect_results_file
 
@@ -572,6 +575,14 @@ contains
     call file%discard()
     if (.not. allocated(error)) call check(error, .not. file_exists(path // '.part') .and. &
                                            .not. file_exists(path), 'nothing left after discard')
+    if (allocated(error)) return
+    ! a results file named like its XDMF file would be replaced by it
+    call file%create(scratch_path('contract.XMF'), failure)
+    call check(error, allocated(failure), 'a results file name ending in .xmf fails')
+    if (allocated(failure)) deallocate (failure)
+    call file%discard()
+    if (.not. allocated(error)) call check(error, .not. file_exists(scratch_path('contract.XMF.part')), &
+                                           'no .part for a .xmf name')
   end subroutine test_contract_errors
 
   subroutine test_step_names(error)
@@ -580,5 +591,124 @@ contains
     if (.not. allocated(error)) call check(error, step_group_name(120) == '0120', 'step 120')
     if (.not. allocated(error)) call check(error, step_group_name(12345) == '12345', 'step 12345')
   end subroutine test_step_names
+
+  !> /summary analysis of a linear and a nonlinear run: exactly 'linear' and 'nonlinear', as
+  !! every other string attribute (it used to be 'linear   ', padded to the longer word).
+  subroutine test_summary_analysis_word(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: decks(2) = [character(len=40) :: 'test/data/cube.dat', &
+                                                                    'test/data/block_contact.dat']
+    character(len=*), parameter :: words(2) = [character(len=9) :: 'linear', 'nonlinear']
+    character(len=:), allocatable :: path, value
+    type(run_options_t) :: options
+    type(run_summary_t) :: summary
+    integer(hid_t) :: file_id
+    integer :: hdferr, k
+
+    path = scratch_path('analysis.h5')
+    do k = 1, 2
+      options%deck = trim(decks(k))
+      options%output = path
+      options%quiet = .true.
+      call run_feps(options, summary, error)
+      if (allocated(error)) return
+      call open_read(path, file_id, error)
+      if (allocated(error)) return
+      value = string_attribute(file_id, '/summary', 'analysis')
+      call h5fclose_f(file_id, hdferr)
+      call delete_file(path)
+      call delete_file(scratch_path('analysis.xmf'))
+      ! compare the lengths too: Fortran's == ignores trailing blanks
+      call check(error, value == trim(words(k)) .and. len(value) == len_trim(words(k)), &
+                 trim(decks(k)) // ": /summary analysis is '" // value // "', expected '" // trim(words(k)) // "'")
+      if (allocated(error)) return
+    end do
+  end subroutine test_summary_analysis_word
+
+  !> Every feps element type is in the XDMF file with its cell type, and /xdmf/<group>/topology
+  !! holds the 0-based node numbers of that cell: all nodes for solids and bars (bars as polylines
+  !! through their nodes in order, bar3 included: Edge_3 would need the middle node last), the
+  !! lower layer (the first half of the nodes) for interface elements. Group g has g elements, so
+  !! each Topology line of the file is unique. (Hex8b, hex20r, tri6-6, the quadratic and line
+  !! interfaces, the -nodal variants and bar3-bar5 used to be left out.)
+  subroutine test_xdmf_every_type(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: ntypes = 22
+    character(len=*), parameter :: types(ntypes) = [character(len=21) :: &
+      'hex8', 'hex8b', 'hex20', 'hex20r', 'tri6', 'tri6-6', &
+      'interface-quad4', 'interface-quad4-nodal', 'interface-quad8', 'interface-quad8-nodal', &
+      'interface-tri3', 'interface-tri3-nodal', 'interface-tri6', 'interface-tri6-nodal', &
+      'interface-line2', 'interface-line2-nodal', 'interface-line3', 'interface-line3-nodal', &
+      'bar2', 'bar3', 'bar4', 'bar5']
+    character(len=*), parameter :: cells(ntypes) = [character(len=15) :: &
+      'Hexahedron', 'Hexahedron', 'Hexahedron_20', 'Hexahedron_20', 'Triangle_6', 'Triangle_6', &
+      'Quadrilateral', 'Quadrilateral', 'Quadrilateral_8', 'Quadrilateral_8', &
+      'Triangle', 'Triangle', 'Triangle_6', 'Triangle_6', &
+      'Polyline', 'Polyline', 'Edge_3', 'Edge_3', &
+      'Polyline', 'Polyline', 'Polyline', 'Polyline']
+    ! nodes of the element and of the cell shown
+    integer, parameter :: nodes(ntypes) = [8, 8, 20, 20, 6, 6, 8, 8, 16, 16, 6, 6, 12, 12, 4, 4, 6, 6, &
+                                           2, 3, 4, 5]
+    integer, parameter :: shown(ntypes) = [8, 8, 20, 20, 6, 6, 4, 4, 8, 8, 3, 3, 6, 6, 2, 2, 3, 3, &
+                                           2, 3, 4, 5]
+    character(len=:), allocatable :: path, text, line, name
+    type(results_file_t) :: file
+    integer, allocatable :: c(:, :), t(:, :)
+    integer(hid_t) :: file_id
+    integer :: g, hdferr
+
+    path = scratch_path('every_type.h5')
+    call file%create(path, error)
+    if (.not. allocated(error)) call file%write_mesh(sample_coordinates(), error)
+    do g = 1, ntypes
+      if (allocated(error)) exit
+      call group_connectivity(g, c)
+      call file%write_group('g' // str(g), trim(types(g)), c, error)
+    end do
+    if (.not. allocated(error)) call file%close(error)
+    if (allocated(error)) then
+      call file%discard()
+      return
+    end if
+    text = file_text(scratch_path('every_type.xmf'))
+    call open_read(path, file_id, error)
+    if (allocated(error)) return
+    do g = 1, ntypes
+      name = 'g' // str(g)
+      call group_connectivity(g, c)
+      line = '<Topology TopologyType="' // trim(cells(g)) // '" NumberOfElements="' // str(g) // '"'
+      if (cells(g) == 'Polyline') line = line // ' NodesPerElement="' // str(shown(g)) // '"'
+      call check(error, occurrences(text, '<Grid Name="' // name // '" GridType="Uniform">'), 1, &
+                 trim(types(g)) // ': one grid in the XDMF file')
+      if (.not. allocated(error)) call check(error, occurrences(text, line // '>'), 1, &
+                                             trim(types(g)) // ': ' // line // '>')
+      if (.not. allocated(error)) call check(error, occurrences(text, '<DataItem Dimensions="' // str(g) // ' ' // &
+                                             str(shown(g)) // '" NumberType="Int" Precision="4" Format="HDF">' // &
+                                             'feps_test_every_type.h5:/xdmf/' // name // '/topology</DataItem>'), 1, &
+                                             trim(types(g)) // ': topology DataItem of ' // str(shown(g)) // ' columns')
+      if (.not. allocated(error)) call read_int(file_id, '/xdmf/' // name // '/topology', t, error)
+      if (.not. allocated(error)) call check(error, size(t, 1) == shown(g) .and. size(t, 2) == g, &
+                                             trim(types(g)) // ': /xdmf topology shape')
+      if (.not. allocated(error)) call check(error, all(t == c(:shown(g), :) - 1), &
+                                             trim(types(g)) // ': /xdmf topology = first nodes - 1')
+      if (allocated(error)) exit
+    end do
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(path)
+    call delete_file(scratch_path('every_type.xmf'))
+  contains
+    !> Group g: g elements of nodes(g) nodes, node numbers in 1..nnode.
+    subroutine group_connectivity(g, c)
+      integer, intent(in) :: g
+      integer, allocatable, intent(out) :: c(:, :)
+      integer :: i, e
+      allocate (c(nodes(g), g))
+      do e = 1, g
+        do i = 1, nodes(g)
+          c(i, e) = 1 + mod(3 * i + e + g, nnode)
+        end do
+      end do
+    end subroutine group_connectivity
+  end subroutine test_xdmf_every_type
 
 end module test_results_file

@@ -6,7 +6,8 @@ module feps_deck
   use feps_strings, only: to_upper, to_lower
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, err_input, str
-  use feps_records, only: record_t, read_records, keyword, nfields, field_text
+  use feps_records, only: record_t, read_records, keyword, nfields, field_text, field_line
+  use feps_xdmf, only: is_xdmf_name
   use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check, max_mesh_nodes
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
@@ -164,6 +165,9 @@ contains
     case ('OUTPUT')
       call require_fields(records(pos), 2, error)
       if (.not. allocated(error)) model%output_file = field_text(records(pos), 2)   ! relative to the working directory
+      if (.not. allocated(error) .and. is_xdmf_name(model%output_file)) &
+        call input_error(error, records(pos)%file, field_line(records(pos), 2), 'results file "' // &
+                         model%output_file // '" must not end in .xmf (the XDMF file beside it takes that name)', 2)
     case ('%')
       call input_error(error, records(pos)%file, records(pos)%line, &
                        'a % record outside a DATAIN block (no A record opened one)', 1)

@@ -1,6 +1,6 @@
 !> Principal stresses of a symmetric 3x3 stress tensor given in Voigt order.
 module feps_principal
-  use feps_kinds, only: dp, pi
+  use feps_kinds, only: dp
   implicit none
   private
 
@@ -8,36 +8,76 @@ module feps_principal
 
 contains
 
-  !> Eigenvalues in descending order (most tensile first) by the trigonometric solution of
-  !! the characteristic cubic; exact for repeated roots, no iteration, no NaN.
+  !> Eigenvalues in descending order (most tensile first), accurate to a few ulps of the
+  !! tensor's largest eigenvalue in magnitude, repeated roots included.
+  !!
+  !! Cyclic Jacobi rotations (Rutishauser's form, as in Numerical Recipes' `jacobi`): every
+  !! rotation is orthogonal, so rounding stays at the level of the tensor's norm. The closed-form
+  !! solution of the characteristic cubic it replaces lost up to half the digits near a repeated
+  !! root (acos is infinitely steep at +-1): a uniaxial 100 MPa compression had a most tensile
+  !! stress of 1e-6 MPa. A 3x3 tensor needs about five sweeps of three rotations.
   pure function principal_values(s) result(p)
     real(dp), intent(in) :: s(6)   !! [xx yy zz yz xz xy]
     real(dp) :: p(3)
-    real(dp) :: q, p1, p2, pp, r, phi, b(6), scale
-    scale = maxval(abs(s))
-    if (scale == 0.0_dp) then
+    integer, parameter :: max_sweeps = 50   ! never reached: 3x3 converges quadratically
+    ! the off-diagonal pair (i, j) of each rotation and the third index k
+    integer, parameter :: pair_i(3) = [1, 1, 2], pair_j(3) = [2, 3, 3], third(3) = [3, 2, 1]
+    real(dp) :: a(3, 3), d(3), largest, g, h, t, theta, c, sn, tau, api, apj
+    integer :: sweep, r, i, j, k, e
+
+    largest = maxval(abs(s))
+    if (largest == 0.0_dp) then
       p = 0.0_dp
       return
     end if
-    p1 = s(4)**2 + s(5)**2 + s(6)**2
-    q = (s(1) + s(2) + s(3)) / 3.0_dp
-    if (p1 <= (epsilon(1.0_dp) * scale)**2) then
-      p = [s(1), s(2), s(3)]
-      call sort3(p)
-      return
-    end if
-    p2 = (s(1) - q)**2 + (s(2) - q)**2 + (s(3) - q)**2 + 2.0_dp * p1
-    pp = sqrt(p2 / 6.0_dp)
-    b = s / pp
-    b(1:3) = (s(1:3) - q) / pp
-    ! r = det(B) / 2
-    r = 0.5_dp * (b(1) * (b(2) * b(3) - b(4) * b(4)) - b(6) * (b(6) * b(3) - b(4) * b(5)) + &
-                  b(5) * (b(6) * b(4) - b(2) * b(5)))
-    r = max(-1.0_dp, min(1.0_dp, r))
-    phi = acos(r) / 3.0_dp
-    p(1) = q + 2.0_dp * pp * cos(phi)
-    p(3) = q + 2.0_dp * pp * cos(phi + 2.0_dp * pi / 3.0_dp)
-    p(2) = 3.0_dp * q - p(1) - p(3)
+    ! scale by a power of two (exact) so that squares can neither overflow nor underflow
+    e = exponent(largest)
+    a(1, 1) = scale(s(1), -e)
+    a(2, 2) = scale(s(2), -e)
+    a(3, 3) = scale(s(3), -e)
+    a(2, 3) = scale(s(4), -e)
+    a(1, 3) = scale(s(5), -e)
+    a(1, 2) = scale(s(6), -e)
+    d = [a(1, 1), a(2, 2), a(3, 3)]
+
+    do sweep = 1, max_sweeps
+      if (a(1, 2) == 0.0_dp .and. a(1, 3) == 0.0_dp .and. a(2, 3) == 0.0_dp) exit
+      do r = 1, 3
+        i = pair_i(r)
+        j = pair_j(r)
+        k = third(r)
+        if (a(i, j) == 0.0_dp) cycle
+        g = 100.0_dp * abs(a(i, j))
+        ! after four sweeps an element below the diagonal's rounding is set to zero
+        if (sweep > 4 .and. abs(d(i)) + g == abs(d(i)) .and. abs(d(j)) + g == abs(d(j))) then
+          a(i, j) = 0.0_dp
+          cycle
+        end if
+        h = d(j) - d(i)
+        if (abs(h) + g == abs(h)) then
+          t = a(i, j) / h                  ! theta so large that t = 1 / (2 theta)
+        else
+          theta = 0.5_dp * h / a(i, j)
+          t = 1.0_dp / (abs(theta) + sqrt(1.0_dp + theta * theta))
+          if (theta < 0.0_dp) t = -t
+        end if
+        c = 1.0_dp / sqrt(1.0_dp + t * t)
+        sn = t * c
+        tau = sn / (1.0_dp + c)
+        h = t * a(i, j)
+        d(i) = d(i) - h
+        d(j) = d(j) + h
+        a(i, j) = 0.0_dp
+        ! the two elements coupling i and j to the third index (upper triangle)
+        api = a(min(i, k), max(i, k))
+        apj = a(min(j, k), max(j, k))
+        a(min(i, k), max(i, k)) = api - sn * (apj + api * tau)
+        a(min(j, k), max(j, k)) = apj + sn * (api - apj * tau)
+      end do
+    end do
+
+    p = scale(d, e)
+    call sort3(p)
   end function principal_values
 
   pure subroutine sort3(p)

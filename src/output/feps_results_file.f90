@@ -13,7 +13,7 @@ module feps_results_file
   use feps_kinds, only: dp, i8
   use feps_error, only: error_t, fatal_error, err_io, err_internal, str
   use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_type, &
-                       xdmf_topology_path, count_words
+                       xdmf_cell_nodes, xdmf_topology_path, count_words, is_xdmf_name
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
@@ -94,6 +94,11 @@ contains
       call fatal_error(error, err_io, 'results file name is empty')
       return
     end if
+    if (is_xdmf_name(path)) then
+      call fatal_error(error, err_io, 'results file name ' // trim(path) // ' ends in .xmf: the XDMF file ' // &
+                       'written beside it would replace it')
+      return
+    end if
     self%path = trim(path)
     self%part_path = self%path // '.part'
     self%node_count = 0
@@ -147,7 +152,8 @@ contains
   end subroutine write_mesh
 
   !> `/mesh/groups/<name>/connectivity`: connectivity(k, nelem), 1-based node numbers, and the
-  !! group attribute `element_type`; a 0-based copy at `/xdmf/<name>/topology` when XDMF can show it.
+  !! group attribute `element_type`; when XDMF can show the type, the 0-based nodes of its XDMF
+  !! cell at `/xdmf/<name>/topology` (all k, or the lower layer of an interface element).
   subroutine write_group(self, name, element_type, connectivity, error, material)
     class(results_file_t), intent(inout) :: self
     character(len=*), intent(in) :: name
@@ -156,7 +162,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: material   !! its material's name (attribute `material`)
     integer(hid_t) :: group_id
-    integer :: hdferr
+    integer :: hdferr, cell_nodes
     type(xdmf_group_t), allocatable :: grown(:)
 
     call require_open(self, error)
@@ -180,8 +186,9 @@ contains
     if (allocated(error)) return
     call write_int_dataset(self, '/mesh/groups/' // name // '/connectivity', connectivity, error)
     if (allocated(error)) return
+    cell_nodes = xdmf_cell_nodes(element_type, size(connectivity, 1))
     if (len(xdmf_topology_type(element_type)) > 0) then
-      call write_int_dataset(self, xdmf_topology_path(name), connectivity - 1, error)
+      call write_int_dataset(self, xdmf_topology_path(name), connectivity(:cell_nodes, :) - 1, error)
       if (allocated(error)) return
     end if
 
@@ -189,7 +196,7 @@ contains
     grown(:size(self%groups)) = self%groups
     grown(size(grown))%name = name
     grown(size(grown))%element_type = element_type
-    grown(size(grown))%nodes_per_element = size(connectivity, 1)
+    grown(size(grown))%nodes_per_element = cell_nodes
     grown(size(grown))%element_count = size(connectivity, 2)
     call move_alloc(grown, self%groups)
   end subroutine write_group

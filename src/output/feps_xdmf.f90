@@ -4,20 +4,22 @@
 !! 0-based connectivity copies `/xdmf/<group>/topology`, attributes from the nodal datasets and the
 !! element averages `/steps/<NNNN>/cell/<kind>/<group>`. Steps form a temporal collection (time =
 !! step number, because load factors may repeat across stages); each step is a spatial collection
-!! of one uniform grid per element group. Element types without an XDMF topology are left out.
+!! of one uniform grid per element group. Every feps element type has an XDMF cell; a type
+!! without one (none today) would be left out.
 module feps_xdmf
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_io, str
+  use feps_strings, only: to_lower
   implicit none
   private
 
-  public :: write_xdmf, xdmf_topology_type, xdmf_topology_path, count_words, word
+  public :: write_xdmf, xdmf_topology_type, xdmf_cell_nodes, xdmf_topology_path, count_words, word, is_xdmf_name
 
   !> An element group as the XDMF file needs it.
   type, public :: xdmf_group_t
     character(len=:), allocatable :: name           !! group name, as in `/mesh/groups/<name>`
     character(len=:), allocatable :: element_type   !! feps element type, e.g. 'hex8'
-    integer :: nodes_per_element = 0
+    integer :: nodes_per_element = 0                !! nodes of the XDMF cell (xdmf_cell_nodes)
     integer :: element_count = 0
   end type xdmf_group_t
 
@@ -42,29 +44,66 @@ module feps_xdmf
 contains
 
   !> XDMF topology type for a feps element type; '' when XDMF has no matching cell.
-  !! Interface elements (lower layer then upper layer, pair by pair) are shown as flat solids.
+  !! Node orders match: hex20 and tri6 list corners then mid-edges as Hexahedron_20 and
+  !! Triangle_6 do. Interface elements (lower layer, then upper layer) are shown by their lower
+  !! layer, a surface or a line (XDMF has no cell with two layers of quadratic nodes), with the
+  !! '-nodal' variants as the Gauss ones; interface-line3 lists ends then middle as Edge_3. Bars
+  !! are polylines through their nodes in order (bar3 lists the middle node second, Edge_3 last).
   pure function xdmf_topology_type(element_type) result(topology)
     character(len=*), intent(in) :: element_type
     character(len=:), allocatable :: topology
-    select case (element_type)
-    case ('hex8', 'interface-quad4')
+    character(len=*), parameter :: nodal = '-nodal'
+    character(len=:), allocatable :: base
+    integer :: n
+    base = trim(element_type)
+    n = len(base)
+    if (n > len(nodal)) then
+      if (base(n - len(nodal) + 1:) == nodal) base = base(:n - len(nodal))
+    end if
+    select case (base)
+    case ('hex8', 'hex8b')
       topology = 'Hexahedron'
-    case ('hex20')
+    case ('hex20', 'hex20r')
       topology = 'Hexahedron_20'
-    case ('tri3')
+    case ('tri3', 'interface-tri3')
       topology = 'Triangle'
-    case ('tri6')
+    case ('tri6', 'tri6-6', 'interface-tri6')
       topology = 'Triangle_6'
-    case ('quad4')
+    case ('quad4', 'interface-quad4')
       topology = 'Quadrilateral'
-    case ('interface-tri3')
-      topology = 'Wedge'
-    case ('bar2')
+    case ('interface-quad8')
+      topology = 'Quadrilateral_8'
+    case ('interface-line3')
+      topology = 'Edge_3'
+    case ('bar2', 'bar3', 'bar4', 'bar5', 'interface-line2')
       topology = 'Polyline'
     case default
       topology = ''
     end select
   end function xdmf_topology_type
+
+  !> Nodes of the XDMF cell of an element with `nodes_per_element` nodes: the first half (the
+  !! lower layer) for interface elements, all of them otherwise.
+  pure integer function xdmf_cell_nodes(element_type, nodes_per_element)
+    character(len=*), intent(in) :: element_type
+    integer, intent(in) :: nodes_per_element
+    if (index(element_type, 'interface-') == 1) then
+      xdmf_cell_nodes = nodes_per_element / 2
+    else
+      xdmf_cell_nodes = nodes_per_element
+    end if
+  end function xdmf_cell_nodes
+
+  !> True when a results file name ends in '.xmf' (any letter case): the XDMF file written beside
+  !! the results is named `<name without extension>.xmf` and would replace them (or, on a
+  !! case-insensitive file system, be the same file).
+  pure logical function is_xdmf_name(path)
+    character(len=*), intent(in) :: path
+    integer :: n
+    n = len_trim(path)
+    is_xdmf_name = .false.
+    if (n >= 4) is_xdmf_name = to_lower(path(n - 3:n)) == '.xmf'
+  end function is_xdmf_name
 
   !> HDF5 path of the 0-based connectivity copy of a group.
   pure function xdmf_topology_path(group) result(path)

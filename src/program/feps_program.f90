@@ -526,8 +526,9 @@ contains
     if (.not. allocated(error)) call h5%write_summary_int('cutbacks', int(summary%cutbacks, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('unconverged_steps', int(summary%unconverged_steps, i8), &
                                                           error)
-    if (.not. allocated(error)) call h5%write_summary_string('analysis', merge('linear   ', 'nonlinear', &
-                                                                                 summary%linear), error)
+    ! trim: merge pads 'linear' to the length of 'nonlinear'
+    if (.not. allocated(error)) call h5%write_summary_string('analysis', trim(merge('linear   ', 'nonlinear', &
+                                                                                      summary%linear)), error)
     if (.not. allocated(error)) call h5%write_summary_string('fields', summary%fields, error)
     if (.not. allocated(error)) call h5%write_summary_int('point_state_bytes', sum(summary%state_bytes), error)
     if (.not. allocated(error)) call write_parameters(h5, model, error)

@@ -49,6 +49,9 @@ contains
       new_unittest('NSET by NODE= with a coordinate', test_nset_node_with_options), &
       new_unittest('GROUP with an unknown option', test_group_unknown_option), &
       new_unittest('NODE with a fourth coordinate', test_node_extra_field), &
+      new_unittest('PRESSURE: VARY= without PEAK=', test_vary_without_peak), &
+      new_unittest('PRESSURE: ZERO= and PEAK= without VARY=', test_zero_without_vary), &
+      new_unittest('PRESSURE: VARY=X in a cylindrical system', test_vary_coordinate_of_other_system), &
       new_unittest('REPORT, TILT without two sections', test_tilt_no_span), &
       new_unittest('ACTIVATE of an undefined group', test_activate_unknown), &
       new_unittest('ACTIVATE of a group twice', test_activate_twice), &
@@ -282,6 +285,28 @@ contains
     call expect_failure('test/data/bad/node_extra_field.dat', err_input, &
                         [character(len=40) :: 'node_extra_field.dat:24:', 'field 6', '7.'], error)
   end subroutine test_node_extra_field
+
+  !> The missing PEAK= used to default to 1, so the load could exceed VALUE.
+  subroutine test_vary_without_peak(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/vary_without_peak.dat', err_input, &
+                        [character(len=40) :: 'vary_without_peak.dat:23:', 'field 4', 'needs ZERO= and PEAK='], error)
+  end subroutine test_vary_without_peak
+
+  !> They used to be ignored: a uniform load instead of a ramp.
+  subroutine test_zero_without_vary(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/zero_without_vary.dat', err_input, &
+                        [character(len=40) :: 'zero_without_vary.dat:23:', 'field 4', 'give VARY='], error)
+  end subroutine test_zero_without_vary
+
+  !> X used to mean R and Y theta (in degrees) there.
+  subroutine test_vary_coordinate_of_other_system(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/vary_coordinate_of_other_system.dat', err_input, &
+                        [character(len=40) :: 'vary_coordinate_of_other_system.dat:23:', 'field 4', &
+                         'no coordinate of system 3'], error)
+  end subroutine test_vary_coordinate_of_other_system
 
   !> The XDMF file is written beside the results as <name>.xmf: an OUTPUT record ending in .xmf
   !! used to lose the XDMF file silently (the HDF5 file replaced it).

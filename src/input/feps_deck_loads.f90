@@ -342,9 +342,26 @@ contains
       character(len=*), intent(in) :: n
       integer, intent(inout) :: csys, coord
       real(dp), intent(in) :: zero, peak_at
-      integer :: default_csys
+      integer :: default_csys, zero_field, peak_field
+      logical :: has_zero, has_peak
+      call option_text(rec, 'ZERO' // n, text, zero_field, has_zero)
+      call option_text(rec, 'PEAK' // n, text, peak_field, has_peak)
       call option_text(rec, 'VARY' // n, text, ifield, found)
-      if (.not. found) return
+      if (.not. found) then
+        ! without VARY<n> they would be ignored, and VARY<n>_CSYS too
+        call option_text(rec, 'VARY' // n // '_CSYS', text, ifield, found)
+        if (has_zero .or. has_peak .or. found) then
+          if (.not. found) ifield = merge(zero_field, peak_field, has_zero)
+          call input_error(error, rec%file, rec%line, 'ZERO' // n // '=, PEAK' // n // '= and VARY' // n // &
+                           '_CSYS= belong to a variation: give VARY' // n // '= too', ifield)
+        end if
+        return
+      end if
+      if (.not. (has_zero .and. has_peak)) then
+        call input_error(error, rec%file, rec%line, 'VARY' // n // ' needs ZERO' // n // '= and PEAK' // n // &
+                         '= (where the load is zero and where it peaks)', ifield)
+        return
+      end if
       csys = csys_cartesian
       select case (to_upper(text))
       case ('X')
@@ -367,6 +384,13 @@ contains
       default_csys = csys
       call get_csys_option(rec, model, 'VARY' // n // '_CSYS', default_csys, csys, error)
       if (allocated(error)) return
+      ! X and Y name no coordinate of a cylindrical system, R and THETA none of a Cartesian one
+      if (coord /= 3 .and. ((model%systems(csys)%kind == csys_cylindrical) .neqv. &
+                            (default_csys == csys_cylindrical))) then
+        call input_error(error, rec%file, rec%line, 'VARY' // n // '=' // to_upper(text) // ' is no coordinate of ' // &
+                         'system ' // str(csys) // ' (' // dof_names(model%systems(csys)%kind) // ')', ifield)
+        return
+      end if
       if (peak_at == zero) then
         call input_error(error, rec%file, rec%line, 'VARY' // n // ' needs ZERO' // n // '= and PEAK' // n // &
                          '= at different places')

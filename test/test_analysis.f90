@@ -50,6 +50,7 @@ contains
       new_unittest('PRESSURE with VARY and VARY2: bilinear load, exact nodal forces', test_bilinear_load), &
       new_unittest('TRACTION by components alone: the pressure''s nodal forces, resultant t A', test_traction_components), &
       new_unittest('STAGE with a negative LOAD= unloads: half the cube''s pressure taken off', test_stage_unload), &
+      new_unittest('a gap in the node numbering selects nothing', test_node_gap), &
       new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus) &
       ]
   end subroutine collect_analysis
@@ -428,6 +429,27 @@ contains
     if (allocated(error)) return
     call check(error, res%displacement(3, 27), -0.5_dp * p * l / e, 'uz at the top corner', rel=1.0e-10_dp)
   end subroutine test_stage_unload
+
+  !> test/data/node_gap.dat: NODE 40 on the 27-node cube leaves 28-39 undefined (they hold the
+  !! origin as coordinates); the set at the origin is node 1 alone, and the run is the cube's.
+  subroutine test_node_gap(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(step_result_t) :: res
+    integer :: s
+    call read_deck('test/data/node_gap.dat', model, error)
+    if (allocated(error)) return
+    call check(error, model%nnode, 40, 'nodes numbered')
+    if (allocated(error)) return
+    s = model%find_node_set('corner')
+    call check(error, size(model%node_sets(s)%nodes) == 1 .and. model%node_sets(s)%nodes(1) == 1, &
+               'the set at the origin is node 1 alone')
+    if (allocated(error)) return
+    call solve(model, 'cholmod', res, error)
+    if (allocated(error)) return
+    call check(error, res%displacement(3, 27), -100.0_dp * 10.0_dp / 200000.0_dp, 'uz at the top corner', &
+               rel=1.0e-10_dp)
+  end subroutine test_node_gap
 
   !> `feps --check` on a linear deck and on a staged one with element birth: the same DOFs,
   !! matrix and factor (nonzeros and flops of one factorization) as the run, the same total

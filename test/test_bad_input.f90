@@ -49,6 +49,8 @@ contains
       new_unittest('NSET by NODE= with a coordinate', test_nset_node_with_options), &
       new_unittest('GROUP with an unknown option', test_group_unknown_option), &
       new_unittest('NODE with a fourth coordinate', test_node_extra_field), &
+      new_unittest('NSET of a node in a gap of the numbering', test_nset_undefined_node), &
+      new_unittest('FORCE on a node that belongs to no element', test_force_on_orphan_node), &
       new_unittest('PRESSURE: VARY= without PEAK=', test_vary_without_peak), &
       new_unittest('PRESSURE: ZERO= and PEAK= without VARY=', test_zero_without_vary), &
       new_unittest('PRESSURE: VARY=X in a cylindrical system', test_vary_coordinate_of_other_system), &
@@ -285,6 +287,20 @@ contains
     call expect_failure('test/data/bad/node_extra_field.dat', err_input, &
                         [character(len=40) :: 'node_extra_field.dat:24:', 'field 6', '7.'], error)
   end subroutine test_node_extra_field
+
+  !> NODE 40 on a 27-node mesh leaves 28-39 undefined; they used to be nodes at the origin.
+  subroutine test_nset_undefined_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/nset_undefined_node.dat', err_input, &
+                        [character(len=40) :: 'nset_undefined_node.dat:25:', 'node 30 is not defined'], error)
+  end subroutine test_nset_undefined_node
+
+  !> The force used to count in the applied force and the reactions, and act on nothing.
+  subroutine test_force_on_orphan_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/force_on_orphan_node.dat', err_input, &
+                        [character(len=40) :: 'force_on_orphan_node.dat:26:', 'field 2', 'belongs to no element'], error)
+  end subroutine test_force_on_orphan_node
 
   !> The missing PEAK= used to default to 1, so the load could exceed VALUE.
   subroutine test_vary_without_peak(error)

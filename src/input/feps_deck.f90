@@ -808,7 +808,9 @@ contains
         return
       end if
     end do
-    call resolve_node_sets(model, st%set_regions, st%set_node, st%set_records, error, st%set_group)
+    call resolve_node_sets(model, defined, st%set_regions, st%set_node, st%set_records, error, st%set_group)
+    if (allocated(error)) return
+    call check_loaded_nodes(model, error)
     if (allocated(error)) return
     call finish_stages(model)
     call resolve_activations(model, error)
@@ -928,9 +930,36 @@ contains
     end do
   end subroutine finish_stages
 
+  !> A FORCE on a node that belongs to no element would act on nothing (its DOFs are not in the
+  !! system) and yet count in the applied force: an error naming the FORCE record.
+  subroutine check_loaded_nodes(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: used(:)
+    integer :: g, i, k, n
+    allocate (used(model%nnode))
+    used = .false.
+    do g = 1, size(model%groups)
+      used(pack(model%groups(g)%connectivity, .true.)) = .true.
+    end do
+    do i = 1, size(model%nodal_loads)
+      associate (l => model%nodal_loads(i))
+        do k = 1, size(model%node_sets(l%node_set)%nodes)
+          n = model%node_sets(l%node_set)%nodes(k)
+          if (used(n)) cycle
+          call input_error(error, l%file, l%line, 'FORCE on node set ' // model%node_sets(l%node_set)%name // &
+                           ': node ' // str(n) // ' belongs to no element, so the force would act on nothing', 2)
+          return
+        end do
+      end associate
+    end do
+  end subroutine check_loaded_nodes
+
   !> Fill each node set with the nodes in its region (or its one node); an empty set is an error.
-  subroutine resolve_node_sets(model, regions, single, records, error, groups)
+  !! Only defined nodes are selected: NODE records may leave gaps in the numbering.
+  subroutine resolve_node_sets(model, defined, regions, single, records, error, groups)
     type(model_t), intent(inout) :: model
+    logical, intent(in) :: defined(:)   !! given by a DATAIN block or a NODE record
     type(region_t), intent(in) :: regions(:)
     integer, intent(in) :: single(:)
     type(record_t), intent(in) :: records(:)
@@ -944,6 +973,11 @@ contains
         if (single(s) > model%nnode) then
           call input_error(error, records(s)%file, records(s)%line, 'node ' // str(single(s)) // &
                            ' is out of range (the mesh has ' // str(model%nnode) // ' nodes)')
+          return
+        end if
+        if (.not. defined(single(s))) then
+          call input_error(error, records(s)%file, records(s)%line, 'node ' // str(single(s)) // &
+                           ' is not defined (no DATAIN block or NODE record gives it)')
           return
         end if
         model%node_sets(s)%nodes = [single(s)]
@@ -963,7 +997,7 @@ contains
         end if
       end if
       do n = 1, model%nnode
-        inside(n) = in_group(n)
+        inside(n) = in_group(n) .and. defined(n)
         if (inside(n)) inside(n) = in_region(regions(s), model%systems(regions(s)%csys), model%coords(:, n))
       end do
       model%node_sets(s)%nodes = pack([(n, n = 1, model%nnode)], inside)

@@ -45,6 +45,7 @@ contains
       new_unittest('FIX with a KEY=value other than CSYS', test_fix_option), &
       new_unittest('REPORT with an unknown option', test_report_unknown_option), &
       new_unittest('two SOLVER records', test_solver_twice), &
+      new_unittest('two OUTPUT records', test_output_twice), &
       new_unittest('an E record with a field', test_extra_field_on_e), &
       new_unittest('NSET by NODE= with a coordinate', test_nset_node_with_options), &
       new_unittest('GROUP with an unknown option', test_group_unknown_option), &
@@ -262,6 +263,12 @@ contains
     call expect_failure('test/data/bad/solver_twice.dat', err_input, &
                         [character(len=40) :: 'solver_twice.dat:25:', 'given twice', 'line 24'], error)
   end subroutine test_solver_twice
+
+  subroutine test_output_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/output_twice.dat', err_input, &
+                        [character(len=40) :: 'output_twice.dat:25:', 'given twice', 'line 24'], error)
+  end subroutine test_output_twice
 
   subroutine test_extra_field_on_e(error)
     type(error_t), allocatable, intent(out) :: error

@@ -40,6 +40,7 @@ module feps_deck
     integer :: current_stage = 0                 !! stage that loads and displacements belong to
     logical :: fields_given = .false.            !! a FIELDS record came: only what it names
     integer :: solver_line = 0                   !! line of the SOLVER record (0: none yet)
+    integer :: output_line = 0                   !! line of the OUTPUT record (0: none yet)
   end type deck_state_t
 
 contains
@@ -163,11 +164,7 @@ contains
     case ('FIELDS')
       call read_fields(records(pos), model, st, error)
     case ('OUTPUT')
-      call require_fields(records(pos), 2, error)
-      if (.not. allocated(error)) model%output_file = field_text(records(pos), 2)   ! relative to the working directory
-      if (.not. allocated(error) .and. is_xdmf_name(model%output_file)) &
-        call input_error(error, records(pos)%file, field_line(records(pos), 2), 'results file "' // &
-                         model%output_file // '" must not end in .xmf (the XDMF file beside it takes that name)', 2)
+      call read_output(records(pos), model, st, error)
     case ('%')
       call input_error(error, records(pos)%file, records(pos)%line, &
                        'a % record outside a DATAIN block (no A record opened one)', 1)
@@ -626,6 +623,28 @@ contains
                        '" (skyline or cholmod)', 2)
     end if
   end subroutine read_solver
+
+  !> OUTPUT, file.h5: the results file, relative to the working directory; given once.
+  subroutine read_output(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    if (st%output_line > 0) then
+      call input_error(error, rec%file, rec%line, 'OUTPUT is given twice (first at line ' // &
+                       str(st%output_line) // ')', 1)
+      return
+    end if
+    st%output_line = rec%line
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    call forbid_extra_fields(rec, 2, error)
+    if (allocated(error)) return
+    model%output_file = field_text(rec, 2)
+    if (is_xdmf_name(model%output_file)) &
+      call input_error(error, rec%file, field_line(rec, 2), 'results file "' // &
+                       model%output_file // '" must not end in .xmf (the XDMF file beside it takes that name)', 2)
+  end subroutine read_output
 
   !> FIELDS, name [, name ...]: write only the named result fields (several records add up).
   subroutine read_fields(rec, model, st, error)

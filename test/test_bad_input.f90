@@ -75,6 +75,15 @@ contains
       new_unittest('ELASTIC with both E and G', test_elastic_e_and_g), &
       new_unittest('a MATERIAL parameter given twice', test_material_key_twice), &
       new_unittest('a material name with a slash', test_material_name_slash), &
+      new_unittest('ELASTIC with a negative G names G and its field, not the derived E', test_elastic_g_negative), &
+      new_unittest('ELASTIC with a G whose E overflows names G', test_elastic_g_overflow), &
+      new_unittest('ELASTIC with an unknown key names its field', test_elastic_unknown_key), &
+      new_unittest('an unknown material kind names its field', test_material_kind_unknown), &
+      new_unittest('MATSUOKA with FT and C names the second', test_matsuoka_ft_and_c), &
+      new_unittest('MATSUOKA with PSI above PHI names PSI''s field', test_matsuoka_psi_above_phi), &
+      new_unittest('INTERFACE with PSI above PHI names PSI''s field', test_interface_psi_above_phi), &
+      new_unittest('BAR with a negative area names A''s field', test_bar_area_negative), &
+      new_unittest('BAR without A names no field', test_bar_area_missing), &
       new_unittest('a group name with a slash', test_group_name_slash), &
       new_unittest('PRESTRESS on a group of solids', test_prestress_on_solid), &
       new_unittest('PRESTRESS before its group is born', test_prestress_before_birth), &
@@ -88,13 +97,14 @@ contains
       ]
   end subroutine collect_bad_input
 
-  !> Run a deck that must fail; check the error code, the message's pieces and that no
-  !! result file (nor its temporary or XDMF) exists afterwards.
-  subroutine expect_failure(deck, code, pieces, error)
+  !> Run a deck that must fail; check the error code, the message's pieces (and that none of
+  !! `absent` is in it) and that no result file (nor its temporary or XDMF) exists afterwards.
+  subroutine expect_failure(deck, code, pieces, error, absent)
     character(len=*), intent(in) :: deck
     integer, intent(in) :: code
     character(len=*), intent(in) :: pieces(:)
     type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: absent(:)
     type(run_options_t) :: opt
     type(run_summary_t) :: summary
     type(error_t), allocatable :: run_error
@@ -119,6 +129,14 @@ contains
         return
       end if
     end do
+    if (present(absent)) then
+      do i = 1, size(absent)
+        if (index(run_error%message, trim(absent(i))) > 0) then
+          call test_failed(error, 'message "' // run_error%message // '" has "' // trim(absent(i)) // '"')
+          return
+        end if
+      end do
+    end if
     inquire (file=out, exist=exists)
     call check(error, .not. exists, 'no result file left behind')
     if (allocated(error)) return
@@ -412,7 +430,7 @@ contains
   subroutine test_tension_rule_unknown(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/tension_rule_unknown.dat', err_input, &
-                        [character(len=60) :: 'tension_rule_unknown.dat:14:', 'material concrete', &
+                        [character(len=60) :: 'tension_rule_unknown.dat:14: field 9:', 'material concrete', &
                          'TENSION = "sideways"', 'PROPORTIONAL', 'CLOSEST-POINT'], error)
   end subroutine test_tension_rule_unknown
 
@@ -420,15 +438,15 @@ contains
   subroutine test_tension_on_elastic(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/tension_on_elastic.dat', err_input, &
-                        [character(len=60) :: 'tension_on_elastic.dat:14:', 'material concrete', &
+                        [character(len=60) :: 'tension_on_elastic.dat:14: field 6:', 'material concrete', &
                          'unknown parameter TENSION', '(expected E, NU, G)'], error)
   end subroutine test_tension_on_elastic
 
-  !> E and G together used to keep E and ignore G.
+  !> E and G together used to keep E and ignore G. The second of the two (G) is named.
   subroutine test_elastic_e_and_g(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/elastic_e_and_g.dat', err_input, &
-                        [character(len=60) :: 'elastic_e_and_g.dat:15:', 'material steel', &
+                        [character(len=60) :: 'elastic_e_and_g.dat:15: field 6:', 'material steel', &
                          'give only one of E and G'], error)
   end subroutine test_elastic_e_and_g
 
@@ -447,6 +465,72 @@ contains
                         [character(len=60) :: 'material_name_slash.dat:15: field 2:', 'the material name "st/eel"', &
                          'may not contain /'], error)
   end subroutine test_material_name_slash
+
+  !> G = -5 with NU = 0.3 used to be reported as "E = -13.0000", a value the deck never gave.
+  subroutine test_elastic_g_negative(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/elastic_g_negative.dat', err_input, &
+                        [character(len=60) :: 'elastic_g_negative.dat:15: field 4:', 'material steel', &
+                         'G = -5.00000 must be positive and finite'], error, absent=['E = '])
+  end subroutine test_elastic_g_negative
+
+  subroutine test_elastic_g_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/elastic_g_overflow.dat', err_input, &
+                        [character(len=60) :: 'elastic_g_overflow.dat:15: field 4:', 'material steel', &
+                         'G = 0.100000E+309 is too large'], error)
+  end subroutine test_elastic_g_overflow
+
+  subroutine test_elastic_unknown_key(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/elastic_unknown_key.dat', err_input, &
+                        [character(len=60) :: 'elastic_unknown_key.dat:15: field 6:', 'material steel', &
+                         'unknown parameter PHI (expected E, NU, G)'], error)
+  end subroutine test_elastic_unknown_key
+
+  subroutine test_material_kind_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/material_kind_unknown.dat', err_input, &
+                        [character(len=60) :: 'material_kind_unknown.dat:15: field 3:', 'material steel', &
+                         'unknown material kind "elastick"'], error)
+  end subroutine test_material_kind_unknown
+
+  !> FT then C: C (field 9) is the one that makes the record wrong.
+  subroutine test_matsuoka_ft_and_c(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/matsuoka_ft_and_c.dat', err_input, &
+                        [character(len=60) :: 'matsuoka_ft_and_c.dat:14: field 9:', 'material concrete', &
+                         'give only one of FT and C'], error)
+  end subroutine test_matsuoka_ft_and_c
+
+  subroutine test_matsuoka_psi_above_phi(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/matsuoka_psi_above_phi.dat', err_input, &
+                        [character(len=60) :: 'matsuoka_psi_above_phi.dat:14: field 7:', 'material concrete', &
+                         'PSI = 40.0000 must lie in [0, PHI] = [0, 30.0000]'], error)
+  end subroutine test_matsuoka_psi_above_phi
+
+  subroutine test_interface_psi_above_phi(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/interface_psi_above_phi.dat', err_input, &
+                        [character(len=60) :: 'interface_psi_above_phi.dat:30: field 7:', 'material contact', &
+                         'PSI = 40.0000 must lie in [0, PHI] = [0, 30.0000]'], error)
+  end subroutine test_interface_psi_above_phi
+
+  subroutine test_bar_area_negative(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/bar_area_negative.dat', err_input, &
+                        [character(len=60) :: 'bar_area_negative.dat:12: field 5:', 'material soft', &
+                         'A = -10.0000 must be positive and finite'], error)
+  end subroutine test_bar_area_negative
+
+  !> A missing key is no one field's fault: the message names the line only.
+  subroutine test_bar_area_missing(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/bar_area_missing.dat', err_input, &
+                        [character(len=60) :: 'bar_area_missing.dat:12: material soft: A is missing'], error, &
+                        absent=['field'])
+  end subroutine test_bar_area_missing
 
   subroutine test_group_name_slash(error)
     type(error_t), allocatable, intent(out) :: error
@@ -475,13 +559,14 @@ contains
 
   subroutine test_nu_half(error)
     type(error_t), allocatable, intent(out) :: error
-    call expect_failure('test/data/bad/nu_half.dat', err_input, [character(len=40) :: 'nu_half.dat:15:', 'nu'], error)
+    call expect_failure('test/data/bad/nu_half.dat', err_input, &
+                        [character(len=40) :: 'nu_half.dat:15: field 5:', 'nu = 0.5'], error)
   end subroutine test_nu_half
 
   subroutine test_nu_minus_one(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/nu_minus_one.dat', err_input, &
-                        [character(len=40) :: 'nu_minus_one.dat:15:', 'nu'], error)
+                        [character(len=40) :: 'nu_minus_one.dat:15: field 5:', 'nu = -1.0'], error)
   end subroutine test_nu_minus_one
 
   subroutine test_rigid_body_mode(error)

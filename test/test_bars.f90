@@ -985,23 +985,32 @@ contains
     if (allocated(error)) return
     nan = ieee_value(nan, ieee_quiet_nan)
     inf = ieee_value(inf, ieee_positive_inf)
-    call expect_material_rejected(error, 'rebar', 'bar', ['a'], [314.0_dp], 'E')
+    call expect_material_rejected(error, 'rebar', 'bar', ['a'], [314.0_dp], 'E is missing', field=0)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'rebar', 'bar', ['e'], [2.0e5_dp], 'A')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e'], [2.0e5_dp], 'A is missing', field=0)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [0.0_dp, 314.0_dp], 'E')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [0.0_dp, 314.0_dp], 'E = ', field=4)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [-2.0e5_dp, 314.0_dp], 'E')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [-2.0e5_dp, 314.0_dp], 'E = ', field=4)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [nan, 314.0_dp], 'E')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [nan, 314.0_dp], 'E = ', field=4)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, 0.0_dp], 'A')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, 0.0_dp], 'A = ', field=5)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, -1.0_dp], 'A')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, -1.0_dp], 'A = ', field=5)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, inf], 'A')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e', 'a'], [2.0e5_dp, inf], 'A = ', field=5)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'rebar', 'bar', ['e ', 'a ', 'nu'], [2.0e5_dp, 314.0_dp, 0.3_dp], 'NU')
+    call expect_material_rejected(error, 'rebar', 'bar', ['e ', 'a ', 'nu'], [2.0e5_dp, 314.0_dp, 0.3_dp], &
+                                  'unknown parameter NU', field=6)
+    if (allocated(error)) return
+    ! A record built without field numbers: the same errors, naming no field.
+    call expect_material_rejected(error, 'rebar', 'bar', ['e ', 'a ', 'nu'], [2.0e5_dp, 314.0_dp, 0.3_dp], &
+                                  'unknown parameter NU')
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'rebar', 'bar', ['a', 'e'], [-1.0_dp, 2.0e5_dp], 'A = ')
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'rebar', 'bar', ['a', 'e'], [-1.0_dp, 2.0e5_dp], 'A = ', field=4)
   end subroutine test_material_validator
 
 end module test_bars

@@ -720,28 +720,44 @@ contains
       call test_failed(error, 'wrong material type')
     end select
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', ['ks ', 'phi'], [1000.0_dp, 30.0_dp], 'KN')
+    call expect_material_rejected(error, 'joint', 'interface', ['ks ', 'phi'], [1000.0_dp, 30.0_dp], 'KN is missing', &
+                                  field=0)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', ['kn ', 'phi'], [1000.0_dp, 30.0_dp], 'KS')
+    call expect_material_rejected(error, 'joint', 'interface', ['kn ', 'phi'], [1000.0_dp, 30.0_dp], 'KS is missing', &
+                                  field=0)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', ['kn', 'ks'], [1000.0_dp, 30.0_dp], 'PHI')
+    call expect_material_rejected(error, 'joint', 'interface', ['kn', 'ks'], [1000.0_dp, 30.0_dp], 'PHI is missing', &
+                                  field=0)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', k5, [0.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 0.0_dp], 'KN')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [0.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 0.0_dp], 'KN = ', &
+                                  field=4)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, -1.0_dp, 0.0_dp, 30.0_dp, 0.0_dp], 'KS')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, -1.0_dp, 0.0_dp, 30.0_dp, 0.0_dp], 'KS = ', &
+                                  field=5)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, -1.0_dp, 30.0_dp, 0.0_dp], 'C = ')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, -1.0_dp, 30.0_dp, 0.0_dp], 'C = ', &
+                                  field=6)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 90.0_dp, 0.0_dp], 'PHI')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 90.0_dp, 0.0_dp], 'PHI = ', &
+                                  field=7)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, -5.0_dp, 0.0_dp], 'PHI')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, -5.0_dp, 0.0_dp], 'PHI = ', &
+                                  field=7)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 31.0_dp], 'PSI')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 31.0_dp], 'PSI = ', &
+                                  field=8)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, -1.0_dp], 'PSI')
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, -1.0_dp], 'PSI = ', &
+                                  field=8)
     if (allocated(error)) return
     call expect_material_rejected(error, 'joint', 'interface', ['kn ', 'ks ', 'phi', 'ps '], &
+                                  [2000.0_dp, 1000.0_dp, 30.0_dp, 10.0_dp], 'unknown parameter PS ', field=7)
+    if (allocated(error)) return
+    ! A record built without field numbers: the same errors, naming no field.
+    call expect_material_rejected(error, 'joint', 'interface', ['kn ', 'ks ', 'phi', 'ps '], &
                                   [2000.0_dp, 1000.0_dp, 30.0_dp, 10.0_dp], 'unknown parameter PS ')
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 31.0_dp], 'PSI = ')
   end subroutine test_validator
 
   !> Steps 1e6 times the elastic limit (u = 0.1 for sigma_n = -200, tan phi = 0.5) in shear,

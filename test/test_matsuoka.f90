@@ -9,7 +9,7 @@ module test_matsuoka
   use feps_kinds, only: dp, deg2rad
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_error, only: str
-  use feps_material_testing, only: material_spec, expect_material_rejected
+  use feps_material_testing, only: material_spec, record_fields, expect_material_rejected
   use feps_model, only: material_spec_t, name_len
   use feps_material, only: material_t, state_elastic, state_plastic, state_tension
   use feps_matsuoka_nakai, only: matsuoka_nakai_t, new_matsuoka_nakai, apex_from_tensile_strength, &
@@ -846,37 +846,60 @@ contains
       call test_failed(error, 'wrong material type')
     end select
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [0.0_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E = ')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [0.0_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E = ', &
+                                  field=4)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft(2:5), [0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E is missing')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft(2:5), [0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'E is missing', &
+                                  field=0)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.5_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.5_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU = ', &
+                                  field=5)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, -1.0_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, -1.0_dp, 30.0_dp, 10.0_dp, 6.0_dp], 'NU = ', &
+                                  field=5)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 0.0_dp, 0.0_dp, 6.0_dp], 'PHI')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 0.0_dp, 0.0_dp, 6.0_dp], 'PHI = ', &
+                                  field=6)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 90.0_dp, 10.0_dp, 6.0_dp], 'PHI')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 90.0_dp, 10.0_dp, 6.0_dp], 'PHI = ', &
+                                  field=6)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 31.0_dp, 6.0_dp], 'PSI')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 31.0_dp, 6.0_dp], 'PSI = ', &
+                                  field=7)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, -1.0_dp, 6.0_dp], 'PSI')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, -1.0_dp, 6.0_dp], 'PSI = ', &
+                                  field=7)
     if (allocated(error)) return
     call expect_material_rejected(error, 'concrete', 'matsuoka', [kft(1:3), kft(5)], &
-                                  [1.0e4_dp, 0.2_dp, 30.0_dp, 6.0_dp], 'PSI is missing')
+                                  [1.0e4_dp, 0.2_dp, 30.0_dp, 6.0_dp], 'PSI is missing', field=0)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 0.0_dp], 'FT')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 0.0_dp], 'FT = ', &
+                                  field=8)
     if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kc, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, -2.0_dp], 'C = ')
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kc, [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, -2.0_dp], 'C = ', &
+                                  field=8)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'concrete', 'matsuoka', k6, &
+                                  [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 3.0_dp], 'only one of FT and C', field=9)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft(1:4), &
+                                  [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp], 'FT or C is missing', field=0)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'concrete', 'matsuoka', [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'kn'], &
+                         [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp], 'unknown parameter KN', field=9)
+    if (allocated(error)) return
+    ! FT and C together: the second of the two is named, whichever it is.
+    call expect_material_rejected(error, 'concrete', 'matsuoka', [character(len=name_len) :: 'e', 'ft', 'nu', 'c', 'phi', 'psi'], &
+                                  [1.0e4_dp, 6.0_dp, 0.2_dp, 3.0_dp, 30.0_dp, 10.0_dp], 'only one of FT and C', field=7)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'concrete', 'matsuoka', [character(len=name_len) :: 'e', 'c', 'nu', 'ft', 'phi', 'psi'], &
+                                  [1.0e4_dp, 3.0_dp, 0.2_dp, 6.0_dp, 30.0_dp, 10.0_dp], 'only one of FT and C', field=7)
+    if (allocated(error)) return
+    ! A record built without field numbers: the same errors, naming no field.
+    call expect_material_rejected(error, 'concrete', 'matsuoka', kft, [1.0e4_dp, 0.2_dp, 30.0_dp, 31.0_dp, 6.0_dp], 'PSI = ')
     if (allocated(error)) return
     call expect_material_rejected(error, 'concrete', 'matsuoka', k6, &
                                   [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 3.0_dp], 'only one of FT and C')
-    if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', kft(1:4), &
-                                  [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp], 'FT or C is missing')
-    if (allocated(error)) return
-    call expect_material_rejected(error, 'concrete', 'matsuoka', [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'kn'], &
-                         [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp], 'unknown parameter KN')
     if (allocated(error)) return
     ! TENSION: a rule's name, the default the thesis's
     call check(error, tension_of(''), tension_proportional, 'no TENSION: proportional')
@@ -895,7 +918,7 @@ contains
     character(len=*), intent(in) :: word
     type(material_spec_t) :: spec
     spec = material_spec('concrete', 'matsuoka', [character(len=name_len) :: 'e', 'nu', 'phi', 'psi', 'ft', 'tension'], &
-                   [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp])
+                   [1.0e4_dp, 0.2_dp, 30.0_dp, 10.0_dp, 6.0_dp, 1.0_dp], record_fields(6))
     spec%texts = [character(len=name_len) :: '', '', '', '', '', word]
   end function spec_with_tension
 
@@ -928,7 +951,7 @@ contains
       call test_failed(error, 'TENSION="' // word // '" accepted')
       return
     end if
-    call check(error, index(err%message, 'deck.inp:23:') == 1 .and. &
+    call check(error, index(err%message, 'deck.inp:23: field 9: material concrete: ') == 1 .and. &
                index(err%message, 'TENSION = "' // word // '": it must be') > 0 &
                .and. index(err%message, 'CLOSEST-POINT') > 0, 'message "' // err%message // '" names TENSION')
   end subroutine expect_tension_rejected

@@ -426,9 +426,11 @@ contains
       return
     end if
     m%kind = to_lower(field_text(rec, 3))
+    m%kind_field = 3
     m%file = rec%file
     m%line = rec%line
-    allocate (m%keys(0), m%values(0), m%texts(0))
+    ! Field numbers kept with the keys, so the material checks can name the field at fault.
+    allocate (m%keys(0), m%values(0), m%texts(0), m%fields(0))
     do i = 4, nfields(rec)
       call key_value(rec, i, 'KEY=value', key, text, error)
       if (allocated(error)) return
@@ -448,6 +450,7 @@ contains
       m%keys = [character(len=name_len) :: m%keys, key]
       m%values = [m%values, v]
       m%texts = [character(len=name_len) :: m%texts, word]
+      m%fields = [m%fields, i]
     end do
     tmp = [model%materials, m]
     call move_alloc(tmp, model%materials)

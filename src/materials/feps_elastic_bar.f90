@@ -53,7 +53,8 @@ contains
   end function elastic_bar_is_linear
 
   !> An elastic bar from MATERIAL parameters E and A (both required, positive and finite);
-  !! unknown keys are rejected. Errors name the record's file and line and the parameter.
+  !! unknown keys are rejected. Errors name the record's file and line and the parameter (and
+  !! its field, when it was given).
   subroutine new_elastic_bar(spec, material, error)
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material

@@ -227,7 +227,8 @@ contains
 
   !> A Mohr-Coulomb interface from MATERIAL parameters KN, KS, PHI (required), C and PSI
   !! (default 0), angles in degrees. Checks kn > 0, ks > 0, c >= 0, 0 <= phi < 90 and
-  !! 0 <= psi <= phi, and rejects unknown keys; errors name the record's file and line.
+  !! 0 <= psi <= phi, and rejects unknown keys; errors name the record's file and line and,
+  !! where one parameter is at fault, its field.
   subroutine new_interface_mohr_coulomb(spec, material, error)
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
@@ -243,12 +244,12 @@ contains
     if (.not. allocated(error)) call get_parameter(spec, 'psi', psi, error, default=0.0_dp)
     if (allocated(error)) return
     if (.not. (c >= 0.0_dp .and. c <= huge(c))) then
-      call material_error(error, spec, 'C = ' // str(c) // ' must be non-negative and finite')
+      call material_error(error, spec, 'C = ' // str(c) // ' must be non-negative and finite', 'c')
     else if (.not. (phi >= 0.0_dp .and. phi < 90.0_dp)) then
-      call material_error(error, spec, 'PHI = ' // str(phi) // ' must lie in [0, 90) degrees')
+      call material_error(error, spec, 'PHI = ' // str(phi) // ' must lie in [0, 90) degrees', 'phi')
     else if (.not. (psi >= 0.0_dp .and. psi <= phi)) then
       call material_error(error, spec, 'PSI = ' // str(psi) // ' must lie in [0, PHI] = [0, ' // str(phi) // &
-                          '] degrees')
+                          '] degrees', 'psi')
     else
       allocate (material, source=interface_mohr_coulomb_t(name=spec%name, kn=kn, ks=ks, c=c, phi=phi, psi=psi))
     end if

@@ -1,9 +1,9 @@
 !> Builds material objects from the model's material parameters, checking them.
 module feps_material_factory
   use feps_kinds, only: dp
-  use feps_error, only: error_t, input_error, str
+  use feps_error, only: error_t, str
   use feps_model, only: material_spec_t
-  use feps_material_params, only: check_known_keys
+  use feps_material_params, only: check_known_keys, material_error, material_conflict, material_error_at
   use feps_material, only: material_t
   use feps_linear_elastic, only: linear_elastic_t
   use feps_interface_mohr_coulomb, only: new_interface_mohr_coulomb
@@ -16,48 +16,15 @@ module feps_material_factory
 
 contains
 
-  !> A material from its parameters; errors name the MATERIAL record's file and line.
+  !> A material from its parameters; errors name the MATERIAL record's file and line and,
+  !! where one parameter is at fault, its field.
   subroutine new_material(spec, material, error)
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: error
-    real(dp) :: e, nu, g
-    logical :: has_e, has_nu, has_g
     select case (spec%kind)
     case ('elastic')
-      call check_known_keys(spec, ['e ', 'nu', 'g '], error)
-      if (allocated(error)) return
-      call spec%get('e', e, has_e)
-      call spec%get('nu', nu, has_nu)
-      call spec%get('g', g, has_g)
-      if (has_e .and. has_g) then
-        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': give only one of E and G ' // &
-                         '(with NU, either fixes the other)')
-        return
-      end if
-      if (.not. has_nu) then
-        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': nu is missing')
-        return
-      end if
-      if (.not. (nu < 0.5_dp .and. nu > -1.0_dp)) then
-        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': nu = ' // str(nu) // &
-                         ' is outside (-1, 0.5): the material would not be positive definite')
-        return
-      end if
-      if (has_g .and. .not. has_e) then
-        e = 2.0_dp * g * (1.0_dp + nu)
-        has_e = .true.
-      end if
-      if (.not. has_e) then
-        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': E (or G) is missing')
-        return
-      end if
-      if (.not. (e > 0.0_dp) .or. e > huge(e)) then
-        call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': E = ' // str(e) // &
-                         ' must be positive and finite')
-        return
-      end if
-      allocate (material, source=linear_elastic_t(name=spec%name, e=e, nu=nu))
+      call new_linear_elastic(spec, material, error)
     case ('interface')
       call new_interface_mohr_coulomb(spec, material, error)
     case ('bar')
@@ -65,9 +32,58 @@ contains
     case ('matsuoka')
       call new_matsuoka_nakai(spec, material, error)
     case default
-      call input_error(error, spec%file, spec%line, 'material ' // spec%name // ': unknown material kind "' // &
-                       spec%kind // '" (ELASTIC, MATSUOKA, INTERFACE, BAR)')
+      call material_error_at(error, spec, 'unknown material kind "' // spec%kind // &
+                             '" (ELASTIC, MATSUOKA, INTERFACE, BAR)', spec%kind_field)
     end select
   end subroutine new_material
+
+  !> An isotropic elastic material from NU and one of E or G. A bad G is reported as given
+  !! (not as the E derived from it), at G's field.
+  subroutine new_linear_elastic(spec, material, error)
+    type(material_spec_t), intent(in) :: spec
+    class(material_t), allocatable, intent(out) :: material
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: e, nu, g
+    logical :: has_e, has_nu, has_g
+    call check_known_keys(spec, ['e ', 'nu', 'g '], error)
+    if (allocated(error)) return
+    call spec%get('e', e, has_e)
+    call spec%get('nu', nu, has_nu)
+    call spec%get('g', g, has_g)
+    if (has_e .and. has_g) then
+      call material_conflict(error, spec, 'give only one of E and G (with NU, either fixes the other)', 'e', 'g')
+      return
+    end if
+    if (.not. has_nu) then
+      call material_error(error, spec, 'nu is missing')
+      return
+    end if
+    if (.not. (nu < 0.5_dp .and. nu > -1.0_dp)) then
+      call material_error(error, spec, 'nu = ' // str(nu) // &
+                          ' is outside (-1, 0.5): the material would not be positive definite', 'nu')
+      return
+    end if
+    if (has_g) then
+      if (.not. (g > 0.0_dp .and. g <= huge(g))) then
+        call material_error(error, spec, 'G = ' // str(g) // ' must be positive and finite', 'g')
+        return
+      end if
+      e = 2.0_dp * g * (1.0_dp + nu)
+      if (.not. (e <= huge(e))) then   ! a finite G near huge() overflows E = 2 G (1 + nu)
+        call material_error(error, spec, 'G = ' // str(g) // ' is too large: E = 2 G (1 + NU) overflows', 'g')
+        return
+      end if
+      has_e = .true.
+    end if
+    if (.not. has_e) then
+      call material_error(error, spec, 'E (or G) is missing')
+      return
+    end if
+    if (.not. (e > 0.0_dp) .or. e > huge(e)) then
+      call material_error(error, spec, 'E = ' // str(e) // ' must be positive and finite', 'e')
+      return
+    end if
+    allocate (material, source=linear_elastic_t(name=spec%name, e=e, nu=nu))
+  end subroutine new_linear_elastic
 
 end module feps_material_factory

@@ -72,7 +72,7 @@ module feps_matsuoka_nakai
   use feps_kinds, only: dp, deg2rad, pi
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
-  use feps_material_params, only: check_known_keys, get_parameter, material_error
+  use feps_material_params, only: check_known_keys, get_parameter, material_error, material_conflict
   use feps_material, only: material_t, state_elastic, state_plastic, state_tension
   use feps_elastic, only: elastic_matrix
   implicit none
@@ -605,7 +605,8 @@ contains
   !> A modified Matsuoka-Nakai material from MATERIAL parameters E, NU, PHI, PSI (degrees)
   !! and exactly one of FT (uniaxial tensile strength) or C (cohesion). Checks E > 0,
   !! -1 < nu < 0.5, 0 < phi < 90, 0 <= psi <= phi, ft > 0 or c > 0, and rejects unknown
-  !! keys; errors name the record's file and line and the parameter.
+  !! keys; errors name the record's file and line and the parameter (and its field, when
+  !! one parameter is at fault: the second of FT and C when both are given).
   subroutine new_matsuoka_nakai(spec, material, error)
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
@@ -623,36 +624,38 @@ contains
     call get_parameter(spec, 'nu', nu, error)
     if (allocated(error)) return
     if (.not. (nu > -1.0_dp .and. nu < 0.5_dp)) then
-      call material_error(error, spec, 'NU = ' // str(nu) // ' is outside (-1, 0.5): the material would not be positive definite')
+      call material_error(error, spec, 'NU = ' // str(nu) // &
+                          ' is outside (-1, 0.5): the material would not be positive definite', 'nu')
       return
     end if
     call get_parameter(spec, 'phi', phi, error)
     if (allocated(error)) return
     if (.not. (phi > 0.0_dp .and. phi < 90.0_dp)) then
-      call material_error(error, spec, 'PHI = ' // str(phi) // ' must lie in (0, 90) degrees')
+      call material_error(error, spec, 'PHI = ' // str(phi) // ' must lie in (0, 90) degrees', 'phi')
       return
     end if
     call get_parameter(spec, 'psi', psi, error)
     if (allocated(error)) return
     if (.not. (psi >= 0.0_dp .and. psi <= phi)) then
-      call material_error(error, spec, 'PSI = ' // str(psi) // ' must lie in [0, PHI] = [0, ' // str(phi) // '] degrees')
+      call material_error(error, spec, 'PSI = ' // str(psi) // ' must lie in [0, PHI] = [0, ' // str(phi) // '] degrees', &
+                          'psi')
       return
     end if
     call spec%get('ft', ft, has_ft)
     call spec%get('c', c, has_c)
     if (has_ft .and. has_c) then
-      call material_error(error, spec, 'give only one of FT and C (they determine the same apex M)')
+      call material_conflict(error, spec, 'give only one of FT and C (they determine the same apex M)', 'ft', 'c')
       return
     end if
     if (has_ft) then
       if (.not. (ft > 0.0_dp .and. ft <= huge(ft))) then
-        call material_error(error, spec, 'FT = ' // str(ft) // ' must be positive and finite')
+        call material_error(error, spec, 'FT = ' // str(ft) // ' must be positive and finite', 'ft')
         return
       end if
       m = apex_from_tensile_strength(ft, phi)
     else if (has_c) then
       if (.not. (c > 0.0_dp .and. c <= huge(c))) then
-        call material_error(error, spec, 'C = ' // str(c) // ' must be positive and finite')
+        call material_error(error, spec, 'C = ' // str(c) // ' must be positive and finite', 'c')
         return
       end if
       m = apex_from_cohesion(c, phi)
@@ -670,7 +673,7 @@ contains
         tension = tension_closest_point
       case default
         call material_error(error, spec, 'TENSION = "' // rule // '": it must be PROPORTIONAL (the thesis''s ' // &
-                            'rule, the default) or CLOSEST-POINT')
+                            'rule, the default) or CLOSEST-POINT', 'tension')
         return
       end select
     end if

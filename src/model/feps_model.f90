@@ -16,11 +16,14 @@ module feps_model
     character(len=name_len), allocatable :: keys(:)
     real(dp), allocatable :: values(:)
     character(len=name_len), allocatable :: texts(:)  !! lower-case word of a text-valued key, else ''
+    integer, allocatable :: fields(:)     !! each key's field number on the record (unallocated: not known)
+    integer :: kind_field = 0             !! field number of the kind (0: not known)
     character(len=:), allocatable :: file
     integer :: line = 0
   contains
     procedure :: get => material_get
     procedure :: get_text => material_get_text
+    procedure :: field_of => material_field_of
   end type material_spec_t
 
   !> MATERIAL keys whose value is a word, not a number (e.g. TENSION=closest-point).
@@ -331,6 +334,22 @@ contains
       end if
     end do
   end subroutine material_get_text
+
+  !> The field number of `key` on the MATERIAL record: 0 if the key was not given or the
+  !! record's field numbers are not known (a spec built by hand).
+  pure integer function material_field_of(self, key) result(field)
+    class(material_spec_t), intent(in) :: self
+    character(len=*), intent(in) :: key
+    integer :: i
+    field = 0
+    if (.not. (allocated(self%keys) .and. allocated(self%fields))) return
+    do i = 1, min(size(self%keys), size(self%fields))
+      if (trim(self%keys(i)) == key) then
+        field = self%fields(i)
+        return
+      end if
+    end do
+  end function material_field_of
 
   pure integer function model_nelem(self) result(n)
     class(model_t), intent(in) :: self

@@ -1,8 +1,9 @@
 !> Every kind of bad input: a one-line error naming the file and line (or element, or node
-!! and DOF), an input/model error code (exit status 2), and no result file left behind.
+!! and DOF), an input/model error code (exit status 2), and no result file left behind; and a
+!! run whose numbers leave double precision: a numerical error (exit status 1), no result file.
 module test_bad_input
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
-  use feps_error, only: err_input, err_model, err_io
+  use feps_error, only: err_input, err_model, err_io, err_solver
   use feps_program, only: run_options_t, run_summary_t, run_feps
   implicit none
   private
@@ -62,7 +63,10 @@ contains
       new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow), &
       new_unittest('PRESTRESS, BOND=AFTER in the last stage', test_prestress_bond_last_stage), &
       new_unittest('PRESTRESS, BOND=AFTER on a group ACTIVATEd in another stage', test_prestress_bond_activate), &
-      new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word) &
+      new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word), &
+      new_unittest('a load beyond double precision names the load', test_load_overflow), &
+      new_unittest('stage loads adding up beyond double precision name the stage', test_stage_load_overflow), &
+      new_unittest('a solution beyond double precision stops the run, no result file', test_solution_overflow) &
       ]
   end subroutine collect_bad_input
 
@@ -438,5 +442,31 @@ contains
                         [character(len=70) :: 'prestress_bond_word.dat:33:', 'field 4', &
                          'BOND is BEFORE', 'not "later"'], error)
   end subroutine test_prestress_bond_word
+
+  !> 1e307 MPa on the cube: the middle top node's force, 2.5e308 N, used to become -Infinity and
+  !! the run to write NaN results with exit 0.
+  subroutine test_load_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/load_overflow.dat', err_input, &
+                        [character(len=60) :: 'load_overflow.dat:24:', 'PRESSURE on face set top', &
+                         'node 23, DOF uz is not finite (-Inf)'], error)
+  end subroutine test_load_overflow
+
+  !> Two finite forces of 1e308 N on one node, a reference one and the stage's own.
+  subroutine test_stage_load_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/stage_load_overflow.dat', err_input, &
+                        [character(len=60) :: 'stage_load_overflow.dat:27:', 'stage push', &
+                         'node 27, DOF uz is not finite (Inf)'], error)
+  end subroutine test_stage_load_overflow
+
+  !> Finite loads, but a displacement of 1e311 mm: a numerical failure (exit 1), not bad input,
+  !! and no result file of NaN.
+  subroutine test_solution_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/overflow_solution.dat', err_solver, &
+                        [character(len=60) :: 'overflow_solution.dat: stage stage1', 'the solution is not finite at node', &
+                         'too large for the stiffness'], error)
+  end subroutine test_solution_overflow
 
 end module test_bad_input

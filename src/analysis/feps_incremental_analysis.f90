@@ -11,8 +11,9 @@
 !! and stop messages in feps_step_report; this module holds the decisions: which stiffness to
 !! factorize, when a step has converged, diverged or is carried, and when to cut back.
 module feps_incremental_analysis
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp
-  use feps_error, only: error_t, str
+  use feps_error, only: error_t, fatal_error, err_solver, str
   use feps_clock, only: wall_clock
   use feps_model, only: model_t, controls_t, method_names, method_euler, method_modified_euler, &
                         method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness, &
@@ -228,9 +229,13 @@ contains
       call an%solver%solve(r, error)
       if (allocated(error)) return
       summary%time_solve = summary%time_solve + wall_clock() - t0
+      call check_finite_solution(model, an, s, r, 'the solution', error)
+      if (allocated(error)) return
       call add_free(an, r, an%u_t)
       call update_points(model, an, dps)
       call residual(an, r, rnorm, pnorm)
+      call check_finite_solution(model, an, s, r, 'the residual', error)
+      if (allocated(error)) return
       ! A stage loaded only by a prestress (a band on a free pipe) has no load and no
       ! reaction: its initial out-of-balance force is the scale, as in substep.
       if (pnorm <= 1.0e-8_dp * r_scale) pnorm = r_scale
@@ -244,6 +249,25 @@ contains
       if (allocated(error)) return
     end do
   end subroutine run_linear_stages
+
+  !> The linear driver has no cut-back to catch a solve that left double precision (the loads
+  !! are finite, but too large for the stiffness, or a degenerate nodal system brought NaN in):
+  !! stop, naming the stage and the first DOF where `x` (a solution, or a residual) is not finite.
+  subroutine check_finite_solution(model, an, s, x, what, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: s
+    real(dp), intent(in) :: x(:)
+    character(len=*), intent(in) :: what
+    type(error_t), allocatable, intent(out) :: error
+    integer :: ieq
+    if (all(ieee_is_finite(x))) return
+    ieq = findloc(ieee_is_finite(x), .false., dim=1)
+    call fatal_error(error, err_solver, model%deck_file // ': stage ' // model%stages(s)%name // ': ' // what // &
+                     ' is not finite at ' // an%map%dof_name(ieq) // ' (' // str(x(ieq)) // '): the loads or ' // &
+                     'prescribed displacements are too large for the stiffness (beyond double precision), or ' // &
+                     'a nodal system (FIX ..., CSYS=) gives no direction')
+  end subroutine check_finite_solution
 
   ! ---------------------------------------------------------------------------------------
   ! Nonlinear models

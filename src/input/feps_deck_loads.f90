@@ -115,6 +115,8 @@ contains
     call require_fields(rec, 3, error)
     if (allocated(error)) return
     l%stage = stage
+    l%file = rec%file
+    l%line = rec%line
     call get_node_set(rec, model, l%node_set, error)
     if (allocated(error)) return
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)

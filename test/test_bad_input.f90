@@ -3,7 +3,7 @@
 !! run whose numbers leave double precision: a numerical error (exit status 1), no result file.
 module test_bad_input
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
-  use feps_error, only: err_input, err_model, err_io, err_solver
+  use feps_error, only: err_input, err_model, err_io, err_solver, str
   use feps_program, only: run_options_t, run_summary_t, run_feps
   implicit none
   private
@@ -11,6 +11,8 @@ module test_bad_input
   public :: collect_bad_input
 
   character(len=*), parameter :: out = 'build/test_bad_input.h5'
+
+  integer :: steps_taken = 0   !! progress lines of steps that count_steps has seen
 
 contains
 
@@ -66,17 +68,23 @@ contains
       new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word), &
       new_unittest('a load beyond double precision names the load', test_load_overflow), &
       new_unittest('stage loads adding up beyond double precision name the stage', test_stage_load_overflow), &
-      new_unittest('a solution beyond double precision stops the run, no result file', test_solution_overflow) &
+      new_unittest('a solution beyond double precision stops the run, no result file', test_solution_overflow), &
+      new_unittest('REPORT, TILT on a section without nodes: before the first step, and by --check', &
+                   test_report_no_section), &
+      new_unittest('REPORT, ROTATION spanning beyond its ring: before the first step, and by --check', &
+                   test_report_ring_span) &
       ]
   end subroutine collect_bad_input
 
   !> Run a deck that must fail; check the error code, the message's pieces and that no
-  !! result file (nor its temporary or XDMF) exists afterwards.
-  subroutine expect_failure(deck, code, pieces, error)
+  !! result file (nor its temporary or XDMF) exists afterwards. With `check_only`, as
+  !! `feps --check`; with `before_first_step`, the error must come before any step is taken.
+  subroutine expect_failure(deck, code, pieces, error, check_only, before_first_step)
     character(len=*), intent(in) :: deck
     integer, intent(in) :: code
     character(len=*), intent(in) :: pieces(:)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: check_only, before_first_step
     type(run_options_t) :: opt
     type(run_summary_t) :: summary
     type(error_t), allocatable :: run_error
@@ -86,10 +94,19 @@ contains
     opt%deck = deck
     opt%output = out
     opt%solver = ''
-    call run_feps(opt, summary, run_error)
+    if (present(check_only)) opt%check_only = check_only
+    steps_taken = 0
+    call run_feps(opt, summary, run_error, count_steps)
     if (.not. allocated(run_error)) then
       call test_failed(error, deck // ': expected an error, the run succeeded')
       return
+    end if
+    if (present(before_first_step)) then
+      if (before_first_step .and. steps_taken > 0) then
+        call test_failed(error, deck // ': the error came after ' // str(steps_taken) // ' steps: ' // &
+                         run_error%message)
+        return
+      end if
     end if
     call check(error, run_error%code, code, deck // ': error code (message: ' // run_error%message // ')')
     if (allocated(error)) return
@@ -110,6 +127,12 @@ contains
     inquire (file='build/test_bad_input.xmf', exist=exists)
     call check(error, .not. exists, 'no XDMF file left behind')
   end subroutine expect_failure
+
+  !> The progress sink of expect_failure: counts the lines of steps taken.
+  subroutine count_steps(line)
+    character(len=*), intent(in) :: line
+    if (index(line, '  step ') > 0) steps_taken = steps_taken + 1
+  end subroutine count_steps
 
   subroutine remove_outputs()
     integer :: u, ios
@@ -468,5 +491,25 @@ contains
                         [character(len=60) :: 'overflow_solution.dat: stage stage1', 'the solution is not finite at node', &
                          'too large for the stiffness'], error)
   end subroutine test_solution_overflow
+
+  !> A REPORT's sections depend on the mesh only: they used to be looked for after the whole
+  !! analysis, whose results were then thrown away, and --check passed the deck.
+  subroutine test_report_no_section(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=60), parameter :: pieces(3) = [character(len=60) :: 'report_no_section.dat:26:', &
+      'REPORT t: group block', 'has no node on the section z = 7']
+    call expect_failure('test/data/bad/report_no_section.dat', err_input, pieces, error, before_first_step=.true.)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/report_no_section.dat', err_input, pieces, &
+                                                    error, check_only=.true.)
+  end subroutine test_report_no_section
+
+  subroutine test_report_ring_span(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=60), parameter :: pieces(2) = [character(len=60) :: 'report_ring_span.dat:25:', &
+      'REPORT top: FROM/TO lie outside the ring of nodes']
+    call expect_failure('test/data/bad/report_ring_span.dat', err_input, pieces, error, before_first_step=.true.)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/report_ring_span.dat', err_input, pieces, &
+                                                    error, check_only=.true.)
+  end subroutine test_report_ring_span
 
 end module test_bad_input

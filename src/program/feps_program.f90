@@ -148,6 +148,8 @@ contains
       end if
     end if
     if (options%max_iterations > 0) call override_max_iterations(model, options%max_iterations)
+    call check_reports(model, error)
+    if (allocated(error)) return
     if (options%check_only) then
       if (present(sink)) obs%sink => sink
       call check_only(model, solver, obs, summary, error)
@@ -288,6 +290,28 @@ contains
     end do
   end subroutine override_max_iterations
 
+  !> The sections and rings of the REPORT records depend on the mesh only: find their errors
+  !! before the first step, in a run and in --check alike (not after the whole analysis, whose
+  !! results would be lost), by evaluating each report on zero displacements, with the very
+  !! procedures post_process uses.
+  subroutine check_reports(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: u(:, :)
+    real(dp) :: angle
+    integer :: k
+    allocate (u(3, model%nnode))
+    u = 0.0_dp
+    do k = 1, size(model%reports)
+      if (model%reports(k)%kind == 'tilt') then
+        call axis_tilt(model, model%reports(k), u, angle, error)
+      else
+        call section_rotation(model, model%reports(k), u, angle, error)
+      end if
+      if (allocated(error)) return
+    end do
+  end subroutine check_reports
+
   !> REPORT records: rotations of pipe sections (thesis 7.3) from the final displacements.
   subroutine post_process(model, u, h5, summary, error)
     type(model_t), intent(in) :: model
@@ -367,6 +391,12 @@ contains
     ws = u(3, ring(order))
     x0 = xs(1)
     x1 = xs(size(xs))
+    if (.not. r%has_span .and. x1 - x0 <= tol) then
+      call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': the nodes of group ' // &
+                       model%groups(r%group)%name // ' on r = ' // str(r%r) // ', z = ' // str(r%z) // &
+                       ' all lie at x = ' // str(x0) // ': no slope to measure')
+      return
+    end if
     if (r%has_span) then
       x0 = r%x_from
       x1 = r%x_to

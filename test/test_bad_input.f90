@@ -3,7 +3,7 @@
 !! run whose numbers leave double precision: a numerical error (exit status 1), no result file.
 module test_bad_input
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
-  use feps_error, only: err_input, err_model, err_io, err_solver, str
+  use feps_error, only: err_input, err_input_file, err_model, err_solver, str
   use feps_program, only: run_options_t, run_summary_t, run_feps
   implicit none
   private
@@ -228,9 +228,14 @@ contains
     call expect_failure('test/data/bad/empty.dat', err_input, [character(len=40) :: 'empty.dat', 'empty'], error)
   end subroutine test_empty
 
+  !> A deck that cannot be read is an input file error (feps exits 2: the user fixes the input),
+  !! not err_io, which is for results that cannot be written (exit 1).
   subroutine test_missing_file(error)
     type(error_t), allocatable, intent(out) :: error
-    call expect_failure('test/data/bad/no_such_deck.dat', err_io, [character(len=40) :: 'no_such_deck.dat'], error)
+    call expect_failure('test/data/bad/no_such_deck.dat', err_input_file, &
+                        [character(len=60) :: 'test/data/bad/no_such_deck.dat: cannot open file'], error)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/no_such_deck.dat', err_input_file, &
+      [character(len=60) :: 'test/data/bad/no_such_deck.dat: cannot open file'], error, check_only=.true.)
   end subroutine test_missing_file
 
   subroutine test_node_out_of_range(error)

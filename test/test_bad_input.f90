@@ -72,7 +72,8 @@ contains
       new_unittest('REPORT, TILT on a section without nodes: before the first step, and by --check', &
                    test_report_no_section), &
       new_unittest('REPORT, ROTATION spanning beyond its ring: before the first step, and by --check', &
-                   test_report_ring_span) &
+                   test_report_ring_span), &
+      new_unittest('node coordinates beyond double precision, in a run and by --check', test_coordinates_overflow) &
       ]
   end subroutine collect_bad_input
 
@@ -516,5 +517,16 @@ contains
     if (.not. allocated(error)) call expect_failure('test/data/bad/report_ring_span.dat', err_input, pieces, &
                                                     error, check_only=.true.)
   end subroutine test_report_ring_span
+
+  !> A node at x = 2e308 (Infinity): the run used to stop only when the writer refused the mesh
+  !! (exit 1), and --check at a load made of NaN; now both name the node as bad input.
+  subroutine test_coordinates_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=60), parameter :: pieces(2) = [character(len=60) :: 'coordinates_overflow.dat: node 3:', &
+      'its coordinate x is not finite (Inf)']
+    call expect_failure('test/data/bad/coordinates_overflow.dat', err_input, pieces, error)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/coordinates_overflow.dat', err_input, pieces, &
+                                                    error, check_only=.true.)
+  end subroutine test_coordinates_overflow
 
 end module test_bad_input

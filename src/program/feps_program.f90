@@ -2,6 +2,7 @@
 !! run it, write the HDF5 results (temporary name, renamed on success; nothing left behind
 !! on error) and return a summary for the program to print.
 module feps_program
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8, rad2deg
   use feps_error, only: error_t, fatal_error, input_error, err_input, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
@@ -112,6 +113,8 @@ contains
 
     t0 = wall_clock()
     call read_deck(options%deck, model, error)
+    if (allocated(error)) return
+    call check_coordinates(model, error)
     if (allocated(error)) return
     summary%title = model%title
     summary%mesh_only = model%mesh_only
@@ -289,6 +292,21 @@ contains
       end associate
     end do
   end subroutine override_max_iterations
+
+  !> Nodes beyond double precision (a DATAIN increment or a coordinate system that overflows or
+  !! gives no direction) are bad input: name the first, before anything is computed or
+  !! written, so that a run and --check stop alike (the results writer would refuse the mesh).
+  subroutine check_coordinates(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    character(len=1), parameter :: axes(3) = ['x', 'y', 'z']
+    integer :: at(2)
+    if (all(ieee_is_finite(model%coords))) return
+    at = findloc(ieee_is_finite(model%coords), .false.)
+    call fatal_error(error, err_input, model%deck_file // ': node ' // str(at(2)) // ': its coordinate ' // &
+                     axes(at(1)) // ' is not finite (' // str(model%coords(at(1), at(2))) // '): the DATAIN ' // &
+                     'block or NODE record that gives it, or its coordinate system, is beyond double precision')
+  end subroutine check_coordinates
 
   !> The sections and rings of the REPORT records depend on the mesh only: find their errors
   !! before the first step, in a run and in --check alike (not after the whole analysis, whose

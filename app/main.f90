@@ -3,7 +3,7 @@ program feps_main
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int
   use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, err_input, err_model, str
+  use feps_error, only: error_t, err_input, err_input_file, err_model, str
   use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version
   use feps_strings, only: sci
   use feps_xdmf, only: is_xdmf_name
@@ -31,8 +31,11 @@ program feps_main
   end if
   if (allocated(error)) then
     write (error_unit, '(a)') 'feps: error: ' // error%message
+    ! 2: what the user fixes in the input (the deck, an included file, a file that cannot be
+    ! read, a model that cannot be solved as given); 1: a run that failed (no convergence,
+    ! results beyond double precision) or results that cannot be written.
     select case (error%code)
-    case (err_input, err_model)
+    case (err_input, err_input_file, err_model)
       call c_exit(2_c_int)
     case default
       call c_exit(1_c_int)
@@ -175,7 +178,9 @@ contains
       '  -h, --help           this text', &
       '  -V, --version        the version', &
       '', &
-      'Exit status: 0 success, 2 bad input or an unsolvable model, 1 other failures.'
+      'Exit status: 0 success; 2 bad input (including a deck that cannot be read) or an unsolvable', &
+      'model; 1 a run that failed (no convergence, results beyond double precision) or results', &
+      'that cannot be written.'
   end subroutine print_help
 
   subroutine print_summary(s)

@@ -23,6 +23,17 @@ grep -q "usage: feps DECK" "$tmp/out" && ok "--help shows usage" || bad "--help 
 expect_status "--version" 0 "$feps" --version
 grep -q "^feps [0-9]" "$tmp/out" && ok "--version prints the version" || bad "--version prints the version"
 expect_status "no deck" 2 "$feps"
+# A deck that cannot be read is bad input (the user fixes the command or the file): exit 2, one
+# line naming the file, no result file; results that cannot be written are a failed run: exit 1.
+expect_status "missing deck" 2 "$feps" "$tmp/no_such_deck.dat" --output "$tmp/nd.h5"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: $tmp/no_such_deck.dat: cannot open file" "$tmp/err" \
+  && [ ! -e "$tmp/nd.h5" ] && [ ! -e "$tmp/nd.h5.part" ] && ok "the missing deck is named in one line, no result file" \
+  || bad "the missing deck is named in one line, no result file: $(head -c 300 "$tmp/err")"
+expect_status "missing deck with --check" 2 "$feps" "$tmp/no_such_deck.dat" --check
+expect_status "results into a missing folder" 1 "$feps" test/data/cube.dat --output "$tmp/no_such_folder/cube.h5"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: cannot create results file" "$tmp/err" \
+  && ok "the unwritable results file is named in one line" \
+  || bad "the unwritable results file is named in one line: $(head -c 300 "$tmp/err")"
 expect_status "unknown option" 2 "$feps" --frobnicate input/modelB.dat
 expect_status "bad --solver" 2 "$feps" test/data/cube.dat --solver lu
 expect_status "bad --method" 2 "$feps" test/data/cube.dat --method newton
@@ -110,6 +121,14 @@ u = float(lines["max displacement"][0])
 assert abs(u / (100 * 10 / 1e-300 * math.sqrt(1 + 2 * 0.3**2)) - 1) < 1e-5, u
 assert [float(x) for x in lines["applied force"]] == [0.0, 0.0, -1e4], lines["applied force"]
 PY
+
+# Finite loads, a displacement beyond double precision: exit 1, one line naming the stage, no
+# result file of NaN.
+expect_status "solution beyond double precision" 1 "$feps" test/data/overflow_solution.dat --output "$tmp/ovf.h5"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "stage stage1: the solution is not finite" "$tmp/err" \
+  && [ ! -e "$tmp/ovf.h5" ] && [ ! -e "$tmp/ovf.h5.part" ] && [ ! -e "$tmp/ovf.xmf" ] \
+  && ok "the overflow names the stage and leaves no result file" \
+  || bad "the overflow names the stage and leaves no result file: $(head -c 300 "$tmp/err")"
 
 # Mutated decks (fixed seeds): a clear answer every time, never a crash, a hang or a runaway
 # allocation (scripts/fuzz_input.py; longer campaigns in docs/verification.md).

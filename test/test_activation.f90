@@ -156,37 +156,48 @@ contains
   !> test/data/stage_supports.dat (linear driver) and its Matsuoka twin (incremental driver,
   !! never yields): a bar pulled at the top (stage 1), its top then held where it is while the
   !! middle is pulled (stage 2), then released, its support force removed over 5 steps
-  !! (stage 3). Closed forms in the deck's header; the incremental run writes every step of
-  !! stage 3, where the support force falls linearly: u_mid = 1.5 + 0.1 k after k steps.
+  !! (stage 3, OUTPUT=1). Closed forms in the deck's header; both drivers write every step of
+  !! stage 3, where the support force falls linearly: u_mid = 1.5 + 0.1 k after k steps (the
+  !! linear driver's step k is the stage start plus k/5 of its one solve). The two drivers'
+  !! steps agree in every displacement, reaction and stress, and in the load factor.
   subroutine test_stage_supports(error)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), parameter :: decks(2) = [character(len=48) :: 'test/data/stage_supports.dat', &
                                                 'test/data/stage_supports_incremental.dat']
-    type(all_steps_t) :: obs
+    type(all_steps_t) :: obs(2)
     type(model_t) :: model
     real(dp) :: umid, utop, rtop, rbot
     integer :: d, k, n, j
     do d = 1, size(decks)
-      call run_deck(trim(decks(d)), obs, error)
+      call run_deck(trim(decks(d)), obs(d), error)
       if (allocated(error)) return
       call read_deck(trim(decks(d)), model, error)
       if (allocated(error)) return
-      n = size(obs%steps)
-      call check(error, n, merge(3, 7, d == 1), trim(decks(d)) // ': steps written')
+      n = size(obs(d)%steps)
+      call check(error, n, 7, trim(decks(d)) // ': steps written (the ends of stages 1 and 2, every step of stage 3)')
       if (allocated(error)) return
-      call measure(obs%steps(1))
+      call measure(obs(d)%steps(1))
       call compare([1.0_dp, 2.0_dp, 0.0_dp, -1000.0_dp], 'stage 1')
       if (allocated(error)) return
-      call measure(obs%steps(2))
+      call measure(obs(d)%steps(2))
       call compare([1.5_dp, 2.0_dp, -500.0_dp, -1500.0_dp], 'stage 2 (top held where it was)')
       if (allocated(error)) return
       do k = 3, n
-        j = 5 - (n - k)     ! steps of stage 3 done (the linear driver writes only its end)
-        call measure(obs%steps(k))
-        call compare([1.5_dp + 0.1_dp * j, 2.0_dp + 0.2_dp * j, 0.0_dp, -1500.0_dp - 100.0_dp * j], &
-                     'stage 3 (top released), step ' // achar(iachar('0') + j))
+        j = k - 2     ! steps of stage 3 done
+        call measure(obs(d)%steps(k))
+        call compare([1.5_dp + 0.1_dp * j, 2.0_dp + 0.2_dp * j, 0.0_dp, &
+                      -1500.0_dp - 100.0_dp * j], 'stage 3 (top released), step ' // achar(iachar('0') + j))
+        if (allocated(error)) return
+        call check(error, obs(d)%steps(k)%step, 5 + j, trim(decks(d)) // ': step number over the stages')
+        if (allocated(error)) return
+        call check(error, obs(d)%steps(k)%load_factor, 2.0_dp + j / 5.0_dp, trim(decks(d)) // &
+                   ': load factor of stage 3, step ' // achar(iachar('0') + j), rel=1.0e-14_dp)
         if (allocated(error)) return
       end do
+    end do
+    do k = 1, 7
+      call agree(obs(1)%steps(k), obs(2)%steps(k))
+      if (allocated(error)) return
     end do
   contains
     !> u_mid and u_top (mm) to 1e-9 mm, the reactions (N) to 1e-6 N.
@@ -217,6 +228,28 @@ contains
       rtop = sum(res%reaction(3, :), mask=top)
       rbot = sum(res%reaction(3, :), mask=bot)
     end subroutine measure
+
+    !> The linear and the incremental driver's step: the same step number and load factor, every
+    !! displacement within 1e-9 of the largest (mm), every reaction within 1e-9 of the largest
+    !! (N), every stress within 1e-9 of the largest (MPa). Each incremental step converges to
+    !! |R| / |P| < 1e-6 (DELTA1), but a bar far from yield converges in one iteration to rounding.
+    subroutine agree(lin, inc)
+      type(step_result_t), intent(in) :: lin, inc
+      character(len=:), allocatable :: what
+      what = 'step ' // achar(iachar('0') + lin%step) // ', linear against incremental driver: '
+      call check(error, lin%step, inc%step, what // 'step number')
+      if (.not. allocated(error)) call check(error, lin%load_factor, inc%load_factor, what // 'load factor', &
+                                             rel=1.0e-14_dp)
+      if (.not. allocated(error)) call check(error, maxval(abs(lin%displacement - inc%displacement)), 0.0_dp, &
+                                             what // 'largest displacement difference', &
+                                             abs=1.0e-9_dp * maxval(abs(inc%displacement)))
+      if (.not. allocated(error)) call check(error, maxval(abs(lin%reaction - inc%reaction)), 0.0_dp, &
+                                             what // 'largest reaction difference', &
+                                             abs=1.0e-9_dp * maxval(abs(inc%reaction)))
+      if (.not. allocated(error)) call check(error, maxval(abs(lin%groups(1)%stress - inc%groups(1)%stress)), &
+                                             0.0_dp, what // 'largest stress difference', &
+                                             abs=1.0e-9_dp * maxval(abs(inc%groups(1)%stress)))
+    end subroutine agree
   end subroutine test_stage_supports
 
 end module test_activation

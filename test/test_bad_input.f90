@@ -1,8 +1,9 @@
 !> Every kind of bad input: a one-line error naming the file and line (or element, or node
-!! and DOF), an input/model error code (exit status 2), and no result file left behind.
+!! and DOF), an input/model error code (exit status 2), and no result file left behind; and a
+!! run whose numbers leave double precision: a numerical error (exit status 1), no result file.
 module test_bad_input
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
-  use feps_error, only: err_input, err_model, err_io
+  use feps_error, only: err_input, err_input_file, err_model, err_solver, str
   use feps_program, only: run_options_t, run_summary_t, run_feps
   implicit none
   private
@@ -10,6 +11,8 @@ module test_bad_input
   public :: collect_bad_input
 
   character(len=*), parameter :: out = 'build/test_bad_input.h5'
+
+  integer :: steps_taken = 0   !! progress lines of steps that count_steps has seen
 
 contains
 
@@ -93,18 +96,29 @@ contains
       new_unittest('PRESTRESS, BOND=AFTER in the last stage', test_prestress_bond_last_stage), &
       new_unittest('PRESTRESS, BOND=AFTER on a group ACTIVATEd in another stage', test_prestress_bond_activate), &
       new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word), &
-      new_unittest('OUTPUT naming a .xmf file (the XDMF file would replace it)', test_output_xmf) &
+      new_unittest('OUTPUT naming a .xmf file (the XDMF file would replace it)', test_output_xmf), &
+      new_unittest('a load beyond double precision names the load', test_load_overflow), &
+      new_unittest('stage loads adding up beyond double precision name the stage', test_stage_load_overflow), &
+      new_unittest('a solution beyond double precision stops the run, no result file', test_solution_overflow), &
+      new_unittest('REPORT, TILT on a section without nodes: before the first step, and by --check', &
+                   test_report_no_section), &
+      new_unittest('REPORT, ROTATION spanning beyond its ring: before the first step, and by --check', &
+                   test_report_ring_span), &
+      new_unittest('node coordinates beyond double precision, in a run and by --check', test_coordinates_overflow) &
       ]
   end subroutine collect_bad_input
 
   !> Run a deck that must fail; check the error code, the message's pieces (and that none of
   !! `absent` is in it) and that no result file (nor its temporary or XDMF) exists afterwards.
-  subroutine expect_failure(deck, code, pieces, error, absent)
+  !! With `check_only`, as `feps --check`; with `before_first_step`, the error must come before
+  !! any step is taken.
+  subroutine expect_failure(deck, code, pieces, error, absent, check_only, before_first_step)
     character(len=*), intent(in) :: deck
     integer, intent(in) :: code
     character(len=*), intent(in) :: pieces(:)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: absent(:)
+    logical, intent(in), optional :: check_only, before_first_step
     type(run_options_t) :: opt
     type(run_summary_t) :: summary
     type(error_t), allocatable :: run_error
@@ -114,10 +128,19 @@ contains
     opt%deck = deck
     opt%output = out
     opt%solver = ''
-    call run_feps(opt, summary, run_error)
+    if (present(check_only)) opt%check_only = check_only
+    steps_taken = 0
+    call run_feps(opt, summary, run_error, count_steps)
     if (.not. allocated(run_error)) then
       call test_failed(error, deck // ': expected an error, the run succeeded')
       return
+    end if
+    if (present(before_first_step)) then
+      if (before_first_step .and. steps_taken > 0) then
+        call test_failed(error, deck // ': the error came after ' // str(steps_taken) // ' steps: ' // &
+                         run_error%message)
+        return
+      end if
     end if
     call check(error, run_error%code, code, deck // ': error code (message: ' // run_error%message // ')')
     if (allocated(error)) return
@@ -146,6 +169,12 @@ contains
     inquire (file='build/test_bad_input.xmf', exist=exists)
     call check(error, .not. exists, 'no XDMF file left behind')
   end subroutine expect_failure
+
+  !> The progress sink of expect_failure: counts the lines of steps taken.
+  subroutine count_steps(line)
+    character(len=*), intent(in) :: line
+    if (index(line, '  step ') > 0) steps_taken = steps_taken + 1
+  end subroutine count_steps
 
   subroutine remove_outputs()
     integer :: u, ios
@@ -393,9 +422,14 @@ contains
     call expect_failure('test/data/bad/empty.dat', err_input, [character(len=40) :: 'empty.dat', 'empty'], error)
   end subroutine test_empty
 
+  !> A deck that cannot be read is an input file error (feps exits 2: the user fixes the input),
+  !! not err_io, which is for results that cannot be written (exit 1).
   subroutine test_missing_file(error)
     type(error_t), allocatable, intent(out) :: error
-    call expect_failure('test/data/bad/no_such_deck.dat', err_io, [character(len=40) :: 'no_such_deck.dat'], error)
+    call expect_failure('test/data/bad/no_such_deck.dat', err_input_file, &
+                        [character(len=60) :: 'test/data/bad/no_such_deck.dat: cannot open file'], error)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/no_such_deck.dat', err_input_file, &
+      [character(len=60) :: 'test/data/bad/no_such_deck.dat: cannot open file'], error, check_only=.true.)
   end subroutine test_missing_file
 
   subroutine test_node_out_of_range(error)
@@ -697,5 +731,62 @@ contains
                         [character(len=70) :: 'prestress_bond_word.dat:33:', 'field 4', &
                          'BOND is BEFORE', 'not "later"'], error)
   end subroutine test_prestress_bond_word
+
+  !> 1e307 MPa on the cube: the middle top node's force, 2.5e308 N, used to become -Infinity and
+  !! the run to write NaN results with exit 0.
+  subroutine test_load_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/load_overflow.dat', err_input, &
+                        [character(len=60) :: 'load_overflow.dat:24:', 'PRESSURE on face set top', &
+                         'node 23, DOF uz is not finite (-Inf)'], error)
+  end subroutine test_load_overflow
+
+  !> Two finite forces of 1e308 N on one node, a reference one and the stage's own.
+  subroutine test_stage_load_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/stage_load_overflow.dat', err_input, &
+                        [character(len=60) :: 'stage_load_overflow.dat:27:', 'stage push', &
+                         'node 27, DOF uz is not finite (Inf)'], error)
+  end subroutine test_stage_load_overflow
+
+  !> Finite loads, but a displacement of 1e311 mm: a numerical failure (exit 1), not bad input,
+  !! and no result file of NaN.
+  subroutine test_solution_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/overflow_solution.dat', err_solver, &
+                        [character(len=60) :: 'overflow_solution.dat: stage stage1', 'the solution is not finite at node', &
+                         'too large for the stiffness'], error)
+  end subroutine test_solution_overflow
+
+  !> A REPORT's sections depend on the mesh only: they used to be looked for after the whole
+  !! analysis, whose results were then thrown away, and --check passed the deck.
+  subroutine test_report_no_section(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=60), parameter :: pieces(3) = [character(len=60) :: 'report_no_section.dat:26:', &
+      'REPORT t: group block', 'has no node on the section z = 7']
+    call expect_failure('test/data/bad/report_no_section.dat', err_input, pieces, error, before_first_step=.true.)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/report_no_section.dat', err_input, pieces, &
+                                                    error, check_only=.true.)
+  end subroutine test_report_no_section
+
+  subroutine test_report_ring_span(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=60), parameter :: pieces(2) = [character(len=60) :: 'report_ring_span.dat:25:', &
+      'REPORT top: FROM/TO lie outside the ring of nodes']
+    call expect_failure('test/data/bad/report_ring_span.dat', err_input, pieces, error, before_first_step=.true.)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/report_ring_span.dat', err_input, pieces, &
+                                                    error, check_only=.true.)
+  end subroutine test_report_ring_span
+
+  !> A node at x = 2e308 (Infinity): the run used to stop only when the writer refused the mesh
+  !! (exit 1), and --check at a load made of NaN; now both name the node as bad input.
+  subroutine test_coordinates_overflow(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=60), parameter :: pieces(2) = [character(len=60) :: 'coordinates_overflow.dat: node 3:', &
+      'its coordinate x is not finite (Inf)']
+    call expect_failure('test/data/bad/coordinates_overflow.dat', err_input, pieces, error)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/coordinates_overflow.dat', err_input, pieces, &
+                                                    error, check_only=.true.)
+  end subroutine test_coordinates_overflow
 
 end module test_bad_input

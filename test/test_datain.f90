@@ -2,7 +2,7 @@
 !! meshes built by hand, and one test per error kind checking file, line and field.
 module test_datain
   use feps_kinds, only: dp, deg2rad
-  use feps_error, only: err_input, err_io
+  use feps_error, only: err_input, err_input_file
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about
   use feps_records, only: record_t, records_from_text, keyword, nfields, field_text, &
@@ -502,7 +502,7 @@ contains
     type(error_t), allocatable :: got
     type(datain_mesh_t) :: mesh
     call datain_read_file('no/such/dir/mesh.datain', default_coordinate_systems(), mesh, got)
-    call expect_error(error, got, err_io, 'no/such/dir/mesh.datain: ', 'cannot open')
+    call expect_error(error, got, err_input_file, 'no/such/dir/mesh.datain: ', 'cannot open')
   end subroutine test_error_cannot_open
 
   !> A file of comments only has no records (read through a real file).

@@ -47,39 +47,60 @@ contains
 
   !> Tendon k1 = 100 N/mm prestressed by N0 = 90 N in series with a spring k2 = 200 N/mm
   !! between fixed ends (test/data/prestress_series.dat): u2 = -N0 / (k1 + k2) = -0.3 and
-  !! N = N0 k2 / (k1 + k2) = 60 N in both, the reactions -60 and +60. Then F = 30 N on the
-  !! middle node: du = 0.1, tendon 60 + k1 du = 70 N, spring 60 - k2 du = 40 N.
+  !! N = N0 k2 / (k1 + k2) = 60 N in both, the reactions -60 and +60, reached in equal thirds
+  !! over stage 1's three steps (OUTPUT=1: the linear path writes each, k/3 of its one solve).
+  !! Then F = 30 N on the middle node: du = 0.1, tendon 60 + k1 du = 70 N, spring 60 - k2 du = 40 N.
   subroutine test_series(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
     type(analysis_summary_t) :: summary
     type(all_steps_t) :: obs
+    character(len=:), allocatable :: what
+    real(dp) :: t
+    integer :: k
     call read_deck('test/data/prestress_series.dat', model, error)
     if (allocated(error)) return
     call run_analysis(model, 'cholmod', obs, summary, error)
     if (allocated(error)) return
     call check(error, summary%linear, 'bars only: the linear path')
     if (allocated(error)) return
-    call check(error, size(obs%steps), 2, 'one written step per stage on the linear path')
+    call check(error, size(obs%steps), 4, 'every step of stage 1 (OUTPUT=1) and the end of stage 2')
     if (allocated(error)) return
-    call check(error, obs%steps(1)%displacement(1, 2), -0.3_dp, 'stage 1: u2 = -N0 / (k1 + k2)', rel=1.0e-12_dp)
+    do k = 1, 3
+      t = k / 3.0_dp
+      what = 'stage 1, step ' // achar(iachar('0') + k) // ' of 3: '
+      call check(error, obs%steps(k)%step, k, what // 'step number')
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%load_factor, t, what // 'load factor k / 3', rel=1.0e-14_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%displacement(1, 2), -0.3_dp * t, what // 'u2 = -(k/3) N0 / (k1 + k2)', &
+                 rel=1.0e-12_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%groups(1)%stress(1, 1), 60.0_dp * t, what // 'tendon (k/3) N0 k2 / (k1 + k2)', &
+                 rel=1.0e-12_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%groups(2)%stress(1, 1), 60.0_dp * t, what // 'spring (k/3) N0 k2 / (k1 + k2)', &
+                 rel=1.0e-12_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%reaction(1, 1), -60.0_dp * t, what // 'reaction at the tendon end', &
+                 rel=1.0e-12_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%reaction(1, 3), 60.0_dp * t, what // 'reaction at the spring end', &
+                 rel=1.0e-12_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%residual, 0.0_dp, what // 'in balance', abs=1.0e-12_dp)
+      if (allocated(error)) return
+    end do
+    call check(error, obs%steps(4)%step, 4, 'stage 2: step number')
     if (allocated(error)) return
-    call check(error, obs%steps(1)%groups(1)%stress(1, 1), 60.0_dp, 'stage 1: tendon N0 k2 / (k1 + k2)', &
+    call check(error, obs%steps(4)%load_factor, 2.0_dp, 'stage 2: load factor', rel=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, obs%steps(4)%displacement(1, 2), -0.2_dp, 'stage 2: u2 + F / (k1 + k2)', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, obs%steps(4)%groups(1)%stress(1, 1), 70.0_dp, 'stage 2: the bonded tendon gains k1 du', &
                rel=1.0e-12_dp)
     if (allocated(error)) return
-    call check(error, obs%steps(1)%groups(2)%stress(1, 1), 60.0_dp, 'stage 1: spring N0 k2 / (k1 + k2)', &
-               rel=1.0e-12_dp)
-    if (allocated(error)) return
-    call check(error, obs%steps(1)%reaction(1, 1), -60.0_dp, 'stage 1: reaction at the tendon end', rel=1.0e-12_dp)
-    if (allocated(error)) return
-    call check(error, obs%steps(1)%reaction(1, 3), 60.0_dp, 'stage 1: reaction at the spring end', rel=1.0e-12_dp)
-    if (allocated(error)) return
-    call check(error, obs%steps(2)%displacement(1, 2), -0.2_dp, 'stage 2: u2 + F / (k1 + k2)', rel=1.0e-12_dp)
-    if (allocated(error)) return
-    call check(error, obs%steps(2)%groups(1)%stress(1, 1), 70.0_dp, 'stage 2: the bonded tendon gains k1 du', &
-               rel=1.0e-12_dp)
-    if (allocated(error)) return
-    call check(error, obs%steps(2)%groups(2)%stress(1, 1), 40.0_dp, 'stage 2: the spring loses k2 du', &
+    call check(error, obs%steps(4)%groups(2)%stress(1, 1), 40.0_dp, 'stage 2: the spring loses k2 du', &
                rel=1.0e-12_dp)
   end subroutine test_series
 
@@ -333,32 +354,43 @@ contains
   end subroutine test_post
 
   !> test/data/prestress_series_post.dat (the linear path): stage 1, the unbonded tendon's 90 N
-  !! held by the spring alone, u2 = -90 / k2 = -0.45; stage 2, bonded carrying 90 N, F = 30 N:
-  !! u2 = -0.35, tendon 100 N, spring 70 N (pretensioned, test_series: 60, 70 and 40 N).
+  !! held by the spring alone, in thirds over its three steps (OUTPUT=1): u2 = -(k/3) 90 / k2,
+  !! -0.45 at its end; stage 2, bonded carrying 90 N, F = 30 N: u2 = -0.35, tendon 100 N,
+  !! spring 70 N (pretensioned, test_series: 60, 70 and 40 N).
   subroutine test_series_post(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
     type(analysis_summary_t) :: summary
     type(all_steps_t) :: obs
+    character(len=:), allocatable :: what
+    real(dp) :: t
+    integer :: k
     call read_deck('test/data/prestress_series_post.dat', model, error)
     if (allocated(error)) return
     call run_analysis(model, 'cholmod', obs, summary, error)
     if (allocated(error)) return
     call check(error, summary%linear, 'bars only: the linear path')
     if (allocated(error)) return
-    call check(error, obs%steps(1)%displacement(1, 2), -0.45_dp, 'stage 1: u2 = -N0 / k2', rel=1.0e-12_dp)
+    call check(error, size(obs%steps), 4, 'every step of stage 1 (OUTPUT=1) and the end of stage 2')
     if (allocated(error)) return
-    call check(error, obs%steps(1)%groups(1)%stress(1, 1), 0.0_dp, 'stage 1: the unbonded tendon is not a bar yet')
+    do k = 1, 3
+      t = k / 3.0_dp
+      what = 'stage 1, step ' // achar(iachar('0') + k) // ' of 3: '
+      call check(error, obs%steps(k)%displacement(1, 2), -0.45_dp * t, what // 'u2 = -(k/3) N0 / k2', &
+                 rel=1.0e-12_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%groups(1)%stress(1, 1), 0.0_dp, what // 'the unbonded tendon is not a bar yet')
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%groups(2)%stress(1, 1), 90.0_dp * t, what // 'spring (k/3) N0', rel=1.0e-12_dp)
+      if (allocated(error)) return
+    end do
+    call check(error, obs%steps(4)%displacement(1, 2), -0.35_dp, 'stage 2: u2 + F / (k1 + k2)', rel=1.0e-12_dp)
     if (allocated(error)) return
-    call check(error, obs%steps(1)%groups(2)%stress(1, 1), 90.0_dp, 'stage 1: spring N0', rel=1.0e-12_dp)
+    call check(error, obs%steps(4)%groups(1)%stress(1, 1), 100.0_dp, 'stage 2: tendon N0 + k1 du', rel=1.0e-12_dp)
     if (allocated(error)) return
-    call check(error, obs%steps(2)%displacement(1, 2), -0.35_dp, 'stage 2: u2 + F / (k1 + k2)', rel=1.0e-12_dp)
+    call check(error, obs%steps(4)%groups(2)%stress(1, 1), 70.0_dp, 'stage 2: spring N0 - k2 du', rel=1.0e-12_dp)
     if (allocated(error)) return
-    call check(error, obs%steps(2)%groups(1)%stress(1, 1), 100.0_dp, 'stage 2: tendon N0 + k1 du', rel=1.0e-12_dp)
-    if (allocated(error)) return
-    call check(error, obs%steps(2)%groups(2)%stress(1, 1), 70.0_dp, 'stage 2: spring N0 - k2 du', rel=1.0e-12_dp)
-    if (allocated(error)) return
-    call check(error, obs%steps(2)%reaction(1, 1), -100.0_dp, 'stage 2: the tendon''s anchor reaction', &
+    call check(error, obs%steps(4)%reaction(1, 1), -100.0_dp, 'stage 2: the tendon''s anchor reaction', &
                rel=1.0e-12_dp)
   end subroutine test_series_post
 

@@ -2,7 +2,7 @@
 !! with the HDF5 API and compared exactly with the values written (all are exact binary fractions).
 module test_results_file
   use feps_kinds, only: dp, i8
-  use feps_error, only: err_internal, str
+  use feps_error, only: err_internal, err_solver, str
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_results_file, only: results_file_t, step_group_name
   use feps_program, only: run_options_t, run_summary_t, run_feps
@@ -31,6 +31,7 @@ contains
       new_unittest("mesh-only xdmf", test_mesh_only_xdmf), &
       new_unittest("discard leaves no file", test_discard), &
       new_unittest("contract violations are errors", test_contract_errors), &
+      new_unittest("non-finite values are refused", test_non_finite_refused), &
       new_unittest("step group names", test_step_names), &
       new_unittest("summary analysis is the bare word", test_summary_analysis_word), &
       new_unittest("xdmf topology of every element type", test_xdmf_every_type) &
@@ -584,6 +585,60 @@ contains
     if (.not. allocated(error)) call check(error, .not. file_exists(scratch_path('contract.XMF.part')), &
                                            'no .part for a .xmf name')
   end subroutine test_contract_errors
+
+  !> The last guard against a run that overflowed: no NaN or Infinity reaches the file, in a
+  !! dataset or an attribute; the error names the dataset, the row and the component.
+  subroutine test_non_finite_refused(error)
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
+    type(error_t), allocatable, intent(out) :: error
+    type(error_t), allocatable :: failure
+    character(len=:), allocatable :: path
+    type(results_file_t) :: file
+    real(dp) :: u(3, nnode), s(6, nelem * ngauss)
+
+    path = scratch_path('non_finite.h5')
+    call file%create(path, error)
+    if (.not. allocated(error)) call file%write_mesh(sample_coordinates(), error)
+    if (.not. allocated(error)) call file%write_group('pipe', 'hex8', sample_connectivity(), error)
+    if (.not. allocated(error)) call file%begin_step(1, 1.0_dp, 1, 0.0_dp, error)
+    if (allocated(error)) then
+      call file%discard()
+      return
+    end if
+    u = sample_displacement()
+    u(2, 5) = ieee_value(1.0_dp, ieee_quiet_nan)
+    call file%write_nodal(1, 'displacement', u, 'ux uy uz', failure)
+    call expect_refusal('/steps/0001/displacement: node 5, uy is NaN')
+    s = sample_stress()
+    s(4, 11) = -ieee_value(1.0_dp, ieee_positive_inf)
+    if (.not. allocated(error)) call file%write_gauss(1, 'stress', 'pipe', s, 'sxx syy szz syz sxz sxy', ngauss, &
+                                                      failure)
+    call expect_refusal('/steps/0001/stress/pipe: point 11 (element 2), syz is -Inf')
+    s = sample_stress()
+    s(1, 9:16) = 0.75_dp * huge(1.0_dp)     ! finite, but element 2's sum is not
+    if (.not. allocated(error)) call file%write_gauss(1, 'stress', 'pipe', s, 'sxx syy szz syz sxz sxy', ngauss, &
+                                                      failure)
+    call expect_refusal('/steps/0001/cell/stress/pipe: element 2, sxx is Inf')
+    if (.not. allocated(error)) call file%begin_step(2, 1.0_dp, 1, ieee_value(1.0_dp, ieee_quiet_nan), failure)
+    call expect_refusal('/steps/0002: attribute residual is NaN')
+    if (.not. allocated(error)) call file%write_summary_real('max_displacement', &
+                                                            ieee_value(1.0_dp, ieee_positive_inf), failure)
+    call expect_refusal('/summary: attribute max_displacement is Inf')
+    call file%discard()
+  contains
+    subroutine expect_refusal(piece)
+      character(len=*), intent(in) :: piece
+      if (allocated(error)) return
+      if (.not. allocated(failure)) then
+        call test_failed(error, 'no error for ' // piece)
+        return
+      end if
+      call check(error, failure%code, err_solver, 'error category (' // failure%message // ')')
+      if (.not. allocated(error)) call check(error, index(failure%message, piece) > 0, &
+                                             '"' // failure%message // '" names "' // piece // '"')
+      deallocate (failure)
+    end subroutine expect_refusal
+  end subroutine test_non_finite_refused
 
   subroutine test_step_names(error)
     type(error_t), allocatable, intent(out) :: error

@@ -6,8 +6,9 @@
 !! symmetric positive semi-definite stand-in). feps_incremental_analysis decides what to do
 !! with them (thesis 2.6); feps_step_report says what happened.
 module feps_analysis_state
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, fatal_error, err_model, str
+  use feps_error, only: error_t, fatal_error, input_error, err_model, err_input, str
   use feps_clock, only: wall_clock
   use feps_model, only: model_t
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
@@ -468,6 +469,36 @@ contains
         end do
       end associate
     end do
+    call check_finite_increment(df, 'load increment', .false., error)
+    if (.not. allocated(error)) call check_finite_increment(duc, 'prescribed displacement', .true., error)
+  contains
+    !> Each record's loads are finite (feps_loads); their sum over the stage (its own, LOAD=
+    !! times the reference ones, released support forces, post-tensioned bars) and the stage's
+    !! prescribed displacements must be too: an input error naming the STAGE record, the node
+    !! and the DOF (global for loads, the node's system for displacements), before any solve.
+    subroutine check_finite_increment(v, what, nodal, error)
+      real(dp), intent(in) :: v(:, :)
+      character(len=*), intent(in) :: what
+      logical, intent(in) :: nodal
+      type(error_t), allocatable, intent(out) :: error
+      character(len=6), parameter :: cartesian(3) = ['ux    ', 'uy    ', 'uz    '], &
+                                     cylindrical(3) = ['ur    ', 'utheta', 'uz    ']
+      character(len=:), allocatable :: message
+      character(len=6) :: dof
+      integer :: at(2)
+      if (all(ieee_is_finite(v))) return
+      at = findloc(ieee_is_finite(v), .false.)
+      dof = cartesian(at(1))
+      if (nodal .and. an%map%node_csys(at(2)) /= 0) dof = cylindrical(at(1))
+      message = 'stage ' // model%stages(s)%name // ': its ' // what // ' at node ' // str(at(2)) // ', DOF ' // &
+                trim(dof) // ' is not finite (' // str(v(at(1), at(2))) // '): what the stage adds up there is ' // &
+                'beyond double precision'
+      if (model%stages(s)%line > 0) then
+        call input_error(error, model%stages(s)%file, model%stages(s)%line, message)
+      else
+        call fatal_error(error, err_input, model%deck_file // ': ' // message)
+      end if
+    end subroutine check_finite_increment
   end subroutine stage_increments
 
   !> Residual of the committed state (R_n of eq. 2.6.3) on the free equations.

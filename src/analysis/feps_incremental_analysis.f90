@@ -11,8 +11,9 @@
 !! and stop messages in feps_step_report; this module holds the decisions: which stiffness to
 !! factorize, when a step has converged, diverged or is carried, and when to cut back.
 module feps_incremental_analysis
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp
-  use feps_error, only: error_t, str
+  use feps_error, only: error_t, fatal_error, err_solver, str
   use feps_clock, only: wall_clock
   use feps_model, only: model_t, controls_t, method_names, method_euler, method_modified_euler, &
                         method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness, &
@@ -194,7 +195,11 @@ contains
   ! Linear models
   ! ---------------------------------------------------------------------------------------
 
-  !> Each stage of a linear model in one solve, whatever its steps and method.
+  !> Each stage of a linear model in one solve, whatever its steps and method. All a stage
+  !! adds (loads, prescribed displacements, prestress, released support forces) enters linearly,
+  !! so its step k of n is exactly the stage's start plus k/n of that solve: the steps its
+  !! OUTPUT=k asks for, and its last, are written from that scaling, each with the reactions,
+  !! stresses and residual of its own state.
   subroutine run_linear_stages(model, an, observer, summary, error)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
@@ -202,13 +207,15 @@ contains
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: df(:, :), duc(:, :), dps(:), r(:)
-    real(dp) :: t0, rnorm, pnorm, r_scale
-    integer :: s, step
+    real(dp), allocatable :: u0(:, :), f0(:, :), uc0(:, :), u_end(:, :)   !! the stage's start and its solution
+    real(dp) :: t0, rnorm, pnorm, r_scale, t, t_done
+    integer :: s, k, n, step
     logical :: changed
 
     allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%map%neq))
     step = 0
     do s = 1, size(model%stages)
+      n = model%stages(s)%steps
       call start_elastic_stage(model, an, s, summary, changed, error, observer=observer)
       if (allocated(error)) return
       if (changed) then
@@ -217,8 +224,11 @@ contains
       end if
       call stage_increments(model, an, s, df, duc, dps, error)
       if (allocated(error)) return
-      an%f_applied = an%f_applied + df
-      an%uc = an%uc + duc
+      u0 = an%u
+      f0 = an%f_applied
+      uc0 = an%uc
+      an%f_applied = f0 + df
+      an%uc = uc0 + duc
       ! Move the constrained DOFs, then one solve for the free ones.
       call set_trial(model, an)
       call update_points(model, an, dps)
@@ -228,22 +238,62 @@ contains
       call an%solver%solve(r, error)
       if (allocated(error)) return
       summary%time_solve = summary%time_solve + wall_clock() - t0
-      call add_free(an, r, an%u_t)
-      call update_points(model, an, dps)
-      call residual(an, r, rnorm, pnorm)
-      ! A stage loaded only by a prestress (a band on a free pipe) has no load and no
-      ! reaction: its initial out-of-balance force is the scale, as in substep.
-      if (pnorm <= 1.0e-8_dp * r_scale) pnorm = r_scale
-      call commit(an)
-      step = step + model%stages(s)%steps
-      summary%steps = step
-      summary%iterations = summary%iterations + 1
-      call observer%progress(progress_line(s, model%stages(s)%steps, model%stages(s)%steps, real(s, dp), 1, &
-                                           rnorm / pnorm, summary%factorizations, 0))
-      call report_step(model, an, observer, step, s, model%stages(s)%steps, real(s, dp), 1, rnorm / pnorm, error)
+      call check_finite_solution(model, an, s, r, 'the solution', error)
       if (allocated(error)) return
+      call add_free(an, r, an%u_t)
+      u_end = an%u_t
+      summary%iterations = summary%iterations + 1
+      ! The steps written: each state from the last one committed (point states carry the
+      ! groups born in a stage and the prestressed ones) with its share of the prestress.
+      t_done = 0.0_dp
+      do k = 1, n
+        if (.not. writes_step(model%stages(s), k)) cycle
+        t = real(k, dp) / n
+        if (k < n) then
+          an%u_t = u0 + t * (u_end - u0)
+          an%f_applied = f0 + t * df
+          an%uc = uc0 + t * duc
+        else
+          an%u_t = u_end
+          an%f_applied = f0 + df
+          an%uc = uc0 + duc
+        end if
+        call update_points(model, an, dps * (t - t_done))
+        call residual(an, r, rnorm, pnorm)
+        call check_finite_solution(model, an, s, r, 'the residual', error)
+        if (allocated(error)) return
+        ! A stage loaded only by a prestress (a band on a free pipe) has no load and no
+        ! reaction: its initial out-of-balance force is the scale, as in substep.
+        if (pnorm <= 1.0e-8_dp * t * r_scale) pnorm = t * r_scale
+        call commit(an)
+        t_done = t
+        call observer%progress(progress_line(s, k, n, s - 1 + t, 1, rnorm / pnorm, summary%factorizations, 0))
+        call report_step(model, an, observer, step + k, s, k, s - 1 + t, 1, rnorm / pnorm, error)
+        if (allocated(error)) return
+      end do
+      step = step + n
+      summary%steps = step
     end do
   end subroutine run_linear_stages
+
+  !> The linear driver has no cut-back to catch a solve that left double precision (the loads
+  !! are finite, but too large for the stiffness, or a degenerate nodal system brought NaN in):
+  !! stop, naming the stage and the first DOF where `x` (a solution, or a residual) is not finite.
+  subroutine check_finite_solution(model, an, s, x, what, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: s
+    real(dp), intent(in) :: x(:)
+    character(len=*), intent(in) :: what
+    type(error_t), allocatable, intent(out) :: error
+    integer :: ieq
+    if (all(ieee_is_finite(x))) return
+    ieq = findloc(ieee_is_finite(x), .false., dim=1)
+    call fatal_error(error, err_solver, model%deck_file // ': stage ' // model%stages(s)%name // ': ' // what // &
+                     ' is not finite at ' // an%map%dof_name(ieq) // ' (' // str(x(ieq)) // '): the loads or ' // &
+                     'prescribed displacements are too large for the stiffness (beyond double precision), or ' // &
+                     'a nodal system (FIX ..., CSYS=) gives no direction')
+  end subroutine check_finite_solution
 
   ! ---------------------------------------------------------------------------------------
   ! Nonlinear models

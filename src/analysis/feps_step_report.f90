@@ -2,6 +2,7 @@
 !! results of the steps written, interface groups that open and close, the materials' notes
 !! about point states, and the clear stop of a step that cannot be brought into balance.
 module feps_step_report
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_solver, str
   use feps_model, only: model_t, stage_t, output_fields_t, method_initial_stiffness, method_full_newton_raphson
@@ -203,8 +204,55 @@ contains
         call linear_group_results(model, an, g, res%groups(g))
       end if
     end do
+    call check_finite_results(model, res, error)
+    if (allocated(error)) return
     call observer%write_step(res, error)
   end subroutine report_step
+
+  !> Never hand over a step with a result that left double precision (NaN or Infinity in a
+  !! displacement, a reaction or a point's stress or strain): a numerical error naming the
+  !! stage, the step and where, instead of a results file of NaN.
+  subroutine check_finite_results(model, res, error)
+    type(model_t), intent(in) :: model
+    type(step_result_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    character(len=2), parameter :: dofs(3) = ['ux', 'uy', 'uz']
+    character(len=:), allocatable :: where
+    integer :: at(2), g
+    where = ''
+    if (.not. all(ieee_is_finite(res%displacement))) then
+      at = findloc(ieee_is_finite(res%displacement), .false.)
+      where = 'the displacement at node ' // str(at(2)) // ', ' // dofs(at(1))
+    else if (.not. all(ieee_is_finite(res%reaction))) then
+      at = findloc(ieee_is_finite(res%reaction), .false.)
+      where = 'the reaction at node ' // str(at(2)) // ', ' // dofs(at(1))
+    else if (.not. all(ieee_is_finite(res%reaction_nodal))) then
+      at = findloc(ieee_is_finite(res%reaction_nodal), .false.)
+      where = 'the reaction in the nodal system of node ' // str(at(2)) // ', component ' // str(at(1))
+    else
+      do g = 1, size(res%groups)
+        associate (gr => res%groups(g))
+          if (.not. allocated(gr%stress)) cycle
+          if (all(ieee_is_finite(gr%stress)) .and. all(ieee_is_finite(gr%strain))) cycle
+          if (.not. all(ieee_is_finite(gr%stress))) then
+            at = findloc(ieee_is_finite(gr%stress), .false.)
+            where = 'the stress'
+          else
+            at = findloc(ieee_is_finite(gr%strain), .false.)
+            where = 'the strain'
+          end if
+          where = where // ' of group ' // model%groups(g)%name // ' at point ' // &
+                  str(mod(at(2) - 1, gr%points_per_element) + 1) // ' of element ' // &
+                  str((at(2) - 1) / gr%points_per_element + 1)
+          exit
+        end associate
+      end do
+    end if
+    if (len(where) == 0) return
+    call fatal_error(error, err_solver, model%deck_file // ': stage ' // model%stages(res%stage)%name // &
+                     ', step ' // str(res%step_in_stage) // ': ' // where // ' is not finite (beyond double ' // &
+                     'precision); no results are written')
+  end subroutine check_finite_results
 
   !> Does any requested field need the point results of a group of this kernel's kind?
   pure logical function group_output_wanted(fields, kernel)

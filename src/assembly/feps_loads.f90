@@ -3,6 +3,7 @@
 !! and nodal forces. Forces are assembled in global Cartesian components per node, then
 !! rotated into nodal systems for the free equations.
 module feps_loads
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
   use feps_model, only: model_t, face_load_t, in_region, load_pressure, load_traction
@@ -122,6 +123,8 @@ contains
           basis = model%systems(l%csys)%local_basis(model%coords(:, n))
           f(:, n) = f(:, n) + matmul(basis, l%components)
         end do
+        call check_finite_forces(f, l%file, l%line, 'FORCE on node set ' // model%node_sets(l%node_set)%name, error)
+        if (allocated(error)) return
       end associate
     end do
 
@@ -169,9 +172,35 @@ contains
             end do
           end do
         end do
+        call check_finite_forces(f, l%file, l%line, trim(merge('PRESSURE', 'TRACTION', l%kind == load_pressure)) // &
+                                 ' on face set ' // fs%name, error)
+        if (allocated(error)) return
       end associate
     end do
   end subroutine nodal_load_vector
+
+  !> A load whose nodal forces (with those of the records before it) leave double precision:
+  !! an input error naming the record, the node and the DOF, before anything is solved. A force
+  !! beyond huge() is Infinity; NaN comes from a coordinate system that gives no direction.
+  subroutine check_finite_forces(f, file, line, what, error)
+    real(dp), intent(in) :: f(:, :)
+    character(len=*), intent(in) :: file
+    integer, intent(in) :: line
+    character(len=*), intent(in) :: what
+    type(error_t), allocatable, intent(out) :: error
+    character(len=2), parameter :: dofs(3) = ['ux', 'uy', 'uz']
+    integer :: at(2)
+    character(len=:), allocatable :: why
+    if (all(ieee_is_finite(f))) return
+    at = findloc(ieee_is_finite(f), .false.)
+    if (ieee_is_nan(f(at(1), at(2)))) then
+      why = 'check the load and the coordinate system it is given in'
+    else
+      why = 'the load is beyond double precision'
+    end if
+    call input_error(error, file, line, what // ': the nodal force at node ' // str(at(2)) // ', DOF ' // &
+                     dofs(at(1)) // ' is not finite (' // str(f(at(1), at(2))) // '): ' // why)
+  end subroutine check_finite_forces
 
   !> Face-integration arrays sized for the group's element.
   subroutine face_work_arrays(kernel, xg, nrm, wda, nf)

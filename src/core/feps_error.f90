@@ -8,8 +8,9 @@ module feps_error
   integer, parameter, public :: err_input = 2      !! bad input: file, line and field named
   integer, parameter, public :: err_model = 3      !! model cannot be solved (singular, unconstrained)
   integer, parameter, public :: err_solver = 4     !! numerical failure (divergence, no convergence)
-  integer, parameter, public :: err_io = 5         !! files that cannot be read or written
+  integer, parameter, public :: err_io = 5         !! files that cannot be written (results)
   integer, parameter, public :: err_internal = 6   !! a broken invariant: a bug in feps
+  integer, parameter, public :: err_input_file = 7 !! an input file that cannot be opened or read (named)
 
   !> An error: category, one-line message and an optional integer (e.g. the failing equation).
   type, public :: error_t

@@ -15,7 +15,7 @@
 module feps_records
   use feps_strings, only: to_upper
   use feps_kinds, only: dp
-  use feps_error, only: error_t, fatal_error, input_error, str, err_io, err_input
+  use feps_error, only: error_t, fatal_error, input_error, str, err_input_file, err_input
   implicit none
   private
 
@@ -48,7 +48,7 @@ module feps_records
 contains
 
   !> Read a text file into records (rules in the module header).
-  !! Errors: err_io if the file cannot be opened or read; err_input for an empty field,
+  !! Errors: err_input_file if the file cannot be opened or read; err_input for an empty field,
   !! a continuation line before any record, or a file without records.
   subroutine read_records(path, records, error)
     character(len=*), intent(in) :: path
@@ -63,14 +63,14 @@ contains
     open (newunit=unit, file=path, status='old', action='read', form='formatted', &
           access='sequential', iostat=iostat, iomsg=iomsg)
     if (iostat /= 0) then
-      call fatal_error(error, err_io, path // ': cannot open file: ' // trim(iomsg))
+      call fatal_error(error, err_input_file, path // ': cannot open file: ' // trim(iomsg))
       return
     end if
     lineno = 0
     do
       call read_line(unit, line, eof, iostat, iomsg)
       if (iostat /= 0) then
-        call fatal_error(error, err_io, path // ':' // str(lineno + 1) // ': cannot read: ' // trim(iomsg))
+        call fatal_error(error, err_input_file, path // ':' // str(lineno + 1) // ': cannot read: ' // trim(iomsg))
         exit
       end if
       if (eof) exit

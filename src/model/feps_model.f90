@@ -92,7 +92,7 @@ module feps_model
     integer :: node_set = 0
     integer :: csys = 2
     real(dp) :: components(3) = 0.0_dp
-    character(len=:), allocatable :: file    !! the FORCE record
+    character(len=:), allocatable :: file    !! the FORCE record (for messages)
     integer :: line = 0
   end type nodal_load_t
 

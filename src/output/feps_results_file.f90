@@ -7,13 +7,16 @@
 !! `components`; Gauss-point datasets are element-major and carry `points_per_element`.
 !!
 !! Errors: HDF5 or file-system failures return `err_io`; calls that break the contract (wrong
-!! shapes, a step not begun, no open file) return `err_internal`.
+!! shapes, a step not begun, no open file) return `err_internal`; a value that is not finite
+!! (NaN, Infinity: a run that left double precision) is never written and returns `err_solver`,
+!! naming the dataset or attribute, the row and the component.
 module feps_results_file
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char, c_loc, c_ptr
   use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, fatal_error, err_io, err_internal, str
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use feps_error, only: error_t, fatal_error, err_io, err_internal, err_solver, str
   use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_type, &
-                       xdmf_cell_nodes, xdmf_topology_path, count_words, is_xdmf_name
+                       xdmf_cell_nodes, xdmf_topology_path, count_words, is_xdmf_name, word
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
@@ -146,6 +149,8 @@ contains
       call fatal_error(error, err_internal, 'write_mesh: the mesh is already written')
       return
     end if
+    call refuse_non_finite(coordinates, '/mesh/coordinates', 'x y z', 'node', error)
+    if (allocated(error)) return
     call write_real_dataset(self, '/mesh/coordinates', coordinates, 'x y z', error)
     if (allocated(error)) return
     self%node_count = size(coordinates, 2)
@@ -223,6 +228,10 @@ contains
       call fatal_error(error, err_internal, 'begin_step: step ' // str(step) // ' is already written')
       return
     end if
+    call refuse_non_finite_attribute('/steps/' // step_group_name(step), 'load_factor', load_factor, error)
+    if (allocated(error)) return
+    call refuse_non_finite_attribute('/steps/' // step_group_name(step), 'residual', residual, error)
+    if (allocated(error)) return
     call h5gcreate_f(self%file_id, '/steps/' // step_group_name(step), group_id, hdferr, &
                      lcpl_id=self%link_plist)
     if (hdferr < 0) then
@@ -268,6 +277,8 @@ contains
       return
     end if
     dataset = '/steps/' // step_group_name(step) // '/' // name
+    call refuse_non_finite(values, dataset, components, 'node', error)
+    if (allocated(error)) return
     call write_real_dataset(self, dataset, values, components, error)
     if (allocated(error)) return
     call add_field(self%steps(istep), name, dataset, '', components, .true., size(values, 2), size(values, 1))
@@ -323,6 +334,8 @@ contains
     end if
 
     dataset = '/steps/' // step_group_name(step) // '/' // kind // '/' // group
+    call refuse_non_finite(values, dataset, components, 'point', error, points_per_element)
+    if (allocated(error)) return
     call write_real_dataset(self, dataset, values, components, error, dataset_id)
     if (allocated(error)) return
     call write_int_attribute(dataset_id, 'points_per_element', points_per_element, error)
@@ -335,6 +348,9 @@ contains
                        / real(points_per_element, dp)
     end do
     cell_dataset = '/steps/' // step_group_name(step) // '/cell/' // kind // '/' // group
+    ! finite values near huge() can still sum beyond it
+    call refuse_non_finite(averages, cell_dataset, components, 'element', error)
+    if (allocated(error)) return
     call write_real_dataset(self, cell_dataset, averages, components, error)
     if (allocated(error)) return
     call add_field(self%steps(istep), kind, cell_dataset, group, components, .false., nelem, size(values, 1))
@@ -362,6 +378,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(hid_t) :: group_id
     integer :: hdferr
+    call refuse_non_finite_attribute('/summary', key, value, error)
+    if (allocated(error)) return
     call open_summary(self, key, group_id, error)
     if (allocated(error)) return
     call write_real_attribute(group_id, key, value, error)
@@ -409,6 +427,8 @@ contains
     integer(hid_t) :: group_id
     integer :: hdferr
 
+    call refuse_non_finite_attribute('/mesh/groups/' // name, key, value, error)
+    if (allocated(error)) return
     call open_mesh_group(self, name, group_id, error)
     if (allocated(error)) return
     call write_real_attribute(group_id, key, value, error)
@@ -449,6 +469,13 @@ contains
       call fatal_error(error, err_internal, 'write_material: keys, values and texts differ in size')
       return
     end if
+    do i = 1, size(keys)
+      if (size(texts) > 0) then
+        if (len_trim(texts(i)) > 0) cycle
+      end if
+      call refuse_non_finite_attribute('/materials/' // name, trim(keys(i)), values(i), error)
+      if (allocated(error)) return
+    end do
     call h5gcreate_f(self%file_id, '/materials/' // name, group_id, hdferr, lcpl_id=self%link_plist)
     if (hdferr < 0) then
       call fatal_error(error, err_io, 'cannot create group /materials/' // name // ' in ' // self%part_path)
@@ -631,6 +658,33 @@ contains
     grown(n + 1)%columns = columns
     call move_alloc(grown, step%fields)
   end subroutine add_field
+
+  !> No NaN or Infinity in a dataset: values(ncomp, n), one row per `rows` ('node', 'element',
+  !! or 'point': a Gauss point, whose element is named too).
+  subroutine refuse_non_finite(values, dataset, components, rows, error, points_per_element)
+    real(dp), intent(in) :: values(:, :)
+    character(len=*), intent(in) :: dataset, components, rows
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: points_per_element
+    character(len=:), allocatable :: row
+    integer :: at(2)
+    if (all(ieee_is_finite(values))) return
+    at = findloc(ieee_is_finite(values), .false.)
+    row = rows // ' ' // str(at(2))
+    if (present(points_per_element)) row = row // ' (element ' // str((at(2) - 1) / points_per_element + 1) // ')'
+    call fatal_error(error, err_solver, 'refusing to write a value that is not finite: ' // dataset // ': ' // &
+                     row // ', ' // word(components, at(1)) // ' is ' // str(values(at(1), at(2))))
+  end subroutine refuse_non_finite
+
+  !> No NaN or Infinity in a real attribute `key` of the object at `path`.
+  subroutine refuse_non_finite_attribute(path, key, value, error)
+    character(len=*), intent(in) :: path, key
+    real(dp), intent(in) :: value
+    type(error_t), allocatable, intent(out) :: error
+    if (ieee_is_finite(value)) return
+    call fatal_error(error, err_solver, 'refusing to write a value that is not finite: ' // path // &
+                     ': attribute ' // key // ' is ' // str(value))
+  end subroutine refuse_non_finite_attribute
 
   !> Open `/summary` (created on first use) and remove an existing attribute `key`.
   subroutine open_summary(self, key, group_id, error)

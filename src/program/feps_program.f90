@@ -2,6 +2,7 @@
 !! run it, write the HDF5 results (temporary name, renamed on success; nothing left behind
 !! on error) and return a summary for the program to print.
 module feps_program
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8, rad2deg
   use feps_error, only: error_t, fatal_error, input_error, err_input, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
@@ -114,6 +115,8 @@ contains
     t0 = wall_clock()
     call read_deck(options%deck, model, error)
     if (allocated(error)) return
+    call check_coordinates(model, error)
+    if (allocated(error)) return
     summary%title = model%title
     summary%mesh_only = model%mesh_only
     summary%nodes = model%nnode
@@ -149,6 +152,8 @@ contains
       end if
     end if
     if (options%max_iterations > 0) call override_max_iterations(model, options%max_iterations)
+    call check_reports(model, error)
+    if (allocated(error)) return
     if (options%check_only) then
       if (present(sink)) obs%sink => sink
       call check_only(model, solver, obs, summary, error)
@@ -289,6 +294,43 @@ contains
     end do
   end subroutine override_max_iterations
 
+  !> Nodes beyond double precision (a DATAIN increment or a coordinate system that overflows or
+  !! gives no direction) are bad input: name the first, before anything is computed or
+  !! written, so that a run and --check stop alike (the results writer would refuse the mesh).
+  subroutine check_coordinates(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    character(len=1), parameter :: axes(3) = ['x', 'y', 'z']
+    integer :: at(2)
+    if (all(ieee_is_finite(model%coords))) return
+    at = findloc(ieee_is_finite(model%coords), .false.)
+    call fatal_error(error, err_input, model%deck_file // ': node ' // str(at(2)) // ': its coordinate ' // &
+                     axes(at(1)) // ' is not finite (' // str(model%coords(at(1), at(2))) // '): the DATAIN ' // &
+                     'block or NODE record that gives it, or its coordinate system, is beyond double precision')
+  end subroutine check_coordinates
+
+  !> The sections and rings of the REPORT records depend on the mesh only: find their errors
+  !! before the first step, in a run and in --check alike (not after the whole analysis, whose
+  !! results would be lost), by evaluating each report on zero displacements, with the very
+  !! procedures post_process uses.
+  subroutine check_reports(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: u(:, :)
+    real(dp) :: angle
+    integer :: k
+    allocate (u(3, model%nnode))
+    u = 0.0_dp
+    do k = 1, size(model%reports)
+      if (model%reports(k)%kind == 'tilt') then
+        call axis_tilt(model, model%reports(k), u, angle, error)
+      else
+        call section_rotation(model, model%reports(k), u, angle, error)
+      end if
+      if (allocated(error)) return
+    end do
+  end subroutine check_reports
+
   !> REPORT records: rotations of pipe sections (thesis 7.3) from the final displacements.
   subroutine post_process(model, u, h5, summary, error)
     type(model_t), intent(in) :: model
@@ -368,6 +410,12 @@ contains
     ws = u(3, ring(order))
     x0 = xs(1)
     x1 = xs(size(xs))
+    if (.not. r%has_span .and. x1 - x0 <= tol) then
+      call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': the nodes of group ' // &
+                       model%groups(r%group)%name // ' on r = ' // str(r%r) // ', z = ' // str(r%z) // &
+                       ' all lie at x = ' // str(x0) // ': no slope to measure')
+      return
+    end if
     if (r%has_span) then
       x0 = r%x_from
       x1 = r%x_to

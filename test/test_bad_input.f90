@@ -100,6 +100,7 @@ contains
       new_unittest('a load beyond double precision names the load', test_load_overflow), &
       new_unittest('stage loads adding up beyond double precision name the stage', test_stage_load_overflow), &
       new_unittest('a solution beyond double precision stops the run, no result file', test_solution_overflow), &
+      new_unittest('a failed run removes the results an earlier run left under its name', test_failed_run_removes_stale), &
       new_unittest('REPORT, TILT on a section without nodes: before the first step, and by --check', &
                    test_report_no_section), &
       new_unittest('REPORT, ROTATION spanning beyond its ring: before the first step, and by --check', &
@@ -757,6 +758,34 @@ contains
                         [character(len=60) :: 'overflow_solution.dat: stage stage1', 'the solution is not finite at node', &
                          'too large for the stiffness'], error)
   end subroutine test_solution_overflow
+
+  !> cube.dat writes its results (and XDMF) under `out`; a run of a failing deck to the same
+  !! name must not leave them there, where they would pass for the failed run's results.
+  subroutine test_failed_run_removes_stale(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    logical :: exists
+    call remove_outputs()
+    opt%deck = 'test/data/cube.dat'
+    opt%output = out
+    opt%solver = ''
+    call run_feps(opt, summary, error)
+    if (allocated(error)) return
+    inquire (file=out, exist=exists)
+    call check(error, exists, 'the first run wrote its results')
+    if (allocated(error)) return
+    opt%deck = 'test/data/overflow_solution.dat'
+    call run_feps(opt, summary, run_error)
+    call check(error, allocated(run_error), 'the second run fails')
+    if (allocated(error)) return
+    inquire (file=out, exist=exists)
+    call check(error, .not. exists, 'the earlier results are gone')
+    if (allocated(error)) return
+    inquire (file='build/test_bad_input.xmf', exist=exists)
+    call check(error, .not. exists, 'the earlier XDMF file is gone')
+  end subroutine test_failed_run_removes_stale
 
   !> A REPORT's sections depend on the mesh only: they used to be looked for after the whole
   !! analysis, whose results were then thrown away, and --check passed the deck.

@@ -551,14 +551,17 @@ contains
     self%part_exists = .false.
   end subroutine close_file
 
-  !> Give up the file: close what is open and delete `<path>.part`. Harmless after `close`,
-  !! twice, or before `create`.
+  !> Give up the file: close what is open and delete `<path>.part`, and the results and XDMF
+  !! files an earlier run left under this name: after a failed run they would pass for its
+  !! results. Harmless after `close`, twice, or before `create`.
   subroutine discard(self)
     class(results_file_t), intent(inout) :: self
     integer :: hdferr, status
     if (self%is_open) call release_handles(self, hdferr)
     if (self%part_exists) then
       status = c_remove(self%part_path // c_null_char)
+      status = c_remove(self%path // c_null_char)
+      status = c_remove(xdmf_file_name(self%path) // c_null_char)
       self%part_exists = .false.
     end if
   end subroutine discard

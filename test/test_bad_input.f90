@@ -46,6 +46,7 @@ contains
       new_unittest('a direction given twice under two names', test_direction_given_twice), &
       new_unittest('CONTROLS after a STAGE', test_controls_after_stage), &
       new_unittest('FIX with a KEY=value other than CSYS', test_fix_option), &
+      new_unittest('FIX with CSYS= twice', test_fix_csys_twice), &
       new_unittest('REPORT with an unknown option', test_report_unknown_option), &
       new_unittest('two SOLVER records', test_solver_twice), &
       new_unittest('two OUTPUT records', test_output_twice), &
@@ -298,6 +299,12 @@ contains
     call expect_failure('test/data/bad/fix_option.dat', err_input, &
                         [character(len=40) :: 'fix_option.dat:25:', 'field 4', 'Y=0.5'], error)
   end subroutine test_fix_option
+
+  subroutine test_fix_csys_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fix_csys_twice.dat', err_input, &
+                        [character(len=40) :: 'fix_csys_twice.dat:24:', 'field 5', 'CSYS is given twice'], error)
+  end subroutine test_fix_csys_twice
 
   !> A misspelt REFERENCE= used to drop the reference from the summary silently.
   subroutine test_report_unknown_option(error)

@@ -21,9 +21,12 @@ contains
     type(record_t), intent(in) :: rec
     integer, intent(in) :: n
     type(error_t), allocatable, intent(out) :: error
-    if (nfields(rec) < n) call input_error(error, rec%file, rec%line, keyword(rec) // ' needs at least ' // &
-                                           str(n - 1) // ' fields after the keyword; field ' // str(nfields(rec) + 1) &
-                                           // ' is missing', nfields(rec) + 1)
+    character(len=:), allocatable :: least
+    if (nfields(rec) >= n) return
+    least = str(n - 1) // ' fields'
+    if (n == 2) least = '1 field'
+    call input_error(error, rec%file, rec%line, keyword(rec) // ' needs at least ' // least // &
+                     ' after the keyword; field ' // str(nfields(rec) + 1) // ' is missing', nfields(rec) + 1)
   end subroutine require_fields
 
   !> A record with more than `n` fields (keyword included) is an error naming the first extra

@@ -24,7 +24,7 @@ contains
     integer, intent(in) :: stage         !! 0 before any STAGE record: held in every stage
     logical, intent(in) :: release       !! RELEASE: free the DOFs from this stage on
     type(error_t), allocatable, intent(out) :: error
-    integer :: iset, cs, i, dof, from
+    integer :: iset, cs, i, dof, from, csys_field
     character(len=:), allocatable :: f
 
     if (release .and. stage <= 1) then
@@ -33,6 +33,7 @@ contains
       return
     end if
     from = max(stage, 1)
+    csys_field = 0
     call require_fields(rec, 3, error)
     if (allocated(error)) return
     call get_node_set(rec, model, iset, error)
@@ -42,7 +43,12 @@ contains
     do i = 3, nfields(rec)
       f = to_upper(field_text(rec, i))
       if (index(f, '=') > 0) then
-        if (f(:index(f, '=') - 1) == 'CSYS') cycle
+        if (f(:index(f, '=') - 1) == 'CSYS') then
+          csys_field = csys_field + 1
+          if (csys_field == 1) cycle
+          call input_error(error, rec%file, rec%line, 'CSYS is given twice', i)
+          return
+        end if
         call input_error(error, rec%file, rec%line, keyword(rec) // ' takes DOF names and CSYS=n, not "' // &
                          field_text(rec, i) // '"', i)
         return

@@ -13,10 +13,10 @@ contains
   !!
   !! Cyclic Jacobi rotations with Rutishauser's stable updates (Golub and Van Loan, Matrix
   !! Computations, section 8.5): every rotation is orthogonal, so rounding stays at the level of
-  !! the tensor's norm. The closed-form
-  !! solution of the characteristic cubic it replaces lost up to half the digits near a repeated
-  !! root (acos is infinitely steep at +-1): a uniaxial 100 MPa compression had a most tensile
-  !! stress of 1e-6 MPa. A 3x3 tensor needs about five sweeps of three rotations.
+  !! the tensor's norm. The closed-form solution of the characteristic cubic it replaces lost up
+  !! to half the digits near a repeated root (acos is infinitely steep at +-1): a uniaxial
+  !! 100 MPa compression had a most tensile stress of 1e-6 MPa. A 3x3 tensor needs about five
+  !! sweeps of three rotations.
   pure function principal_values(s) result(p)
     real(dp), intent(in) :: s(6)   !! [xx yy zz yz xz xy]
     real(dp) :: p(3)

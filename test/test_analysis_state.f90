@@ -8,7 +8,7 @@ module test_analysis_state
   use feps_model, only: model_t
   use feps_deck, only: read_deck
   use feps_analysis_state, only: analysis_t, analysis_summary_t, set_up, init_states, update_points, &
-                                 factorize_tangent
+                                 factorize_tangent, support_reaction
   implicit none
   private
 
@@ -20,7 +20,9 @@ contains
     type(unittest_t), allocatable, intent(out) :: tests(:)
     tests = [ &
       new_unittest('a body held only by non-dilatant sliding faces: the singular exact tangent falls back ' // &
-                   'to the stand-in', test_singular_exact_tangent) &
+                   'to the stand-in', test_singular_exact_tangent), &
+      new_unittest('the support reaction is the out-of-balance force in the held directions only', &
+                   test_support_reaction) &
       ]
   end subroutine collect_analysis_state
 
@@ -66,5 +68,43 @@ contains
     call check(error, all(abs(x) <= huge(1.0_dp)) .and. maxval(abs(x)) > 0.0_dp .and. maxval(abs(x)) < 1.0e3_dp, &
                'the stand-in solve is finite and bounded, max |x| = ' // str(maxval(abs(x))))
   end subroutine test_singular_exact_tangent
+
+  !> test/data/lame_hex8.dat holds every node in theta and z of its cylindrical nodal system and
+  !! leaves r free. With an out-of-balance force f at a node, its reaction must be f's theta and
+  !! z parts (the basis's hoop and axial columns times f's components along them), with no part
+  !! along r, which used to be reported as a reaction when a step carried an unbalanced force.
+  subroutine test_support_reaction(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(analysis_t) :: an
+    type(analysis_summary_t) :: summary
+    real(dp) :: f(3), expected(3), r(3)
+    integer :: n
+    call read_deck('test/data/lame_hex8.dat', model, error)
+    if (allocated(error)) return
+    call set_up(model, 'cholmod', an, summary, error)
+    if (allocated(error)) return
+    call init_states(model, an)
+    f = [3.0_dp, -2.0_dp, 5.0_dp]
+    if (.not. allocated(an%f_applied)) allocate (an%f_applied(3, model%nnode))
+    if (.not. allocated(an%fint)) allocate (an%fint(3, model%nnode))
+    an%f_applied = 0.0_dp
+    an%fint = 0.0_dp
+    do n = 1, model%nnode
+      if (.not. an%map%used(n)) cycle
+      call check(error, (.not. an%map%constrained(1, n)) .and. an%map%constrained(2, n) .and. &
+                 an%map%constrained(3, n), 'node ' // str(n) // ' is held in theta and z only')
+      if (allocated(error)) return
+      an%fint(:, n) = f
+      r = support_reaction(an, n)
+      expected = dot_product(an%map%basis(:, 2, n), f) * an%map%basis(:, 2, n) + &
+                 dot_product(an%map%basis(:, 3, n), f) * an%map%basis(:, 3, n)
+      call check(error, maxval(abs(r - expected)) <= 1.0e-14_dp * norm2(f), 'reaction at node ' // str(n))
+      if (allocated(error)) return
+      call check(error, abs(dot_product(an%map%basis(:, 1, n), r)) <= 1.0e-14_dp * norm2(f), &
+                 'no radial reaction at node ' // str(n))
+      if (allocated(error)) return
+    end do
+  end subroutine test_support_reaction
 
 end module test_analysis_state

@@ -109,7 +109,7 @@ module feps_analysis_state
   public :: is_linear_model, set_up, init_states, state_bytes
   public :: change_supports, activate_groups, check_born_nodes, stage_increments
   public :: set_trial, add_free, update_points, residual, committed_residual, commit, restore
-  public :: factorize_tangent
+  public :: factorize_tangent, support_reaction
 
 contains
 
@@ -822,5 +822,19 @@ contains
       deallocate (ke, d, dofs)
     end do
   end subroutine assemble_tangent
+
+  !> The support reaction at node `n` (global Cartesian): the internal less the applied force,
+  !! in the node's nodal system, kept only in its constrained directions. In a free direction
+  !! that difference is the out-of-balance force, which is no reaction (it is round-off at a
+  !! converged step, but the unbalanced force a step carries when it does not converge).
+  pure function support_reaction(an, n) result(r)
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: n
+    real(dp) :: r(3)
+    real(dp) :: local(3)
+    local = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
+    where (.not. an%map%constrained(:, n)) local = 0.0_dp
+    r = matmul(an%map%basis(:, :, n), local)
+  end function support_reaction
 
 end module feps_analysis_state

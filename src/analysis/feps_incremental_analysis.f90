@@ -23,7 +23,7 @@ module feps_incremental_analysis
   use feps_analysis_state, only: analysis_summary_t, condition_warning, analysis_t, is_linear_model, set_up, &
                                  init_states, state_bytes, change_supports, activate_groups, check_born_nodes, &
                                  stage_increments, set_trial, add_free, update_points, residual, &
-                                 committed_residual, commit, restore, factorize_tangent
+                                 committed_residual, commit, restore, factorize_tangent, support_reaction
   use feps_step_report, only: progress_line, report_step, report_open_interfaces, writes_step, name_step, &
                               newly_open_points, collect_point_notes, stop_error
   implicit none
@@ -73,8 +73,7 @@ contains
     summary%applied_force = sum(an%f_applied, dim=2)
     summary%reaction_force = 0.0_dp
     do n = 1, model%nnode
-      if (any(an%map%constrained(:, n))) summary%reaction_force = summary%reaction_force + an%fint(:, n) - &
-                                                                  an%f_applied(:, n)
+      if (any(an%map%constrained(:, n))) summary%reaction_force = summary%reaction_force + support_reaction(an, n)
       length = magnitude(an%u(:, n))
       if (length > summary%max_displacement) then
         summary%max_displacement = length

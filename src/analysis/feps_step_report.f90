@@ -9,7 +9,7 @@ module feps_step_report
   use feps_assembly, only: group_kernel_t, element_strains
   use feps_material, only: state_open, state_elastic, state_tension
   use feps_observer, only: observer_t, step_result_t, group_result_t
-  use feps_analysis_state, only: analysis_t
+  use feps_analysis_state, only: analysis_t, support_reaction
   implicit none
   private
 
@@ -185,7 +185,7 @@ contains
     res%reaction_nodal = 0.0_dp
     do n = 1, model%nnode
       if (.not. any(an%map%constrained(:, n))) cycle
-      res%reaction(:, n) = an%fint(:, n) - an%f_applied(:, n)
+      res%reaction(:, n) = support_reaction(an, n)
       res%reaction_nodal(:, n) = matmul(transpose(an%map%basis(:, :, n)), res%reaction(:, n))
     end do
     res%has_nodal_systems = an%map%has_rotations()

@@ -377,11 +377,19 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
     return "\n".join(out)
 
 
+_WARNED = []
+
+
 def thesis_beta_bar(G, nu, beta):
-    """beta_bar of thesis Table 7.3 (benchmarks/table7_3.csv), or None when not found."""
+    """beta_bar of thesis Table 7.3 (benchmarks/table7_3.csv), or None when not found. Without the
+    table the decks lose their REFERENCE (and differ from input/modelC): say so once on stderr."""
     path = os.path.join(os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks")),
                         "table7_3.csv")
     if not os.path.exists(path):
+        if not _WARNED:
+            _WARNED.append(path)
+            print(f"make_model_c: warning: no {os.path.normpath(path)} (the benchmarks folder, FEPS_BENCHMARKS): "
+                  "the thesis's beta_bar is left out of the REPORT records' REFERENCE", file=sys.stderr)
         return None
     with open(path) as f:
         for line in f:

@@ -28,6 +28,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_cli import positive, positive_int  # noqa: E402  (argparse types)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 R_IN, R_OUT = 600.0, 715.0
@@ -147,28 +150,6 @@ def soil_radius_arg(text):
         check_soil_radius(value)
     except ValueError as exc:
         raise argparse.ArgumentTypeError(str(exc) if "soil radius" in str(exc) else f"{text!r} is not a number")
-    return value
-
-
-def positive_arg(text):
-    """argparse type: a finite number > 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not (math.isfinite(value) and value > 0.0):
-        raise argparse.ArgumentTypeError(f"{text!r} is not a positive finite number")
-    return value
-
-
-def count_arg(text):
-    """argparse type: an integer >= 1."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{value} is not at least 1")
     return value
 
 
@@ -405,14 +386,14 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--outdir", default=os.path.join(ROOT, "input", "modelC"))
     ap.add_argument("--cases", default="", help="comma-separated case names (default: all 12)")
-    ap.add_argument("--steps", type=count_arg, default=None, help="stage-2 steps (default: the thesis's)")
+    ap.add_argument("--steps", type=positive_int, default=None, help="stage-2 steps (default: the thesis's)")
     ap.add_argument("--soil-radius", type=soil_radius_arg, default=2000.0,
                     help=f"the soil's outer radius (mm, beyond the pipe's {R_OUT:g}; default 2000)")
-    ap.add_argument("--theta-step", type=positive_arg, default=THETA_STEP,
+    ap.add_argument("--theta-step", type=positive, default=THETA_STEP,
                     help=f"element size (deg) from theta = 12 to 180 (default {THETA_STEP:g}; it must divide 168)")
-    ap.add_argument("--wall-elements", type=count_arg, default=WALL_ELEMENTS,
+    ap.add_argument("--wall-elements", type=positive_int, default=WALL_ELEMENTS,
                     help=f"hex8 elements through the pipe wall (default {WALL_ELEMENTS}; the mesh study)")
-    ap.add_argument("--z-refine", type=count_arg, default=1,
+    ap.add_argument("--z-refine", type=positive_int, default=1,
                     help="cut every z element (pipes and packing) into this many (default 1; the mesh study)")
     grid = ap.add_argument_group("parametric grid (every combination; any list left out keeps the thesis's values)")
     grid.add_argument("--Gp", type=number_list, help="packing shear moduli G_p (MPa), e.g. 300,600,900")

@@ -39,9 +39,10 @@ From the last step of a model C run (decks by scripts/make_model_c.py):
   the decks' mesh, each the mean of its 4 Gauss points) is printed as sigma_max_interface: it was
   the tabulated reading until 2026-11-22 and is 1-7% higher (docs/verification.md, model C).
 
-Errors (a missing file or folder, a result that is not model C's, the thesis's tables missing
-from the benchmarks folder FEPS_BENCHMARKS) are one line on stderr: exit 2 for a file or folder
-named that is missing, 1 otherwise (no results in RESULTS_DIR, a result that cannot be read).
+Errors are one line on stderr: exit 2 for a result file that is missing or the thesis's tables
+missing from the benchmarks folder (FEPS_BENCHMARKS, default ../shared/benchmarks; --table reads
+Tables 7.3 and 7.4 there), 1 for a RESULTS_DIR that is missing or holds no <case>/<case>.h5 and
+for a result that cannot be read or is not model C's.
 """
 import argparse
 import csv

@@ -67,6 +67,7 @@ if [ -z "$feps" ]; then
   (cd "$root" && fpm build --profile "$profile" >/dev/null) || { echo "bench_solvers: build failed" >&2; exit 1; }
   feps=$root/$(cd "$root" && fpm run --profile "$profile" --runner echo 2>/dev/null | tail -n 1)
 fi
+feps=$(readlink -f "$feps")      # absolute, as bench_calculix.sh
 [ -x "$feps" ] || { echo "bench_solvers: no feps executable at $feps" >&2; exit 1; }
 
 outdir=${outdir:-$root/results/bench-$(date +%Y%m%d-%H%M%S)}

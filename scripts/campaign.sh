@@ -17,18 +17,23 @@
 # attributes parameter_<name>) come right after the case name, one column each.
 #
 # Environment:
-#   FEPS        the feps executable (default: fpm's release build of the repository, copied to
-#               results/NAME/feps so that rebuilds during the campaign do not disturb it)
+#   FEPS        the feps executable: a path (relative or absolute) or a command on PATH (default:
+#               fpm's release build of the repository, copied to results/NAME/feps so that
+#               rebuilds during the campaign do not disturb it)
 #   JOBS        cases at once (default: nproc)
 #   TIMEOUT     seconds a case may run (default: no limit); a case stopped by it has status timeout
 #   FEPS_ARGS   extra feps options for every case, e.g. "--method initial-stiffness"
 #   PEAK_GROUP  the group whose peak principal stress goes into the CSV (default pipe)
 #   RERUN=1     run every case again
+#
+# Exit status: 0 when every case of this call finished (status ok in the CSV); 1 when any of them
+# failed, timed out or did not finish (the CSV is gathered all the same and the cases are named);
+# 2 for bad arguments or a deck that fails feps --check (nothing is run).
 set -euo pipefail
 
-usage() { sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
-[[ $# -ge 2 ]] || usage
-case "$1" in -h|--help) usage ;; esac
+usage() { awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; }
+case "${1:-}" in -h|--help) usage; exit 0 ;; esac
+[[ $# -ge 2 ]] || { usage >&2; exit 2; }
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 NAME=$1
@@ -56,7 +61,10 @@ if [[ -z ${FEPS:-} ]]; then
     cp "$ROOT/$built" "$CAMPAIGN/feps"
     FEPS=$CAMPAIGN/feps
 fi
-[[ -x $FEPS ]] || { echo "campaign: FEPS=$FEPS is not executable" >&2; exit 2; }
+# a command name (no slash) is looked up on PATH; a relative path is made absolute, since every case
+# runs in its own folder
+[[ $FEPS == */* ]] || FEPS=$(command -v -- "$FEPS" || echo "$FEPS")
+[[ -f $FEPS && -x $FEPS ]] || { echo "campaign: FEPS=$FEPS is not an executable file" >&2; exit 2; }
 FEPS=$(cd "$(dirname "$FEPS")" && pwd)/$(basename "$FEPS")
 JOBS=${JOBS:-$(nproc)}
 export FEPS CAMPAIGN TIMEOUT="${TIMEOUT:-}" FEPS_ARGS="${FEPS_ARGS:-}" RERUN="${RERUN:-}"
@@ -103,7 +111,9 @@ for deck in "${DECKS[@]}"; do
 done
 [[ $nbad -eq 0 ]] || { echo "campaign: $nbad deck(s) failed feps --check; nothing was run" >&2; exit 2; }
 
-printf '%s\0' "${DECKS[@]}" | xargs -0 -n 1 -P "$JOBS" bash -c 'run_case "$1"' _ || true
+# run_case records each case's exit code itself; xargs fails only if it could not run them
+xrc=0
+printf '%s\0' "${DECKS[@]}" | xargs -0 -n 1 -P "$JOBS" bash -c 'run_case "$1"' _ || xrc=$?
 
 # ------------------------------------------------------------------------------------- gather
 # the cases of this call, then those of earlier calls of the same campaign (folders with a log)
@@ -114,12 +124,13 @@ for log in "$CAMPAIGN"/*/log.txt; do
     s=$(basename "$(dirname "$log")")
     [[ -n ${seen[$s]:-} ]] || STEMS+=("$s")
 done
-python3 - "$CAMPAIGN" "${PEAK_GROUP:-pipe}" "${STEMS[@]}" <<'PYTHON'
+grc=0
+python3 - "$CAMPAIGN" "${PEAK_GROUP:-pipe}" "${#DECKS[@]}" "${STEMS[@]}" <<'PYTHON' || grc=$?
 import csv, os, sys
 import h5py
 import numpy as np
 
-campaign, peak_group, stems = sys.argv[1], sys.argv[2], sys.argv[3:]
+campaign, peak_group, ncall, stems = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4:]
 rows, rotations, parameters = [], [], []
 for stem in stems:
     folder = os.path.join(campaign, stem)
@@ -175,4 +186,10 @@ with open(out, "w", newline="") as fh:
     writer.writeheader()
     writer.writerows(rows)
 print(f"{out}: {sum(r['status'] == 'ok' for r in rows)} of {len(rows)} cases finished")
+bad = [f"{r['case']} ({r['status']})" for r in rows[:ncall] if r["status"] != "ok"]
+if bad:
+    print(f"campaign: {len(bad)} of {ncall} cases not finished: {', '.join(bad)}", file=sys.stderr)
+    sys.exit(1)
 PYTHON
+[[ $xrc -eq 0 ]] || { echo "campaign: xargs stopped with exit status $xrc" >&2; exit 1; }
+[[ $grc -eq 0 ]] || exit 1

@@ -5,9 +5,13 @@
 #   scripts/campaign_modelB.sh SE1 FE1 ...  # only these cases
 #
 # Results in results/modelB/<case>/ and results/modelB/summary.csv (see campaign.sh for the
-# environment: JOBS, TIMEOUT, FEPS, FEPS_ARGS, RERUN). The decks are written by
-# scripts/make_model_b.py.
+# environment: JOBS, TIMEOUT, FEPS, FEPS_ARGS, RERUN, and the exit status: 1 when a case fails).
+# The decks are written by scripts/make_model_b.py.
 set -euo pipefail
+case "${1:-}" in
+    -h|--help) awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; exit 0 ;;
+    -*) echo "campaign_modelB: unknown option $1 (see --help)" >&2; exit 2 ;;
+esac
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cases=("$@")
 if [[ ${#cases[@]} -eq 0 ]]; then

@@ -17,6 +17,9 @@
 # Extra options after `--` go to every feps run (e.g. -- --method modified-newton-raphson).
 # Then scripts/postprocess_model_c.py writes RESULTS_DIR/table.csv (beta*, beta_bar, Z, sigma_max
 # per case, with the thesis values beside) and the campaign's wall time is printed.
+# Exit status: 0 when every case finished and the table was written; 1 when any case failed or
+# is missing (named at the end) or the post-processing failed; 2 for bad arguments or a deck
+# that fails feps --check (nothing is run).
 set -u
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 JOBS="$(nproc)"
@@ -26,7 +29,12 @@ REGEN=0
 CASES=""
 GRID=""
 EXTRA=()
+usage() { awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; }
 while [ $# -gt 0 ]; do
+  case "$1" in
+    -j|-o|--feps|--cases|--grid)
+      [ $# -ge 2 ] || { echo "campaign_modelC: $1 needs a value" >&2; exit 2; } ;;
+  esac
   case "$1" in
     -j) JOBS="$2"; shift 2 ;;
     -o) OUT="$2"; shift 2 ;;
@@ -35,10 +43,20 @@ while [ $# -gt 0 ]; do
     --cases) CASES="$2"; shift 2 ;;
     --grid) GRID="$2"; shift 2 ;;
     --) shift; EXTRA=("$@"); break ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
-    *) echo "campaign_modelC: unknown option $1" >&2; exit 2 ;;
+    -h|--help) usage; exit 0 ;;
+    *) echo "campaign_modelC: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done
+case "$JOBS" in
+  ''|*[!0-9]*|0) echo "campaign_modelC: -j $JOBS: give a number of cases at once, at least 1" >&2; exit 2 ;;
+esac
+if [ -n "$FEPS" ]; then
+  # a command name (no slash) is looked up on PATH; a relative path is made absolute, since every
+  # case runs in its own folder
+  case "$FEPS" in */*) ;; *) FEPS="$(command -v -- "$FEPS" || echo "$FEPS")" ;; esac
+  { [ -f "$FEPS" ] && [ -x "$FEPS" ]; } || { echo "campaign_modelC: --feps $FEPS is not an executable file" >&2; exit 2; }
+  FEPS="$(cd "$(dirname "$FEPS")" && pwd)/$(basename "$FEPS")"
+fi
 mkdir -p "$OUT"
 OUT="$(cd "$OUT" && pwd)"
 
@@ -112,7 +130,9 @@ wait
 END=$(date +%s.%N)
 printf 'campaign wall time %.1f s\n' "$(echo "$END - $START" | bc)"
 
-python3 "$ROOT/scripts/postprocess_model_c.py" --table "$OUT" --csv "$OUT/table.csv"
+prc=0
+python3 "$ROOT/scripts/postprocess_model_c.py" --table "$OUT" --csv "$OUT/table.csv" || prc=$?
+[ "$prc" -eq 0 ] || echo "campaign_modelC: postprocess_model_c.py failed (exit $prc)" >&2
 nfail=0
-for case in $CASES; do done_ok "$case" || { echo "missing or failed: $case"; nfail=$((nfail + 1)); }; done
-exit $(( nfail > 0 ))
+for case in $CASES; do done_ok "$case" || { echo "campaign_modelC: missing or failed: $case" >&2; nfail=$((nfail + 1)); }; done
+[ "$nfail" -eq 0 ] && [ "$prc" -eq 0 ]

@@ -504,5 +504,109 @@ for band in ("pressure", "pretensioned"):
 PY
 rm -rf "results/$camp"
 
+# The scripts: an ordinary mistake is one line on stderr ('prog: ...') and a non-zero exit (2 for
+# bad arguments), never a traceback; argparse's own errors exit 2 with its usage line.
+expect_line() {  # name expected-status pattern command...: that status, one stderr line matching pattern
+  local name=$1 want=$2 pat=$3; shift 3
+  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  if [ "$got" -eq "$want" ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q -- "$pat" "$tmp/err"; then
+    ok "$name (exit $got, one line)"
+  else
+    bad "$name: exit $got, expected $want and one line matching '$pat': $(head -c 300 "$tmp/err")"
+  fi
+}
+expect_arg_error() {  # name pattern command...: argparse's exit 2 naming the problem, no traceback
+  local name=$1 pat=$2; shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  if [ "$got" -eq 2 ] && grep -q -- "$pat" "$tmp/err" && ! grep -q Traceback "$tmp/err"; then ok "$name (exit 2)"
+  else bad "$name: exit $got, expected 2 and '$pat': $(head -c 300 "$tmp/err")"; fi
+}
+for s in campaign campaign_modelB campaign_modelC; do
+  bash scripts/$s.sh --help >"$tmp/out" 2>&1 && grep -q "^Exit status\|exit status" "$tmp/out" && ! grep -q "^set -\|ROOT=" "$tmp/out" \
+    && ok "$s.sh --help prints the header, exit 0" || bad "$s.sh --help: $(head -c 300 "$tmp/out")"
+done
+# campaign.sh with FEPS a relative path (each case runs in its own folder) and a case that fails:
+# the CSV is gathered, the failed case named, exit 1.
+sed 's/MAXIT=200/MAXIT=3/' test/data/unzip.dat >"$tmp/unzip3.dat"
+camp="check_cli_fail_$$"
+FEPS="$feps" JOBS=1 bash scripts/campaign.sh "$camp" test/data/cube.dat "$tmp/unzip3.dat" >"$tmp/out" 2>"$tmp/err"; got=$?
+[ "$got" -eq 1 ] && grep -q "^cube,ok," "results/$camp/summary.csv" && grep -q "^unzip3,failed,1," "results/$camp/summary.csv" \
+  && grep -q "campaign: 1 of 2 cases not finished: unzip3 (failed)" "$tmp/err" \
+  && ok "campaign.sh, relative FEPS: a failed case gives exit 1 after the CSV" \
+  || bad "campaign.sh, relative FEPS, a failed case: exit $got, $(head -c 300 "$tmp/err")"
+rm -rf "results/$camp"
+# campaign_modelC.sh --feps with a relative path, from another folder: a stand-in feps that passes
+# --check and writes a (non-HDF5) result; the case runs, the post-processing refuses the file in
+# one line, and the campaign exits 1.
+mkdir -p "$tmp/fake"
+cat >"$tmp/fake/feps" <<'SH'
+#!/bin/sh
+out=""
+while [ $# -gt 0 ]; do case "$1" in --check) exit 0 ;; --output) out=$2; shift ;; esac; shift; done
+echo "not HDF5" >"$out"; echo "results $out"
+SH
+chmod +x "$tmp/fake/feps"
+(cd "$tmp" && bash "$OLDPWD/scripts/campaign_modelC.sh" -o "$tmp/mcfake" --cases C_G300_nu0.1_b0.09 --feps fake/feps) \
+  >"$tmp/out" 2>"$tmp/err"; got=$?
+[ "$got" -eq 1 ] && grep -q "C_G300_nu0.1_b0.09 .* exit 0" "$tmp/mcfake/C_G300_nu0.1_b0.09/time.txt" \
+  && grep -q "postprocess_model_c: .*not an HDF5 file" "$tmp/err" && ! grep -q Traceback "$tmp/err" \
+  && ok "campaign_modelC.sh --feps RELATIVE runs the case; a failed post-processing gives exit 1" \
+  || bad "campaign_modelC.sh --feps RELATIVE: exit $got, $(head -c 300 "$tmp/err")"
+expect_line "study_tradeoff.py --feps that does not exist" 2 "^study_tradeoff: --feps" \
+  python3 scripts/study_tradeoff.py --quick --feps "$tmp/no_feps" --out "$tmp/trade"
+[ ! -e "$tmp/trade" ] && ok "  ... and writes nothing" || bad "  ... and writes nothing"
+expect_arg_error "study_tradeoff.py --scenes bogus" "invalid choice: 'bogus'" python3 scripts/study_tradeoff.py --scenes bogus
+expect_line "study_tradeoff.py --compare a missing folder" 2 "no folder" \
+  python3 scripts/study_tradeoff.py --compare "$tmp/no_such_dir"
+expect_line "postprocess_model_c.py, a missing file" 2 "^postprocess_model_c: no result file" \
+  python3 scripts/postprocess_model_c.py "$tmp/no.h5"
+expect_line "postprocess_model_c.py, a model B result" 1 "not a model C result" \
+  python3 scripts/postprocess_model_c.py "$tmp/b_cholmod.h5"
+mkdir -p "$tmp/empty"
+expect_line "postprocess_model_c.py --statics on an empty folder" 1 "no model C results in" \
+  python3 scripts/postprocess_model_c.py --statics "$tmp/empty"
+expect_line "postprocess_model_c.py --table without the benchmarks" 2 "no benchmarks folder .*FEPS_BENCHMARKS" \
+  env FEPS_BENCHMARKS="$tmp/no_bench" python3 scripts/postprocess_model_c.py --table "$tmp/empty"
+expect_line "compare_thesis.py without the benchmarks" 2 "no benchmarks folder .*FEPS_BENCHMARKS" \
+  env FEPS_BENCHMARKS="$tmp/no_bench" python3 scripts/compare_thesis.py table2.2
+expect_line "plot_stress_maps.py --group bogus" 2 "no solid group 'bogus' (the file has: pipe, soil)" \
+  python3 scripts/plot_stress_maps.py --h5 "$tmp/b_cholmod.h5" --group bogus --out "$tmp/m.png"
+expect_line "plot_stress_maps.py, a missing --h5" 2 "no result file" \
+  python3 scripts/plot_stress_maps.py --h5 "$tmp/no.h5" --out "$tmp/m.png"
+expect_arg_error "plot_stress_maps.py --norm 0" "argument --norm" \
+  python3 scripts/plot_stress_maps.py --h5 "$tmp/b_cholmod.h5" --norm 0 --out "$tmp/m.png"
+expect_line "plot_interface_maps.py --step 99" 2 "no step 0099" \
+  python3 scripts/plot_interface_maps.py --h5 "$tmp/main.h5" --group contact --step 99 --out "$tmp/m.png"
+printf 'case,nu_p,sigma_max,status\na,-0.3,20.1,ok\nb,0.1,21.5,ok\n' >"$tmp/pc.csv"
+expect_line "plot_campaign.py --logx with nu_p = -0.3" 1 "row a: column 'nu_p' is -0.3" \
+  python3 scripts/plot_campaign.py "$tmp/pc.csv" --x nu_p --y sigma_max --logx -o "$tmp/pc.png"
+python3 scripts/plot_campaign.py "$tmp/pc.csv" --x nu_p --y sigma_max -o "$tmp/new/folder/pc.png" >/dev/null 2>&1 \
+  && [ -s "$tmp/new/folder/pc.png" ] && ok "plot_campaign.py -o makes a missing folder" || bad "plot_campaign.py -o makes a missing folder"
+expect_line "export_inp.py, a missing HDF5 file" 2 "export_inp: error: no HDF5 file" \
+  python3 scripts/export_inp.py "$tmp/no.h5" input/modelB/SE1.dat -o "$tmp/x.inp"
+python3 scripts/export_inp.py --help | grep -q -- "--print-nodes" && bad "export_inp.py --help: no --print-nodes" \
+  || ok "export_inp.py --help: no --print-nodes"
+for v in nan inf; do
+  expect_line "joint_models.py --beta $v" 2 "joint_models: need a finite beta" \
+    python3 scripts/joint_models.py --beta $v --a 15 --Ep 660
+done
+expect_arg_error "make_model_b.py --soil-radius 500 (inside the pipe)" "must exceed the pipe's outer radius 715" \
+  python3 scripts/make_model_b.py --outdir "$tmp/x" --soil-radius 500
+expect_arg_error "make_model_c.py --steps -3" "argument --steps" python3 scripts/make_model_c.py --outdir "$tmp/x" --steps -3
+expect_arg_error "make_model_c.py --theta-step 0" "argument --theta-step" \
+  python3 scripts/make_model_c.py --outdir "$tmp/x" --theta-step 0
+[ ! -e "$tmp/x" ] && ok "  ... no deck written" || bad "  ... no deck written"
+expect_arg_error "study_prestress.py --q nan" "argument --q" python3 scripts/study_prestress.py --q nan
+python3 scripts/make_symmetry_decks.py --outdir "$tmp/sym" >/dev/null && cmp -s "$tmp/sym/symmetry_half.dat" test/data/symmetry_half.dat \
+  && cmp -s "$tmp/sym/symmetry_full.dat" test/data/symmetry_full.dat && ok "make_symmetry_decks.py --outdir writes test/data's decks" \
+  || bad "make_symmetry_decks.py --outdir writes test/data's decks"
+expect_arg_error "make_symmetry_decks.py --bogus" "unrecognized arguments" python3 scripts/make_symmetry_decks.py --bogus
+expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" python3 scripts/stability_extremes.py --only bogus
+expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapter 9 results" \
+  python3 scripts/orderings_model_a_ch9.py "$tmp/empty"
+# The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).
+tester=$(fpm test --runner echo 2>/dev/null | tail -n 1)
+expect_line "fpm test -- nosuchsuite" 2 'no test suite "nosuchsuite" (the suites: datain' "$tester" nosuchsuite
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -6,8 +6,25 @@
     python3 scripts/compare_thesis.py sec2.3.4a    # named cases
 
 Prints one row per compared quantity (case, quantity, thesis or closed form, feps, relative
-error, verdict) and exits non-zero if any row fails. Decks live in input/verification/, named
-after the case id with '_' for '.'.
+error, verdict) and exits non-zero if any row fails. The cases (--list) and their decks:
+
+    sec2.3.4a, sec2.3.4b  input/verification/sec2_3_4a.dat and sec2_3_4b.dat, with every --method
+    table2.2, table2.3    input/verification/table2_2_bar<n>.dat and table2_3_bar<n>.dat, one per
+                          row of the thesis's table (bars of n = 2, 3, 5 and 2, 3, 4 nodes)
+    sec2.4.3, sec2.6.4    input/verification/sec2_4_3_compression.dat and sec2_4_3_tension.dat
+                          (sec2.6.4: with every --method)
+    table7.1              the joint models (scripts/joint_models.py) and input/modelB/FE1.dat
+                          (FE2.dat, FE3.dat too with --all)
+    table7.2              input/modelB/FD1.dat, FD2.dat, FD3.dat
+    table7.3              the twelve decks of input/modelC, run by scripts/campaign_modelC.sh
+    table7.4              the joint models; with --all also model C (input/modelC, as table7.3)
+    orderings             input/modelB/SE1-3.dat and SD1-3.dat (FE1-3, FD1-3 too with --all),
+                          the twelve decks of input/modelA, and with --all input/chapter9/CR.dat,
+                          RE1.dat, RE2.dat, PR1.dat, PR2.dat
+
+The thesis's tables (Tables 2.2, 2.3, 7.3 and 7.4) are read from the benchmarks folder,
+$FEPS_BENCHMARKS (default ../shared/benchmarks beside the repository); without it the cases that
+need them stop before anything runs, with one line naming the folder.
 """
 import argparse
 import math
@@ -19,7 +36,9 @@ import tempfile
 import h5py
 import numpy as np
 
-from feps_build import feps_executable
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_build import feps_executable  # noqa: E402
+from feps_cli import Error, benchmark_file, benchmarks_dir, guard  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRESETS = ["euler", "modified-euler", "newton-raphson", "modified-newton-raphson", "initial-stiffness",
@@ -168,7 +187,7 @@ def case_sec2_3_4b(table, feps, tmp):
 
 def read_bar_table(name):
     rows = []
-    with open(os.path.join(os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks")), name)) as f:
+    with open(benchmark_file(name)) as f:
         lines = [l.strip() for l in f if l.strip() and not l.startswith("#")]
     for line in lines[1:]:
         k, ne, ng, forces = line.split(",")
@@ -443,6 +462,9 @@ ORDERING_NOT_REPRODUCED = {
 }
 
 
+# the cases that read the thesis's tables from the benchmarks folder
+NEED_BENCHMARKS = {"table2.2", "table2.3", "table7.1", "table7.3", "table7.4"}
+
 CASES = {
     # id: (function, fast)
     "sec2.3.4a": (case_sec2_3_4a, True),
@@ -473,8 +495,10 @@ def main():
         return 0
     unknown = [c for c in args.cases if c not in CASES]
     if unknown:
-        sys.exit(f"compare_thesis: unknown case ids {unknown}; known: {list(CASES)}")
+        raise Error(f"unknown case ids {unknown}; known: {list(CASES)}", 2)
     ids = args.cases or [c for c, (_, fast) in CASES.items() if fast or args.all]
+    if NEED_BENCHMARKS.intersection(ids):
+        benchmarks_dir()
     feps = feps_executable(args.profile or ("release" if args.all else "debug"))
     table = Table()
     with tempfile.TemporaryDirectory() as tmp:
@@ -485,7 +509,7 @@ def main():
                     func(table, feps, tmp, full=args.all)
                 else:
                     func(table, feps, tmp)
-            except RuntimeError as exc:
+            except (RuntimeError, Error) as exc:
                 table.add(cid, f"run failed: {exc}"[:46], 0.0, None, 0.0)
     nfail = table.print()
     if TIMINGS:
@@ -498,4 +522,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

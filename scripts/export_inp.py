@@ -2,7 +2,7 @@
 """Write a CalculiX (Abaqus-style) .inp of a linear feps model: mesh from feps's HDF5 file,
 materials, supports and loads from the feps deck.
 
-  python3 scripts/export_inp.py run.h5 deck.dat -o model.inp [--print-nodes]
+  python3 scripts/export_inp.py run.h5 deck.dat -o model.inp
 
 The mesh (/mesh/coordinates, /mesh/groups/<g>/connectivity) is taken from the HDF5 file feps
 wrote for the deck (a mesh-only or a full run), so node and element numbers are feps's own:
@@ -22,11 +22,14 @@ Only what a linear run with one load case needs is accepted (PARAMETERS records 
 are skipped): ELASTIC materials, solid groups
 hex8/hex20/hex20r, at most one STAGE with LOAD=1. Anything else (interfaces, DISPLACE,
 TRACTION, CSYS, nodal systems in FIX, several stages) is refused with the deck's line number.
-The step asks for the displacements of all nodes in the .dat file (*NODE PRINT) and, with
---print-nodes off, for nothing else.
+The step asks for the displacements of all nodes in the .dat file (*NODE PRINT, which
+scripts/bench_calculix.sh compares with feps's node by node) and for no other output.
+A deck the exporter cannot translate exits with status 1, naming the deck's line; a file that
+is missing or cannot be read, with status 2.
 """
 import argparse
 import math
+import os
 import sys
 
 import h5py
@@ -431,18 +434,30 @@ def write_inp(out, deck, coords, groups, fixed, forces, source):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("h5", help="feps results (or mesh-only) HDF5 file of the deck")
     p.add_argument("deck", help="the feps deck (materials, supports, loads)")
     p.add_argument("-o", "--output", required=True, help=".inp file to write")
     a = p.parse_args()
+    for path, what in ((a.h5, "HDF5 file"), (a.deck, "deck")):
+        if not os.path.isfile(path):
+            print(f"export_inp: error: no {what} {path}", file=sys.stderr)
+            return 2
     try:
         deck, coords, groups, fixed, forces = build(a.h5, a.deck)
     except (DeckError, KeyError, ValueError) as exc:
         print(f"export_inp: error: {exc}", file=sys.stderr)
         return 1
-    with open(a.output, "w") as out:
-        write_inp(out, deck, coords, groups, fixed, forces, a.deck)
+    except OSError as exc:
+        # a deck that cannot be read, or a file that is not HDF5 (h5py's message)
+        print(f"export_inp: error: cannot read {exc.filename or a.h5}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    try:
+        with open(a.output, "w") as out:
+            write_inp(out, deck, coords, groups, fixed, forces, a.deck)
+    except OSError as exc:
+        print(f"export_inp: error: cannot write {a.output}: {exc.strerror or exc}", file=sys.stderr)
+        return 1
     total = sum(forces.values()) if forces else np.zeros(3)
     nfix = sum(len(d) for d in fixed.values())
     print(f"export_inp: {len(coords)} nodes, {sum(len(g['conn']) for g in groups.values())} elements, "

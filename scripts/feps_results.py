@@ -35,7 +35,32 @@ _TRI_B = 0.091576213509770743459571463402202
 
 
 def open_result(path):
-    return h5py.File(path, "r")
+    """The HDF5 file for reading; ValueError naming it when it is missing or not HDF5."""
+    if not os.path.isfile(path):
+        raise ValueError(f"no result file {path}")
+    try:
+        return h5py.File(path, "r")
+    except OSError as exc:
+        raise ValueError(f"{path}: not an HDF5 file ({exc})") from None
+
+
+def groups(f):
+    """Names of the element groups in /mesh/groups."""
+    return list(f["mesh/groups"]) if "mesh/groups" in f else []
+
+
+def require_group(f, group, types=None, what="group"):
+    """ValueError naming the file and listing its groups (of the element types accepted by
+    `types`, a predicate on the type, when given) unless `group` is one of them."""
+    names = [g for g in groups(f) if types is None or types(element_type(f, g))]
+    if group not in names:
+        raise ValueError(f"{f.filename}: no {what} '{group}' (the file has: {', '.join(names) or 'none'})")
+
+
+def require(f, path, why=""):
+    """ValueError naming the file unless it holds the object at `path`."""
+    if path not in f:
+        raise ValueError(f"{f.filename}: no /{path}{why}")
 
 
 def text(value):
@@ -65,9 +90,12 @@ def pick_step(f, step=None):
     """'NNNN' from an int, a string or None (= the last step)."""
     if step is None:
         return last_step(f)
-    name = f"{int(step):04d}"
-    if name not in f["steps"]:
-        raise ValueError(f"{f.filename}: no step {name} (stored: {', '.join(steps(f))})")
+    try:
+        name = f"{int(step):04d}"
+    except ValueError:
+        raise ValueError(f"step {step!r} is not a step number") from None
+    if name not in steps(f):
+        raise ValueError(f"{f.filename}: no step {name} (stored: {', '.join(steps(f)) or 'none, a mesh-only run?'})")
     return name
 
 

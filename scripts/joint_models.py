@@ -6,6 +6,9 @@
     python3 scripts/joint_models.py ... --json                         # full results as JSON
     python3 scripts/joint_models.py --check                            # thesis Tables 7.1 and 7.4
 
+--check reads Table 7.4 from the benchmarks folder, $FEPS_BENCHMARKS (default ../shared/benchmarks
+beside the repository). Bad inputs (non-finite, out of range) exit with status 2 and one line.
+
 Units: N, mm, MPa; angles in degrees. Without --P the load is q = 10 MPa on the full annulus,
 P = q pi (R^2 - r^2) (thesis section 7.4.3).
 
@@ -37,8 +40,8 @@ import os
 import sys
 from collections import namedtuple
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BENCHMARKS = os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_cli import benchmark_file, guard  # noqa: E402
 
 Q_DEFAULT = 10.0        # MPa on the top pipe end, thesis section 7.4.3
 DEFAULTS = dict(a=15.0, L=2500.0, Ec=40000.0, R=715.0, r=600.0)
@@ -139,6 +142,10 @@ def _solve_contact_width(model, target, P, a, L, Ec, Ep, R, r):
 
 
 def _solve(model, beta, Z, P, a, L, Ec, Ep, R, r):
+    for name, value in (("beta", beta), ("Z", Z), ("P", P), ("a", a), ("L", L), ("Ec", Ec), ("Ep", Ep),
+                        ("R", R), ("r", r)):
+        if value is not None and not math.isfinite(value):   # NaN passes every comparison below
+            raise ValueError(f"need a finite {name}, got {value}")
     _check_inputs(a, L, Ec, Ep, R, r)
     if beta is not None and beta <= 0.0:
         raise ValueError(f"need beta > 0, got {beta}")
@@ -202,7 +209,8 @@ def packing_modulus(G, nu):
 
 
 def _read_csv(name):
-    with open(os.path.join(BENCHMARKS, name)) as fh:
+    """Rows of a thesis table in the benchmarks folder ($FEPS_BENCHMARKS, default ../shared/benchmarks)."""
+    with open(benchmark_file(name)) as fh:
         return list(csv.DictReader(l for l in fh if not l.startswith("#")))
 
 
@@ -359,4 +367,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

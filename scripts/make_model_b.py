@@ -25,7 +25,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_model_c import number_list  # noqa: E402  (the same list syntax for both writers)
+# the same list syntax and soil radius (the pipes are the same: r = 600 .. 715) for both writers
+from make_model_c import check_soil_radius, number_list, radius_text, soil_radius_arg  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -37,6 +38,7 @@ THESIS_DIAGONAL = {1: (0.2521, 0.2080), 2: (2.116, 2.071), 3: (0.0587, 0.0238)} 
 def soil_layers(r_soil):
     """Four soil element layers from r = 715, growing outwards (715, 865, 1115, 1465, 2000 for
     r_soil = 2000: increments 150, 250, 350, 535 scaled to the soil extent)."""
+    check_soil_radius(r_soil)
     base = [150.0, 250.0, 350.0, 535.0]
     scale = (r_soil - 715.0) / sum(base)
     return [b * scale for b in base]
@@ -186,11 +188,11 @@ def deck(case, r_soil=2000.0):
     if interfaces:
         out.append(f"MATERIAL, pipe_soil, INTERFACE, KN={kn:g}, KS={ks:g}, PHI={num(phi)}, PSI={num(psi)}, C=0.05")
     out += ["", "! --- supports ---",
-            f"NSET, soil_outer, CSYS=3, R={r_soil:.1f}, TOL=0.01",
+            f"NSET, soil_outer, CSYS=3, R={radius_text(r_soil)}, TOL=0.01",
             "NSET, symmetry, CSYS=2, Y=0., TOL=0.01",
             "! The end loads are self-equilibrated in z: one soil node on the mid-plane holds the free",
             "! z translation (its reaction comes out zero).",
-            f"NSET, anchor, CSYS=3, R={r_soil:.1f}, THETA=0., Z=1250., TOL=0.01",
+            f"NSET, anchor, CSYS=3, R={radius_text(r_soil)}, THETA=0., Z=1250., TOL=0.01",
             "FIX, soil_outer, X, Y", "FIX, symmetry, Y", "FIX, anchor, Z", "",
             "! --- loads: P = 1000 kN on each end of the half model, linear in x from zero at 220 mm",
             "! from the axis to its peak at the outer edge (SPEC section 8; thesis Fig. 5.2) ---",
@@ -260,7 +262,8 @@ def deck(case, r_soil=2000.0):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--soil-radius", type=float, default=2000.0)
+    ap.add_argument("--soil-radius", type=soil_radius_arg, default=2000.0,
+                    help="the soil's outer radius (mm, beyond the pipe's 715; default 2000)")
     ap.add_argument("--outdir", default=os.path.join(ROOT, "input", "modelB"))
     ap.add_argument("--cases", default="", help="comma-separated case ids (default: all 18)")
     grid = ap.add_argument_group("parametric grid (every combination)")

@@ -28,6 +28,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_cli import positive, positive_int  # noqa: E402  (argparse types)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 R_IN, R_OUT = 600.0, 715.0
@@ -119,9 +122,35 @@ def check_parameters(G, nu, beta, soil_E):
 
 def soil_layers(r_soil):
     """Four soil element layers from r = 715 (as model B: 150, 250, 350, 535 scaled)."""
+    check_soil_radius(r_soil)
     base = [150.0, 250.0, 350.0, 535.0]
     scale = (r_soil - R_OUT) / sum(base)
     return [b * scale for b in base]
+
+
+def check_soil_radius(r_soil):
+    """The soil's outer radius must lie beyond the pipe's outer radius R_OUT (the soil layers grow
+    outwards from it; at or inside it the soil elements turn inside out)."""
+    if not (math.isfinite(r_soil) and r_soil > R_OUT):
+        raise ValueError(f"soil radius {r_soil:g} mm: the soil's outer radius must exceed the pipe's outer "
+                         f"radius {R_OUT:g} mm")
+
+
+def radius_text(r):
+    """A radius for an NSET record (TOL=0.01): one decimal as the decks have always had it ('2000.0'),
+    or the digits a radius off the 0.1 mm grid needs to select its nodes."""
+    text = f"{r:.1f}"
+    return text if float(text) == r else f"{r:.10g}"
+
+
+def soil_radius_arg(text):
+    """argparse type of --soil-radius."""
+    try:
+        value = float(text)
+        check_soil_radius(value)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc) if "soil radius" in str(exc) else f"{text!r} is not a number")
+    return value
 
 
 def runs(steps):
@@ -192,6 +221,8 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
     """The deck text of one case; theta_step is the element size (deg) beyond theta = 12, wall the
     elements through the pipe wall, z_refine the number of parts each z element is cut into."""
     check_parameters(G, nu, beta, soil_E)
+    if steps is not None and steps < 1:
+        raise ValueError(f"{steps} stage-2 steps: at least 1 is needed")
     thetas = theta_steps(theta_step)
     m = Mesh(r_soil, thetas, wall, z_refine)
     name = case_name(G, nu, beta, soil_E)
@@ -287,7 +318,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
             "MATERIAL, pipe_packing, INTERFACE, KN=800., KS=400., PHI=20., PSI=20., C=0.05",
             "",
             "! --- supports (thesis 6.2) ---",
-            f"NSET, soil_outer, CSYS=3, R={r_soil:.1f}, TOL=0.01",
+            f"NSET, soil_outer, CSYS=3, R={radius_text(r_soil)}, TOL=0.01",
             "NSET, symmetry_y, CSYS=2, Y=0., TOL=0.01",
             "NSET, symmetry_z, CSYS=2, Z=0., TOL=0.01",
             "FIX, soil_outer, X, Y", "FIX, symmetry_y, Y", "FIX, symmetry_z, Z", "",
@@ -327,11 +358,19 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
     return "\n".join(out)
 
 
+_WARNED = []
+
+
 def thesis_beta_bar(G, nu, beta):
-    """beta_bar of thesis Table 7.3 (benchmarks/table7_3.csv), or None when not found."""
+    """beta_bar of thesis Table 7.3 (benchmarks/table7_3.csv), or None when not found. Without the
+    table the decks lose their REFERENCE (and differ from input/modelC): say so once on stderr."""
     path = os.path.join(os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks")),
                         "table7_3.csv")
     if not os.path.exists(path):
+        if not _WARNED:
+            _WARNED.append(path)
+            print(f"make_model_c: warning: no {os.path.normpath(path)} (the benchmarks folder, FEPS_BENCHMARKS): "
+                  "the thesis's beta_bar is left out of the REPORT records' REFERENCE", file=sys.stderr)
         return None
     with open(path) as f:
         for line in f:
@@ -347,13 +386,14 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--outdir", default=os.path.join(ROOT, "input", "modelC"))
     ap.add_argument("--cases", default="", help="comma-separated case names (default: all 12)")
-    ap.add_argument("--steps", type=int, default=None, help="stage-2 steps (default: the thesis's)")
-    ap.add_argument("--soil-radius", type=float, default=2000.0)
-    ap.add_argument("--theta-step", type=float, default=THETA_STEP,
+    ap.add_argument("--steps", type=positive_int, default=None, help="stage-2 steps (default: the thesis's)")
+    ap.add_argument("--soil-radius", type=soil_radius_arg, default=2000.0,
+                    help=f"the soil's outer radius (mm, beyond the pipe's {R_OUT:g}; default 2000)")
+    ap.add_argument("--theta-step", type=positive, default=THETA_STEP,
                     help=f"element size (deg) from theta = 12 to 180 (default {THETA_STEP:g}; it must divide 168)")
-    ap.add_argument("--wall-elements", type=int, default=WALL_ELEMENTS,
+    ap.add_argument("--wall-elements", type=positive_int, default=WALL_ELEMENTS,
                     help=f"hex8 elements through the pipe wall (default {WALL_ELEMENTS}; the mesh study)")
-    ap.add_argument("--z-refine", type=int, default=1,
+    ap.add_argument("--z-refine", type=positive_int, default=1,
                     help="cut every z element (pipes and packing) into this many (default 1; the mesh study)")
     grid = ap.add_argument_group("parametric grid (every combination; any list left out keeps the thesis's values)")
     grid.add_argument("--Gp", type=number_list, help="packing shear moduli G_p (MPa), e.g. 300,600,900")
@@ -365,8 +405,6 @@ def main():
         theta_steps(args.theta_step)
     except ValueError as e:
         ap.error(str(e))
-    if args.wall_elements < 1 or args.z_refine < 1:
-        ap.error("--wall-elements and --z-refine must be at least 1")
     if args.cases and any(v is not None for v in (args.Gp, args.nup, args.beta, args.soil_E)):
         ap.error("give either --cases or the grid lists (--Gp, --nup, --beta, --soil-E), not both")
     try:

@@ -3,8 +3,16 @@
 symmetry plane) and as the full 360-degree model: test/data/symmetry_half.dat and
 test/data/symmetry_full.dat. The full ring is closed by a last column of elements that reuses
 the nodes at theta = 0 (the DATAIN block's duplicate nodes at 360 deg stay unused).
-The symmetric half must give the full model's displacements (fpm test checks 1e-6)."""
+The symmetric half must give the full model's displacements (fpm test checks 1e-6).
+
+    python3 scripts/make_symmetry_decks.py [--outdir test/data]
+
+Without options it rewrites the two decks fpm test reads (the same bytes); --outdir writes them
+elsewhere.
+"""
+import argparse
 import os
+import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 NR = 7                      # r = 600, 657.5, 715, 865, 1115, 1465, 2000
@@ -48,6 +56,23 @@ def deck(full):
     return "\n".join(lines)
 
 
-for full in (False, True):
-    with open(os.path.join(ROOT, "test", "data", f"symmetry_{'full' if full else 'half'}.dat"), "w") as f:
-        f.write(deck(full))
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--outdir", default=os.path.join(ROOT, "test", "data"),
+                    help="folder for symmetry_half.dat and symmetry_full.dat (default test/data, the decks fpm "
+                         "test reads)")
+    args = ap.parse_args()
+    try:
+        os.makedirs(args.outdir, exist_ok=True)
+        for full in (False, True):
+            with open(os.path.join(args.outdir, f"symmetry_{'full' if full else 'half'}.dat"), "w") as f:
+                f.write(deck(full))
+    except OSError as exc:
+        print(f"make_symmetry_decks: {exc.filename}: {exc.strerror}", file=sys.stderr)
+        return 1
+    print(f"wrote symmetry_half.dat and symmetry_full.dat to {args.outdir}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

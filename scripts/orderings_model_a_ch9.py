@@ -7,7 +7,8 @@ feps results.
 RESULTS_DIR holds the HDF5 files of the decks of scripts/make_model_a.py and
 scripts/make_chapter9.py under their deck OUTPUT names: modelA_<E1..D3>_<thick|thin>.h5 and
 chapter9_<CR|RE1|RE2|PR1|PR2>.h5 (e.g. `feps input/modelA/E1_thick.dat --output
-RESULTS_DIR/modelA_E1_thick.h5`). Missing files are skipped.
+RESULTS_DIR/modelA_E1_thick.h5`). Missing files are skipped; a folder that is missing or holds
+none of them is an error (exit status 1), as in scripts/orderings_model_b_c.py.
 
 `ordering_rows(results_dir)` returns rows (case, quantity, larger_value, smaller_value): the
 thesis says larger_value > smaller_value. Measures (all on the concrete group `pipe`, last
@@ -38,6 +39,9 @@ import sys
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_cli import Error, guard  # noqa: E402
 
 FT = 5.0
 HIGH_TENSION_FRACTION = 0.8
@@ -161,12 +165,18 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("results_dir", nargs="?", default=".", help="the folder of the model A and chapter 9 HDF5 files")
     results_dir = ap.parse_args().results_dir
+    if not os.path.isdir(results_dir):
+        raise Error(f"no model A or chapter 9 results in {results_dir}: no such folder")
     rows = ordering_rows(results_dir)
+    if not rows:
+        raise Error(f"no model A or chapter 9 results in {results_dir} (no pair of modelA_*.h5 or chapter9_*.h5 "
+                    "files of the cases compared)")
     w = max((len(r[0]) for r in rows), default=10)
     for case, quantity, larger, smaller in rows:
         verdict = "holds" if larger > smaller else "FAILS"
         print(f"{case:<{w}}  {larger:12.4g} > {smaller:12.4g}  {verdict:5}  {quantity}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(guard(main))

@@ -6,7 +6,8 @@
 
 RESULTS_DIR holds model B results as modelB_<case>.h5 (e.g. `feps input/modelB/SD1.dat --output
 RESULTS_DIR/modelB_SD1.h5`) and/or model C results as <case>/<case>.h5 (the layout of
-scripts/campaign_modelC.sh). Missing files are skipped.
+scripts/campaign_modelC.sh). Missing files are skipped; a folder that is missing or holds none of
+them is an error (one line on stderr, exit status 1).
 
 `ordering_rows(results_dir)` returns rows (case, quantity, larger_value, smaller_value): the
 thesis says larger_value > smaller_value. Measures: the most tensile principal stress s1 at the
@@ -37,6 +38,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import orderings_model_a_ch9 as model_a  # noqa: E402  (hex8 Gauss points, last step)
+from feps_cli import Error, guard  # noqa: E402
 from make_model_c import case_name  # noqa: E402
 from postprocess_model_c import peak_tension_pipes  # noqa: E402
 
@@ -108,14 +110,15 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("results_dir", nargs="?", default=".", help="the folder of the model B and model C HDF5 files")
     results_dir = ap.parse_args().results_dir
+    if not os.path.isdir(results_dir):
+        raise Error(f"no model B or model C results in {results_dir}: no such folder")
     rows = ordering_rows(results_dir)
     if not rows:
-        print(f"no model B or model C results in {results_dir}")
-        return 1
+        raise Error(f"no model B or model C results in {results_dir}")
     for case, quantity, larger, smaller in rows:
         print(f"{case:<34} {quantity:<62} {larger:12.6g} {smaller:12.6g}  {'holds' if larger > smaller else 'FAILS'}")
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

@@ -22,7 +22,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
-from plot_stress_maps import Q_MODEL_B, mark_peak, step_label  # noqa: E402
+from feps_cli import Error, guard, positive, positive_int  # noqa: E402
+from plot_stress_maps import Q_MODEL_B, mark_peak, step_arg, step_label  # noqa: E402
 
 STATE_NAMES = ["stuck", "sliding", "open"]
 
@@ -110,14 +111,14 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--h5", required=True, help="feps result file")
     ap.add_argument("--group", default="contact", help="interface group (default contact)")
-    ap.add_argument("--norm", type=float, default=Q_MODEL_B, help="mean pressure q (MPa), default 4.21 (model B)")
-    ap.add_argument("--step", help="step number (default the last stored)")
+    ap.add_argument("--norm", type=positive, default=Q_MODEL_B, help="mean pressure q (MPa), default 4.21 (model B)")
+    ap.add_argument("--step", type=step_arg, help="step number (default the last stored)")
     ap.add_argument("--unfold", choices=["auto", "cylinder", "face"], default="auto")
     ap.add_argument("--shear", choices=["magnitude", "tau1", "tau2"], default="magnitude")
     ap.add_argument("--state", action="store_true", help="add a panel with the contact state")
-    ap.add_argument("--levels", type=int, default=12)
+    ap.add_argument("--levels", type=positive_int, default=12)
     ap.add_argument("--title", help="figure title (default: case, group, step)")
-    ap.add_argument("--dpi", type=int, default=110)
+    ap.add_argument("--dpi", type=positive_int, default=110)
     ap.add_argument("--out", required=True, help="PNG file")
     args = ap.parse_args(argv)
 
@@ -125,12 +126,18 @@ def main(argv=None):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    with fr.open_result(args.h5) as f:
-        step = fr.pick_step(f, args.step)
-        x, data = interface_points(f, args.group, step)
-        kind = surface_kind(f, args.group) if args.unfold == "auto" else args.unfold
-        case = fr.case_name(f)
-        title = args.title or f"{case}: interface {args.group} / q (q = {args.norm:g} MPa), {step_label(f, step)}"
+    try:
+        with fr.open_result(args.h5) as f:
+            step = fr.pick_step(f, args.step)
+            fr.require_group(f, args.group, lambda t: t.startswith("interface-") and "line" not in t,
+                             "3D interface group")
+            fr.require(f, f"steps/{step}/interface/{args.group}", " (left out of the run's FIELDS?)")
+            x, data = interface_points(f, args.group, step)
+            kind = surface_kind(f, args.group) if args.unfold == "auto" else args.unfold
+            case = fr.case_name(f)
+            title = args.title or f"{case}: interface {args.group} / q (q = {args.norm:g} MPa), {step_label(f, step)}"
+    except ValueError as exc:
+        raise Error(str(exc), 2) from None
     theta, v, ylabel, scale = unfolded(x, kind)
     sigma_n = data[:, 2] / args.norm
     if args.shear == "magnitude":
@@ -157,4 +164,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

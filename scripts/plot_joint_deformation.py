@@ -32,6 +32,8 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
 import joint_models as jm  # noqa: E402
+from feps_cli import Error, finite, guard, positive, positive_int  # noqa: E402
+from plot_stress_maps import SOLID, step_arg  # noqa: E402
 
 TABLE7_1 = dict(P=2.0e6, Z=495.0, a=0.0, L=1250.0, Ec=40000.0, Ep=1.0, R=715.0, r=600.0)
 
@@ -81,17 +83,17 @@ def main(argv=None):
     ap.add_argument("--h5", nargs="+", required=True, help="feps result files")
     ap.add_argument("--labels", nargs="+", help="legend labels, one per file (default: the case names)")
     ap.add_argument("--group", default="pipe")
-    ap.add_argument("--radius", type=float, help="ring radius R (default: the group's largest radius)")
-    ap.add_argument("--z", type=float, help="section z (default: the group's largest z, the top end)")
-    ap.add_argument("--step", help="step number (default the last stored)")
+    ap.add_argument("--radius", type=positive, help="ring radius R (default: the group's largest radius)")
+    ap.add_argument("--z", type=finite, help="section z (default: the group's largest z, the top end)")
+    ap.add_argument("--step", type=step_arg, help="step number (default the last stored)")
     ap.add_argument("--no-analytical", action="store_true", help="numerical curves only")
     ap.add_argument("--edge", type=int, choices=[-1, 1], default=-1, help="loaded edge at x = edge * R (default -1)")
-    ap.add_argument("--haslem-pivot", type=float, default=0.0, help="x where Haslem's line is zero (default 0)")
+    ap.add_argument("--haslem-pivot", type=finite, default=0.0, help="x where Haslem's line is zero (default 0)")
     for key, value in TABLE7_1.items():
-        ap.add_argument(f"--{key}", type=float, default=value,
+        ap.add_argument(f"--{key}", type=finite, default=value,
                         help=f"joint model parameter {key} (default {value:g}, thesis Table 7.1)")
     ap.add_argument("--title", help="title")
-    ap.add_argument("--dpi", type=int, default=110)
+    ap.add_argument("--dpi", type=positive_int, default=110)
     ap.add_argument("--out", required=True, help="PNG file")
     args = ap.parse_args(argv)
     if args.labels and len(args.labels) != len(args.h5):
@@ -107,18 +109,25 @@ def main(argv=None):
     top = True
     markers = "osd^v<>p"
     for k, path in enumerate(args.h5):
-        with fr.open_result(path) as f:
-            step = fr.pick_step(f, args.step)
-            x, w, radius, z, top = ring_displacement(f, args.group, step, args.radius, args.z)
-            label = args.labels[k] if args.labels else fr.case_name(f)
-            # positive when the loaded edge is compressed (as REPORT ROTATION for the model B top end)
-            angle = slope_angle(x, w, x0, x1) * (1.0 if top else -1.0) * -args.edge
+        try:
+            with fr.open_result(path) as f:
+                step = fr.pick_step(f, args.step)
+                fr.require_group(f, args.group, SOLID, "solid group")
+                x, w, radius, z, top = ring_displacement(f, args.group, step, args.radius, args.z)
+                label = args.labels[k] if args.labels else fr.case_name(f)
+                # positive when the loaded edge is compressed (as REPORT ROTATION for the model B top end)
+                angle = slope_angle(x, w, x0, x1) * (1.0 if top else -1.0) * -args.edge
+        except ValueError as exc:
+            raise Error(str(exc), 2) from None
         ax.plot(x, w, marker=markers[k % len(markers)], ms=3.5, lw=1.4,
                 label=f"{label} (beta = {angle:.4f} deg)")
         print(f"{path}: {label}: {len(x)} nodes on r = {radius:g}, z = {z:g}; w from {w.min():.4f} to {w.max():.4f} mm; "
               f"deflection angle over x = {x0:g} .. {x1:g}: {angle:.5f} deg")
     if not args.no_analytical:
-        lines, aus, has = analytical_lines(params, args.edge, top, args.haslem_pivot)
+        try:
+            lines, aus, has = analytical_lines(params, args.edge, top, args.haslem_pivot)
+        except ValueError as exc:       # the joint models' own checks ("need R > r >= 0, ...")
+            raise Error(f"analytical lines: {exc}", 2) from None
         for (label, (xa, wa)), style in zip(lines.items(), ["--", ":"]):
             ax.plot(xa, wa, "k" + style, lw=1.5, label=label)
         print(f"Australian: beta = {aus.beta:.5f} deg, sigma_max = {aus.sigma_max:.3f} MPa; "
@@ -141,4 +150,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

@@ -26,10 +26,38 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
+from feps_cli import Error, guard, positive, positive_int  # noqa: E402
 
 Q_MODEL_B = 4.21   # MPa: P = 1000 kN over the half annulus (thesis 5.3)
 SOURCES = {"gauss": "Gauss points", "cell": "element averages", "nodes": "nodal"}
 FIELDS = {"tensile": (0, "most tensile principal stress"), "compressive": (1, "most compressive principal stress")}
+
+
+def surface_arg(text):
+    """argparse type of --surface: inner, outer or r=VALUE (VALUE > 0)."""
+    if text in ("inner", "outer"):
+        return text
+    if text.lower().startswith("r="):
+        try:
+            positive(text[2:])
+            return text
+        except argparse.ArgumentTypeError:
+            pass
+    raise argparse.ArgumentTypeError(f"inner, outer or r=VALUE with a radius VALUE > 0, not {text!r}")
+
+
+def step_arg(text):
+    """argparse type of --step: a step number >= 0."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a step number")
+    return value
+
+
+SOLID = lambda etype: not etype.startswith("interface-") and not etype.startswith("bar")   # noqa: E731
 
 
 def surface_radius(f, group, surface):
@@ -195,18 +223,18 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--h5", required=True, help="feps result file")
     ap.add_argument("--group", default="pipe", help="solid element group (default pipe)")
-    ap.add_argument("--surface", default="inner", help="inner, outer or r=VALUE (default inner)")
+    ap.add_argument("--surface", type=surface_arg, default="inner", help="inner, outer or r=VALUE (default inner)")
     ap.add_argument("--field", choices=sorted(FIELDS), default="tensile")
-    ap.add_argument("--norm", type=float, default=Q_MODEL_B,
+    ap.add_argument("--norm", type=positive, default=Q_MODEL_B,
                     help="mean pressure q (MPa) the stresses are divided by (default 4.21, model B)")
-    ap.add_argument("--step", help="step number (default the last stored)")
+    ap.add_argument("--step", type=step_arg, help="step number (default the last stored)")
     ap.add_argument("--source", choices=["gauss", "cell", "nodes"], default="gauss",
                     help="Gauss points nearest the surface (default), element averages, or nodal values "
                          "(Gauss-point stresses extrapolated to the nodes and averaged)")
-    ap.add_argument("--levels", type=int, default=12, help="number of contour bands (default 12)")
+    ap.add_argument("--levels", type=positive_int, default=12, help="number of contour bands (default 12)")
     ap.add_argument("--zero-line", action="store_true", help="draw the zero contour (dashed)")
     ap.add_argument("--title", help="title (default: case, field and surface)")
-    ap.add_argument("--dpi", type=int, default=110)
+    ap.add_argument("--dpi", type=positive_int, default=110)
     ap.add_argument("--out", required=True, help="PNG file")
     args = ap.parse_args(argv)
 
@@ -215,15 +243,22 @@ def main(argv=None):
     import matplotlib.pyplot as plt
 
     column, field_name = FIELDS[args.field]
-    with fr.open_result(args.h5) as f:
-        step = fr.pick_step(f, args.step)
-        radius = surface_radius(f, args.group, args.surface)
-        theta, z, values = surface_values(f, args.group, step, column, radius, args.source)
-        values = values / args.norm
-        case = fr.case_name(f)
-        where = {"inner": "inner surface", "outer": "outer surface"}.get(args.surface, "surface")
-        title = args.title or (f"{case}: {field_name} / q (q = {args.norm:g} MPa)\n"
-                               f"{args.group}, {where} r = {radius:g} mm, {step_label(f, step)}, {SOURCES[args.source]}")
+    try:
+        with fr.open_result(args.h5) as f:
+            step = fr.pick_step(f, args.step)
+            fr.require_group(f, args.group, SOLID, "solid group")
+            kind = "stress" if args.source == "nodes" else ("cell/principal" if args.source == "cell" else "principal")
+            fr.require(f, f"steps/{step}/{kind}/{args.group}", " (left out of the run's FIELDS?)")
+            radius = surface_radius(f, args.group, args.surface)
+            theta, z, values = surface_values(f, args.group, step, column, radius, args.source)
+            values = values / args.norm
+            case = fr.case_name(f)
+            where = {"inner": "inner surface", "outer": "outer surface"}.get(args.surface, "surface")
+            title = args.title or (f"{case}: {field_name} / q (q = {args.norm:g} MPa)\n"
+                                   f"{args.group}, {where} r = {radius:g} mm, {step_label(f, step)}, "
+                                   f"{SOURCES[args.source]}")
+    except ValueError as exc:
+        raise Error(str(exc), 2) from None
 
     fig, ax = plt.subplots(figsize=(6.4, 6.6))
     cs = unfolded_contour(ax, theta, z, values, radius, args.levels,
@@ -243,4 +278,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

@@ -28,13 +28,21 @@ From the last step of a model C run (decks by scripts/make_model_c.py):
   ("interpolating linearly the stresses to a zero point"). Z = 715 - x_zero, averaged over the
   four lines ("the average value of Z is used").
 - sigma_max (7.4.3), "calculated from the average stresses at the centre of elements in the region
-  of the pipe edge (theta < 6 deg) with a linear interpolation": the axial stress szz at the
-  centres of the packing elements with theta < 6 deg (4 elements: 2 in theta x 2 through the
-  wall; the packing is the joint, and the analytical models' sigma_max is the packing's stress),
-  fitted by a least-squares line in x (element centre x) and evaluated at x = 715; reported as a
-  positive compression. The same reading of the interface's normal stress (mean of each interface
-  element's 4 Gauss points) is printed as sigma_max_interface: it was the tabulated reading until
-  2026-11-22 and is 1-7% higher (docs/verification.md, model C).
+  of the pipe edge (theta < 6 deg) with a linear interpolation": the axial stress szz of the
+  packing elements whose nodes all lie at theta <= 6 deg, each element's average over its Gauss
+  points (/steps/N/cell/stress/packing; the packing is the joint, and the analytical models'
+  sigma_max is the packing's stress): 8 elements with the decks' mesh, 2 in theta x 2 through
+  the wall x 2 packing layers (the count is printed). A least-squares line of szz against the
+  element centre's x (the mean x of its 8 nodes; the two layers' elements share it, so each x
+  carries two values) is evaluated at x = 715 and reported as a positive compression. The same
+  reading of the interface's normal stress (the interface elements with theta <= 6 deg, 4 with
+  the decks' mesh, each the mean of its 4 Gauss points) is printed as sigma_max_interface: it was
+  the tabulated reading until 2026-11-22 and is 1-7% higher (docs/verification.md, model C).
+
+Errors are one line on stderr: exit 2 for a result file that is missing or the thesis's tables
+missing from the benchmarks folder (FEPS_BENCHMARKS, default ../shared/benchmarks; --table reads
+Tables 7.3 and 7.4 there), 1 for a RESULTS_DIR that is missing or holds no <case>/<case>.h5 and
+for a result that cannot be read or is not model C's.
 """
 import argparse
 import csv
@@ -45,8 +53,10 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_cli import Error, benchmark_file, guard  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BENCH = os.environ.get("FEPS_BENCHMARKS", os.path.join(ROOT, "..", "shared", "benchmarks"))
 R_IN, R_OUT = 600.0, 715.0
 Z_JOINT = 1250.0
 Z_TOP_BOTTOM = 1265.0
@@ -289,20 +299,43 @@ def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing
             "sliding_fraction": float(np.mean(traction[:, 3] == 1))}
 
 
+MODEL_C_GROUPS = ("top_pipe", "bottom_pipe", "packing", "joint")
+
+
+def open_model_c(h5path):
+    """The HDF5 file of a model C run, open for reading; Error (one line) when it is missing (status
+    2), not HDF5 or not model C's (no groups top_pipe, bottom_pipe, packing, joint or no steps)."""
+    if not os.path.isfile(h5path):
+        raise Error(f"no result file {h5path}", 2)
+    try:
+        f = h5py.File(h5path, "r")
+    except OSError as exc:
+        raise Error(f"{h5path}: not an HDF5 file ({exc})") from None
+    groups = list(f["mesh/groups"]) if "mesh/groups" in f else []
+    missing = [g for g in MODEL_C_GROUPS if g not in groups]
+    if missing or not len(f.get("steps", ())):
+        f.close()
+        what = f"no group {', '.join(missing)}; it has {', '.join(groups) or 'none'}" if missing else "no /steps"
+        raise Error(f"{h5path}: not a model C result of scripts/make_model_c.py's decks ({what})")
+    return f
+
+
 def postprocess(h5path, verbose=True):
     """Compute beta*, beta_bar, Z and sigma_max of a model C result at its last step (the end of
     the equilibrium stage s3) and, as 's2_*' entries, at the end of stage 2 (load factor 2) when
     that is a different step; print one line per quantity; return a dict."""
-    with h5py.File(h5path, "r") as f:
+    with open_model_c(h5path) as f:
         coords = f["mesh/coordinates"][...]
         conn_top = f["mesh/groups/top_pipe/connectivity"][...]
         conn_joint = f["mesh/groups/joint/connectivity"][...]
         conn_packing = f["mesh/groups/packing/connectivity"][...]
         names = sorted(f["steps"], key=int)
         step = f["steps"][names[-1]]
-        if "cell/stress/packing" not in step:
-            raise SystemExit(f"{h5path}: no /steps/{names[-1]}/cell/stress/packing (sigma_max is read from the "
-                             "packing's element stresses: do not leave the stresses out with FIELDS)")
+        for path in ("displacement", "interface/joint", "cell/stress/packing"):
+            if path not in step:
+                raise Error(f"{h5path}: no /steps/{names[-1]}/{path} (the quantities are read from the displacements, "
+                            "the interface's stresses and the packing's element stresses: do not leave them out "
+                            "with FIELDS)")
         res = _quantities(coords, conn_top, conn_joint, step["displacement"][...], step["interface/joint"][...],
                           conn_packing, step["cell/stress/packing"][...])
         res["load_factor"] = float(step.attrs["load_factor"])
@@ -353,7 +386,7 @@ def case_name(G, nu, beta):
 
 
 def _rows(name):
-    with open(os.path.join(BENCH, name)) as f:
+    with open(benchmark_file(name)) as f:
         return list(csv.DictReader(l for l in f if not l.startswith("#")))
 
 
@@ -399,7 +432,8 @@ def result_cases(results_dir):
     """Case folders under results_dir holding <case>/<case>.h5: the thesis's twelve first (in the
     order of its tables), then any other (a parametric campaign) in name order."""
     thesis = list(thesis_values())
-    found = [d for d in os.listdir(results_dir) if os.path.exists(case_h5(results_dir, d))]
+    found = [d for d in os.listdir(results_dir) if os.path.exists(case_h5(results_dir, d))] \
+        if os.path.isdir(results_dir) else []
     # parametric cases by (E_s, beta, G_p, nu_p); a name make_model_c.py did not write comes last
     key = lambda c: (math.isnan(case_parameters(c)[0]), [case_parameters(c)[i] for i in (3, 2, 0, 1)], c)
     return [c for c in thesis if c in found] + sorted((c for c in found if c not in thesis), key=key)
@@ -408,8 +442,11 @@ def result_cases(results_dir):
 def peak_tension_pipes(h5path):
     """Max most tensile principal stress (MPa) over the Gauss points of the two concrete pipes at
     the last step (the packing and the interface left out, as in the thesis's contours)."""
-    with h5py.File(h5path, "r") as f:
+    with open_model_c(h5path) as f:
         step = last_step(f)
+        for g in ("top_pipe", "bottom_pipe"):
+            if f"principal/{g}" not in step:
+                raise Error(f"{h5path}: no principal stresses of {g} in the last step (left out with FIELDS?)")
         return max(float(step["principal"][g][:, 0].max()) for g in ("top_pipe", "bottom_pipe"))
 
 
@@ -418,9 +455,11 @@ def table(results_dir, csv_out=None):
     thesis beside feps where it has the case; optionally write a CSV."""
     ref = thesis_values()
     out = []
+    cases = result_cases(results_dir)
+    if not cases:
+        raise Error(no_results(results_dir))
     print(f"{'case':<28} {'beta*':>8} {'thesis':>8} {'beta_bar':>8} {'thesis':>8} {'Z':>7} {'thesis':>7} "
           f"{'s_max':>7} {'thesis':>7} {'s1_peak':>8}")
-    cases = result_cases(results_dir)
     if all(c in ref for c in cases):          # the thesis's campaign: say which cases are missing
         for case in ref:
             if case not in cases:
@@ -528,7 +567,7 @@ def top_pipe_statics(h5path):
     (the sum of the top-end reactions, half pipe), Euler-Bernoulli and Timoshenko beam theory
     predict the section rotations along the pipe and beta* - theta(A-A); this returns the
     measured and predicted values (deg) for comparison."""
-    with h5py.File(h5path, "r") as f:
+    with open_model_c(h5path) as f:
         X = f["mesh/coordinates"][...]
         step = f["steps"][sorted(f["steps"], key=int)[-1]]
         u, reac = step["displacement"][...], step["reaction"][...]
@@ -561,14 +600,22 @@ def f_conn_top(h5path):
         return f["mesh/groups/top_pipe/connectivity"][...]
 
 
+def no_results(results_dir):
+    """The message for a results folder that is missing or holds no <case>/<case>.h5."""
+    if not os.path.isdir(results_dir):
+        return f"no model C results in {results_dir}: no such folder"
+    return f"no model C results in {results_dir} (it holds no <case>/<case>.h5)"
+
+
 def statics_table(results_dir):
-    """top_pipe_statics for every case found, one line each."""
+    """top_pipe_statics for every case found (the thesis's, then any other), one line each."""
+    cases = result_cases(results_dir)
+    if not cases:
+        raise Error(no_results(results_dir))
     print(f"{'case':<22} {'H (kN)':>7} {'e (mm)':>6} {'th(1265)':>8} {'th(A-A)':>8} {'th(3765)':>8} "
           f"{'dth_AA fe/beam':>15} {'dth_top fe/beam':>16} {'gamma':>7} {'b*-th_AA fe/pred':>17}")
-    for case in thesis_values():
+    for case in cases:
         path = case_h5(results_dir, case)
-        if not os.path.exists(path):
-            continue
         r = top_pipe_statics(path)
         print(f"{case:<22} {r['H'] / 1e3:7.1f} {r['e']:6.0f} {r['theta_bottom']:8.4f} {r['theta_AA']:8.4f} "
               f"{r['theta_top']:8.4f} {r['dtheta_AA_fe']:7.4f}/{r['dtheta_AA_beam']:.4f} "
@@ -596,4 +643,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

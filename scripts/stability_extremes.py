@@ -5,6 +5,8 @@ the stated tolerance, or stop with feps's clear message; never NaN, never a hang
 
     python3 scripts/stability_extremes.py [--feps PATH] [--out results/extremes] [--only NAME ...]
 
+feps is fpm's release build unless --feps names an executable; --only takes the case names below.
+
 Cases (variants of the thesis decks, written into OUT/<name>/deck.dat):
 
   modelc_open   model C G_p = 900, nu_p = 0.4 with beta = 0.5 deg (delta = 21.8 mm): about two
@@ -43,6 +45,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import postprocess_model_c as pmc  # noqa: E402
 from feps_build import feps_executable  # noqa: E402
+from feps_cli import Error, guard, positive  # noqa: E402
 
 
 def model_c_deck():
@@ -170,14 +173,20 @@ def run(feps, deck_text, folder, timeout, resume=False):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--feps", default=None)
+    ap.add_argument("--feps", default=None, help="feps executable (default: fpm's release build, built if needed)")
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "extremes"))
-    ap.add_argument("--only", nargs="*", default=None)
-    ap.add_argument("--timeout", type=float, default=1800.0)
+    ap.add_argument("--only", nargs="+", choices=list(CASES), metavar="NAME",
+                    help=f"run only these cases, of {', '.join(CASES)}")
+    ap.add_argument("--timeout", type=positive, default=1800.0, help="seconds a run may take (default 1800)")
     ap.add_argument("--resume", action="store_true",
                     help="reuse a finished run whose deck is unchanged (OUT/<case>/<level>/run.h5)")
     args = ap.parse_args()
-    feps = args.feps or feps_executable("release")
+    if args.feps:
+        feps = os.path.abspath(args.feps)
+        if not (os.path.isfile(feps) and os.access(feps, os.X_OK)):
+            raise Error(f"--feps {args.feps}: not an executable file", 2)
+    else:
+        feps = feps_executable("release")
     rows, failed = [], 0
     for name, c in CASES.items():
         if args.only and name not in args.only:
@@ -232,4 +241,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

@@ -18,6 +18,8 @@ Then, from each case's last step (scripts/orderings_model_a_ch9.py's measures): 
 most-tensile principal stress s1 in the concrete, its largest value in the external Gauss layer,
 and the volume with s1 >= 0.8 ft, the thesis's "high tension domain". It writes
 results/NAME/prestress.csv, results/NAME/prestress.md (a table) and results/NAME/prestress.png.
+Exit status 1 when a case did not finish (campaign.sh names it; nothing is written), 2 for bad
+arguments or when feps --check rejects a deck (nothing is run).
 """
 import argparse
 import csv
@@ -30,6 +32,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 
 import make_chapter9  # noqa: E402
+from feps_cli import Error, finite, guard  # noqa: E402
 from orderings_model_a_ch9 import chapter9_measures  # noqa: E402
 
 COLUMNS = ["case", "band", "q", "band_force_N", "max_s1", "max_s1_external", "high_volume_mm3"]
@@ -66,8 +69,7 @@ def gather(campaign, qs, bands):
     for case, band, q in cases:
         h5 = os.path.join(campaign, case, case + ".h5")
         if not os.path.exists(h5):
-            raise SystemExit(f"study_prestress: {h5} is missing: the case did not finish "
-                             f"(see {os.path.join(campaign, case, 'log.txt')})")
+            raise Error(f"{h5} is missing: the case did not finish (see {os.path.join(campaign, case, 'log.txt')})")
         m = chapter9_measures(h5)
         rows.append({"case": case, "band": band, "q": f"{q:g}",
                      "band_force_N": f"{band_force(q):g}" if band != "none" else "0",
@@ -115,7 +117,7 @@ def write_outputs(campaign, rows):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--q", type=float, nargs="+", default=[0, 1, 2, 3, 4, 5, 6],
+    ap.add_argument("--q", type=finite, nargs="+", default=[0, 1, 2, 3, 4, 5, 6],
                     help="band pressures q (MPa), each >= 0")
     ap.add_argument("--bands", nargs="+", choices=["pressure", "pretensioned", "posttensioned"],
                     default=["pressure", "pretensioned"])
@@ -128,11 +130,19 @@ def main():
     if args.steps < 1:
         ap.error(f"--steps {args.steps}: at least one step is needed")
     campaign = os.path.join(ROOT, "results", args.name)
+    status = 0
     if not args.plots_only:
         decks = write_decks(os.path.join(campaign, "decks"), args.q, args.bands, args.steps)
-        subprocess.run(["bash", os.path.join(HERE, "campaign.sh"), args.name] + decks, check=True)
+        # campaign.sh: 0 all finished, 1 a case did not (named; gather() then says which is
+        # missing), 2 bad arguments or a deck feps --check rejects (its errors printed, nothing run)
+        status = subprocess.run(["bash", os.path.join(HERE, "campaign.sh"), args.name] + decks).returncode
+        if status not in (0, 1):
+            raise Error(f"campaign.sh {args.name} stopped with exit status {status}; nothing was run", status)
     write_outputs(campaign, gather(campaign, args.q, args.bands))
+    if status:
+        raise Error(f"campaign.sh {args.name} exited with status {status}", 1)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(guard(main))

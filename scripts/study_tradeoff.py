@@ -25,10 +25,16 @@ peak memory (/usr/bin/time -f %M, kB) and the relative error of the result again
                thesis's tension rule and under TENSION=closest-point (the "mesh" column names the
                rule); the largest principal stress against the finest run
 
-Every feps process runs under `nice -n 5`, one at a time. Runs that take less than
+feps is fpm's release build (built if needed, as the campaign scripts do) unless --feps names an
+executable. Every feps process runs under `nice -n 5`, one at a time. Runs that take less than
 --repeat-below seconds are repeated --repeats times and the median time is kept. Results go to
 OUT/<scene>.csv (one row per setting; existing rows are reused with --resume), plots to
 OUT/<scene>_pareto.png and OUT/fe1_steps.png, tables to OUT/tables.md.
+
+A setting whose run stops with feps's clear message that a step does not converge is a result
+(status "failed: ..." in the CSV, listed in the tables). Any other failure (feps crashed, refused
+the deck, could not write its results) is an error: the outputs are written all the same and the
+exit status is 1.
 """
 import argparse
 import csv
@@ -44,6 +50,10 @@ import time
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_build import feps_executable  # noqa: E402
+from feps_cli import Error, guard  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRESETS = ["euler", "modified-euler", "newton-raphson", "modified-newton-raphson", "initial-stiffness"]
 # full Newton (not in the thesis) joins the model B FE1 and model C plans only
@@ -54,6 +64,7 @@ ITERATIVE = ("newton-raphson", "modified-newton-raphson", "initial-stiffness", "
 ALL_STEPS = [10, 25, 50, 100, 250, 500, 1000]
 ERROR_FLOOR = 1e-12          # errors below this are plotted on the floor (exact to round-off)
 MODEL_C = "C_G300_nu0.4_b0.27"   # with 6 deg elements beyond theta = 12, the mesh of this study
+SCENES = ["block", "interface", "fe1", "modelc", "ch9"]
 
 FIELDS = ["scene", "mesh", "element", "dofs", "method", "steps", "tol", "solver", "status",
           "wall_s", "wall_runs", "feps_wall_s", "iterations", "factorizations", "cutbacks",
@@ -303,6 +314,7 @@ class Runner:
         self.feps, self.workdir = feps, workdir
         self.repeats, self.repeat_below, self.nice = repeats, repeat_below, nice
         self.spent = 0.0
+        self.errors = []          # failures other than feps's clear "does not converge" stop
 
     def once(self, deck, method, solver, quantity):
         h5 = os.path.join(self.workdir, "run.h5")
@@ -324,6 +336,8 @@ class Runner:
         if proc.returncode != 0:
             msg = (proc.stderr.strip().splitlines() or ["?"])[-1]
             res["status"] = "failed: " + msg[:120].replace(",", ";")
+            if not (proc.returncode == 1 and "does not converge" in msg):
+                self.errors.append(f"exit {proc.returncode}: {msg}")
             return res
         with h5py.File(h5, "r") as f:
             a = f["summary"].attrs
@@ -691,26 +705,37 @@ def tables(scene, title, rows, front, reference, kind):
 def compare_builds(base_dir, other_dir, names):
     """Markdown table: the same settings timed with two builds (OUT/<scene>.csv against
     DIR/check_<scene>.csv)."""
-    print("| scene | setting | dofs | base s | other s | base / other |")
-    print("| --- | --- | ---: | ---: | ---: | ---: |")
-    for name in names:
+    if not os.path.isdir(other_dir):
+        raise Error(f"--compare: no folder {other_dir}", 2)
+    found = [n for n in names if os.path.exists(os.path.join(other_dir, f"check_{n}.csv"))]
+    if not found:
+        raise Error(f"--compare: no check_<scene>.csv in {other_dir} for the scenes {', '.join(names)} "
+                    "(study_tradeoff.py --check --out DIR writes them)")
+    lines = []
+    for name in found:
         base = {key(r): r for r in read_csv(os.path.join(base_dir, f"{name}.csv")) if r["status"] == "ok"}
         for r in read_csv(os.path.join(other_dir, f"check_{name}.csv")):
             b = base.get(key(r))
             if b is None or r["status"] != "ok":
                 continue
             tb, to = float(b["wall_s"]), float(r["wall_s"])
-            print(f"| {name} | {label(r)} | {r['dofs']} | {tb:.3f} | {to:.3f} | {tb / to:.1f} |")
+            lines.append(f"| {name} | {label(r)} | {r['dofs']} | {tb:.3f} | {to:.3f} | {tb / to:.1f} |")
+    if not lines:
+        raise Error(f"--compare: no finished setting of {other_dir}/check_*.csv is among the finished runs "
+                    f"of {base_dir}/<scene>.csv")
+    print("| scene | setting | dofs | base s | other s | base / other |")
+    print("| --- | --- | ---: | ---: | ---: | ---: |")
+    print("\n".join(lines))
     return 0
 
 
 # ----------------------------------------------------------------------------------------------
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--feps", default=os.path.join(ROOT, "feps"),
-                    help="feps executable (default ./feps; e.g. a copy of `fpm run --runner echo`)")
+    ap.add_argument("--feps", help="feps executable (default: fpm's release build, built if needed)")
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "tradeoff"))
-    ap.add_argument("--scenes", nargs="+", default=["block", "interface", "fe1", "modelc", "ch9"])
+    ap.add_argument("--scenes", nargs="+", choices=SCENES, default=SCENES, metavar="SCENE",
+                    help=f"scenes to run, of {', '.join(SCENES)} (default: all)")
     ap.add_argument("--quick", action="store_true", help="a tiny subset (writes OUT/quick_*)")
     ap.add_argument("--check", action="store_true",
                     help="a small subset for comparing builds (writes OUT/check_*)")
@@ -726,14 +751,25 @@ def main():
     args = ap.parse_args()
     if args.compare:
         return compare_builds(args.out, args.compare, args.scenes)
+    if args.plots_only:
+        feps = None
+        if not os.path.isdir(args.out):
+            raise Error(f"--plots-only: no folder {args.out}", 2)
+    elif args.feps:
+        feps = os.path.abspath(args.feps)
+        if not (os.path.isfile(feps) and os.access(feps, os.X_OK)):
+            raise Error(f"--feps {args.feps}: not an executable file", 2)
+    else:
+        feps = feps_executable("release")
 
     os.makedirs(args.out, exist_ok=True)
     prefix = "quick_" if args.quick else ("check_" if args.check else "")
     allplans, allscenes = plans(args.quick, args.check), scenes()
     report = [f"<!-- written by scripts/study_tradeoff.py {('--' + prefix[:-1] + ' ') if prefix else ''}"
               f"on {time.strftime('%Y-%m-%d %H:%M')} -->", ""]
+    found = 0
     with tempfile.TemporaryDirectory(prefix="tradeoff_") as work:
-        runner = Runner(os.path.abspath(args.feps), work, args.repeats, args.repeat_below, args.nice)
+        runner = Runner(feps, work, args.repeats, args.repeat_below, args.nice)
         for name in args.scenes:
             sc = allscenes[name]
             csv_path = os.path.join(args.out, f"{prefix}{name}.csv")
@@ -759,6 +795,7 @@ def main():
                     write_csv(csv_path, rows)
             if not rows:
                 continue
+            found += 1
             reference, kind = apply_reference(rows, sc["reference"], sc["reference_kind"])
             write_csv(csv_path, rows)
             ok_rows = [r for r in rows if r["status"] == "ok"]
@@ -768,10 +805,16 @@ def main():
                 plot_steps(os.path.join(args.out, f"{prefix}{name}_steps.png"), sc["title"], ok_rows, reference)
             report += [tables(name, sc["title"], rows, front, reference, kind), ""]
         print(f"feps compute this invocation: {runner.spent:.0f} s")
+    if args.plots_only and not found:
+        raise Error(f"--plots-only: no {prefix}<scene>.csv of the scenes {', '.join(args.scenes)} in {args.out}")
     with open(os.path.join(args.out, f"{prefix}tables.md"), "w") as fh:
         fh.write("\n".join(report) + "\n")
     print("tables:", os.path.join(args.out, f"{prefix}tables.md"))
+    if runner.errors:
+        raise Error(f"{len(runner.errors)} run(s) failed other than by a step that does not converge, "
+                    f"the first: {runner.errors[0]}")
+    return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(guard(main))

@@ -1,6 +1,7 @@
 !> A small test-drive-like harness: unit tests are subroutines that return an allocated
 !! error on failure; `check` compares values with stated tolerances.
 module feps_testing
+  use, intrinsic :: iso_fortran_env, only: error_unit
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_internal, str
   implicit none
@@ -95,17 +96,39 @@ contains
                                              ', expected ' // str(expected))
   end subroutine check_int
 
-  !> Run every suite (or only those whose name is in `only`), print a line per test and the
-  !! closing line 'N passed, N failed'; return the number of failures.
+  !> Run every suite (or only those named in `only`, separated by blanks), print a line per test
+  !! and the closing line 'N passed, N failed'; return the number of failures. A name in `only`
+  !! that is no suite's runs nothing: one line on error_unit lists the suites, and the result is -1.
   function run_testsuites(suites, only) result(nfail)
     type(testsuite_t), intent(in) :: suites(:)
     character(len=*), intent(in) :: only
     integer :: nfail
     type(unittest_t), allocatable :: tests(:)
     type(error_t), allocatable :: error
-    integer :: i, j, npass
+    character(len=:), allocatable :: names
+    integer :: i, j, npass, first, last
     npass = 0
     nfail = 0
+    first = 1
+    do while (first <= len(only))
+      if (only(first:first) == ' ') then
+        first = first + 1
+        cycle
+      end if
+      last = index(only(first:), ' ')
+      last = merge(len(only), first + last - 2, last == 0)
+      if (.not. any([(suites(i)%name == only(first:last), i = 1, size(suites))])) then
+        names = ''
+        do i = 1, size(suites)
+          names = names // merge(', ', '  ', i > 1) // suites(i)%name
+        end do
+        write (error_unit, '(a)') 'tester: no test suite "' // only(first:last) // '" (the suites:' // &
+          names(2:) // ')'
+        nfail = -1
+        return
+      end if
+      first = last + 2
+    end do
     do i = 1, size(suites)
       if (len_trim(only) > 0 .and. index(' ' // only // ' ', ' ' // suites(i)%name // ' ') == 0) cycle
       call suites(i)%collect(tests)

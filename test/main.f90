@@ -1,5 +1,8 @@
-!> Runs every test suite (or those named as arguments) and ends with 'N passed, N failed'.
+!> Runs every test suite (or those named as arguments: `fpm test -- SUITE [SUITE ...]`) and ends
+!! with 'N passed, N failed'; exit status 1 if a test failed, 2 (and one line listing the suites)
+!! for a name that is no suite's.
 program tester
+  use, intrinsic :: iso_c_binding, only: c_int
   use feps_testing, only: testsuite_t, new_testsuite, run_testsuites
   use test_datain, only: collect_datain
   use test_elements, only: collect_elements
@@ -20,11 +23,23 @@ program tester
   use test_analysis_state, only: collect_analysis_state
   use test_principal, only: collect_principal
   implicit none
+
+  interface
+    subroutine c_exit(status) bind(C, name='exit')
+      import :: c_int
+      integer(c_int), value :: status
+    end subroutine c_exit
+  end interface
+
   type(testsuite_t), allocatable :: suites(:)
-  character(len=256) :: only
-  integer :: nfail
+  character(len=:), allocatable :: only
+  character(len=256) :: arg
+  integer :: nfail, i
   only = ''
-  if (command_argument_count() > 0) call get_command_argument(1, only)
+  do i = 1, command_argument_count()
+    call get_command_argument(i, arg)
+    only = only // ' ' // trim(arg)
+  end do
   suites = [ &
     new_testsuite('datain', collect_datain), &
     new_testsuite('elements', collect_elements), &
@@ -45,6 +60,7 @@ program tester
     new_testsuite('analysis_state', collect_analysis_state), &
     new_testsuite('principal', collect_principal) &
     ]
-  nfail = run_testsuites(suites, trim(only))
+  nfail = run_testsuites(suites, only)
+  if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran
   if (nfail > 0) error stop 1
 end program tester

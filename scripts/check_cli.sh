@@ -30,6 +30,12 @@ expect_status "missing deck" 2 "$feps" "$tmp/no_such_deck.dat" --output "$tmp/nd
   && [ ! -e "$tmp/nd.h5" ] && [ ! -e "$tmp/nd.h5.part" ] && ok "the missing deck is named in one line, no result file" \
   || bad "the missing deck is named in one line, no result file: $(head -c 300 "$tmp/err")"
 expect_status "missing deck with --check" 2 "$feps" "$tmp/no_such_deck.dat" --check
+# The thesis's Newton-Raphson cannot follow the non-dilatant joint from zero (its step-start
+# tangent is elastic in every iteration, and cut-backs cannot help): the stop names full Newton.
+expect_status "newton-raphson on the psi = 0 joint stops" 1 "$feps" test/data/joint_psi0.dat --method newton-raphson \
+  --output "$tmp/psi0.h5"
+grep -q "step 1, .*10 cut-backs.*METHOD=full-newton-raphson" "$tmp/err" && [ ! -e "$tmp/psi0.h5" ] \
+  && ok "... and its message names full-newton-raphson" || bad "newton-raphson stop names full Newton: $(head -c 400 "$tmp/err")"
 expect_status "results into a missing folder" 1 "$feps" test/data/cube.dat --output "$tmp/no_such_folder/cube.h5"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: cannot create results file" "$tmp/err" \
   && ok "the unwritable results file is named in one line" \

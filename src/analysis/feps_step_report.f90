@@ -5,7 +5,8 @@ module feps_step_report
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_solver, str
-  use feps_model, only: model_t, stage_t, output_fields_t, method_initial_stiffness, method_full_newton_raphson
+  use feps_model, only: model_t, stage_t, output_fields_t, method_initial_stiffness, method_full_newton_raphson, &
+                        method_newton_raphson
   use feps_assembly, only: group_kernel_t, element_strains
   use feps_material, only: state_open, state_elastic, state_tension
   use feps_observer, only: observer_t, step_result_t, group_result_t
@@ -143,6 +144,12 @@ contains
       hint = hint // '; the tangent was non-symmetric (psi /= phi, or a gap closing) and only its nearest symmetric ' // &
         'stand-in was factorized: try STAGE ..., METHOD=full-newton-raphson (exact tangent, LU) or ' // &
         'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400'
+    end if
+    if (st%controls%method == method_newton_raphson .and. .not. an%symmetrized .and. cutbacks_exhausted) then
+      ! The thesis's Newton-Raphson iterates on the tangent of the step's start (elastic in the
+      ! first step), so cut-backs do not help where the path bends within every step.
+      hint = hint // '; newton-raphson keeps the tangent of the step''s start through its iterations: ' // &
+        'try STAGE ..., METHOD=full-newton-raphson (the tangent of every iterate)'
     end if
     if (len(notes) > 0 .and. cutbacks_exhausted) hint = hint // '; ' // notes
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &

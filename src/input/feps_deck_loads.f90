@@ -84,9 +84,9 @@ contains
     type(model_t), intent(inout) :: model
     integer, intent(in) :: stage
     type(error_t), allocatable, intent(out) :: error
-    integer :: iset, cs, i, dof, given(3)
-    character(len=:), allocatable :: f, k
-    real(dp) :: v
+    integer :: iset, cs, i
+    integer, allocatable :: dofs(:)
+    real(dp), allocatable :: values(:)
 
     call require_fields(rec, 3, error)
     if (allocated(error)) return
@@ -94,24 +94,10 @@ contains
     if (allocated(error)) return
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
     if (allocated(error)) return
-    call check_option_keys(rec, 3, error, expected='DOF=value')
+    call read_dof_values(rec, model%systems(cs)%kind, dofs, values, error)
     if (allocated(error)) return
-    given = 0
-    do i = 3, nfields(rec)
-      call key_value(rec, i, 'DOF=value', k, f, error)
-      if (allocated(error)) return
-      if (k == 'CSYS') cycle
-      call dof_index(k, model%systems(cs)%kind, dof)
-      if (dof == 0) then
-        call input_error(error, rec%file, rec%line, 'unknown degree of freedom "' // k // &
-                         '" for this system (' // dof_names(model%systems(cs)%kind) // ')', i)
-        return
-      end if
-      call claim_dof(rec, given, dof, i, error)
-      if (allocated(error)) return
-      call parse_real(f, v, error, rec, i)
-      if (allocated(error)) return
-      call add_constraint(model, rec, iset, cs, dof, v, stage)
+    do i = 1, size(dofs)
+      call add_constraint(model, rec, iset, cs, dofs(i), values(i), stage)
       model%constraints(size(model%constraints))%prescribed = .true.
     end do
   end subroutine read_displace
@@ -124,9 +110,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(nodal_load_t) :: l
     type(nodal_load_t), allocatable :: tmp(:)
-    integer :: i, dof, given(3)
-    character(len=:), allocatable :: f, k
-    real(dp) :: v
+    integer, allocatable :: dofs(:)
+    real(dp), allocatable :: values(:)
 
     call require_fields(rec, 3, error)
     if (allocated(error)) return
@@ -137,6 +122,25 @@ contains
     if (allocated(error)) return
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, l%csys, error)
     if (allocated(error)) return
+    call read_dof_values(rec, model%systems(l%csys)%kind, dofs, values, error)
+    if (allocated(error)) return
+    l%components(dofs) = values
+    tmp = [model%nodal_loads, l]
+    call move_alloc(tmp, model%nodal_loads)
+  end subroutine read_force
+
+  !> The DOF=value fields (3 on, CSYS= aside) of a DISPLACE or FORCE record: the directions of
+  !! a system of kind `kind`, each once (Z and UZ are one), and their values.
+  subroutine read_dof_values(rec, kind, dofs, values, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: kind
+    integer, allocatable, intent(out) :: dofs(:)
+    real(dp), allocatable, intent(out) :: values(:)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: k, f
+    integer :: i, dof, given(3)
+    real(dp) :: v
+    allocate (dofs(0), values(0))
     call check_option_keys(rec, 3, error, expected='DOF=value')
     if (allocated(error)) return
     given = 0
@@ -144,21 +148,20 @@ contains
       call key_value(rec, i, 'DOF=value', k, f, error)
       if (allocated(error)) return
       if (k == 'CSYS') cycle
-      call dof_index(k, model%systems(l%csys)%kind, dof)
+      call dof_index(k, kind, dof)
       if (dof == 0) then
-        call input_error(error, rec%file, rec%line, 'unknown direction "' // k // '" (' // &
-                         dof_names(model%systems(l%csys)%kind) // ')', i)
+        call input_error(error, rec%file, rec%line, 'unknown direction "' // k // '" for this system (' // &
+                         dof_names(kind) // ')', i)
         return
       end if
       call claim_dof(rec, given, dof, i, error)
       if (allocated(error)) return
       call parse_real(f, v, error, rec, i)
       if (allocated(error)) return
-      l%components(dof) = v
+      dofs = [dofs, dof]
+      values = [values, v]
     end do
-    tmp = [model%nodal_loads, l]
-    call move_alloc(tmp, model%nodal_loads)
-  end subroutine read_force
+  end subroutine read_dof_values
 
   !> Field `i` of `rec` sets `dof`; another field that set it before (Z and UZ, say) is an error.
   subroutine claim_dof(rec, given, dof, i, error)

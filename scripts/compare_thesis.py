@@ -441,8 +441,9 @@ def add_orderings(table, rows):
 
 # Orderings feps does not reproduce, with what was found (docs/verification.md).
 MODEL_B_DIAGONAL_PEAK = (
-    "in both load cases the global peak is the hoop tension on the internal surface at the loaded end, "
-    "theta = 106 deg, where the loaded zone (x <= -220) ends; the diagonal load's is 17-27% lower. The "
+    "in both load cases the global peak is the hoop tension on the internal surface at a loaded end, "
+    "where its loaded zone ends (theta = 106 deg; SD3's at the other end, theta = 81); the diagonal "
+    "load's is 17-27% lower. The "
     "rest of thesis 5.6 (5) holds: under the diagonal load the tension is higher on the external surface "
     "(the non-loaded corners, thesis 5.3.2) and spreads over 5-25 times the volume (rows beside)")
 ORDERING_NOT_REPRODUCED = {

@@ -78,6 +78,19 @@ def positive_int(text):
     return value
 
 
+def feps_option(path, profile="release"):
+    """The feps executable a script runs: `path` (a --feps option) made absolute, so that it still
+    resolves after the script changes folder, or fpm's `profile` build when `path` is empty;
+    Error (status 2) when `path` names no executable file."""
+    if not path:
+        from feps_build import feps_executable
+        return feps_executable(profile)
+    feps = os.path.abspath(path)
+    if not (os.path.isfile(feps) and os.access(feps, os.X_OK)):
+        raise Error(f"--feps {path}: not an executable file", 2)
+    return feps
+
+
 def benchmarks_dir():
     """The folder of the thesis's tables: $FEPS_BENCHMARKS, default ../shared/benchmarks beside the
     repository; Error (status 2) naming the folder and the variable when it is not there."""

@@ -44,8 +44,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import postprocess_model_c as pmc  # noqa: E402
-from feps_build import feps_executable  # noqa: E402
-from feps_cli import Error, guard, positive  # noqa: E402
+from feps_cli import Error, feps_option, guard, positive  # noqa: E402
 
 
 def model_c_deck():
@@ -181,12 +180,7 @@ def main():
     ap.add_argument("--resume", action="store_true",
                     help="reuse a finished run whose deck is unchanged (OUT/<case>/<level>/run.h5)")
     args = ap.parse_args()
-    if args.feps:
-        feps = os.path.abspath(args.feps)
-        if not (os.path.isfile(feps) and os.access(feps, os.X_OK)):
-            raise Error(f"--feps {args.feps}: not an executable file", 2)
-    else:
-        feps = feps_executable("release")
+    feps = feps_option(args.feps)
     rows, failed = [], 0
     for name, c in CASES.items():
         if args.only and name not in args.only:

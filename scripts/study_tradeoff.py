@@ -51,8 +51,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from feps_build import feps_executable  # noqa: E402
-from feps_cli import Error, guard  # noqa: E402
+from feps_cli import Error, feps_option, guard  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRESETS = ["euler", "modified-euler", "newton-raphson", "modified-newton-raphson", "initial-stiffness"]
@@ -755,12 +754,8 @@ def main():
         feps = None
         if not os.path.isdir(args.out):
             raise Error(f"--plots-only: no folder {args.out}", 2)
-    elif args.feps:
-        feps = os.path.abspath(args.feps)
-        if not (os.path.isfile(feps) and os.access(feps, os.X_OK)):
-            raise Error(f"--feps {args.feps}: not an executable file", 2)
     else:
-        feps = feps_executable("release")
+        feps = feps_option(args.feps)
 
     os.makedirs(args.out, exist_ok=True)
     prefix = "quick_" if args.quick else ("check_" if args.check else "")

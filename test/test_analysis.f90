@@ -215,7 +215,8 @@ contains
       sets(nb)%nodes = [n]
       u = matmul(grad, model%coords(:, n)) + shift
       do d = 1, 3
-        cons(3 * (nb - 1) + d) = constraint_t(node_set=nb, csys=2, dof=d, value=u(d), file=deck, line=0)
+        cons(3 * (nb - 1) + d) = constraint_t(node_set=nb, csys=2, dof=d, value=u(d), prescribed=.true., &
+                                               file=deck, line=0)
       end do
     end do
     model%node_sets = sets

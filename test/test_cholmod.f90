@@ -31,9 +31,71 @@ contains
       new_unittest("supervariables of known patterns", test_supervariable_counts), &
       new_unittest("node-graph ordering equals skyline", test_node_ordering_vs_skyline), &
       new_unittest("UMFPACK: non-symmetric Laplacian plus convection against dgesv; singular is err_model", &
-                   test_umfpack) &
+                   test_umfpack), &
+      new_unittest("skyline, CHOLMOD and UMFPACK give one solution of an SPD system", test_three_solvers) &
     ]
   end subroutine collect_cholmod
+
+  !> The 2D Laplacian of a 9 x 9 grid with a varying diagonal (SPD) solved by skyline (LDL^T,
+  !! RCM), CHOLMOD (LL^T, METIS) and UMFPACK (LU of both triangles, as full Newton factorizes a
+  !! non-symmetric tangent): one solution to 1e-12, and A x = b to 1e-12 (residual).
+  subroutine test_three_solvers(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(csr_matrix_t) :: lower, full
+    type(skyline_solver_t) :: sky
+    type(cholmod_solver_t) :: chol
+    type(umfpack_solver_t) :: lu
+    real(dp), allocatable :: b(:), x(:, :), ax(:)
+    integer :: i, j, s
+    integer(i8) :: k, kf
+    lower = laplacian_2d(9)
+    do i = 1, lower%n
+      do k = lower%row_ptr(i), lower%row_ptr(i + 1) - 1
+        if (lower%col(k) == i) lower%val(k) = 4.0_dp + 0.5_dp * sin(real(i, dp))
+      end do
+    end do
+    call full_pattern(lower, full)
+    do i = 1, lower%n
+      do k = lower%row_ptr(i), lower%row_ptr(i + 1) - 1
+        j = lower%col(k)
+        do kf = full%row_ptr(i), full%row_ptr(i + 1) - 1
+          if (full%col(kf) == j) full%val(kf) = lower%val(k)
+        end do
+        do kf = full%row_ptr(j), full%row_ptr(j + 1) - 1
+          if (full%col(kf) == i) full%val(kf) = lower%val(k)
+        end do
+      end do
+    end do
+    allocate (b(lower%n), x(lower%n, 3), ax(lower%n))
+    do i = 1, lower%n
+      b(i) = cos(1.7_dp * i)
+    end do
+    x = spread(b, 2, 3)
+    call sky%analyze(lower, error)
+    if (allocated(error)) return
+    call sky%factorize(lower, error)
+    if (allocated(error)) return
+    call sky%solve(x(:, 1), error)
+    if (allocated(error)) return
+    call chol%analyze(lower, error)
+    if (allocated(error)) return
+    call chol%factorize(lower, error)
+    if (allocated(error)) return
+    call chol%solve(x(:, 2), error)
+    if (allocated(error)) return
+    call lu%factorize(full, error)
+    if (allocated(error)) return
+    call lu%solve(x(:, 3), error)
+    if (allocated(error)) return
+    do s = 1, 3
+      call lower%multiply(x(:, s), ax)
+      call check(error, maxval(abs(ax - b)) <= 1.0e-12_dp * maxval(abs(b)), 'A x = b, solver ' // str(s))
+      if (allocated(error)) return
+      call check(error, maxval(abs(x(:, s) - x(:, 2))) <= 1.0e-12_dp * maxval(abs(x(:, 2))), &
+                 'the same solution as CHOLMOD, solver ' // str(s))
+      if (allocated(error)) return
+    end do
+  end subroutine test_three_solvers
 
   !> The full pattern of the 2D Laplacian (6 x 6 grid) filled with a non-symmetric matrix,
   !! the Laplacian plus a convection term (+c to the right neighbour, -c to the left, so

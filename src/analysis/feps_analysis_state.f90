@@ -461,10 +461,14 @@ contains
         if (con%stage /= 0 .and. con%stage /= s) cycle
         do k = 1, size(model%node_sets(con%node_set)%nodes)
           n = model%node_sets(con%node_set)%nodes(k)
-          if (con%stage == 0) then
-            duc(con%dof, n) = frac * con%value
+          ! Prescribed values add up (LOAD= times the reference ones plus the stage's own, and
+          ! several records on one DOF); a FIX later in the deck holds the DOF where it is.
+          if (.not. con%prescribed) then
+            duc(con%dof, n) = 0.0_dp
+          else if (con%stage == 0) then
+            duc(con%dof, n) = duc(con%dof, n) + frac * con%value
           else
-            duc(con%dof, n) = con%value
+            duc(con%dof, n) = duc(con%dof, n) + con%value
           end if
         end do
       end associate

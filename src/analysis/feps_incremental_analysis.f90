@@ -311,6 +311,7 @@ contains
     integer :: s, k, step, iters, cut, nfact0, iters_step, opened
     character(len=:), allocatable :: step_notes, run_notes
     logical :: ok, need_factor, have_factor, step_unconverged, born, changed
+    logical :: factor_elastic    !! the factor held is of the elastic stiffness (not a tangent)
     logical :: elastic_retry     !! the next factorization is the elastic stiffness (a cut-back under modified NR)
     logical, allocatable :: fully_open(:)
 
@@ -319,6 +320,7 @@ contains
     fully_open = .false.
     step = 0
     have_factor = .false.
+    factor_elastic = .false.
     elastic_retry = .false.
     rel_prev = 0.0_dp
     abs_prev = 0.0_dp
@@ -359,15 +361,20 @@ contains
             ! Which stiffness: the method decides (thesis 2.6.3).
             select case (c%method)
             case (method_initial_stiffness)
-              need_factor = .not. have_factor
+              ! the factor a stage of another method left is a tangent, not the initial stiffness
+              need_factor = .not. (have_factor .and. factor_elastic)
             case (method_modified_newton_raphson)
               need_factor = .not. have_factor .or. rel_prev > c%delta3 .or. abs_prev > c%delta4
             case default
               need_factor = .true.
             end select
             if (need_factor) then
-              call factorize_tangent(model, an, c%method == method_initial_stiffness .or. .not. have_factor &
-                                     .or. elastic_retry, summary, error, exact=c%method == method_full_newton_raphson)
+              ! The tangent of the committed state (the elastic stiffness before the first step),
+              ! also when new supports renumber the equations: only the initial-stiffness
+              ! method and modified Newton-Raphson's retry after a cut-back take the elastic one.
+              factor_elastic = c%method == method_initial_stiffness .or. elastic_retry
+              call factorize_tangent(model, an, factor_elastic, summary, error, &
+                                     exact=c%method == method_full_newton_raphson)
               if (allocated(error)) then
                 call name_step(error, st, k, s - 1 + (k - 1 + done) / st%steps)
                 return

@@ -51,7 +51,8 @@ contains
       new_unittest('TRACTION by components alone: the pressure''s nodal forces, resultant t A', test_traction_components), &
       new_unittest('STAGE with a negative LOAD= unloads: half the cube''s pressure taken off', test_stage_unload), &
       new_unittest('a gap in the node numbering selects nothing', test_node_gap), &
-      new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus) &
+      new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus), &
+      new_unittest('PRESSURE on a cylindrical bore: resultant and moment in closed form', test_bore_pressure_resultant) &
       ]
   end subroutine collect_analysis
 
@@ -758,5 +759,44 @@ contains
     end do
     err = (total / count - u_exact) / u_exact
   end subroutine lame_error
+
+  !> PRESSURE p on the bore r = a of the Lame quarter annuli (hex20: parabolic faces; hex8: flat
+  !! facets; every node on the circle), theta from 0 to 90 deg, height h: the applied nodal forces
+  !! (feps_loads, through the face set selected in cylindrical coordinates) have the resultant
+  !! p a h (1, 1, 0) and the moment about the origin p a h^2 / 2 (-1, 1, 0), those of the true
+  !! cylinder (t = p e_r: int p e_r a dtheta dz and int z e_z x p e_r a dtheta dz). Exact for the
+  !! isoparametric bore too: both depend only on the boundary of the loaded surface, two straight
+  !! vertical edges on the circle and two equal arcs at z = 0 and z = h (Stokes). Tolerance 1e-12.
+  subroutine test_bore_pressure_resultant(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: decks(2) = [character(len=24) :: 'test/data/lame_hex20.dat', &
+                                                'test/data/lame_hex8.dat ']
+    real(dp), parameter :: a = 600.0_dp, p = 10.0_dp
+    type(model_t) :: model
+    type(step_result_t) :: res
+    real(dp) :: h, force(3), moment(3), x(3), f(3)
+    integer :: k, n
+    do k = 1, size(decks)
+      call read_deck(trim(decks(k)), model, error)
+      if (allocated(error)) return
+      call solve(model, 'cholmod', res, error)
+      if (allocated(error)) return
+      h = maxval(model%coords(3, :)) - minval(model%coords(3, :))
+      force = 0.0_dp
+      moment = 0.0_dp
+      do n = 1, model%nnode
+        x = model%coords(:, n)
+        f = res%applied_force(:, n)
+        force = force + f
+        moment = moment + [x(2) * f(3) - x(3) * f(2), x(3) * f(1) - x(1) * f(3), x(1) * f(2) - x(2) * f(1)]
+      end do
+      call check(error, norm2(force - p * a * h * [1.0_dp, 1.0_dp, 0.0_dp]), 0.0_dp, trim(decks(k)) // &
+                 ': resultant p a h (1, 1, 0)', abs=1.0e-12_dp * p * a * h)
+      if (allocated(error)) return
+      call check(error, norm2(moment - 0.5_dp * p * a * h**2 * [-1.0_dp, 1.0_dp, 0.0_dp]), 0.0_dp, trim(decks(k)) // &
+                 ': moment p a h^2 / 2 (-1, 1, 0)', abs=1.0e-12_dp * p * a * h * (a + h))
+      if (allocated(error)) return
+    end do
+  end subroutine test_bore_pressure_resultant
 
 end module test_analysis

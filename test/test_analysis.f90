@@ -52,7 +52,8 @@ contains
       new_unittest('STAGE with a negative LOAD= unloads: half the cube''s pressure taken off', test_stage_unload), &
       new_unittest('a gap in the node numbering selects nothing', test_node_gap), &
       new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus), &
-      new_unittest('PRESSURE on a cylindrical bore: resultant and moment in closed form', test_bore_pressure_resultant), &
+      new_unittest('PRESSURE on a cylindrical bore: resultant and moment in closed form', &
+                   test_bore_pressure_resultant), &
       new_unittest('PRESSURE varying in THETA from 180 to 270 deg: the 0-90 deg load turned by 180 deg', &
                    test_theta_ramp_third_quadrant) &
       ]
@@ -823,7 +824,8 @@ contains
     h = maxval(model%coords(3, :)) - minval(model%coords(3, :))
     force = sum(q1%applied_force, dim=2)
     expected = p * a * h * 2.0_dp / pi * [0.5_dp * pi - 1.0_dp, 1.0_dp, 0.0_dp]
-    call check(error, norm2(force - expected), 0.0_dp, 'theta ramp 0-90 deg: resultant', abs=1.0e-5_dp * norm2(expected))
+    call check(error, norm2(force - expected), 0.0_dp, 'theta ramp 0-90 deg: resultant', &
+               abs=1.0e-5_dp * norm2(expected))
     if (allocated(error)) return
     call read_deck('test/data/bore_theta_ramp_q3.dat', model, error)
     if (allocated(error)) return
@@ -831,7 +833,8 @@ contains
     if (allocated(error)) return
     scale = maxval(abs(q1%applied_force))
     call check(error, maxval(abs(q3%applied_force(1:2, :) + q1%applied_force(1:2, :))), 0.0_dp, &
-               'theta ramp 180-270 deg: x and y nodal forces those of 0-90 deg turned by 180 deg', abs=1.0e-10_dp * scale)
+               'theta ramp 180-270 deg: x and y nodal forces those of 0-90 deg turned by 180 deg', &
+               abs=1.0e-10_dp * scale)
     if (allocated(error)) return
     call check(error, maxval(abs(q3%applied_force(3, :) - q1%applied_force(3, :))), 0.0_dp, &
                'theta ramp 180-270 deg: z nodal forces', abs=1.0e-10_dp * scale)

@@ -1087,7 +1087,7 @@ contains
     integer, allocatable :: fn(:)
     real(dp) :: force(3), moment(3), area(3), loop_moment(3), s(4), ws(4), xa(3), xb(3), xm(3), x(3), dx(3)
     real(dp) :: size_face
-    integer :: k, face, g, a, edge
+    integer :: k, face, g, a, b, edge
     character(len=:), allocatable :: label
     call gauss_legendre(4, s, ws)
     do k = 1, 3
@@ -1124,9 +1124,9 @@ contains
           xb = xe(:, fn(mod(edge, 4) + 1))
           if (size(fn) == 8) then
             ! the mid-edge node of the element edge between the two corners (this file's own table)
-            xm = xe(:, 8 + findloc((hex20_edges(1, :) == fn(edge) .and. hex20_edges(2, :) == fn(mod(edge, 4) + 1)) .or. &
-                                   (hex20_edges(2, :) == fn(edge) .and. hex20_edges(1, :) == fn(mod(edge, 4) + 1)), &
-                                   .true., dim=1))
+            b = fn(mod(edge, 4) + 1)
+            xm = xe(:, 8 + findloc((hex20_edges(1, :) == fn(edge) .and. hex20_edges(2, :) == b) .or. &
+                                   (hex20_edges(2, :) == fn(edge) .and. hex20_edges(1, :) == b), .true., dim=1))
           else
             xm = 0.5_dp * (xa + xb)
           end if

@@ -1002,8 +1002,9 @@ contains
       'interface-tri3', 'interface-tri6', 'interface-line2', 'interface-line3']
     ! natural coordinates of the lower-layer nodes: quad (s1, s2) in [-1, 1]^2, tri (L2, L3),
     ! lines s1 (ends, then the middle)
-    real(dp), parameter :: quad_nat(2, 8) = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, &
-                                                     0.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, -1.0_dp, 0.0_dp], [2, 8])
+    real(dp), parameter :: quad_nat(2, 8) = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, &
+                                                     -1.0_dp, 1.0_dp, 0.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, &
+                                                     0.0_dp, 1.0_dp, -1.0_dp, 0.0_dp], [2, 8])
     real(dp), parameter :: tri_nat(2, 6) = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
                                                     0.5_dp, 0.0_dp, 0.5_dp, 0.5_dp, 0.0_dp, 0.5_dp], [2, 6])
     real(dp), parameter :: line_nat(3) = [-1.0_dp, 1.0_dp, 0.0_dp], p = -3.0_dp, radius = 2.5_dp

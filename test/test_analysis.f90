@@ -51,7 +51,11 @@ contains
       new_unittest('TRACTION by components alone: the pressure''s nodal forces, resultant t A', test_traction_components), &
       new_unittest('STAGE with a negative LOAD= unloads: half the cube''s pressure taken off', test_stage_unload), &
       new_unittest('a gap in the node numbering selects nothing', test_node_gap), &
-      new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus) &
+      new_unittest('cube with E = 1e-300 and 1e300: closed form, finite summary', test_cube_extreme_modulus), &
+      new_unittest('PRESSURE on a cylindrical bore: resultant and moment in closed form', &
+                   test_bore_pressure_resultant), &
+      new_unittest('PRESSURE varying in THETA from 180 to 270 deg: the 0-90 deg load turned by 180 deg', &
+                   test_theta_ramp_third_quadrant) &
       ]
   end subroutine collect_analysis
 
@@ -759,5 +763,82 @@ contains
     end do
     err = (total / count - u_exact) / u_exact
   end subroutine lame_error
+
+  !> PRESSURE p on the bore r = a of the Lame quarter annuli (hex20: parabolic faces; hex8: flat
+  !! facets; every node on the circle), theta from 0 to 90 deg, height h: the applied nodal forces
+  !! (feps_loads, through the face set selected in cylindrical coordinates) have the resultant
+  !! p a h (1, 1, 0) and the moment about the origin p a h^2 / 2 (-1, 1, 0), those of the true
+  !! cylinder (t = p e_r: int p e_r a dtheta dz and int z e_z x p e_r a dtheta dz). Exact for the
+  !! isoparametric bore too: both depend only on the boundary of the loaded surface, two straight
+  !! vertical edges on the circle and two equal arcs at z = 0 and z = h (Stokes). Tolerance 1e-12.
+  subroutine test_bore_pressure_resultant(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: decks(2) = [character(len=24) :: 'test/data/lame_hex20.dat', &
+                                                'test/data/lame_hex8.dat ']
+    real(dp), parameter :: a = 600.0_dp, p = 10.0_dp
+    type(model_t) :: model
+    type(step_result_t) :: res
+    real(dp) :: h, force(3), moment(3), x(3), f(3)
+    integer :: k, n
+    do k = 1, size(decks)
+      call read_deck(trim(decks(k)), model, error)
+      if (allocated(error)) return
+      call solve(model, 'cholmod', res, error)
+      if (allocated(error)) return
+      h = maxval(model%coords(3, :)) - minval(model%coords(3, :))
+      force = 0.0_dp
+      moment = 0.0_dp
+      do n = 1, model%nnode
+        x = model%coords(:, n)
+        f = res%applied_force(:, n)
+        force = force + f
+        moment = moment + [x(2) * f(3) - x(3) * f(2), x(3) * f(1) - x(1) * f(3), x(1) * f(2) - x(2) * f(1)]
+      end do
+      call check(error, norm2(force - p * a * h * [1.0_dp, 1.0_dp, 0.0_dp]), 0.0_dp, trim(decks(k)) // &
+                 ': resultant p a h (1, 1, 0)', abs=1.0e-12_dp * p * a * h)
+      if (allocated(error)) return
+      call check(error, norm2(moment - 0.5_dp * p * a * h**2 * [-1.0_dp, 1.0_dp, 0.0_dp]), 0.0_dp, trim(decks(k)) // &
+                 ': moment p a h^2 / 2 (-1, 1, 0)', abs=1.0e-12_dp * p * a * h * (a + h))
+      if (allocated(error)) return
+    end do
+  end subroutine test_bore_pressure_resultant
+
+  !> VARY=THETA with ZERO=180, PEAK=270 on the bore of a quarter annulus spanning 180-270 deg
+  !! (bore_theta_ramp_q3.dat) must give the nodal forces of the same ramp from 0 to 90 deg on the
+  !! quarter spanning 0-90 deg (bore_theta_ramp_q1.dat), turned by 180 deg about z: f3(n) =
+  !! (-f1x, -f1y, f1z) node by node (1e-10 of the largest force). And the 0-90 deg load itself:
+  !! p(theta) = P theta / 90 deg on r = a, height h, has the resultant P a h (2 / pi)
+  !! (pi/2 - 1, 1, 0) (the integral of theta (cos, sin) theta); the nodal forces reproduce it to
+  !! the quadrature error of the ramp over the parabolic faces (1e-5 relative).
+  !! (The theta of a point used to be atan2's, in (-180, 180]: a ramp given between 180 and 360
+  !! deg found every point below ZERO and loaded nothing.)
+  subroutine test_theta_ramp_third_quadrant(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: a = 600.0_dp, p = 10.0_dp
+    type(model_t) :: model
+    type(step_result_t) :: q1, q3
+    real(dp) :: h, force(3), expected(3), scale
+    call read_deck('test/data/bore_theta_ramp_q1.dat', model, error)
+    if (allocated(error)) return
+    call solve(model, 'cholmod', q1, error)
+    if (allocated(error)) return
+    h = maxval(model%coords(3, :)) - minval(model%coords(3, :))
+    force = sum(q1%applied_force, dim=2)
+    expected = p * a * h * 2.0_dp / pi * [0.5_dp * pi - 1.0_dp, 1.0_dp, 0.0_dp]
+    call check(error, norm2(force - expected), 0.0_dp, 'theta ramp 0-90 deg: resultant', &
+               abs=1.0e-5_dp * norm2(expected))
+    if (allocated(error)) return
+    call read_deck('test/data/bore_theta_ramp_q3.dat', model, error)
+    if (allocated(error)) return
+    call solve(model, 'cholmod', q3, error)
+    if (allocated(error)) return
+    scale = maxval(abs(q1%applied_force))
+    call check(error, maxval(abs(q3%applied_force(1:2, :) + q1%applied_force(1:2, :))), 0.0_dp, &
+               'theta ramp 180-270 deg: x and y nodal forces those of 0-90 deg turned by 180 deg', &
+               abs=1.0e-10_dp * scale)
+    if (allocated(error)) return
+    call check(error, maxval(abs(q3%applied_force(3, :) - q1%applied_force(3, :))), 0.0_dp, &
+               'theta ramp 180-270 deg: z nodal forces', abs=1.0e-10_dp * scale)
+  end subroutine test_theta_ramp_third_quadrant
 
 end module test_analysis

@@ -6,6 +6,7 @@ module test_interface_element
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_error, only: err_input
+  use feps_gauss, only: gauss_legendre
   use feps_interface_element, only: interface_element_t, new_interface_element, is_interface_type
   implicit none
   private
@@ -44,7 +45,8 @@ contains
       new_unittest("consistent_pair_matrices", test_consistent_matrices), &
       new_unittest("internal_force_equals_ke_u", test_internal_force), &
       new_unittest("pressure_nodal_forces", test_pressure), &
-      new_unittest("min_jacobian", test_min_jacobian) &
+      new_unittest("min_jacobian", test_min_jacobian), &
+      new_unittest("normal_traction_on_cylinder_resultant_moment", test_cylinder_traction) &
     ]
   end subroutine collect_interface_element
 
@@ -983,5 +985,118 @@ contains
     xe = both_layers(spread(shift, 2, 4))
     call check(error, element%min_jacobian(xe), 0.0_dp, 'collapsed quad4', abs=0.0_dp)
   end subroutine test_min_jacobian
+
+  !> A uniform normal traction sigma_n = p (tangential ones zero) on interface elements whose lower
+  !! layer lies on a cylinder (r = 2.5, theta 0.05..0.75 rad, a height of 1.2, every node then
+  !! moved by up to 0.02, rotated and shifted into general position): the upper layer's nodal
+  !! forces (Gauss rules) have the resultant p A, A = 1/2 closed-integral of x cross dx, and the
+  !! moment sum x_a cross f_a = p int x cross n dA = -p/2 closed-integral of |x|^2 dx, the loop
+  !! running along the layer's edges through their nodes (Stokes; exact for these rules: degree
+  !! 5 per direction for quad8, 4 for tri6, 2 for quad4). The lower layer carries the opposite
+  !! forces. 2D lines on a circle of radius 2.5: resultant p (-(y2 - y1), x2 - x1), moment
+  !! p (|x2|^2 - |x1|^2) / 2 about the origin. A wrong sign or axis of n fails. Tolerance 1e-13.
+  subroutine test_cylinder_traction(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: nshape = 6
+    character(len=15), parameter :: shapes(nshape) = [character(len=15) :: 'interface-quad4', 'interface-quad8', &
+      'interface-tri3', 'interface-tri6', 'interface-line2', 'interface-line3']
+    ! natural coordinates of the lower-layer nodes: quad (s1, s2) in [-1, 1]^2, tri (L2, L3),
+    ! lines s1 (ends, then the middle)
+    real(dp), parameter :: quad_nat(2, 8) = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, &
+                                                     -1.0_dp, 1.0_dp, 0.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, &
+                                                     0.0_dp, 1.0_dp, -1.0_dp, 0.0_dp], [2, 8])
+    real(dp), parameter :: tri_nat(2, 6) = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
+                                                    0.5_dp, 0.0_dp, 0.5_dp, 0.5_dp, 0.0_dp, 0.5_dp], [2, 6])
+    real(dp), parameter :: line_nat(3) = [-1.0_dp, 1.0_dp, 0.0_dp], p = -3.0_dp, radius = 2.5_dp
+    type(interface_element_t) :: element
+    real(dp), allocatable :: lower(:, :), xe(:, :), sig(:, :), fe(:)
+    real(dp) :: r(3, 3), u(2), th, force(3), moment(3), area(3), loop(3), s(4), ws(4), xa(3), xb(3), xm(3), x(3)
+    real(dp) :: dx(3), m2, scale
+    integer :: k, np, nd, a, corners, edge, g, up
+    integer, allocatable :: mid(:)
+    r = rotation()
+    call gauss_legendre(4, s, ws)
+    do k = 1, nshape
+      call new_interface_element(shapes(k), element, error)
+      if (allocated(error)) return
+      np = element%npairs()
+      nd = element%ndim()
+      allocate (lower(nd, np))
+      do a = 1, np
+        select case (k)
+        case (1, 2)
+          u = [0.5_dp * (quad_nat(1, a) + 1.0_dp), 0.5_dp * (quad_nat(2, a) + 1.0_dp)]
+        case (3, 4)
+          u = tri_nat(:, a)
+        case default
+          u = [0.5_dp * (line_nat(a) + 1.0_dp), 0.0_dp]
+        end select
+        th = 0.05_dp + 0.7_dp * u(1)
+        if (nd == 3) then
+          x = [radius * cos(th), radius * sin(th), 1.2_dp * u(2)] + 0.02_dp * pseudo_random(3, 0.3_dp * a + 0.1_dp)
+          lower(:, a) = matmul(r, x) + shift
+        else
+          lower(:, a) = [radius * cos(th), radius * sin(th)]
+        end if
+      end do
+      xe = both_layers(lower)
+      allocate (sig(nd, element%ngauss()), fe(nd * 2 * np))
+      sig = 0.0_dp
+      sig(nd, :) = p
+      call element%internal_force(xe, sig, fe)
+      force = 0.0_dp
+      moment = 0.0_dp
+      do a = 1, np
+        up = nd * (np + a - 1)
+        call check_array(error, fe(nd * (a - 1) + 1:nd * a), -fe(up + 1:up + nd), 1.0e-14_dp * abs(p), &
+                         trim(shapes(k)) // ' on a cylinder: lower forces opposite the upper ones')
+        if (allocated(error)) return
+        force(1:nd) = force(1:nd) + fe(up + 1:up + nd)
+        if (nd == 3) then
+          moment = moment + cross(lower(:, a), fe(up + 1:up + 3))
+        else
+          moment(3) = moment(3) + lower(1, a) * fe(up + 2) - lower(2, a) * fe(up + 1)
+        end if
+      end do
+      if (nd == 2) then
+        area = [-(lower(2, 2) - lower(2, 1)), lower(1, 2) - lower(1, 1), 0.0_dp]
+        loop = [0.0_dp, 0.0_dp, -0.5_dp * (sum(lower(:, 2)**2) - sum(lower(:, 1)**2))]
+      else
+        ! edges: corner to corner, through their mid-edge node (quad8: 5-8, tri6: 4-6)
+        corners = merge(4, 3, k <= 2)
+        if (np > corners) then
+          mid = [(corners + edge, edge = 1, corners)]
+        else
+          mid = [(0, edge = 1, corners)]
+        end if
+        area = 0.0_dp
+        loop = 0.0_dp
+        do edge = 1, corners
+          xa = lower(:, edge)
+          xb = lower(:, mod(edge, corners) + 1)
+          if (mid(edge) > 0) then
+            xm = lower(:, mid(edge))
+          else
+            xm = 0.5_dp * (xa + xb)
+          end if
+          do g = 1, 4
+            x = 0.5_dp * s(g) * (s(g) - 1.0_dp) * xa + 0.5_dp * s(g) * (s(g) + 1.0_dp) * xb + (1.0_dp - s(g)**2) * xm
+            dx = (s(g) - 0.5_dp) * xa + (s(g) + 0.5_dp) * xb - 2.0_dp * s(g) * xm
+            area = area + 0.5_dp * ws(g) * cross(x, dx)
+            loop = loop + 0.5_dp * ws(g) * dot_product(x, x) * dx
+          end do
+        end do
+      end if
+      m2 = norm2(area)
+      scale = abs(p) * m2 * maxval(abs(lower))
+      call check_array(error, force, p * area, 1.0e-13_dp * abs(p) * m2, trim(shapes(k)) // &
+                       ' on a cylinder: resultant p A')
+      if (allocated(error)) return
+      call check_array(error, moment, -p * loop, 1.0e-13_dp * scale, trim(shapes(k)) // &
+                       ' on a cylinder: moment -p/2 loop integral of |x|^2 dx')
+      if (allocated(error)) return
+      deallocate (lower, sig, fe)
+    end do
+  end subroutine test_cylinder_traction
 
 end module test_interface_element

@@ -7,6 +7,7 @@ module feps_loads
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
   use feps_model, only: model_t, face_load_t, in_region, load_pressure, load_traction
+  use feps_coordinate_system, only: csys_cylindrical
   use feps_dof_map, only: dof_map_t
   use feps_assembly, only: group_kernel_t
   implicit none
@@ -64,17 +65,27 @@ contains
     type(model_t), intent(in) :: model
     type(face_load_t), intent(in) :: l
     real(dp), intent(in) :: x(3)
-    real(dp) :: c(3)
     load_shape = 1.0_dp
-    if (l%vary_coord > 0) then
-      c = model%systems(l%vary_csys)%from_global(x)
-      load_shape = max(0.0_dp, (c(l%vary_coord) - l%zero) / (l%peak_at - l%zero))
-    end if
-    if (l%vary2_coord > 0) then
-      c = model%systems(l%vary2_csys)%from_global(x)
-      load_shape = load_shape * max(0.0_dp, (c(l%vary2_coord) - l%zero2) / (l%peak2_at - l%zero2))
-    end if
+    if (l%vary_coord > 0) load_shape = ramp(model, l%vary_csys, l%vary_coord, l%zero, l%peak_at, x)
+    if (l%vary2_coord > 0) load_shape = load_shape * ramp(model, l%vary2_csys, l%vary2_coord, l%zero2, l%peak2_at, x)
   end function load_shape
+
+  !> max(0, (c - zero) / (peak - zero)) for coordinate `coord` of system `csys` at global point x.
+  !! A cylindrical theta (degrees) is taken modulo 360 within 180 deg of the ramp's middle, as
+  !! region theta ranges are: from_global's theta lies in (-180, 180], and a ramp given between
+  !! 180 and 360 deg would otherwise find every point below ZERO.
+  pure real(dp) function ramp(model, csys, coord, zero, peak, x)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: csys, coord
+    real(dp), intent(in) :: zero, peak, x(3)
+    real(dp) :: c(3), middle
+    c = model%systems(csys)%from_global(x)
+    if (coord == 2 .and. model%systems(csys)%kind == csys_cylindrical) then
+      middle = 0.5_dp * (zero + peak)
+      c(2) = middle + modulo(c(2) - middle + 180.0_dp, 360.0_dp) - 180.0_dp
+    end if
+    ramp = max(0.0_dp, (c(coord) - zero) / (peak - zero))
+  end function ramp
 
   !> Integral of the load's shape over its faces (the total of a unit peak intensity).
   function face_load_intensity_integral(model, kernels, l) result(total)

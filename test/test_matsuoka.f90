@@ -41,6 +41,7 @@ contains
       new_unittest("angles_and_huge_steps", test_huge_steps), &
       new_unittest("numpy_reference_returns", test_numpy_reference), &
       new_unittest("flow_along_thesis_potential_2_4_12", test_thesis_potential_flow), &
+      new_unittest("closest_point_apex_region", test_apex_region), &
       new_unittest("validator", test_validator) &
       ]
   end subroutine collect_matsuoka
@@ -859,6 +860,95 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_numpy_reference
+
+  !> TENSION=closest-point: a trial returns to the apex exactly where sigma_tr - M I = dlambda D n
+  !! for some n in the subdifferential of the potential cone at its apex, derived here without
+  !! the module: with the cone written |s| = k(theta) (M* - p) (k from the thesis's cubic J1 J2 -
+  !! zeta* J3 = 0 by bisection at 720 Lode angles), D n = 2 G y + K I with y in the dual unit
+  !! ball of |s| / k(theta), so the apex is reached iff p_tr > M and max_theta <y, s_hat(theta)>
+  !! k(theta) <= 1 for y = K s_tr / (2 G (p_tr - M)); for psi = 0 (no volume change) iff p_tr >=
+  !! M. 2400 random trials beyond the apex (fixed seed; phi = 26.57 and 54.9 deg, psi = 0,
+  !! phi/2, phi, nu = 0.2, -0.9, 0.49, generic axes) must be classified alike (state tension
+  !! against plastic), except within 1e-3 of the border (the sampled maximum's accuracy).
+  subroutine test_apex_region(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: nt = 720
+    real(dp), parameter :: angles(2) = [26.57_dp, 54.9_dp], nus(3) = [0.2_dp, -0.9_dp, 0.49_dp]
+    real(dp), parameter :: e1(3) = [2.0_dp, -1.0_dp, -1.0_dp] / sqrt(6.0_dp), e2(3) = [0.0_dp, 1.0_dp, -1.0_dp] / sqrt(2.0_dp)
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: kt(nt), dirs(3, nt), th, sp(3), y(3), p, val, bulk, shear, trial(6), sig(6), dt(6, 6), r(3, 3)
+    integer(kind=8) :: seed
+    integer :: i, j, k, n, it, st, counts(2)
+    seed = 1618033_8
+    counts = 0
+    do it = 1, nt
+      th = 2.0_dp * 3.141592653589793238_dp * (it - 1) / nt
+      dirs(:, it) = cos(th) * e1 + sin(th) * e2
+    end do
+    do i = 1, size(angles)
+      do j = 0, 2
+        do it = 1, nt
+          kt(it) = cone_radius_thesis(0.5_dp * j * angles(i), dirs(:, it))
+        end do
+        do k = 1, size(nus)
+          m = make(angles(i), 0.5_dp * j * angles(i), 4.0_dp, nu=nus(k), tension=tension_closest_point)
+          bulk = m%e / (3.0_dp * (1.0_dp - 2.0_dp * m%nu))
+          shear = m%e / (2.0_dp * (1.0_dp + m%nu))
+          do n = 1, 400 / 3
+            ! beyond the apex: p_tr > M, a deviator of 0.03 .. 3 M
+            p = m%apex * (1.0_dp + 2.0_dp * next_uniform(seed))
+            sp = m%apex * 10.0_dp**(2.0_dp * next_uniform(seed) - 1.5_dp) * &
+                 [next_uniform(seed) - 0.5_dp, next_uniform(seed) - 0.5_dp, next_uniform(seed) - 0.5_dp]
+            sp = p + sp - sum(sp) / 3.0_dp
+            r = rotation(6.0_dp * next_uniform(seed), 6.0_dp * next_uniform(seed), 6.0_dp * next_uniform(seed))
+            trial = rotate_stress(r, [sp(1), sp(2), sp(3), 0.0_dp, 0.0_dp, 0.0_dp])
+            call return_of(m, trial, sig, st, dt)
+            if (j == 0) then
+              if (abs(p - m%apex) < 1.0e-9_dp * m%apex) cycle
+              val = merge(0.0_dp, 2.0_dp, p > m%apex)
+            else
+              y = bulk * (sp - p) / (2.0_dp * shear * (p - m%apex))
+              val = maxval(matmul(y, dirs) * kt)
+              if (abs(val - 1.0_dp) < 1.0e-3_dp) cycle
+            end if
+            call check(error, st, merge(state_tension, state_plastic, val < 1.0_dp), 'apex region: phi ' // &
+                       str(m%phi) // ' psi ' // str(m%psi) // ' nu ' // str(m%nu) // ' trial ' // str(n) // &
+                       ' (dual-norm value ' // str(val) // ')')
+            if (allocated(error)) return
+            if (val < 1.0_dp) then
+              counts(1) = counts(1) + 1
+            else
+              counts(2) = counts(2) + 1
+            end if
+          end do
+        end do
+      end do
+    end do
+    call check(error, all(counts > 300), 'apex region: both sides occur (' // str(counts(1)) // ' at the apex, ' // &
+               str(counts(2)) // ' on the cone)')
+  end subroutine test_apex_region
+
+  !> k with J1 J2 - zeta* J3 = 0 at b = 1 - k s_hat (principal sigma-bar = M* - sigma with
+  !! M* - p = 1), zeta* = 9 + 8 tan^2(psi): the cone's radius per unit depth along the unit
+  !! deviator s_hat; bisection from the axis (inside) to the octant's face.
+  pure real(dp) function cone_radius_thesis(psi, s_hat) result(k)
+    real(dp), intent(in) :: psi, s_hat(3)
+    real(dp) :: zs, lo, hi, b(3)
+    integer :: i
+    zs = 9.0_dp + 8.0_dp * tan(psi * deg2rad)**2
+    lo = 0.0_dp
+    hi = 1.0_dp / maxval(s_hat)
+    do i = 1, 100
+      k = 0.5_dp * (lo + hi)
+      b = 1.0_dp - k * s_hat
+      if (sum(b) * (b(1) * b(2) + b(2) * b(3) + b(1) * b(3)) - zs * product(b) < 0.0_dp) then
+        lo = k
+      else
+        hi = k
+      end if
+    end do
+    k = 0.5_dp * (lo + hi)
+  end function cone_radius_thesis
 
   !> The flow rule against the thesis's own potential (eq. 2.4.6-2.4.8, zeta* = 9 + 8 tan^2 psi)
   !! written out here in Cartesian components: M* by bisection so that g = 0 at the returned

@@ -42,7 +42,8 @@ contains
       new_unittest("symmetric_tangent", test_symmetric), &
       new_unittest("validator", test_validator), &
       new_unittest("huge_steps_finite", test_huge_steps), &
-      new_unittest("sliding_tangent_psd_stand_in", test_psd_stand_in) &
+      new_unittest("sliding_tangent_psd_stand_in", test_psd_stand_in), &
+      new_unittest("random_steps_thesis_conditions", test_random_conditions) &
       ]
   end subroutine collect_interface_mc
 
@@ -759,6 +760,132 @@ contains
     if (allocated(error)) return
     call expect_material_rejected(error, 'joint', 'interface', k5, [2000.0_dp, 1000.0_dp, 0.0_dp, 30.0_dp, 31.0_dp], 'PSI = ')
   end subroutine test_validator
+
+  !> 7200 random steps (fixed seed) over phi = 0 .. 89.9 deg, psi = 0, phi/2, phi, c = 0 and 0.5,
+  !! kn/ks = 2, 1e6 and 1e-6, 2D and 3D, from stuck and from open points (closing or not), each
+  !! checked against the thesis's conditions computed here, not by the module: the trial (eq.
+  !! 2.3.21; eq. 2.3.22 for a closing gap); a trial inside f < 0 (eq. 2.3.14) stays, unchanged;
+  !! a point opens exactly where the return along D dg/dsigma reaches the apex, i.e. where
+  !! sigma_tr - apex = dlambda D n for some n in the subdifferential {(y, tan psi): |y| <= 1} of
+  !! the potential cone there (sigma_n >= c / tan phi and tau_tr kn tan psi <= ks (sigma_n_tr -
+  !! c / tan phi)); a sliding point lies on f = 0 with c - sigma_n tan phi >= 0 (1e-12 of the
+  !! stress scale) and sigma_tr - sigma = dlambda D dg/dsigma (eq. 2.3.20, c_I from f = g) with
+  !! dlambda >= 0 (misfit 1e-9). Trials within 1e-9 of a border are not classified. Every kind
+  !! of result must occur. (The audit of 2026-11-23 ran the same checks on 14 080 steps and 176
+  !! paths of 60 steps against a numpy Newton solution of the thesis's equations.)
+  subroutine test_random_conditions(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: angles(5) = [0.0_dp, 10.0_dp, 26.57_dp, 60.0_dp, 89.9_dp]
+    real(dp), parameter :: kns(3) = [800.0_dp, 1.0e6_dp, 1.0_dp], kss(3) = [400.0_dp, 1.0_dp, 1.0e6_dp]
+    type(interface_mohr_coulomb_t) :: m
+    integer(kind=8) :: seed
+    integer :: i, j, ic, ik, n, k, counts(0:2)
+    seed = 8675309_8
+    counts = 0
+    do i = 1, size(angles)
+      do j = 0, 2
+        do ic = 0, 1
+          do ik = 1, size(kns)
+            m = make(kns(ik), kss(ik), 0.5_dp * ic, angles(i), 0.5_dp * j * angles(i))
+            do n = 2, 3
+              do k = 1, 40
+                call check_random_step(error, m, n, seed, counts)
+                if (allocated(error)) return
+              end do
+            end do
+          end do
+        end do
+      end do
+    end do
+    call check(error, all(counts > 500), 'every kind of result occurs: stuck ' // str(counts(0)) // ', sliding ' // &
+               str(counts(1)) // ', open ' // str(counts(2)))
+  end subroutine test_random_conditions
+
+  subroutine check_random_step(error, m, n, seed, counts)
+    type(error_t), allocatable, intent(out) :: error
+    type(interface_mohr_coulomb_t), intent(in) :: m
+    integer, intent(in) :: n
+    integer(kind=8), intent(inout) :: seed
+    integer, intent(inout) :: counts(0:2)
+    real(dp) :: sig0(n), eps0(n), deps(n), sig(n), dt(n, n), sig_tr(n), d(n, n), g(n), v(n), ret(n)
+    real(dp) :: sc, tphi, tpsi, tau_tr, strength_tr, tau, strength, scale, t, dl, reach
+    integer :: st, st0, i
+    character(len=:), allocatable :: what
+    sc = 10.0_dp**(4.0_dp * uniform(seed) - 2.0_dp)
+    do i = 1, n
+      sig0(i) = sc * (2.0_dp * uniform(seed) - 1.0_dp)
+      eps0(i) = sc / m%kn * (2.0_dp * uniform(seed) - 1.0_dp)
+      deps(i) = sc / min(m%kn, m%ks) * (2.0_dp * uniform(seed) - 1.0_dp)
+    end do
+    st0 = state_elastic
+    if (uniform(seed) < 0.3_dp) then
+      st0 = state_open
+      sig0 = 0.0_dp
+    end if
+    call m%update(sig0, eps0, deps, st0, sig, st, dt)
+    what = 'phi ' // str(m%phi) // ' psi ' // str(m%psi) // ' c ' // str(m%c) // ' kn ' // str(m%kn) // &
+           ' n ' // str(n) // ' state0 ' // str(st0)
+    call check(error, finite(sig) .and. finite(reshape(dt, [n * n])), what // ': finite')
+    if (allocated(error)) return
+    counts(st) = counts(st) + 1
+    d = diag_d(m, n)
+    tphi = tan(m%phi * deg2rad)
+    tpsi = tan(m%psi * deg2rad)
+    if (st0 == state_open) then
+      if (eps0(n) + deps(n) > 0.0_dp) then
+        call check(error, st == state_open .and. all(sig == 0.0_dp), what // ': stays open while eps_n > 0')
+        return
+      end if
+      ! eq. 2.3.22: eps_n0 + (1 - t) deps_n = 0, or t = 1 when already closed at the start
+      t = 1.0_dp
+      if (eps0(n) > 0.0_dp) t = (eps0(n) + deps(n)) / deps(n)
+      sig_tr = t * matmul(d, deps)
+      sig_tr(n) = m%kn * (eps0(n) + deps(n))
+    else
+      sig_tr = sig0 + matmul(d, deps)
+    end if
+    tau_tr = norm2(sig_tr(1:n - 1))
+    strength_tr = m%c - sig_tr(n) * tphi
+    scale = maxval(abs(sig_tr)) + m%c
+    ! the opening test multiplied by tan phi (no apex when phi = 0: phi = c = 0 opens under tension)
+    reach = m%ks * (sig_tr(n) * tphi - m%c) - tau_tr * m%kn * tphi * tpsi
+    if (tau_tr - strength_tr < -1.0e-9_dp * scale .and. strength_tr > 1.0e-9_dp * scale) then
+      call check(error, st == state_elastic .and. maxval(abs(sig - sig_tr)) <= 1.0e-14_dp * scale, &
+                 what // ': inside f < 0: stuck, the trial')
+    else if (sig_tr(n) > 1.0e-9_dp * scale .and. reach > 1.0e-9_dp * scale * max(m%ks, m%kn) * max(tphi, 1.0_dp)) then
+      call check(error, st == state_open .and. all(sig == 0.0_dp), what // ': the return reaches the apex: open')
+    else if (reach < -1.0e-9_dp * scale * max(m%ks, m%kn) * max(tphi, 1.0_dp) .or. sig_tr(n) < -1.0e-9_dp * scale) then
+      call check(error, st, state_plastic, what // ': sliding')
+      if (allocated(error)) return
+      tau = norm2(sig(1:n - 1))
+      strength = m%c - sig(n) * tphi
+      call check(error, tau, strength, what // ': on f = 0', abs=1.0e-12_dp * scale)
+      if (allocated(error)) return
+      call check(error, strength >= -1.0e-12_dp * scale, what // ': c - sigma_n tan phi >= 0')
+      if (allocated(error)) return
+      ret = sig_tr - sig
+      if (tau > 0.0_dp) then
+        g(1:n - 1) = sig(1:n - 1)   ! eq. 2.3.20 halved, (c_I - sigma_n tan psi) = c - sigma_n tan phi
+        g(n) = strength * tpsi
+        v = matmul(d, g)
+        dl = dot_product(ret, v) / dot_product(v, v)
+        call check(error, dl >= 0.0_dp, what // ': dlambda >= 0')
+        if (allocated(error)) return
+        call check(error, norm2(ret - dl * v), 0.0_dp, what // ': sigma_tr - sigma along D dg/dsigma', &
+                   abs=1.0e-9_dp * max(norm2(ret), tiny(1.0_dp)))
+      else
+        ! a zero-strength point (phi = c = 0 in compression): no shear, sigma_n unchanged (psi <= phi = 0)
+        call check(error, abs(sig(n) - sig_tr(n)) <= 1.0e-12_dp * scale, what // ': zero strength, sigma_n kept')
+      end if
+    end if
+  end subroutine check_random_step
+
+  !> A deterministic uniform number in (0, 1) (Park-Miller minimal standard generator).
+  real(dp) function uniform(seed) result(u)
+    integer(kind=8), intent(inout) :: seed
+    seed = modulo(16807_8 * seed, 2147483647_8)
+    u = real(seed, dp) / 2147483647.0_dp
+  end function uniform
 
   !> Steps 1e6 times the elastic limit (u = 0.1 for sigma_n = -200, tan phi = 0.5) in shear,
   !! opening, closure and compression: finite results, sliding ones on the yield surface.

@@ -39,6 +39,9 @@ contains
       new_unittest("rotation_invariance", test_rotation), &
       new_unittest("uniaxial_block_path_2_4_3", test_block_path), &
       new_unittest("angles_and_huge_steps", test_huge_steps), &
+      new_unittest("numpy_reference_returns", test_numpy_reference), &
+      new_unittest("flow_along_thesis_potential_2_4_12", test_thesis_potential_flow), &
+      new_unittest("closest_point_apex_region", test_apex_region), &
       new_unittest("validator", test_validator) &
       ]
   end subroutine collect_matsuoka
@@ -807,6 +810,262 @@ contains
     end do
   end subroutine test_huge_steps
 
+  !> Eight trials (generic, psi = 0, nu = -0.9 and 0.45, the closest-point rule beyond sigma_1 =
+  !! M, near the apex, huge, the proportional tension zone) against an independent numpy
+  !! implementation, scripts/matsuoka_reference.py (principal stresses, the thesis's cubic f and
+  !! potential g with M* from g = 0, backward Euler by Newton from several starts; not feps's
+  !! Lode-angle reduction); its printed values are pasted here. Tolerance 1e-10 of
+  !! max|sigma_tr| + M (the two agree to 7e-16 on the audit's machine).
+  subroutine test_numpy_reference(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp
+    real(dp), parameter :: par(5, 8) = reshape([ &   ! phi, psi, nu, tension rule, ft
+      26.57_dp, 26.57_dp, 0.2_dp, 1.0_dp, 6.0_dp, 26.57_dp, 0.0_dp, 0.2_dp, 1.0_dp, 6.0_dp, &
+      26.57_dp, 13.0_dp, -0.9_dp, 1.0_dp, 6.0_dp, 54.9_dp, 54.9_dp, 0.45_dp, 1.0_dp, 5.0_dp, &
+      54.9_dp, 20.0_dp, 0.22_dp, 2.0_dp, 5.0_dp, 15.0_dp, 15.0_dp, 0.3_dp, 2.0_dp, 0.2_dp, &
+      40.0_dp, 10.0_dp, 0.0_dp, 1.0_dp, 3.0_dp, 35.0_dp, 35.0_dp, 0.2_dp, 1.0_dp, 3.0_dp], [5, 8])
+    real(dp), parameter :: trials(6, 8) = reshape([ &
+      -30.0_dp, -5.0_dp, 2.0_dp, 4.0_dp, -3.0_dp, 6.0_dp, -30.0_dp, -5.0_dp, 2.0_dp, 4.0_dp, -3.0_dp, 6.0_dp, &
+      -12.0_dp, -20.0_dp, -3.0_dp, 7.0_dp, 1.0_dp, -2.0_dp, -150.0_dp, 5.0_dp, -10.0_dp, 0.0_dp, 15.0_dp, 0.0_dp, &
+      12.0_dp, -25.0_dp, -30.0_dp, 2.0_dp, 0.0_dp, 1.0_dp, 0.5_dp, 0.45_dp, 0.4_dp, 0.02_dp, 0.0_dp, 0.01_dp, &
+      -1.0e4_dp, 2.0e3_dp, -5.0e3_dp, 3.0e3_dp, -1.0e3_dp, 4.0e3_dp, 9.0_dp, -4.0_dp, -6.0_dp, 1.0_dp, 2.0_dp, -1.0_dp], &
+      [6, 8])
+    real(dp), parameter :: expected(6, 8) = reshape([ &
+      -2.9065430430028290e+01_dp, -8.9651496658228922e+00_dp, -5.1086898343848706e+00_dp, 2.2270485469503680e+00_dp, &
+      -2.4469137989900847e+00_dp, 4.9483277656136631e+00_dp, &
+      -2.3056571995210263e+01_dp, -7.1926614751967479e+00_dp, -2.7507665295929682e+00_dp, 2.5382256832021604e+00_dp, &
+      -1.9036692624016216e+00_dp, 3.8073385248032428e+00_dp, &
+      -1.1880145568868926e+01_dp, -1.9702532653546033e+01_dp, -3.4260482782796018e+00_dp, 6.7031320224803244e+00_dp, &
+      9.6543809345347986e-01_dp, -1.9487299422075199e+00_dp, &
+      -1.6017819445159893e+02_dp, -7.5205674833276710e+00_dp, -2.0807660921491411e+01_dp, 0.0000000000000000e+00_dp, &
+      1.4932557163940087e+01_dp, 0.0000000000000000e+00_dp, &
+      2.2578877266949458e+00_dp, -2.4907912146704085e+01_dp, -2.9398992824043539e+01_dp, 1.7980057694808127e+00_dp, &
+      -7.8674927251562200e-03_dp, 7.3378553751212727e-01_dp, &
+      4.4144180157544732e-01_dp, 4.2869440064839054e-01_dp, 4.0806887348164372e-01_dp, 8.3202386554958960e-03_dp, &
+      -3.5013894398620962e-04_dp, 2.4094246078168809e-03_dp, &
+      -5.0885397070007903e+00_dp, 1.0177079414001580e+00_dp, -2.5442698535003951e+00_dp, 1.5265619121002370e+00_dp, &
+      -5.0885397070007898e-01_dp, 2.0354158828003159e+00_dp, &
+      2.5142405494141595e+00_dp, -1.1174402441840710e+00_dp, -1.6761603662761064e+00_dp, 2.7936006104601774e-01_dp, &
+      5.5872012209203548e-01_dp, -2.7936006104601774e-01_dp], [6, 8])
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: sig(6), dt(6, 6)
+    integer :: i, st
+    do i = 1, 8
+      m = make(par(1, i), par(2, i), par(5, i), e=e, nu=par(3, i), tension=nint(par(4, i)))
+      call return_of(m, trials(:, i), sig, st, dt)
+      call check(error, maxval(abs(sig - expected(:, i))), 0.0_dp, 'numpy reference, trial ' // str(i), &
+                 abs=1.0e-10_dp * (maxval(abs(trials(:, i))) + m%apex))
+      if (allocated(error)) return
+      call check(error, st, merge(state_tension, state_plastic, i >= 7), 'numpy reference, trial ' // str(i) // ': state')
+      if (allocated(error)) return
+    end do
+  end subroutine test_numpy_reference
+
+  !> TENSION=closest-point: a trial returns to the apex exactly where sigma_tr - M I = dlambda D n
+  !! for some n in the subdifferential of the potential cone at its apex, derived here without
+  !! the module: with the cone written |s| = k(theta) (M* - p) (k from the thesis's cubic J1 J2 -
+  !! zeta* J3 = 0 by bisection at 720 Lode angles), D n = 2 G y + K I with y in the dual unit
+  !! ball of |s| / k(theta), so the apex is reached iff p_tr > M and max_theta <y, s_hat(theta)>
+  !! k(theta) <= 1 for y = K s_tr / (2 G (p_tr - M)); for psi = 0 (no volume change) iff p_tr >=
+  !! M. 2400 random trials beyond the apex (fixed seed; phi = 26.57 and 54.9 deg, psi = 0,
+  !! phi/2, phi, nu = 0.2, -0.9, 0.49, generic axes) must be classified alike (state tension
+  !! against plastic), except within 1e-3 of the border (the sampled maximum's accuracy).
+  subroutine test_apex_region(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: nt = 720
+    real(dp), parameter :: angles(2) = [26.57_dp, 54.9_dp], nus(3) = [0.2_dp, -0.9_dp, 0.49_dp]
+    real(dp), parameter :: e1(3) = [2.0_dp, -1.0_dp, -1.0_dp] / sqrt(6.0_dp), e2(3) = [0.0_dp, 1.0_dp, -1.0_dp] / sqrt(2.0_dp)
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: kt(nt), dirs(3, nt), th, sp(3), y(3), p, val, bulk, shear, trial(6), sig(6), dt(6, 6), r(3, 3)
+    integer(kind=8) :: seed
+    integer :: i, j, k, n, it, st, counts(2)
+    seed = 1618033_8
+    counts = 0
+    do it = 1, nt
+      th = 2.0_dp * 3.141592653589793238_dp * (it - 1) / nt
+      dirs(:, it) = cos(th) * e1 + sin(th) * e2
+    end do
+    do i = 1, size(angles)
+      do j = 0, 2
+        do it = 1, nt
+          kt(it) = cone_radius_thesis(0.5_dp * j * angles(i), dirs(:, it))
+        end do
+        do k = 1, size(nus)
+          m = make(angles(i), 0.5_dp * j * angles(i), 4.0_dp, nu=nus(k), tension=tension_closest_point)
+          bulk = m%e / (3.0_dp * (1.0_dp - 2.0_dp * m%nu))
+          shear = m%e / (2.0_dp * (1.0_dp + m%nu))
+          do n = 1, 400 / 3
+            ! beyond the apex: p_tr > M, a deviator of 0.03 .. 3 M
+            p = m%apex * (1.0_dp + 2.0_dp * next_uniform(seed))
+            sp = m%apex * 10.0_dp**(2.0_dp * next_uniform(seed) - 1.5_dp) * &
+                 [next_uniform(seed) - 0.5_dp, next_uniform(seed) - 0.5_dp, next_uniform(seed) - 0.5_dp]
+            sp = p + sp - sum(sp) / 3.0_dp
+            r = rotation(6.0_dp * next_uniform(seed), 6.0_dp * next_uniform(seed), 6.0_dp * next_uniform(seed))
+            trial = rotate_stress(r, [sp(1), sp(2), sp(3), 0.0_dp, 0.0_dp, 0.0_dp])
+            call return_of(m, trial, sig, st, dt)
+            if (j == 0) then
+              if (abs(p - m%apex) < 1.0e-9_dp * m%apex) cycle
+              val = merge(0.0_dp, 2.0_dp, p > m%apex)
+            else
+              y = bulk * (sp - p) / (2.0_dp * shear * (p - m%apex))
+              val = maxval(matmul(y, dirs) * kt)
+              if (abs(val - 1.0_dp) < 1.0e-3_dp) cycle
+            end if
+            call check(error, st, merge(state_tension, state_plastic, val < 1.0_dp), 'apex region: phi ' // &
+                       str(m%phi) // ' psi ' // str(m%psi) // ' nu ' // str(m%nu) // ' trial ' // str(n) // &
+                       ' (dual-norm value ' // str(val) // ')')
+            if (allocated(error)) return
+            if (val < 1.0_dp) then
+              counts(1) = counts(1) + 1
+            else
+              counts(2) = counts(2) + 1
+            end if
+          end do
+        end do
+      end do
+    end do
+    call check(error, all(counts > 300), 'apex region: both sides occur (' // str(counts(1)) // ' at the apex, ' // &
+               str(counts(2)) // ' on the cone)')
+  end subroutine test_apex_region
+
+  !> k with J1 J2 - zeta* J3 = 0 at b = 1 - k s_hat (principal sigma-bar = M* - sigma with
+  !! M* - p = 1), zeta* = 9 + 8 tan^2(psi): the cone's radius per unit depth along the unit
+  !! deviator s_hat; bisection from the axis (inside) to the octant's face.
+  pure real(dp) function cone_radius_thesis(psi, s_hat) result(k)
+    real(dp), intent(in) :: psi, s_hat(3)
+    real(dp) :: zs, lo, hi, b(3)
+    integer :: i
+    zs = 9.0_dp + 8.0_dp * tan(psi * deg2rad)**2
+    lo = 0.0_dp
+    hi = 1.0_dp / maxval(s_hat)
+    do i = 1, 100
+      k = 0.5_dp * (lo + hi)
+      b = 1.0_dp - k * s_hat
+      if (sum(b) * (b(1) * b(2) + b(2) * b(3) + b(1) * b(3)) - zs * product(b) < 0.0_dp) then
+        lo = k
+      else
+        hi = k
+      end if
+    end do
+    k = 0.5_dp * (lo + hi)
+  end function cone_radius_thesis
+
+  !> The flow rule against the thesis's own potential (eq. 2.4.6-2.4.8, zeta* = 9 + 8 tan^2 psi)
+  !! written out here in Cartesian components: M* by bisection so that g = 0 at the returned
+  !! stress (on the branch M* > sigma_1), the gradient by eq. 2.4.12 (with the I2 of eq. 2.4.4
+  !! taken with -tau^2, as eq. 2.4.12 itself implies). The plastic strain D^-1 (sigma_tr -
+  !! sigma) of every plastic return must be parallel to it (misfit 1e-8 of its size) with a
+  !! positive multiplier: 1200 random trials (fixed seed), phi = 15, 26.57, 54.9 deg, psi =
+  !! phi/3, 2 phi/3, phi (psi = 0 is the deviator, checked by check_returned), nu = 0.2, -0.9,
+  !! 0.49, both tension rules, returns with |s| > 0.02 M (nearer the apex the stress carries too
+  !! few digits of sigma - M).
+  subroutine test_thesis_potential_flow(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: angles(3) = [15.0_dp, 26.57_dp, 54.9_dp], nus(3) = [0.2_dp, -0.9_dp, 0.49_dp]
+    type(matsuoka_nakai_t) :: m
+    real(dp) :: sig_tr(6), sig(6), dt(6, 6), ep(6), ng(6), proj, dev(6)
+    integer(kind=8) :: seed
+    integer :: i, j, k, n, st, rule, checked
+    seed = 31337_8
+    checked = 0
+    do rule = tension_proportional, tension_closest_point
+      do i = 1, size(angles)
+        do j = 1, 3
+          do k = 1, size(nus)
+            m = make(angles(i), j * angles(i) / 3.0_dp, 4.0_dp, nu=nus(k), tension=rule)
+            do n = 1, 23
+              sig_tr(1:3) = m%apex * (8.0_dp * next_uniform(seed) - 6.5_dp)
+              sig_tr(4:6) = m%apex * (4.0_dp * [next_uniform(seed), next_uniform(seed), next_uniform(seed)] - 2.0_dp)
+              sig_tr(2) = m%apex * (8.0_dp * next_uniform(seed) - 6.5_dp)
+              sig_tr(3) = m%apex * (8.0_dp * next_uniform(seed) - 6.5_dp)
+              call return_of(m, sig_tr, sig, st, dt)
+              if (st /= state_plastic) cycle
+              dev = sig - sum(sig(1:3)) / 3.0_dp * [1, 1, 1, 0, 0, 0]
+              if (sqrt(sum(dev(1:3)**2) + 2.0_dp * sum(dev(4:6)**2)) < 0.02_dp * m%apex) cycle
+              ep = compliance(m%e, m%nu, sig_tr - sig)
+              ng = thesis_potential_gradient(m%psi, sig)
+              proj = dot_product(ep, ng) / dot_product(ng, ng)
+              call check(error, proj > 0.0_dp, 'thesis potential: positive multiplier, phi ' // str(m%phi) // &
+                         ' psi ' // str(m%psi) // ' trial ' // str(n))
+              if (allocated(error)) return
+              call check(error, norm2(ep - proj * ng), 0.0_dp, 'thesis potential: plastic strain along eq. 2.4.12, phi ' // &
+                         str(m%phi) // ' psi ' // str(m%psi) // ' nu ' // str(m%nu) // ' trial ' // str(n), &
+                         abs=1.0e-8_dp * norm2(ep))
+              if (allocated(error)) return
+              checked = checked + 1
+            end do
+          end do
+        end do
+      end do
+    end do
+    call check(error, checked >= 300, 'thesis potential: enough plastic returns checked (' // str(checked) // ')')
+  end subroutine test_thesis_potential_flow
+
+  !> The outward gradient (tension positive, engineering shears) of the thesis's potential
+  !! through sig: eq. 2.4.12 with sigma-bar = M* - sigma and tau-bar = -tau (compression
+  !! positive), M* the root > sigma_1 of J1 J2 - zeta* J3 = 0 by bisection, and the sign turned
+  !! (the thesis's g = zeta* J3 - J1 J2 is negative outside).
+  function thesis_potential_gradient(psi, sig) result(ng)
+    real(dp), intent(in) :: psi, sig(6)
+    real(dp) :: ng(6)
+    real(dp) :: zs, lo, hi, mid, b(6), j1, j2
+    integer :: i
+    zs = 9.0_dp + 8.0_dp * tan(psi * deg2rad)**2
+    lo = largest_principal(sig)
+    hi = lo + maxval(abs(sig)) + 1.0_dp
+    do while (potential_value(zs, hi, sig) > 0.0_dp)
+      hi = lo + 2.0_dp * (hi - lo)
+    end do
+    do i = 1, 200
+      mid = 0.5_dp * (lo + hi)
+      if (potential_value(zs, mid, sig) > 0.0_dp) then
+        lo = mid
+      else
+        hi = mid
+      end if
+    end do
+    b(1:3) = 0.5_dp * (lo + hi) - sig(1:3)
+    b(4:6) = -sig(4:6)
+    j1 = b(1) + b(2) + b(3)
+    j2 = b(1) * b(2) + b(2) * b(3) + b(1) * b(3) - b(4)**2 - b(5)**2 - b(6)**2
+    ! eq. 2.4.12 (derivatives by the compression-positive stress), then d/dsigma = -d/dsigma-bar
+    ng(1) = zs * (b(2) * b(3) - b(4)**2) - j1 * (b(2) + b(3)) - j2
+    ng(2) = zs * (b(1) * b(3) - b(5)**2) - j1 * (b(1) + b(3)) - j2
+    ng(3) = zs * (b(1) * b(2) - b(6)**2) - j1 * (b(1) + b(2)) - j2
+    ng(4) = 2.0_dp * zs * (b(5) * b(6) - b(1) * b(4)) + 2.0_dp * b(4) * j1
+    ng(5) = 2.0_dp * zs * (b(6) * b(4) - b(2) * b(5)) + 2.0_dp * b(5) * j1
+    ng(6) = 2.0_dp * zs * (b(4) * b(5) - b(3) * b(6)) + 2.0_dp * b(6) * j1
+    ! this is d g_thesis / d sigma-bar; g_thesis = zeta* J3 - J1 J2 decreases outwards and
+    ! sigma-bar = M* I - sigma (every component), so the outward d/dsigma is ng itself
+  end function thesis_potential_gradient
+
+  !> J1 J2 - zeta* J3 of sigma-bar = x I - sig (tau-bar = -tau): positive between sigma_1
+  !! and the potential's apex x = M*, negative beyond.
+  pure real(dp) function potential_value(zs, x, sig) result(v)
+    real(dp), intent(in) :: zs, x, sig(6)
+    real(dp) :: b(6), j1, j2, j3
+    b(1:3) = x - sig(1:3)
+    b(4:6) = -sig(4:6)
+    j1 = b(1) + b(2) + b(3)
+    j2 = b(1) * b(2) + b(2) * b(3) + b(1) * b(3) - b(4)**2 - b(5)**2 - b(6)**2
+    j3 = b(1) * b(2) * b(3) + 2.0_dp * b(4) * b(5) * b(6) - b(1) * b(4)**2 - b(2) * b(5)**2 - b(3) * b(6)**2
+    v = j1 * j2 - zs * j3
+  end function potential_value
+
+  !> The largest principal stress (trigonometric solution of the characteristic cubic).
+  pure real(dp) function largest_principal(sig) result(s1)
+    real(dp), intent(in) :: sig(6)
+    real(dp) :: q, p, b(6), r
+    q = (sig(1) + sig(2) + sig(3)) / 3.0_dp
+    b = sig
+    b(1:3) = b(1:3) - q
+    p = sqrt((b(1)**2 + b(2)**2 + b(3)**2 + 2.0_dp * (b(4)**2 + b(5)**2 + b(6)**2)) / 6.0_dp)
+    s1 = q
+    if (.not. (p > 0.0_dp)) return
+    b = b / p
+    r = 0.5_dp * (b(1) * b(2) * b(3) + 2.0_dp * b(4) * b(5) * b(6) - b(1) * b(4)**2 - b(2) * b(5)**2 - b(3) * b(6)**2)
+    s1 = q + 2.0_dp * p * cos(acos(max(-1.0_dp, min(1.0_dp, r))) / 3.0_dp)
+  end function largest_principal
 
   !> Accepts E, NU, PHI, PSI with FT or C (apex eq. 2.4.5); rejects missing, out-of-range,
   !! doubly given and unknown parameters, naming them.

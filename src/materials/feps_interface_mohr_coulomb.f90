@@ -19,7 +19,9 @@
 !! stiffness for numerical stability; default 1e-6). The update is then continuous in the trial
 !! stress but for the loss of the tensile strength c / tan phi on opening. An open point stays
 !! open while eps_n > 0; when eps_n <= 0 at the end of a step the gap closes inside the step and
-!! the stress restarts from zero by eq. 2.3.22.
+!! the stress restarts from zero by eq. 2.3.22. The restart is at eps_n = 0, so the normal
+!! dilation a point gathered while sliding before it opened is lost when it closes again (an
+!! eps_n that gave -150 MPa before opening gives -50 after; thesis rule, SPEC 5).
 module feps_interface_mohr_coulomb
   use feps_kinds, only: dp, deg2rad
   use feps_error, only: error_t, input_error, str

@@ -79,6 +79,10 @@ expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.data
 grep -q "nodes *3375" "$tmp/out" && grep -q "elements *2496" "$tmp/out" && ok "Table 2.1 counts reported" \
   || bad "Table 2.1 counts reported"
 grep -q "min Jacobian" "$tmp/out" && ok "smallest Jacobian reported" || bad "smallest Jacobian reported"
+# A model of bars only has no solid Jacobian: --check says so instead of printing huge().
+"$feps" input/verification/table2_2_bar3.dat --check >"$tmp/out" 2>&1 \
+  && grep -q "^min Jacobian *none (no solid element)$" "$tmp/out" && ok "bars only: min Jacobian none" \
+  || bad "bars only: min Jacobian none: $(grep -i jacobian "$tmp/out")"
 python3 - "$tmp/t21.h5" <<'PY' && ok "mesh-only HDF5: /mesh, /xdmf, /summary (program, input_file) and the .xmf, as documented" \
   || bad "mesh-only HDF5: /mesh, /xdmf, /summary (program, input_file) and the .xmf, as documented"
 import os, sys, h5py

@@ -197,7 +197,7 @@ contains
     if (s%mesh_only) then
       write (output_unit, '(a)') 'bounding box min' // vec3(s%bbox(:, 1))
       write (output_unit, '(a)') 'bounding box max' // vec3(s%bbox(:, 2))
-      write (output_unit, '(a)') 'min Jacobian     ' // sci(s%min_jacobian, 5, 12)
+      write (output_unit, '(a)') 'min Jacobian     ' // jacobian_text(s%min_jacobian)
     else
       write (output_unit, '(a)') 'dofs             ' // str(s%dofs)
       if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
@@ -255,6 +255,18 @@ contains
     line = ' ' // sci(v(1), 5, 12) // ' ' // sci(v(2), 5, 12) // ' ' // sci(v(3), 5, 12)
   end function vec3
 
+  !> The smallest Jacobian determinant of the solid elements for the summary; a model without
+  !> solids (bars only) has none.
+  function jacobian_text(j) result(text)
+    real(dp), intent(in) :: j
+    character(len=:), allocatable :: text
+    if (j >= huge(1.0_dp)) then
+      text = 'none (no solid element)'
+    else
+      text = sci(j, 5, 12)
+    end if
+  end function jacobian_text
+
   !> The summary of `feps --check`: the model's size and the solver's predictions.
   subroutine print_check(s)
     type(run_summary_t), intent(in) :: s
@@ -262,7 +274,7 @@ contains
     write (output_unit, '(a)') 'dofs             ' // str(s%dofs)
     if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
       ' (in no element; no DOFs)'
-    write (output_unit, '(a)') 'min Jacobian     ' // sci(s%min_jacobian, 5, 12)
+    write (output_unit, '(a)') 'min Jacobian     ' // jacobian_text(s%min_jacobian)
     write (output_unit, '(a)') 'analysis         ' // trim(merge('linear   ', 'nonlinear', s%linear)) // ': ' // &
       str(s%stages) // ' stage(s), ' // str(s%steps) // ' steps'
     write (output_unit, '(a)') 'applied force   ' // vec3(s%applied_force)

@@ -79,6 +79,10 @@ expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.data
 grep -q "nodes *3375" "$tmp/out" && grep -q "elements *2496" "$tmp/out" && ok "Table 2.1 counts reported" \
   || bad "Table 2.1 counts reported"
 grep -q "min Jacobian" "$tmp/out" && ok "smallest Jacobian reported" || bad "smallest Jacobian reported"
+# A model of bars only has no solid Jacobian: --check says so instead of printing huge().
+"$feps" input/verification/table2_2_bar3.dat --check >"$tmp/out" 2>&1 \
+  && grep -q "^min Jacobian *none (no solid element)$" "$tmp/out" && ok "bars only: min Jacobian none" \
+  || bad "bars only: min Jacobian none: $(grep -i jacobian "$tmp/out")"
 python3 - "$tmp/t21.h5" <<'PY' && ok "mesh-only HDF5: /mesh, /xdmf, /summary (program, input_file) and the .xmf, as documented" \
   || bad "mesh-only HDF5: /mesh, /xdmf, /summary (program, input_file) and the .xmf, as documented"
 import os, sys, h5py
@@ -440,6 +444,108 @@ for name, sc in t.scenes().items():
 PY
 python3 scripts/make_chapter9.py --outdir "$tmp/c9" >/dev/null && diff -r input/chapter9 "$tmp/c9" >/dev/null \
   && ok "make_chapter9.py's defaults = input/chapter9" || bad "make_chapter9.py's defaults = input/chapter9"
+# The other generators write the committed thesis decks byte for byte.
+python3 scripts/make_joint_2d.py --outdir "$tmp/j2d" >/dev/null && diff -r input/joint2d "$tmp/j2d" >/dev/null \
+  && ok "make_joint_2d.py's defaults = input/joint2d" || bad "make_joint_2d.py's defaults = input/joint2d"
+python3 scripts/make_model_a.py --outdir "$tmp/ma" >/dev/null && diff -r input/modelA "$tmp/ma" >/dev/null \
+  && ok "make_model_a.py's defaults = input/modelA" || bad "make_model_a.py's defaults = input/modelA"
+python3 scripts/make_model_b.py --outdir "$tmp/mb" >/dev/null && diff -r input/modelB "$tmp/mb" >/dev/null \
+  && python3 -c 'import sys; sys.path.insert(0, "scripts"); import make_model_b as m
+sys.exit(m.deck("FE1").replace("OUTPUT, modelB_FE1.h5", "OUTPUT, modelB.h5") != open("input/modelB.dat").read())' \
+  && ok "make_model_b.py's defaults = input/modelB and input/modelB.dat" \
+  || bad "make_model_b.py's defaults = input/modelB and input/modelB.dat"
+# Each thesis deck carries its own case's values (SPEC section 8 and thesis chapters 3-6, 9, typed
+# here independently of the generators): a generator that mixed up cases would still be byte-stable.
+python3 - <<'PY' >"$tmp/out" 2>&1 && ok "every thesis deck carries its case's materials, loads and steps (SPEC 8)" \
+  || bad "every thesis deck carries its case's materials, loads and steps: $(tail -c 400 "$tmp/out")"
+import glob, math, os, re
+def records(path):
+    out = []
+    for line in open(path):
+        line = line.split("!")[0].strip()
+        if line:
+            f = [x.strip() for x in line.split(",")]
+            out.append((f[0].upper(), f[1:], {k.upper(): v for k, eq, v in (x.partition("=") for x in f[1:]) if eq}))
+    return out
+def one(recs, key, *first):
+    hits = [kv for k, args, kv in recs if k == key and list(args[:len(first)]) == list(first)]
+    assert len(hits) == 1, (key, first, len(hits))
+    return hits[0]
+def num(kv, k): return float(kv[k])
+bad = []
+def check(cond, what):
+    if not cond: bad.append(what)
+# model C: G_p x nu_p x beta (SPEC 8: steps 250/300 at 0.09, 400/500 at 0.27 for G_p 300/900)
+steps_c = {(0.09, 300): 250, (0.09, 900): 300, (0.27, 300): 400, (0.27, 900): 500}
+for path in sorted(glob.glob("input/modelC/*.dat")):
+    G, nu, beta = (float(v) for v in re.match(r"C_G([\d.]+)_nu([-\d.]+)_b([\d.]+)\.dat", os.path.basename(path)).groups())
+    r = records(path); pk = one(r, "MATERIAL", "packing"); it = one(r, "MATERIAL", "pipe_packing")
+    check(num(pk, "G") == G and num(pk, "NU") == nu, f"{path}: packing")
+    check((num(it, "KN"), num(it, "KS"), num(it, "PHI"), num(it, "PSI"), num(it, "C")) == (800, 400, 20, 20, 0.05), f"{path}: interface")
+    c = one(r, "MATERIAL", "concrete"); s = one(r, "MATERIAL", "soil")
+    check((num(c, "E"), num(c, "NU"), num(s, "E"), num(s, "NU")) == (40000, 0.2, 144, 0.2), f"{path}: concrete/soil")
+    check(abs(num(one(r, "DISPLACE", "top_end_nodes"), "X") - 2500 * math.tan(math.radians(beta))) < 1e-4, f"{path}: delta")
+    s1, s2 = one(r, "STAGE", "s1"), one(r, "STAGE", "s2")
+    check((num(s1, "STEPS"), num(s1, "LOAD"), num(s2, "LOAD")) == (1, 0.2, 0.8), f"{path}: stage 1/2 split")
+    check(num(s2, "STEPS") == steps_c[(beta, G)], f"{path}: stage 2 steps")
+    check(num(one(r, "PRESSURE", "top_end"), "VALUE") == 10, f"{path}: q")
+# model B: soil 1 typical, 2 soft, 3 stiff (E_s; Ks, Kn of the interface); P = 1000 kN per end
+soils = {"1": (144, 50, 100), "2": (14.4, 5, 10), "3": (1440, 500, 1000)}
+for path in sorted(glob.glob("input/modelB/*.dat")) + ["input/modelB.dat"]:
+    case = os.path.basename(path)[:-4].replace("modelB", "FE1")
+    kind, load, n = case
+    es, ks, kn = soils[n]; r = records(path); s = one(r, "MATERIAL", "soil")
+    check(num(s, "E") == es and num(s, "NU") == 0.2, f"{path}: soil")
+    soil_kind = [a for k, a, kv in r if k == "MATERIAL" and a[0] == "soil"][0][1].upper()
+    check(soil_kind == ("MATSUOKA" if kind == "P" else "ELASTIC"), f"{path}: soil model")
+    if kind == "P":
+        check((num(s, "PHI"), num(s, "PSI"), num(s, "C")) == (15, 15, 0.05), f"{path}: Matsuoka soil")
+    if kind == "F":
+        it = one(r, "MATERIAL", "pipe_soil")
+        check((num(it, "KN"), num(it, "KS"), num(it, "PHI"), num(it, "PSI"), num(it, "C")) == (kn, ks, 15, 15, 0.05), f"{path}: interface")
+    c = one(r, "MATERIAL", "concrete"); check((num(c, "E"), num(c, "NU")) == (40000, 0.2), f"{path}: concrete")
+    hi, lo = one(r, "PRESSURE", "end_high"), one(r, "PRESSURE", "end_low")
+    check((num(hi, "TOTAL"), num(hi, "ZERO"), num(hi, "PEAK")) == (1e6, -220, -715), f"{path}: upper end load")
+    sign = 1 if load == "E" else -1
+    check((num(lo, "TOTAL"), num(lo, "ZERO"), num(lo, "PEAK")) == (1e6, -220 * sign, -715 * sign), f"{path}: lower end load")
+    st = one(r, "STAGE", "load")
+    if kind == "S":
+        check(num(st, "STEPS") == 1, f"{path}: linear")
+    else:
+        check((num(st, "STEPS"), st["METHOD"], num(st, "MAXIT")) == (400 if load == "E" else 500, "initial-stiffness", 10), f"{path}: steps")
+# model A: r_i 75 / 85.7, E = 31700, nu = 0.2, P = 5 kN on each end
+for path in sorted(glob.glob("input/modelA/*.dat")):
+    r = records(path); c = one(r, "MATERIAL", "concrete")
+    check((num(c, "E"), num(c, "NU")) == (31700, 0.2), f"{path}: concrete")
+    first = [a for k, a, kv in r if k == "A"][0]
+    check(float(first[1]) == (75 if "thick" in path else 85.7), f"{path}: inner radius")
+    loads = [kv for k, a, kv in r if k == "PRESSURE"]
+    check(len(loads) == 2 and all(num(kv, "TOTAL") == 5000 for kv in loads), f"{path}: P")
+# chapter 3: G_p x nu_p x beta (x stiff interface), q = 30, delta = 150 tan(beta), 400 modified Euler steps
+for path in sorted(glob.glob("input/joint2d/*.dat")):
+    m = re.match(r"G([\d.]+)_nu([-\d.]+)_b([\d.]+)(_stiff)?\.dat", os.path.basename(path))
+    G, nu, beta = (float(v) for v in m.groups()[:3]); stiff = bool(m.group(4)); r = records(path)
+    pk, it, c = one(r, "MATERIAL", "packer"), one(r, "MATERIAL", "joint"), one(r, "MATERIAL", "concrete")
+    check(num(pk, "G") == G and num(pk, "NU") == nu and (num(c, "G"), num(c, "NU")) == (40000, 0.2), f"{path}: solids")
+    check((num(it, "KN"), num(it, "KS"), num(it, "PHI"), num(it, "PSI")) == ((8000, 4000) if stiff else (800, 400)) + (20, 20), f"{path}: interface")
+    check(abs(num(one(r, "DISPLACE", "top"), "X") - 150 * math.tan(math.radians(beta))) < 1e-6, f"{path}: delta")
+    st = one(r, "STAGE", "load"); check((num(st, "STEPS"), st["METHOD"]) == (400, "modified-euler"), f"{path}: steps")
+    check(num(one(r, "PRESSURE", "top_face"), "VALUE") == 30, f"{path}: q")
+# chapter 9: Matsuoka concrete, 50 kN on the quarter, 400 modified NR steps; hoop bars; band
+for path in sorted(glob.glob("input/chapter9/*.dat")):
+    case = os.path.basename(path)[:-4]; r = records(path); c = one(r, "MATERIAL", "concrete")
+    check((num(c, "E"), num(c, "NU"), num(c, "PHI"), num(c, "PSI"), num(c, "FT")) == (31700, 0.22, 54.9, 54.9, 5), f"{path}: concrete")
+    check(num(one(r, "PRESSURE", "top"), "TOTAL") == 50000 and one(r, "CONTROLS")["METHOD"] == "modified-newton-raphson", f"{path}: load/method")
+    check(num(one(r, "STAGE", "load"), "STEPS") == 400, f"{path}: steps")
+    if case.startswith("RE"):
+        b = one(r, "MATERIAL", "hoop_bar"); check((num(b, "E"), num(b, "A")) == (200000, 6.28), f"{path}: bars")
+    if case.startswith("PR"):
+        check(num(one(r, "PRESSURE", "band"), "VALUE") == {"PR1": 5, "PR2": 1}[case], f"{path}: q")
+        check(num(one(r, "STAGE", "prestress"), "STEPS") == 50, f"{path}: stage 1 steps")
+        check((num(one(r, "MATERIAL", "band_edge"), "A"), num(one(r, "MATERIAL", "band_middle"), "A")) == (4.5, 9), f"{path}: band")
+assert not bad, bad
+print("checked", len(glob.glob("input/*/*.dat")) + 1, "decks")
+PY
 # CR with the continuous tension rule in 5 full-Newton steps: every step converged, no cut-back
 python3 scripts/make_chapter9.py --outdir "$tmp/c9cp" --steps 5 --tension closest-point \
   --method full-newton-raphson >/dev/null

@@ -41,6 +41,7 @@ Z_TOP_BOTTOM = Z_JOINT + PACKING          # 1265: the top pipe's bottom end
 Z_TOP_END = Z_TOP_BOTTOM + L_PIPE         # 3765: the loaded end
 Z_SECTION_AA = Z_TOP_BOTTOM + L_PIPE / 2  # 2515: mid-length of the top pipe (thesis Fig. 7.7)
 Q = 10.0                                   # MPa on the top end
+KN_JOINT, KS_JOINT = 800.0, 400.0          # MPa/mm, the packing/bottom-pipe interface (thesis 6.2)
 BETAS = (0.09, 0.27)
 SHEAR_MODULI = (300.0, 900.0)
 POISSON = (0.1, 0.4, -0.3)
@@ -315,7 +316,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
             "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2",
             f"MATERIAL, soil, ELASTIC, E={soil_E:g}{'.' if float(soil_E).is_integer() else ''}, NU=0.2",
             f"MATERIAL, packing, ELASTIC, G={G:g}, NU={nu:g}",
-            "MATERIAL, pipe_packing, INTERFACE, KN=800., KS=400., PHI=20., PSI=20., C=0.05",
+            f"MATERIAL, pipe_packing, INTERFACE, KN={KN_JOINT:g}., KS={KS_JOINT:g}., PHI=20., PSI=20., C=0.05",
             "",
             "! --- supports (thesis 6.2) ---",
             f"NSET, soil_outer, CSYS=3, R={radius_text(r_soil)}, TOL=0.01",
@@ -329,8 +330,9 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
             "! --- solution (thesis 6.3/6.4: initial stiffness, 'several iterations within each step",
             "! depending on convergence and controlled by the program'; no tolerance given: DELTA1 = 1e-4",
             "! as model B). Once the joint slides and a gap opens (beta = 0.27 from stage-2 step ~35) the",
-            "! initial stiffness converges at ~0.95 per iteration (Kn, Ks of the interface are 20 x the",
-            "! packing layer's E_p/a, G_p/a, and the elastic matrix keeps them at sliding and open points):",
+            "! initial stiffness converges at ~0.95 per iteration (Kn, Ks of the interface are "
+            f"{KN_JOINT * PACKING / E_p:.2g} and {KS_JOINT * PACKING / G:.2g} x",
+            "! this packing layer's E_p/a, G_p/a, and the elastic matrix keeps them at sliding and open points):",
             "! 10 iterations leave up to ~5% of |P| unbalanced, which feps's default DIVERGENCE = 1e-2 turns",
             "! into endless cut-backs. DIVERGENCE = 0.1 lets each step carry its unbalanced force into the",
             "! next (eq. 2.6.4), as the thesis's program did; stage s3 then applies nothing and iterates",

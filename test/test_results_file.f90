@@ -31,7 +31,7 @@ contains
       new_unittest("mesh-only xdmf", test_mesh_only_xdmf), &
       new_unittest("discard leaves no file", test_discard), &
       new_unittest("contract violations are errors", test_contract_errors), &
-      new_unittest("non-finite values are refused", test_non_finite_refused), &
+      new_unittest("non-finite values are refused", test_non_finite_refused, nonfinite=.true.), &
       new_unittest("step group names", test_step_names), &
       new_unittest("summary analysis is the bare word", test_summary_analysis_word), &
       new_unittest("xdmf topology of every element type", test_xdmf_every_type) &

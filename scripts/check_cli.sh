@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Command-line checks of the feps program: exit statuses, help and version, a mesh-only
 # input, the main job's outputs, and that bad input leaves no result file behind.
+# FEPS and FEPS_TESTER name other builds of the program and the test runner to check (as
+# scripts/check_runtime.sh does with its sanitized build); by default, fpm's default build.
+# FEPS_FUZZ_MEMORY_GB: the fuzzer's address-space limit per case (default 4; AddressSanitizer's
+# shadow memory needs a limit beyond 16 TB).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 fpm build >/dev/null 2>&1 || { echo "check_cli: build failed" >&2; exit 1; }
-feps=$(fpm run --runner echo 2>/dev/null | tail -n 1)
+feps=${FEPS:-$(fpm run --runner echo 2>/dev/null | tail -n 1)}
 [ -x "$feps" ] || { echo "check_cli: cannot find the feps executable" >&2; exit 1; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -138,9 +142,9 @@ expect_status "solution beyond double precision" 1 "$feps" test/data/overflow_so
 
 # Mutated decks (fixed seeds): a clear answer every time, never a crash, a hang or a runaway
 # allocation (scripts/fuzz_input.py; longer campaigns in docs/verification.md).
-python3 scripts/fuzz_input.py --feps "$feps" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --check: $(tail -n 1 "$tmp/out")" || bad "fuzz --check: $(grep FAIL "$tmp/out" | head -3)"
-python3 scripts/fuzz_input.py --feps "$feps" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --run: $(tail -n 1 "$tmp/out")" || bad "fuzz --run: $(grep FAIL "$tmp/out" | head -3)"
 # ... and the fuzzer does fail on a program that crashes (exit 134) or hangs
 printf '#!/bin/sh\necho "Program received signal SIGSEGV" >&2\nexit 134\n' >"$tmp/crash" && chmod +x "$tmp/crash"
@@ -611,7 +615,7 @@ expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" 
 expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapter 9 results" \
   python3 scripts/orderings_model_a_ch9.py "$tmp/empty"
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).
-tester=$(fpm test --runner echo 2>/dev/null | tail -n 1)
+tester=${FEPS_TESTER:-$(fpm test --runner echo 2>/dev/null | tail -n 1)}
 expect_line "fpm test -- nosuchsuite" 2 'no test suite "nosuchsuite" (the suites: datain' "$tester" nosuchsuite
 
 echo "$pass passed, $fail failed"

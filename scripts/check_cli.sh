@@ -1,10 +1,16 @@
 #!/usr/bin/env bash
 # Command-line checks of the feps program: exit statuses, help and version, a mesh-only
 # input, the main job's outputs, and that bad input leaves no result file behind.
+# FEPS and FEPS_TESTER name other builds of the program and the test runner to check (as
+# scripts/check_runtime.sh does with its sanitized build); by default, fpm's default build.
+# FEPS_FUZZ_MEMORY_GB, FEPS_FUZZ_TIMEOUT: the fuzzer's address-space limit (default 4 GB;
+# AddressSanitizer's shadow memory needs more than 16 TB) and time (default 60 s) per case.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 fpm build >/dev/null 2>&1 || { echo "check_cli: build failed" >&2; exit 1; }
-feps=$(fpm run --runner echo 2>/dev/null | tail -n 1)
+feps=${FEPS:-$(fpm run --runner echo 2>/dev/null | tail -n 1)}
+feps=${feps#"$PWD/"}    # relative when inside the package (the relative-FEPS campaign check below)
+case $feps in /*) feps_abs=$feps ;; *) feps_abs=$PWD/$feps ;; esac
 [ -x "$feps" ] || { echo "check_cli: cannot find the feps executable" >&2; exit 1; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -142,9 +148,9 @@ expect_status "solution beyond double precision" 1 "$feps" test/data/overflow_so
 
 # Mutated decks (fixed seeds): a clear answer every time, never a crash, a hang or a runaway
 # allocation (scripts/fuzz_input.py; longer campaigns in docs/verification.md).
-python3 scripts/fuzz_input.py --feps "$feps" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --check: $(tail -n 1 "$tmp/out")" || bad "fuzz --check: $(grep FAIL "$tmp/out" | head -3)"
-python3 scripts/fuzz_input.py --feps "$feps" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --run: $(tail -n 1 "$tmp/out")" || bad "fuzz --run: $(grep FAIL "$tmp/out" | head -3)"
 # ... and the fuzzer does fail on a program that crashes (exit 134) or hangs
 printf '#!/bin/sh\necho "Program received signal SIGSEGV" >&2\nexit 134\n' >"$tmp/crash" && chmod +x "$tmp/crash"
@@ -410,7 +416,7 @@ python3 scripts/export_inp.py "$tmp/bl.h5" test/data/bilinear_load.dat -o "$tmp/
 
 # A campaign with a bad deck stops before running anything (feps --check on every deck first).
 camp="check_cli_$$"
-FEPS="$PWD/$feps" bash scripts/campaign.sh "$camp" test/data/cube.dat test/data/bad/rigid_body_mode.dat \
+FEPS="$feps_abs" bash scripts/campaign.sh "$camp" test/data/cube.dat test/data/bad/rigid_body_mode.dat \
   >"$tmp/out" 2>"$tmp/err"; got=$?
 [ "$got" -eq 2 ] && grep -q "rigid_body_mode.dat: the stiffness matrix is singular" "$tmp/err" \
   && [ ! -e "results/$camp/cube" ] && ok "campaign.sh with a bad deck: exit 2, nothing run" \
@@ -586,7 +592,7 @@ PY
 # A parametric campaign end to end: decks with PARAMETERS, campaign.sh's CSV has their columns,
 # plot_campaign.py draws the trend (and names a column the CSV lacks).
 camp="check_cli_sweep_$$"
-FEPS="$PWD/$feps" JOBS=2 bash scripts/campaign.sh "$camp" "$tmp/mb_grid/SE_Es144.dat" "$tmp/mb_grid/SE_Es50.dat" \
+FEPS="$feps_abs" JOBS=2 bash scripts/campaign.sh "$camp" "$tmp/mb_grid/SE_Es144.dat" "$tmp/mb_grid/SE_Es50.dat" \
   >"$tmp/out" 2>&1
 python3 - "results/$camp/summary.csv" <<'PY' && ok "campaign.sh: one column per PARAMETERS value" \
   || bad "campaign.sh: one column per PARAMETERS value: $(cat "results/$camp/summary.csv" 2>/dev/null | head -3)"
@@ -605,7 +611,7 @@ rm -rf "results/$camp"
 # The prestress study end to end, 2 steps: CR and a q = 1 MPa band built both ways (PRESTRESS for
 # the pretensioned one); the band lowers the external layer's peak tension (thesis 9.3, PR2).
 camp="check_cli_prestress_$$"
-FEPS="$PWD/$feps" JOBS=2 python3 scripts/study_prestress.py --q 1 --steps 2 --name "$camp" >"$tmp/out" 2>&1
+FEPS="$feps_abs" JOBS=2 python3 scripts/study_prestress.py --q 1 --steps 2 --name "$camp" >"$tmp/out" 2>&1
 python3 - "results/$camp/prestress.csv" <<'PY' && [ -s "results/$camp/prestress.png" ] \
   && ok "study_prestress.py: a q = 1 band, both ways, against CR" || bad "study_prestress.py: $(tail -5 "$tmp/out")"
 import csv, sys
@@ -717,7 +723,7 @@ expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" 
 expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapter 9 results" \
   python3 scripts/orderings_model_a_ch9.py "$tmp/empty"
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).
-tester=$(fpm test --runner echo 2>/dev/null | tail -n 1)
+tester=${FEPS_TESTER:-$(fpm test --runner echo 2>/dev/null | tail -n 1)}
 expect_line "fpm test -- nosuchsuite" 2 'no test suite "nosuchsuite" (the suites: datain' "$tester" nosuchsuite
 
 echo "$pass passed, $fail failed"

@@ -2,6 +2,7 @@
 !! error on failure; `check` compares values with stated tolerances.
 module feps_testing
   use, intrinsic :: iso_fortran_env, only: error_unit
+  use, intrinsic :: ieee_exceptions, only: ieee_usual, ieee_get_halting_mode, ieee_set_halting_mode
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_internal, str
   implicit none
@@ -21,6 +22,10 @@ module feps_testing
   type :: unittest_t
     character(len=:), allocatable :: name
     procedure(test_procedure), pointer, nopass :: run => null()
+    !> The test makes non-finite numbers on purpose (an overflow, a NaN input that a guard must
+    !! refuse): it runs with floating-point halting off, so that a build with -ffpe-trap
+    !! (scripts/check_runtime.sh) runs it to its checks instead of stopping at the trap.
+    logical :: nonfinite = .false.
   end type unittest_t
 
   abstract interface
@@ -42,12 +47,15 @@ module feps_testing
 
 contains
 
-  function new_unittest(name, run) result(test)
+  !> A unit test; `nonfinite`: it makes non-finite numbers on purpose (see unittest_t).
+  function new_unittest(name, run, nonfinite) result(test)
     character(len=*), intent(in) :: name
     procedure(test_procedure) :: run
+    logical, intent(in), optional :: nonfinite
     type(unittest_t) :: test
     test%name = name
     test%run => run
+    if (present(nonfinite)) test%nonfinite = nonfinite
   end function new_unittest
 
   function new_testsuite(name, collect) result(suite)
@@ -107,6 +115,7 @@ contains
     type(error_t), allocatable :: error
     character(len=:), allocatable :: names
     integer :: i, j, npass, first, last
+    logical :: halting(size(ieee_usual))
     npass = 0
     nfail = 0
     first = 1
@@ -133,7 +142,13 @@ contains
       if (len_trim(only) > 0 .and. index(' ' // only // ' ', ' ' // suites(i)%name // ' ') == 0) cycle
       call suites(i)%collect(tests)
       do j = 1, size(tests)
+        ! Halting is set and restored here: a procedure using the IEEE modules restores it on return.
+        if (tests(j)%nonfinite) then
+          call ieee_get_halting_mode(ieee_usual, halting)
+          call ieee_set_halting_mode(ieee_usual, .false.)
+        end if
         call tests(j)%run(error)
+        if (tests(j)%nonfinite) call ieee_set_halting_mode(ieee_usual, halting)
         if (allocated(error)) then
           nfail = nfail + 1
           write (*, '(a)') '  FAIL ' // suites(i)%name // ': ' // tests(j)%name // ': ' // error%message

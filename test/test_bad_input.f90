@@ -80,7 +80,7 @@ contains
       new_unittest('a MATERIAL parameter given twice', test_material_key_twice), &
       new_unittest('a material name with a slash', test_material_name_slash), &
       new_unittest('ELASTIC with a negative G names G and its field, not the derived E', test_elastic_g_negative), &
-      new_unittest('ELASTIC with a G whose E overflows names G', test_elastic_g_overflow), &
+      new_unittest('ELASTIC with a G whose E overflows names G', test_elastic_g_overflow, nonfinite=.true.), &
       new_unittest('ELASTIC with an unknown key names its field', test_elastic_unknown_key), &
       new_unittest('an unknown material kind names its field', test_material_kind_unknown), &
       new_unittest('MATSUOKA with FT and C names the second', test_matsuoka_ft_and_c), &
@@ -93,20 +93,24 @@ contains
       new_unittest('PRESTRESS before its group is born', test_prestress_before_birth), &
       new_unittest('PRESTRESS with FORCE= and STRESS=', test_prestress_force_and_stress), &
       new_unittest('PRESTRESS with a bare number', test_prestress_bare_value), &
-      new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow), &
+      new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow, nonfinite=.true.), &
       new_unittest('PRESTRESS, BOND=AFTER in the last stage', test_prestress_bond_last_stage), &
       new_unittest('PRESTRESS, BOND=AFTER on a group ACTIVATEd in another stage', test_prestress_bond_activate), &
       new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word), &
       new_unittest('OUTPUT naming a .xmf file (the XDMF file would replace it)', test_output_xmf), &
-      new_unittest('a load beyond double precision names the load', test_load_overflow), &
-      new_unittest('stage loads adding up beyond double precision name the stage', test_stage_load_overflow), &
-      new_unittest('a solution beyond double precision stops the run, no result file', test_solution_overflow), &
-      new_unittest('a failed run removes the results an earlier run left under its name', test_failed_run_removes_stale), &
+      new_unittest('a load beyond double precision names the load', test_load_overflow, nonfinite=.true.), &
+      new_unittest('stage loads adding up beyond double precision name the stage', test_stage_load_overflow, &
+                   nonfinite=.true.), &
+      new_unittest('a solution beyond double precision stops the run, no result file', test_solution_overflow, &
+                   nonfinite=.true.), &
+      new_unittest('a failed run removes the results an earlier run left under its name', test_failed_run_removes_stale, &
+                   nonfinite=.true.), &
       new_unittest('REPORT, TILT on a section without nodes: before the first step, and by --check', &
                    test_report_no_section), &
       new_unittest('REPORT, ROTATION spanning beyond its ring: before the first step, and by --check', &
                    test_report_ring_span), &
-      new_unittest('node coordinates beyond double precision, in a run and by --check', test_coordinates_overflow) &
+      new_unittest('node coordinates beyond double precision, in a run and by --check', test_coordinates_overflow, &
+                   nonfinite=.true.) &
       ]
   end subroutine collect_bad_input
 

@@ -53,7 +53,7 @@ contains
       new_unittest("ring_curved_uniform_expansion", test_ring_expansion), &
       new_unittest("ring_bar3_zero_energy_mode", test_ring_mechanism), &
       new_unittest("elastic_bar_update", test_material_update), &
-      new_unittest("elastic_bar_validator", test_material_validator) &
+      new_unittest("elastic_bar_validator", test_material_validator, nonfinite=.true.) &
     ]
   end subroutine collect_bars
 

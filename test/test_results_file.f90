@@ -31,9 +31,10 @@ contains
       new_unittest("mesh-only xdmf", test_mesh_only_xdmf), &
       new_unittest("discard leaves no file", test_discard), &
       new_unittest("contract violations are errors", test_contract_errors), &
-      new_unittest("non-finite values are refused", test_non_finite_refused), &
+      new_unittest("non-finite values are refused", test_non_finite_refused, nonfinite=.true.), &
       new_unittest("step group names", test_step_names), &
       new_unittest("summary analysis is the bare word", test_summary_analysis_word), &
+      new_unittest("PARAMETERS starting with a word: words as strings, numbers as reals", test_summary_parameters), &
       new_unittest("xdmf topology of every element type", test_xdmf_every_type) &
     ]
   end subroutine collect_results_file
@@ -679,6 +680,39 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_summary_analysis_word
+
+  !> test/data/cube_parameters.dat: PARAMETERS, kind=F, E_s=144, tag=S1. write_parameters
+  !! tested the number of a value that was no number (kind=F) before knowing it was one: a read
+  !! of an uninitialised real, which a build with -finit-real=snan -ffpe-trap=invalid stopped
+  !! on (scripts/check_runtime.sh runs this test under such a build).
+  subroutine test_summary_parameters(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path, kind, tag
+    type(run_options_t) :: options
+    type(run_summary_t) :: summary
+    integer(hid_t) :: file_id
+    integer :: hdferr
+    real(dp) :: e_s
+    path = scratch_path('parameters.h5')
+    options%deck = 'test/data/cube_parameters.dat'
+    options%output = path
+    options%quiet = .true.
+    call run_feps(options, summary, error)
+    if (allocated(error)) return
+    call open_read(path, file_id, error)
+    if (allocated(error)) return
+    kind = string_attribute(file_id, '/summary', 'parameter_kind')
+    e_s = real_attribute(file_id, '/summary', 'parameter_E_s')
+    tag = string_attribute(file_id, '/summary', 'parameter_tag')
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(path)
+    call delete_file(scratch_path('parameters.xmf'))
+    call check(error, kind == 'F' .and. len(kind) == 1, "parameter_kind is '" // kind // "', expected 'F'")
+    if (allocated(error)) return
+    call check(error, e_s, 144.0_dp, 'parameter_E_s', abs=0.0_dp)
+    if (allocated(error)) return
+    call check(error, tag == 'S1' .and. len(tag) == 2, "parameter_tag is '" // tag // "', expected 'S1'")
+  end subroutine test_summary_parameters
 
   !> Every feps element type is in the XDMF file with its cell type, and /xdmf/<group>/topology
   !! holds the 0-based node numbers of that cell: all nodes for solids and bars (bars as polylines

@@ -696,6 +696,7 @@ contains
     if (st%explicit_nodes > 0) nnode = max(nnode, maxval(st%explicit_ids))
     allocate (model%coords(3, nnode), defined(nnode))
     defined = .false.
+    model%coords = 0.0_dp       ! a gap in the numbering is no node, at the origin (never read as garbage)
     model%coords(:, 1:st%mesh%nnode) = st%mesh%coords(:, 1:st%mesh%nnode)
     defined(1:st%mesh%nnode) = .true.
     do i = 1, st%explicit_nodes

@@ -633,11 +633,16 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp) :: v
     integer :: i, ios
+    logical :: number
     if (.not. allocated(model%parameter_names)) return
     do i = 1, size(model%parameter_names)
-      ios = 1
-      if (is_real_text(trim(model%parameter_values(i)))) read (model%parameter_values(i), *, iostat=ios) v
-      if (ios == 0 .and. abs(v) <= huge(v)) then
+      ! v is defined only if the read succeeded (Fortran's .and. need not short-circuit)
+      number = .false.
+      if (is_real_text(trim(model%parameter_values(i)))) then
+        read (model%parameter_values(i), *, iostat=ios) v
+        if (ios == 0) number = abs(v) <= huge(v)
+      end if
+      if (number) then
         call h5%write_summary_real('parameter_' // trim(model%parameter_names(i)), v, error)
       else
         call h5%write_summary_string('parameter_' // trim(model%parameter_names(i)), &

@@ -3,6 +3,7 @@
 module test_elements
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_geometry_testing, only: cross, add_edge_integrals
   use feps_error, only: str
   use feps_gauss, only: gauss_legendre, square_rule, cube_rule
   use feps_element, only: element_t
@@ -91,12 +92,6 @@ contains
       dg(:, :, g) = d
     end do
   end function d_at_points
-
-  pure function cross(a, b) result(c)
-    real(dp), intent(in) :: a(3), b(3)
-    real(dp) :: c(3)
-    c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
-  end function cross
 
   !> Natural coordinates of the hex8 corners (independent copy of the node order in the brief).
   pure function corner_xi() result(xi)
@@ -1085,11 +1080,10 @@ contains
     real(dp), parameter :: p = 2.5_dp
     real(dp), allocatable :: xe(:, :), xg(:, :), normal(:, :), wda(:), nf(:, :)
     integer, allocatable :: fn(:)
-    real(dp) :: force(3), moment(3), area(3), loop_moment(3), s(4), ws(4), xa(3), xb(3), xm(3), x(3), dx(3)
+    real(dp) :: force(3), moment(3), area(3), loop_moment(3), xa(3), xb(3), xm(3), x(3)
     real(dp) :: size_face
-    integer :: k, face, g, a, b, edge
+    integer :: k, face, a, b, edge
     character(len=:), allocatable :: label
-    call gauss_legendre(4, s, ws)
     do k = 1, 3
       select case (k)
       case (1)
@@ -1130,12 +1124,7 @@ contains
           else
             xm = 0.5_dp * (xa + xb)
           end if
-          do g = 1, 4
-            x = 0.5_dp * s(g) * (s(g) - 1.0_dp) * xa + 0.5_dp * s(g) * (s(g) + 1.0_dp) * xb + (1.0_dp - s(g)**2) * xm
-            dx = (s(g) - 0.5_dp) * xa + (s(g) + 0.5_dp) * xb - 2.0_dp * s(g) * xm
-            area = area + 0.5_dp * ws(g) * cross(x, dx)
-            loop_moment = loop_moment + 0.5_dp * ws(g) * dot_product(x, x) * dx
-          end do
+          call add_edge_integrals(xa, xb, xm, area, loop_moment)
         end do
         size_face = sqrt(norm2(area)) * maxval(abs(xe))
         call check(error, norm2(force + p * area), 0.0_dp, label // ' face ' // str(face) // &

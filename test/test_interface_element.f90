@@ -5,8 +5,8 @@
 module test_interface_element
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_geometry_testing, only: cross, add_edge_integrals
   use feps_error, only: err_input
-  use feps_gauss, only: gauss_legendre
   use feps_interface_element, only: interface_element_t, new_interface_element, is_interface_type
   implicit none
   private
@@ -72,12 +72,6 @@ contains
       r(i, i) = 1.0_dp
     end do
   end function identity3
-
-  pure function cross(u, v) result(w)
-    real(dp), intent(in) :: u(3), v(3)
-    real(dp) :: w(3)
-    w = [u(2) * v(3) - u(3) * v(2), u(3) * v(1) - u(1) * v(3), u(1) * v(2) - u(2) * v(1)]
-  end function cross
 
   !> Both layers (coincident) from the lower-layer coordinates.
   pure function both_layers(lower) result(xe)
@@ -1010,12 +1004,11 @@ contains
     real(dp), parameter :: line_nat(3) = [-1.0_dp, 1.0_dp, 0.0_dp], p = -3.0_dp, radius = 2.5_dp
     type(interface_element_t) :: element
     real(dp), allocatable :: lower(:, :), xe(:, :), sig(:, :), fe(:)
-    real(dp) :: r(3, 3), u(2), th, force(3), moment(3), area(3), loop(3), s(4), ws(4), xa(3), xb(3), xm(3), x(3)
-    real(dp) :: dx(3), m2, scale
-    integer :: k, np, nd, a, corners, edge, g, up
+    real(dp) :: r(3, 3), u(2), th, force(3), moment(3), area(3), loop(3), xa(3), xb(3), xm(3), x(3)
+    real(dp) :: m2, scale
+    integer :: k, np, nd, a, corners, edge, up
     integer, allocatable :: mid(:)
     r = rotation()
-    call gauss_legendre(4, s, ws)
     do k = 1, nshape
       call new_interface_element(shapes(k), element, error)
       if (allocated(error)) return
@@ -1079,12 +1072,7 @@ contains
           else
             xm = 0.5_dp * (xa + xb)
           end if
-          do g = 1, 4
-            x = 0.5_dp * s(g) * (s(g) - 1.0_dp) * xa + 0.5_dp * s(g) * (s(g) + 1.0_dp) * xb + (1.0_dp - s(g)**2) * xm
-            dx = (s(g) - 0.5_dp) * xa + (s(g) + 0.5_dp) * xb - 2.0_dp * s(g) * xm
-            area = area + 0.5_dp * ws(g) * cross(x, dx)
-            loop = loop + 0.5_dp * ws(g) * dot_product(x, x) * dx
-          end do
+          call add_edge_integrals(xa, xb, xm, area, loop)
         end do
       end if
       m2 = norm2(area)

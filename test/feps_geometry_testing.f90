@@ -1,0 +1,38 @@
+!> Geometry for the tests' closed forms of surface loads: the cross product and the boundary
+!! integrals of a face whose edges are quadratic curves (straight edges have the mid-point as
+!! their middle node).
+module feps_geometry_testing
+  use feps_kinds, only: dp
+  use feps_gauss, only: gauss_legendre
+  implicit none
+  private
+
+  public :: cross, add_edge_integrals
+
+contains
+
+  !> a x b
+  pure function cross(a, b) result(c)
+    real(dp), intent(in) :: a(3), b(3)
+    real(dp) :: c(3)
+    c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
+  end function cross
+
+  !> Add the integrals along the quadratic edge from `xa` through `xm` to `xb` that give a face's
+  !! vector area, 1/2 closed-integral of x cross dx, and its load moment, 1/2 closed-integral of
+  !! |x|^2 dx (Stokes). The integrands are polynomials of degree 3 and 5: 4 Gauss points are exact.
+  pure subroutine add_edge_integrals(xa, xb, xm, area, loop)
+    real(dp), intent(in) :: xa(3), xb(3), xm(3)
+    real(dp), intent(inout) :: area(3), loop(3)
+    real(dp) :: s(4), ws(4), x(3), dx(3)
+    integer :: g
+    call gauss_legendre(4, s, ws)
+    do g = 1, 4
+      x = 0.5_dp * s(g) * (s(g) - 1.0_dp) * xa + 0.5_dp * s(g) * (s(g) + 1.0_dp) * xb + (1.0_dp - s(g)**2) * xm
+      dx = (s(g) - 0.5_dp) * xa + (s(g) + 0.5_dp) * xb - 2.0_dp * s(g) * xm
+      area = area + 0.5_dp * ws(g) * cross(x, dx)
+      loop = loop + 0.5_dp * ws(g) * dot_product(x, x) * dx
+    end do
+  end subroutine add_edge_integrals
+
+end module feps_geometry_testing

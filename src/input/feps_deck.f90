@@ -873,13 +873,16 @@ contains
       associate (p => model%prestresses(i), g => model%groups(model%prestresses(i)%group))
         if (p%per_area) then
           call model%materials(g%material)%get('a', area, found)
-          p%force = p%force * area      ! without A: an error when the materials are built
-          p%per_area = .false.
-          if (.not. abs(p%force) <= huge(1.0_dp)) then
-            call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '": STRESS times ' // &
-                             'the area A of material ' // g%material_name // ' overflows', 3)
-            return
+          if (found) then   ! without A: an error when the materials are built
+            ! tested before the product, which would overflow (and trap under -ffpe-trap)
+            if (abs(area) > 1.0_dp .and. abs(p%force) > huge(1.0_dp) / abs(area)) then
+              call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '": STRESS times ' // &
+                               'the area A of material ' // g%material_name // ' overflows', 3)
+              return
+            end if
+            p%force = p%force * area
           end if
+          p%per_area = .false.
         end if
         if (p%bond_after) cycle
         born = max(1, g%activate_stage)

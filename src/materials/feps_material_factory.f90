@@ -68,11 +68,12 @@ contains
         call material_error(error, spec, 'G = ' // str(g) // ' must be positive and finite', 'g')
         return
       end if
-      e = 2.0_dp * g * (1.0_dp + nu)
-      if (.not. (e <= huge(e))) then   ! a finite G near huge() overflows E = 2 G (1 + nu)
+      ! tested before the product, which would overflow (and trap under -ffpe-trap)
+      if (g > huge(g) / (2.0_dp * (1.0_dp + nu))) then
         call material_error(error, spec, 'G = ' // str(g) // ' is too large: E = 2 G (1 + NU) overflows', 'g')
         return
       end if
+      e = 2.0_dp * g * (1.0_dp + nu)
       has_e = .true.
     end if
     if (.not. has_e) then

@@ -63,6 +63,11 @@ fail() { fails+=("$1"); echo "  FAIL $1"; }
 broken() { grep -q "Fortran runtime error\|Program received signal\|runtime error:\|ERROR: AddressSanitizer\|ERROR: LeakSanitizer" "$1"; }
 
 exe_of() {  # flag-set c-flags link-flags kind(run|test): the executable fpm builds for them
+  # fpm (0.x) does not relink an executable of a non-default flag set when only the library
+  # changed: remove it so that it is linked against the library just built.
+  local exe
+  exe=$(fpm "$4" --flag "$1" --c-flag "$2" --link-flag "$3" --runner echo 2>/dev/null | tail -n 1)
+  rm -f "$exe"
   fpm "$4" --flag "$1" --c-flag "$2" --link-flag "$3" --runner echo 2>/dev/null | tail -n 1
 }
 

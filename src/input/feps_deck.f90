@@ -874,11 +874,14 @@ contains
         if (p%per_area) then
           call model%materials(g%material)%get('a', area, found)
           if (found) then   ! without A: an error when the materials are built
-            ! tested before the product, which would overflow (and trap under -ffpe-trap)
-            if (abs(area) > 1.0_dp .and. abs(p%force) > huge(1.0_dp) / abs(area)) then
-              call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '": STRESS times ' // &
-                               'the area A of material ' // g%material_name // ' overflows', 3)
-              return
+            ! tested before the product, which would overflow (and trap under -ffpe-trap); with
+            ! |A| <= 1 it cannot, and huge / |A| would (Fortran's .and. need not short-circuit)
+            if (abs(area) > 1.0_dp) then
+              if (abs(p%force) > huge(1.0_dp) / abs(area)) then
+                call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '": STRESS times ' // &
+                                 'the area A of material ' // g%material_name // ' overflows', 3)
+                return
+              end if
             end if
             p%force = p%force * area
           end if

@@ -68,10 +68,13 @@ contains
         call material_error(error, spec, 'G = ' // str(g) // ' must be positive and finite', 'g')
         return
       end if
-      ! tested before the product, which would overflow (and trap under -ffpe-trap)
-      if (g > huge(g) / (2.0_dp * (1.0_dp + nu))) then
-        call material_error(error, spec, 'G = ' // str(g) // ' is too large: E = 2 G (1 + NU) overflows', 'g')
-        return
+      ! tested before the product, which would overflow (and trap under -ffpe-trap); a factor
+      ! 2 (1 + nu) <= 1 cannot make it overflow, and huge / factor would
+      if (2.0_dp * (1.0_dp + nu) > 1.0_dp) then
+        if (g > huge(g) / (2.0_dp * (1.0_dp + nu))) then
+          call material_error(error, spec, 'G = ' // str(g) // ' is too large: E = 2 G (1 + NU) overflows', 'g')
+          return
+        end if
       end if
       e = 2.0_dp * g * (1.0_dp + nu)
       has_e = .true.

@@ -5,6 +5,11 @@ module test_bad_input
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_error, only: err_input, err_input_file, err_model, err_solver, str
   use feps_program, only: run_options_t, run_summary_t, run_feps
+  use feps_kinds, only: dp
+  use feps_material, only: material_t
+  use feps_material_factory, only: new_material
+  use feps_linear_elastic, only: linear_elastic_t
+  use feps_material_testing, only: material_spec
   implicit none
   private
 
@@ -80,7 +85,9 @@ contains
       new_unittest('a MATERIAL parameter given twice', test_material_key_twice), &
       new_unittest('a material name with a slash', test_material_name_slash), &
       new_unittest('ELASTIC with a negative G names G and its field, not the derived E', test_elastic_g_negative), &
-      new_unittest('ELASTIC with a G whose E overflows names G', test_elastic_g_overflow, nonfinite=.true.), &
+      new_unittest('ELASTIC with a G whose E overflows names G', test_elastic_g_overflow), &
+      new_unittest('ELASTIC with G near huge() and NU near -1 is accepted (E does not overflow)', &
+                   test_elastic_g_large_nu_negative), &
       new_unittest('ELASTIC with an unknown key names its field', test_elastic_unknown_key), &
       new_unittest('an unknown material kind names its field', test_material_kind_unknown), &
       new_unittest('MATSUOKA with FT and C names the second', test_matsuoka_ft_and_c), &
@@ -93,7 +100,7 @@ contains
       new_unittest('PRESTRESS before its group is born', test_prestress_before_birth), &
       new_unittest('PRESTRESS with FORCE= and STRESS=', test_prestress_force_and_stress), &
       new_unittest('PRESTRESS with a bare number', test_prestress_bare_value), &
-      new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow, nonfinite=.true.), &
+      new_unittest('PRESTRESS whose STRESS times A overflows', test_prestress_overflow), &
       new_unittest('PRESTRESS, BOND=AFTER in the last stage', test_prestress_bond_last_stage), &
       new_unittest('PRESTRESS, BOND=AFTER on a group ACTIVATEd in another stage', test_prestress_bond_activate), &
       new_unittest('PRESTRESS, BOND= neither BEFORE nor AFTER', test_prestress_bond_word), &
@@ -526,6 +533,23 @@ contains
                         [character(len=60) :: 'elastic_g_overflow.dat:15: field 4:', 'material steel', &
                          'G = 0.100000E+309 is too large'], error)
   end subroutine test_elastic_g_overflow
+
+  !> The overflow guard of E = 2 G (1 + NU) is tested before the product and must not refuse
+  !! a G whose E is finite: G = 1e308 with NU = -0.9 gives E = 2e307 (a factor 2 (1 + NU) = 0.2
+  !! below 1, where huge / factor itself would overflow).
+  subroutine test_elastic_g_large_nu_negative(error)
+    type(error_t), allocatable, intent(out) :: error
+    class(material_t), allocatable :: mat
+    call new_material(material_spec('steel', 'elastic', [character(len=2) :: 'g', 'nu'], [1.0e308_dp, -0.9_dp]), &
+                      mat, error)
+    if (allocated(error)) return
+    select type (mat)
+    type is (linear_elastic_t)
+      call check(error, mat%e, 2.0e307_dp, 'E = 2 G (1 + NU)', rel=1.0e-15_dp)
+    class default
+      call test_failed(error, 'ELASTIC did not give a linear_elastic_t')
+    end select
+  end subroutine test_elastic_g_large_nu_negative
 
   subroutine test_elastic_unknown_key(error)
     type(error_t), allocatable, intent(out) :: error

@@ -76,7 +76,7 @@ contains
           return
         end if
       end if
-      e = 2.0_dp * g * (1.0_dp + nu)
+      e = g * (2.0_dp * (1.0_dp + nu))   ! 2 G first would overflow where E does not
       has_e = .true.
     end if
     if (.not. has_e) then

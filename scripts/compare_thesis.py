@@ -446,9 +446,20 @@ MODEL_B_DIAGONAL_PEAK = (
     "load's is 17-27% lower. The "
     "rest of thesis 5.6 (5) holds: under the diagonal load the tension is higher on the external surface "
     "(the non-loaded corners, thesis 5.3.2) and spreads over 5-25 times the volume (rows beside)")
+MODEL_A_DIAGONAL_PEAK = (
+    "the global diagonal peaks lie on the external surface next to the upper end's x-support nodes "
+    "(the local constraint thesis 4.3.2 warns about) and order D3 > D2 > D1; on the internal surface, "
+    "where the thesis's contours show the high tension, D1 is the highest in both walls (peak_inner rows)")
+
 ORDERING_NOT_REPRODUCED = {
     **{(f"model B {m}D{k} vs {m}E{k}", "peak s1 (MPa): diagonal > edge"): MODEL_B_DIAGONAL_PEAK
        for m in "SFP" for k in (1, 2, 3)},
+    **{(f"modelA {big} vs {small} {wall}", f"peak s1 (MPa): {big} > {small}"): MODEL_A_DIAGONAL_PEAK
+       for big, small in (("D1", "D2"), ("D1", "D3"), ("D2", "D3")) for wall in ("thick", "thin")},
+    ("modelA D2 vs D3 thin", "peak_inner s1 (MPa): D2 > D3"):
+        "on the thin wall's internal surface the three diagonal cases lie within 7% (D1 29.03, D3 28.05, "
+        "D2 27.04 MPa; the thesis: differences 'less than for the edge loading'): D1 is the highest, as "
+        "the thesis says, but D3 comes second (the thick wall orders D1 > D2 > D3)",
     ("modelA E2 thin vs thick", "peak s1 (MPa): thin > thick x 25/14.3"):
         "the global peak ratio is 1.70 (above the end-pressure ratio 1.645, below 25/14.3); on the internal "
         "surface, which the thesis's contours show, thin/thick is 1.90-2.72 for every load",

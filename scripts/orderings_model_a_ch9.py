@@ -19,7 +19,9 @@ step of the run, Gauss-point values of the most tensile principal stress s1,
   - thin over thick "by more than the thickness ratio": larger = peak(thin),
     smaller = peak(thick) * 25 / 14.3 (= 1.748; the end-pressure ratio 1.20 / 0.73 = 1.645 is
     the weaker statement that the normalised thin-wall stress is higher);
-  - E1 over E3 (thick and thin);
+  - E1 over E3, E1 over E2 and E2 over E3 (thesis 4.3.1: E1 highest, E3 smallest), D1 over D2
+    and D1 over D3 (thesis 4.3.2: highest in D1), D2 over D3 (thesis: "E2 and D2 produce higher
+    tensile stresses ... than E3 and D3"), thick and thin;
   - diagonal over edge, Dk over Ek for k = 1, 2, 3 (thick and thin).
   The same rows are repeated with "peak_inner": max s1 over the Gauss points of the innermost
   element layer (the thesis describes the high-tension regions on the internal surface; this
@@ -125,9 +127,14 @@ def ordering_rows(results_dir):
                              f"{measure} s1 (MPa): thin > thick x 25/14.3",
                              ma[(case, "thin")][measure], ma[(case, "thick")][measure] * THICKNESS_RATIO))
         for wall in ("thick", "thin"):
-            if ("E1", wall) in ma and ("E3", wall) in ma:
-                rows.append((f"modelA E1 vs E3 {wall}", f"{measure} s1 (MPa): E1 > E3",
-                             ma[("E1", wall)][measure], ma[("E3", wall)][measure]))
+            # thesis 4.3.1: "the highest stress is in the case E1 and ... E3 is the smallest of the
+            # three"; 4.3.2: "the highest tensile stress is in the case D1"; 4.5: "E2 and D2 produce
+            # higher tensile stresses ... than E3 and D3"
+            for big, small in (("E1", "E3"), ("E1", "E2"), ("E2", "E3"), ("D1", "D2"), ("D1", "D3"),
+                               ("D2", "D3")):
+                if (big, wall) in ma and (small, wall) in ma:
+                    rows.append((f"modelA {big} vs {small} {wall}", f"{measure} s1 (MPa): {big} > {small}",
+                                 ma[(big, wall)][measure], ma[(small, wall)][measure]))
             for k in (1, 2, 3):
                 if (f"D{k}", wall) in ma and (f"E{k}", wall) in ma:
                     rows.append((f"modelA D{k} vs E{k} {wall}", f"{measure} s1 (MPa): diagonal > edge",

@@ -694,9 +694,9 @@ contains
     ! Nodes: DATAIN blocks first, explicit NODE records at their numbers.
     nnode = st%mesh%nnode
     if (st%explicit_nodes > 0) nnode = max(nnode, maxval(st%explicit_ids))
-    allocate (model%coords(3, nnode), defined(nnode))
-    defined = .false.
-    model%coords = 0.0_dp       ! a gap in the numbering is no node, at the origin (never read as garbage)
+    ! a gap in the numbering is no node, at the origin (never read as garbage)
+    allocate (model%coords(3, nnode), source=0.0_dp)
+    allocate (defined(nnode), source=.false.)
     model%coords(:, 1:st%mesh%nnode) = st%mesh%coords(:, 1:st%mesh%nnode)
     defined(1:st%mesh%nnode) = .true.
     do i = 1, st%explicit_nodes
@@ -874,14 +874,12 @@ contains
         if (p%per_area) then
           call model%materials(g%material)%get('a', area, found)
           if (found) then   ! without A: an error when the materials are built
-            ! tested before the product, which would overflow (and trap under -ffpe-trap); with
-            ! |A| <= 1 it cannot, and huge / |A| would (Fortran's .and. need not short-circuit)
-            if (abs(area) > 1.0_dp) then
-              if (abs(p%force) > huge(1.0_dp) / abs(area)) then
-                call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '": STRESS times ' // &
-                                 'the area A of material ' // g%material_name // ' overflows', 3)
-                return
-              end if
+            ! tested before the product, which would overflow (and trap under -ffpe-trap); an
+            ! |A| below 1 cannot make it overflow, and huge / |A| would
+            if (abs(p%force) > huge(1.0_dp) / max(1.0_dp, abs(area))) then
+              call input_error(error, p%file, p%line, 'PRESTRESS of group "' // g%name // '": STRESS times ' // &
+                               'the area A of material ' // g%material_name // ' overflows', 3)
+              return
             end if
             p%force = p%force * area
           end if

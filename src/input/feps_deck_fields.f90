@@ -5,7 +5,7 @@ module feps_deck_fields
   use feps_strings, only: to_upper
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
-  use feps_records, only: record_t, keyword, nfields, field_text, is_real_text, is_integer_text
+  use feps_records, only: record_t, keyword, nfields, field_text, is_integer_text, real_from_text
   use feps_coordinate_system, only: csys_cylindrical
   use feps_model, only: model_t
   implicit none
@@ -66,14 +66,9 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(record_t), intent(in) :: rec
     integer, intent(in) :: i
-    integer :: ios
-    v = 0.0_dp
-    ios = 1
-    ! The syntax first: a list-directed read alone takes '100-1' as 100e-1.
-    if (is_real_text(trim(adjustl(text)))) read (text, *, iostat=ios) v
-    if (ios /= 0 .or. v /= v .or. abs(v) > huge(v)) then
-      call input_error(error, rec%file, rec%line, 'expected a number, got "' // trim(text) // '"', i)
-    end if
+    logical :: ok
+    call real_from_text(text, v, ok)
+    if (.not. ok) call input_error(error, rec%file, rec%line, 'expected a number, got "' // trim(text) // '"', i)
   end subroutine parse_real
 
   subroutine parse_int(text, v, error, rec, i)

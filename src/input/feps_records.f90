@@ -13,6 +13,7 @@
 !! number counts from 1 over the whole record, continuation lines included). A missing
 !! field is reported on the record's last line, where it should have been.
 module feps_records
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_strings, only: to_upper
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, input_error, str, err_input_file, err_input
@@ -22,7 +23,7 @@ module feps_records
   public :: field_t, record_t
   public :: read_records, records_from_text
   public :: keyword, nfields, field_text, field_line, field_real, field_int, get_option
-  public :: record_error, is_integer_text, is_real_text
+  public :: record_error, is_integer_text, is_real_text, real_from_text
 
   !> One field of a record: its trimmed text and the line it is on.
   type :: field_t
@@ -167,7 +168,7 @@ contains
     integer, intent(in) :: i
     real(dp), intent(out) :: value
     type(error_t), allocatable, intent(out) :: error
-    integer :: iostat
+    logical :: ok
     value = 0.0_dp
     if (i > nfields(rec)) then
       call record_error(error, rec, 'missing field: expected a real number', i)
@@ -177,9 +178,9 @@ contains
       call record_error(error, rec, "expected a real number, got '" // rec%fields(i)%text // "'", i)
       return
     end if
-    read (rec%fields(i)%text, *, iostat=iostat) value
-    if (iostat /= 0) call record_error(error, rec, "real number out of range: '" // &
-                                       rec%fields(i)%text // "'", i)
+    call real_from_text(rec%fields(i)%text, value, ok)
+    if (.not. ok) call record_error(error, rec, "real number out of range: '" // &
+                                    rec%fields(i)%text // "'", i)
   end subroutine field_real
 
   !> Field i as an integer; error if it is missing or not an integer.
@@ -240,6 +241,22 @@ contains
     if (first > len(text)) return
     is_integer_text = verify(text(first:), '0123456789') == 0
   end function is_integer_text
+
+  !> The number `text` holds (blanks around it aside): `ok` when it has the syntax of
+  !! is_real_text and is finite in double precision; otherwise `v` = 0. The syntax comes first:
+  !! a list-directed read alone takes '100-1' as 100e-1.
+  pure subroutine real_from_text(text, v, ok)
+    character(len=*), intent(in) :: text
+    real(dp), intent(out) :: v
+    logical, intent(out) :: ok
+    integer :: ios
+    v = 0.0_dp
+    ok = .false.
+    if (.not. is_real_text(trim(adjustl(text)))) return
+    read (text, *, iostat=ios) v
+    if (ios == 0) ok = ieee_is_finite(v)
+    if (.not. ok) v = 0.0_dp
+  end subroutine real_from_text
 
   !> True for [sign] mantissa [exponent]: the mantissa has digits with at most one '.',
   !! the exponent is e, E, d or D, an optional sign and digits.

@@ -69,12 +69,10 @@ contains
         return
       end if
       ! tested before the product, which would overflow (and trap under -ffpe-trap); a factor
-      ! 2 (1 + nu) <= 1 cannot make it overflow, and huge / factor would
-      if (2.0_dp * (1.0_dp + nu) > 1.0_dp) then
-        if (g > huge(g) / (2.0_dp * (1.0_dp + nu))) then
-          call material_error(error, spec, 'G = ' // str(g) // ' is too large: E = 2 G (1 + NU) overflows', 'g')
-          return
-        end if
+      ! 2 (1 + nu) below 1 cannot make it overflow, and huge / factor would
+      if (g > huge(g) / max(1.0_dp, 2.0_dp * (1.0_dp + nu))) then
+        call material_error(error, spec, 'G = ' // str(g) // ' is too large: E = 2 G (1 + NU) overflows', 'g')
+        return
       end if
       e = g * (2.0_dp * (1.0_dp + nu))   ! 2 G first would overflow where E does not
       has_e = .true.

@@ -8,7 +8,7 @@ module feps_program
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson
   use feps_deck, only: read_deck
-  use feps_records, only: is_real_text
+  use feps_records, only: real_from_text
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
   use feps_clock, only: wall_clock
   use feps_incremental_analysis, only: analysis_summary_t, run_analysis, check_analysis
@@ -632,16 +632,11 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: error
     real(dp) :: v
-    integer :: i, ios
+    integer :: i
     logical :: number
     if (.not. allocated(model%parameter_names)) return
     do i = 1, size(model%parameter_names)
-      ! v is defined only if the read succeeded (Fortran's .and. need not short-circuit)
-      number = .false.
-      if (is_real_text(trim(model%parameter_values(i)))) then
-        read (model%parameter_values(i), *, iostat=ios) v
-        if (ios == 0) number = abs(v) <= huge(v)
-      end if
+      call real_from_text(model%parameter_values(i), v, number)
       if (number) then
         call h5%write_summary_real('parameter_' // trim(model%parameter_names(i)), v, error)
       else

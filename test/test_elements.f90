@@ -4,6 +4,7 @@ module test_elements
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_geometry_testing, only: cross, add_edge_integrals
+  use feps_elasticity_testing, only: isotropic_d, d_at_points
   use feps_error, only: str
   use feps_gauss, only: gauss_legendre, square_rule, cube_rule
   use feps_element, only: element_t
@@ -65,33 +66,6 @@ contains
   end subroutine collect_elements
 
   ! ------------------------------------------------------------------ helpers
-
-  !> Isotropic elastic matrix, Voigt [xx, yy, zz, yz, xz, xy], engineering shears.
-  pure function isotropic_d(e, nu) result(d)
-    real(dp), intent(in) :: e, nu
-    real(dp) :: d(6, 6), lambda, mu
-    lambda = e * nu / ((1.0_dp + nu) * (1.0_dp - 2.0_dp * nu))
-    mu = e / (2.0_dp * (1.0_dp + nu))
-    d = 0.0_dp
-    d(1:3, 1:3) = lambda
-    d(1, 1) = lambda + 2.0_dp * mu
-    d(2, 2) = lambda + 2.0_dp * mu
-    d(3, 3) = lambda + 2.0_dp * mu
-    d(4, 4) = mu
-    d(5, 5) = mu
-    d(6, 6) = mu
-  end function isotropic_d
-
-  !> The same D at every Gauss point.
-  pure function d_at_points(d, ng) result(dg)
-    real(dp), intent(in) :: d(6, 6)
-    integer, intent(in) :: ng
-    real(dp) :: dg(6, 6, ng)
-    integer :: g
-    do g = 1, ng
-      dg(:, :, g) = d
-    end do
-  end function d_at_points
 
   !> Natural coordinates of the hex8 corners (independent copy of the node order in the brief).
   pure function corner_xi() result(xi)

@@ -590,31 +590,7 @@ contains
     integer, intent(in) :: m
     real(dp), intent(in) :: diag
     type(csr_matrix_t) :: a
-    integer :: x, y, node
-    integer(i8) :: k
-    a%n = m * m
-    allocate (a%row_ptr(a%n + 1), a%col(3 * a%n), a%val(3 * a%n))
-    a%row_ptr(1) = 1
-    k = 0
-    do y = 1, m
-      do x = 1, m
-        node = (y - 1) * m + x
-        if (y > 1) call add(node - m, -1.0_dp)
-        if (x > 1) call add(node - 1, -1.0_dp)
-        call add(node, diag)
-        a%row_ptr(node + 1) = k + 1
-      end do
-    end do
-    a%col = a%col(1:k)
-    a%val = a%val(1:k)
-  contains
-    subroutine add(column, value)
-      integer, intent(in) :: column
-      real(dp), intent(in) :: value
-      k = k + 1
-      a%col(k) = column
-      a%val(k) = value
-    end subroutine add
+    a = grid_laplacian(m, m, 1, diag)
   end function grid_laplacian_2d
 
   !> 7-point stencil on an m x m x m grid numbered lexicographically.
@@ -622,18 +598,27 @@ contains
     integer, intent(in) :: m
     real(dp), intent(in) :: diag
     type(csr_matrix_t) :: a
+    a = grid_laplacian(m, m, m, diag)
+  end function grid_laplacian_3d
+
+  !> Lower triangle (CSR) of the nearest-neighbour stencil on an nx x ny x nz grid numbered
+  !! x fastest: `diag` on the diagonal, -1 to each lower neighbour.
+  function grid_laplacian(nx, ny, nz, diag) result(a)
+    integer, intent(in) :: nx, ny, nz
+    real(dp), intent(in) :: diag
+    type(csr_matrix_t) :: a
     integer :: x, y, z, node
     integer(i8) :: k
-    a%n = m**3
+    a%n = nx * ny * nz
     allocate (a%row_ptr(a%n + 1), a%col(4 * a%n), a%val(4 * a%n))
     a%row_ptr(1) = 1
     k = 0
-    do z = 1, m
-      do y = 1, m
-        do x = 1, m
-          node = ((z - 1) * m + (y - 1)) * m + x
-          if (z > 1) call add(node - m * m, -1.0_dp)
-          if (y > 1) call add(node - m, -1.0_dp)
+    do z = 1, nz
+      do y = 1, ny
+        do x = 1, nx
+          node = ((z - 1) * ny + (y - 1)) * nx + x
+          if (z > 1) call add(node - nx * ny, -1.0_dp)
+          if (y > 1) call add(node - nx, -1.0_dp)
           if (x > 1) call add(node - 1, -1.0_dp)
           call add(node, diag)
           a%row_ptr(node + 1) = k + 1
@@ -650,6 +635,6 @@ contains
       a%col(k) = column
       a%val(k) = value
     end subroutine add
-  end function grid_laplacian_3d
+  end function grid_laplacian
 
 end module test_skyline

@@ -107,25 +107,7 @@ contains
     map%rotated = any(map%node_csys /= 0)
     ! Plane strain: uz = 0 everywhere.
     if (model%plane_strain) map%constrained(3, :) = .true.
-    map%neq = 0
-    map%eq = 0
-    do n = 1, nn
-      if (.not. map%used(n)) cycle
-      do d = 1, 3
-        if (map%constrained(d, n)) cycle
-        map%neq = map%neq + 1
-        map%eq(d, n) = map%neq
-      end do
-    end do
-    allocate (map%eq_node(map%neq), map%eq_dof(map%neq))
-    do n = 1, nn
-      do d = 1, 3
-        if (map%eq(d, n) > 0) then
-          map%eq_node(map%eq(d, n)) = n
-          map%eq_dof(map%eq(d, n)) = d
-        end if
-      end do
-    end do
+    call number_equations(map)
   end subroutine build_dof_map
 
   !> The DOFs held in stage s (nodal directions): the constraint records active by then, in
@@ -202,7 +184,7 @@ contains
   subroutine build_all_dofs_map(model, map)
     type(model_t), intent(in) :: model
     type(dof_map_t), intent(out) :: map
-    integer :: nn, g, e, n, d
+    integer :: nn, g, e, n
     nn = model%nnode
     allocate (map%eq(3, nn), map%constrained(3, nn), map%node_csys(nn), map%basis(3, 3, nn), map%used(nn))
     map%constrained = .false.
@@ -213,18 +195,30 @@ contains
         map%used(model%groups(g)%connectivity(:, e)) = .true.
       end do
     end do
-    map%neq = 0
-    map%eq = 0
     do n = 1, nn
       map%basis(:, :, n) = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
+    end do
+    call number_equations(map)
+  end subroutine build_all_dofs_map
+
+  !> Equation numbers for the free DOFs of the nodes that elements use, node by node, and the
+  !! inverse maps (equation -> node, direction): what both DOF maps share once `used` and
+  !! `constrained` are set.
+  pure subroutine number_equations(map)
+    type(dof_map_t), intent(inout) :: map
+    integer :: n, d
+    map%neq = 0
+    map%eq = 0
+    do n = 1, size(map%used)
       if (.not. map%used(n)) cycle
       do d = 1, 3
+        if (map%constrained(d, n)) cycle
         map%neq = map%neq + 1
         map%eq(d, n) = map%neq
       end do
     end do
     allocate (map%eq_node(map%neq), map%eq_dof(map%neq))
-    do n = 1, nn
+    do n = 1, size(map%used)
       do d = 1, 3
         if (map%eq(d, n) > 0) then
           map%eq_node(map%eq(d, n)) = n
@@ -232,7 +226,7 @@ contains
         end if
       end do
     end do
-  end subroutine build_all_dofs_map
+  end subroutine number_equations
 
   logical function is_global(model, cs)
     type(model_t), intent(in) :: model

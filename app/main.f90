@@ -256,7 +256,7 @@ contains
   end function vec3
 
   !> The smallest Jacobian determinant of the solid elements for the summary; a model without
-  !> solids (bars only) has none.
+  !! solids (bars only) has none.
   function jacobian_text(j) result(text)
     real(dp), intent(in) :: j
     character(len=:), allocatable :: text

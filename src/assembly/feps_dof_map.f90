@@ -251,6 +251,7 @@ contains
     end if
   end function dof_name
 
+  !> True if some node has a nodal (cylindrical or rotated) system.
   pure logical function has_rotations(self)
     class(dof_map_t), intent(in) :: self
     has_rotations = self%rotated

@@ -17,6 +17,8 @@ module feps_deck_fields
 
 contains
 
+  !> A record with fewer than `n` fields (keyword included) is an error naming the first
+  !! missing field.
   subroutine require_fields(rec, n, error)
     type(record_t), intent(in) :: rec
     integer, intent(in) :: n
@@ -44,6 +46,7 @@ contains
                      field_text(rec, n + 1) // '" is one too many', n + 1)
   end subroutine forbid_extra_fields
 
+  !> Field `i` of `rec` as a finite real number; an error naming the field otherwise.
   subroutine get_real(rec, i, v, error)
     type(record_t), intent(in) :: rec
     integer, intent(in) :: i
@@ -52,6 +55,7 @@ contains
     call parse_real(field_text(rec, i), v, error, rec, i)
   end subroutine get_real
 
+  !> Field `i` of `rec` as an integer; an error naming the field otherwise.
   subroutine get_int(rec, i, v, error)
     type(record_t), intent(in) :: rec
     integer, intent(in) :: i
@@ -60,6 +64,7 @@ contains
     call parse_int(field_text(rec, i), v, error, rec, i)
   end subroutine get_int
 
+  !> `text` (field `i` of `rec`, for the message) as a finite real number.
   subroutine parse_real(text, v, error, rec, i)
     character(len=*), intent(in) :: text
     real(dp), intent(out) :: v
@@ -71,6 +76,7 @@ contains
     if (.not. ok) call input_error(error, rec%file, rec%line, 'expected a number, got "' // trim(text) // '"', i)
   end subroutine parse_real
 
+  !> `text` (field `i` of `rec`, for the message) as an integer (0 on error).
   subroutine parse_int(text, v, error, rec, i)
     character(len=*), intent(in) :: text
     integer, intent(out) :: v
@@ -84,6 +90,7 @@ contains
     if (ios /= 0) call input_error(error, rec%file, rec%line, 'expected an integer, got "' // trim(text) // '"', i)
   end subroutine parse_int
 
+  !> `text` as a real number or a range LO:HI with LO <= HI (a number: `lo` = `hi`).
   subroutine parse_range_real(text, lo, hi, error, rec, i)
     character(len=*), intent(in) :: text
     real(dp), intent(out) :: lo, hi
@@ -104,6 +111,7 @@ contains
     if (hi < lo) call input_error(error, rec%file, rec%line, 'empty range "' // text // '" (from > to)', i)
   end subroutine parse_range_real
 
+  !> `text` as an integer or a range LO:HI (an integer: `lo` = `hi`).
   subroutine parse_range_int(text, lo, hi, error, rec, i)
     character(len=*), intent(in) :: text
     integer, intent(out) :: lo, hi
@@ -209,6 +217,7 @@ contains
     end do
   end subroutine option_text
 
+  !> The real value of option KEY=value of `rec`; `value` unchanged when the option is absent.
   subroutine option_real(rec, key, value, found, error)
     type(record_t), intent(in) :: rec
     character(len=*), intent(in) :: key
@@ -221,6 +230,8 @@ contains
     if (found) call parse_real(text, value, error, rec, ifield)
   end subroutine option_real
 
+  !> The coordinate system named by option KEY=n of `rec` (`default` when absent); an error
+  !! for a system the model does not define.
   subroutine get_csys_option(rec, model, key, default, cs, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(in) :: model
@@ -277,6 +288,7 @@ contains
     end if
   end subroutine dof_index
 
+  !> The direction names `dof_index` knows in a system of kind `kind`, for messages.
   pure function dof_names(kind) result(s)
     integer, intent(in) :: kind
     character(len=:), allocatable :: s
@@ -327,6 +339,7 @@ contains
     end if
   end function element_family
 
+  !> 'interface', 'bar' or 'solid' for a material kind.
   pure function material_family(kind) result(family)
     character(len=*), intent(in) :: kind
     character(len=:), allocatable :: family

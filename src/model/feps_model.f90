@@ -351,6 +351,7 @@ contains
     end do
   end function material_field_of
 
+  !> Number of elements in all groups.
   pure integer function model_nelem(self) result(n)
     class(model_t), intent(in) :: self
     integer :: g
@@ -371,6 +372,7 @@ contains
     end do
   end function is_2d_type
 
+  !> True if some group holds interface elements.
   pure logical function has_interfaces(self)
     class(model_t), intent(in) :: self
     integer :: g
@@ -380,7 +382,6 @@ contains
     end do
   end function has_interfaces
 
-  !> Some DOF is held or freed from stage s on (FIX or RELEASE after the STAGE record of s).
   !> Axial force that stage s adds to the bars of each group by prestress: the stage's own
   !! PRESTRESS records plus its LOAD= fraction of the reference ones (0 for other groups). By
   !! default the bonded (pretensioned) records; with after = .true. the post-tensioned ones
@@ -417,6 +418,7 @@ contains
     if (allocated(self%prestresses)) is_prestressed = any(self%prestresses(:)%group == g)
   end function is_prestressed
 
+  !> Some DOF is held or freed from stage s on (FIX or RELEASE after the STAGE record of s).
   pure logical function supports_change(self, s)
     class(model_t), intent(in) :: self
     integer, intent(in) :: s
@@ -425,6 +427,7 @@ contains
     supports_change = any(self%constraints(:)%active_from == s)
   end function supports_change
 
+  !> Index of the node set called `name` (the last one if several); 0 if none.
   pure integer function find_node_set(self, name) result(idx)
     class(model_t), intent(in) :: self
     character(len=*), intent(in) :: name
@@ -436,6 +439,7 @@ contains
     end do
   end function find_node_set
 
+  !> Index of the face set called `name` (the last one if several); 0 if none.
   pure integer function find_face_set(self, name) result(idx)
     class(model_t), intent(in) :: self
     character(len=*), intent(in) :: name
@@ -447,6 +451,7 @@ contains
     end do
   end function find_face_set
 
+  !> Index of the material called `name` (the last one if several); 0 if none.
   pure integer function find_material(self, name) result(idx)
     class(model_t), intent(in) :: self
     character(len=*), intent(in) :: name
@@ -458,6 +463,7 @@ contains
     end do
   end function find_material
 
+  !> Index of the element group called `name` (the last one if several); 0 if none.
   pure integer function find_group(self, name) result(idx)
     class(model_t), intent(in) :: self
     character(len=*), intent(in) :: name

@@ -46,6 +46,7 @@ module feps_linear_solver
       real(dp), intent(inout) :: b(:)
       type(error_t), allocatable, intent(out) :: error
     end subroutine solve_interface
+    !> The solver's name as the summary and the results report it: 'cholmod' or 'skyline'.
     pure function name_interface(self) result(name)
       import :: linear_solver_t
       class(linear_solver_t), intent(in) :: self

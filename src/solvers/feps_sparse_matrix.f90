@@ -22,6 +22,7 @@ module feps_sparse_matrix
 
 contains
 
+  !> Number of stored entries (the lower triangle); 0 before the pattern is set.
   pure integer(i8) function csr_nnz(self)
     class(csr_matrix_t), intent(in) :: self
     csr_nnz = 0
@@ -49,6 +50,7 @@ contains
     end do
   end function csr_find
 
+  !> y = A x with the full symmetric matrix (each off-diagonal entry used twice).
   pure subroutine csr_multiply(self, x, y)
     class(csr_matrix_t), intent(in) :: self
     real(dp), intent(in) :: x(:)
@@ -65,6 +67,7 @@ contains
     end do
   end subroutine csr_multiply
 
+  !> The diagonal entries, the last entry of each row.
   pure function csr_diagonal(self) result(d)
     class(csr_matrix_t), intent(in) :: self
     real(dp) :: d(self%n)

@@ -1,0 +1,585 @@
+#!/usr/bin/env python3
+"""Run the examples of feps's manuals, so that the manuals cannot drift from the program.
+
+Every fenced block of the manuals named in DOCS carries a marker, an HTML comment on the line
+right before it (hidden in rendered Markdown) that says how it is checked; a block without one
+fails, so a new example needs a marker too. An inline command may carry one as well, right
+before its code span on the same line. A marker is
+
+    <!-- check: KIND key=value ... [flag ...] -->
+
+or the same spread over several lines, the lines after the first (up to `-->`) being its body:
+records or code that the example needs but does not show. KINDs:
+
+  deck      a complete deck: `feps DECK --check` accepts it. same-as=PATH: the block is that
+            file's records (comments and blank lines aside).
+  datain    a file holding only a DATAIN mesh: feps reports nodes=N and elements=M.
+  records   records of a deck: base=PATH (a deck of the repository; before=TEXT cuts it at
+            its first line starting with TEXT), then the body's records, then the block's,
+            and `feps --check` accepts the whole. each: every record of the block on its own
+            (alternatives, such as three MATERIAL records of one name). applied=fx,fy,fz:
+            the applied force --check prints (relative 1e-6 of its largest component; with
+            each, one triple per record separated by ';', '*' for none). run: run the deck
+            too; h5=PATH@ATTR=VALUE;...: attributes of its results (VALUE a number or text,
+            or empty for "exists"). stdout=REGEX: a line the run or check prints.
+            files=NAME,...: files of test/data/docs beside the deck (for INCLUDE).
+  error     lines `feps: error: FILE:LINE: ...`: the body's first line is base=PATH, each
+            further line the record that replaces line LINE of the base, in order. feps run on
+            FILE (the base with that record, under the name the message gives) must exit 2
+            and print exactly that line.
+  usage     the usage lines of `feps --help`, word for word.
+  command   a shell command (a block of them, or an inline code span), run by bash in a
+            sandbox of the repository (its folders linked, input/ a real folder) with `feps`
+            the program under test. append=ARGS: added to every line that runs feps (for
+            example --check for a run too long here). status=N (default 0). stdout=REGEX.
+            files=GLOB:COUNT: so many files match GLOB afterwards.
+  python    Python run in a temporary folder: h5=NAME:DECK first runs DECK into NAME; the
+            body's lines are appended (assertions on what the block computed).
+  h5-table  the table of docs/output-format.md right after the marker: every path it names
+            exists in the results of decks covering every kind of field, with the shape
+            (nnode, npoints, nelem, numbers) and `components` it gives, and the listed
+            attributes of /summary, /steps/<NNNN>, /mesh/groups/<g> and /materials/<m>.
+  xdmf-table the XDMF cell table right after the marker, against the XDMF files feps writes.
+  none      not checked here; the rest of the marker says why.
+
+Usage: check_docs.py [--feps PATH] [--verbose]; exit 1 when an example fails.
+"""
+import argparse
+import glob
+import os
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DOCS = ["README.md", "docs/input-format.md", "docs/output-format.md", "docs/performance.md",
+        "docs/tradeoff.md"]
+MARK = "<!-- check:"
+KINDS = ("deck", "datain", "records", "error", "usage", "command", "python", "h5-table",
+         "xdmf-table", "none")
+
+
+class Example:
+    """One marked example: where it is, its marker and its text."""
+
+    def __init__(self, doc, line, kind, args, flags, body, text, table=None):
+        self.doc, self.line, self.kind, self.args, self.flags = doc, line, kind, args, flags
+        self.body, self.text, self.table = body, text, table
+
+    @property
+    def where(self):
+        return f"{self.doc}:{self.line}"
+
+
+def parse_marker(text):
+    """KIND, {key: value}, {flags} of a marker's first line (after 'check:')."""
+    words = shlex.split(text)
+    if not words or words[0] not in KINDS:
+        raise ValueError(f"unknown check kind {words[:1]} (kinds: {', '.join(KINDS)})")
+    args, flags = {}, set()
+    for w in words[1:]:
+        if "=" in w and words[0] != "none":
+            k, v = w.split("=", 1)
+            args[k] = v
+        else:
+            flags.add(w)
+    return words[0], args, flags
+
+
+def examples(doc):
+    """The examples of one manual, and the problems of its markers (unmarked blocks)."""
+    lines = open(os.path.join(ROOT, doc), encoding="utf-8").read().split("\n")
+    found, problems = [], []
+    pending = None
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        inline = re.findall(r"<!-- check:(.*?)-->\s*`([^`]+)`", line)
+        for marker, code in inline:
+            kind, args, flags = parse_marker(marker)
+            found.append(Example(doc, i + 1, kind, args, flags, [], code))
+        if line.startswith(MARK) and not inline:
+            start = i
+            head = line[len(MARK):]
+            body = []
+            if "-->" in head:
+                head = head.split("-->", 1)[0]
+            else:
+                i += 1
+                while "-->" not in lines[i]:
+                    body.append(lines[i])
+                    i += 1
+                if lines[i].split("-->", 1)[0].strip():
+                    body.append(lines[i].split("-->", 1)[0])
+            try:
+                pending = (i + 1, *parse_marker(head), body)
+            except ValueError as e:
+                problems.append(f"{doc}:{start + 1}: {e}")
+            i += 1
+            continue
+        fence = re.match(r"^```(\S*)", line)
+        if fence:
+            j = i + 1
+            while not lines[j].startswith("```"):
+                j += 1
+            text = "\n".join(lines[i + 1:j]) + "\n"
+            if pending and pending[0] == i:
+                found.append(Example(doc, i + 1, pending[1], pending[2], pending[3], pending[4], text))
+            else:
+                problems.append(f"{doc}:{i + 1}: a fenced block without a '{MARK} KIND ... -->' line before it")
+            pending = None
+            i = j + 1
+            continue
+        if pending and line.startswith("|") and pending[1] in ("h5-table", "xdmf-table") and pending[0] == i:
+            j = i
+            while j < len(lines) and lines[j].startswith("|"):
+                j += 1
+            rows = [[c.strip() for c in r.strip().strip("|").split("|")] for r in lines[i + 2:j]]
+            found.append(Example(doc, i + 1, pending[1], pending[2], pending[3], pending[4], "", rows))
+            pending = None
+            i = j
+            continue
+        if pending and line.strip():
+            problems.append(f"{doc}:{i}: the marker is not right before a fenced block or table")
+            pending = None
+        i += 1
+    return found, problems
+
+
+class Checker:
+    def __init__(self, feps, tmp, verbose):
+        self.feps, self.tmp, self.verbose = feps, tmp, verbose
+        self.passed, self.failed, self.count = 0, 0, 0
+        self.results = {}
+
+    def run(self, args, cwd=None):
+        p = subprocess.run(args, cwd=cwd or self.tmp, capture_output=True, text=True, timeout=120)
+        return p.returncode, p.stdout, p.stderr
+
+    def fresh(self):
+        """An empty folder for one example."""
+        self.count += 1
+        d = os.path.join(self.tmp, f"ex{self.count}")
+        os.makedirs(d)
+        return d
+
+    # -- decks -----------------------------------------------------------------------------
+    def feps_check(self, deck, cwd, ex, run=False):
+        """--check (and with run, a run) of a deck: exit 0; the printed text."""
+        rc, out, err = self.run([self.feps, deck, "--check"], cwd)
+        if rc != 0:
+            raise AssertionError(f"feps --check exits {rc}: {err.strip() or out[-300:]}")
+        if run:
+            rc, out2, err = self.run([self.feps, deck, "--output", "run.h5"], cwd)
+            if rc != 0:
+                raise AssertionError(f"feps exits {rc}: {err.strip()}")
+            out += out2
+        return out
+
+    def check_deck(self, ex):
+        d = self.fresh()
+        open(os.path.join(d, "example.dat"), "w").write(ex.text)
+        out = self.feps_check("example.dat", d, ex)
+        if "same-as" in ex.args:
+            mine = records_of(ex.text)
+            theirs = records_of(open(os.path.join(ROOT, ex.args["same-as"])).read())
+            assert mine == theirs, f"not the records of {ex.args['same-as']}: " + first_difference(mine, theirs)
+        return "accepted by --check" + (f", = {ex.args['same-as']}" if "same-as" in ex.args else "") \
+            + f" ({number(out, 'nodes')} nodes)"
+
+    def check_datain(self, ex):
+        d = self.fresh()
+        open(os.path.join(d, "example.datain"), "w").write(ex.text)
+        rc, out, err = self.run([self.feps, "example.datain"], d)
+        assert rc == 0, f"feps exits {rc}: {err.strip()}"
+        got = (number(out, "nodes"), number(out, "elements"))
+        want = (ex.args["nodes"], ex.args["elements"])
+        assert got == want, f"{got[0]} nodes and {got[1]} elements, the text says {want[0]} and {want[1]}"
+        return f"{got[0]} nodes, {got[1]} elements"
+
+    def check_records(self, ex):
+        base = open(os.path.join(ROOT, ex.args["base"])).read().split("\n")
+        if "before" in ex.args:
+            cut = next(i for i, l in enumerate(base) if l.startswith(ex.args["before"]))
+            base = base[:cut]
+        parts = split_records(ex.text) if "each" in ex.flags else [ex.text]
+        applied = ex.args.get("applied", "").split(";") if "applied" in ex.args else [None] * len(parts)
+        assert len(applied) == len(parts), f"{len(parts)} records, {len(applied)} applied= values"
+        said = []
+        for part, force in zip(parts, applied):
+            d = self.fresh()
+            for name in filter(None, ex.args.get("files", "").split(",")):
+                shutil.copy(os.path.join(ROOT, "test/data/docs", name), d)
+            deck = "\n".join(base + ["! --- the marker's context ---"] + ex.body
+                             + ["! --- the example ---", part])
+            open(os.path.join(d, "example.dat"), "w").write(deck)
+            try:
+                out = self.feps_check("example.dat", d, ex, run="run" in ex.flags)
+            except AssertionError as e:
+                raise AssertionError(f"{e} [deck: {d}/example.dat]" if self.verbose else str(e))
+            if force and force != "*":
+                want = [float(v) for v in force.split(",")]
+                got = [float(v) for v in re.search(r"^applied force +(\S+) +(\S+) +(\S+)", out, re.M).groups()]
+                scale = max(abs(v) for v in want + got) or 1.0
+                assert max(abs(a - b) for a, b in zip(got, want)) <= 1e-6 * scale, \
+                    f"applied force {got}, the text says {want} ({part.strip()[:60]})"
+                said.append(f"applied {force}")
+            if "stdout" in ex.args:
+                assert re.search(ex.args["stdout"], out, re.M), f"no line matching {ex.args['stdout']!r}"
+            if "h5" in ex.args:
+                said.append(check_attributes(os.path.join(d, "run.h5"), ex.args["h5"]))
+        return f"{len(parts)} deck(s) on {os.path.basename(ex.args['base'])} accepted" + \
+            (": " + "; ".join(said) if said else "")
+
+    def check_error(self, ex):
+        head = dict(w.split("=", 1) for w in ex.body[0].split())
+        base = open(os.path.join(ROOT, head["base"])).read().split("\n")
+        expected = [l for l in ex.text.split("\n") if l.strip()]
+        records = ex.body[1:]
+        assert len(records) == len(expected), f"{len(expected)} messages, {len(records)} records in the marker"
+        for want, record in zip(expected, records):
+            m = re.match(r"feps: error: (.+?):(\d+):", want)
+            name, line = m.group(1), int(m.group(2))
+            d = self.fresh()
+            deck = list(base)
+            deck[line - 1] = record.strip()
+            os.makedirs(os.path.join(d, os.path.dirname(name)) or d, exist_ok=True)
+            open(os.path.join(d, name), "w").write("\n".join(deck))
+            rc, out, err = self.run([self.feps, name], d)
+            assert rc == 2 and err.strip() == want.strip(), \
+                f"exit {rc}, printed {err.strip()!r}; the text says exit 2 and {want.strip()!r}"
+            assert not os.path.exists(os.path.join(d, os.path.splitext(name)[0] + ".h5")), "a result file"
+        return f"{len(expected)} message(s) as printed, exit 2, no result file"
+
+    def check_usage(self, ex):
+        rc, out, err = self.run([self.feps, "--help"])
+        assert rc == 0, f"--help exits {rc}"
+        usage = out.split("usage:", 1)[1].split("\n\n", 1)[0].split()
+        assert ex.text.split() == usage, f"--help says: {' '.join(usage)}"
+        return "= feps --help"
+
+    # -- commands --------------------------------------------------------------------------
+    def sandbox(self):
+        """A folder that looks like the repository (and ../shared beside it) to a command."""
+        d = self.fresh()
+        work = os.path.join(d, "feps")
+        os.makedirs(os.path.join(work, "input"))
+        for name in os.listdir(ROOT):
+            if name not in ("input", "build", ".git", "results"):
+                os.symlink(os.path.join(ROOT, name), os.path.join(work, name))
+        for name in os.listdir(os.path.join(ROOT, "input")):
+            os.symlink(os.path.join(ROOT, "input", name), os.path.join(work, "input", name))
+        shared = os.path.join(os.path.dirname(ROOT), "shared")
+        if os.path.isdir(shared):
+            os.symlink(shared, os.path.join(d, "shared"))
+        return work
+
+    def check_command(self, ex):
+        work = self.sandbox()
+        lines = [l for l in ex.text.split("\n") if l.strip() and not l.lstrip().startswith("#")]
+        if "only" in ex.args:
+            lines = [l for l in lines if re.search(ex.args["only"], l)]
+        if "append" in ex.args:
+            lines = [re.sub(r"(^|&& *)(feps .*?)(\s+#.*)?$", lambda m: m.group(1) + m.group(2) + " " + ex.args["append"], l)
+                     for l in lines]
+        script = "set -e\nfeps() { \"$FEPS\" \"$@\"; }\n" + "\n".join(lines) + "\n"
+        env = dict(os.environ, FEPS=self.feps)
+        p = subprocess.run(["bash", "-c", script], cwd=work, capture_output=True, text=True, env=env, timeout=120)
+        want = int(ex.args.get("status", 0))
+        assert p.returncode == want, f"exit {p.returncode} (expected {want}): {(p.stderr or p.stdout).strip()[-400:]}"
+        if "stdout" in ex.args:
+            assert re.search(ex.args["stdout"], p.stdout, re.M), \
+                f"no line matching {ex.args['stdout']!r} in: {p.stdout[-400:]}"
+        said = f"exit {want}"
+        if "files" in ex.args:
+            pattern, count = ex.args["files"].rsplit(":", 1)
+            got = len(glob.glob(os.path.join(work, pattern)))
+            assert got == int(count), f"{got} files {pattern}, expected {count}"
+            said += f", {count} files {pattern}"
+        return said
+
+    def check_python(self, ex):
+        d = self.fresh()
+        if "h5" in ex.args:
+            name, deck = ex.args["h5"].split(":", 1)
+            rc, out, err = self.run([self.feps, os.path.join(ROOT, deck), "--quiet", "--output", name], d)
+            assert rc == 0, f"feps {deck} exits {rc}: {err.strip()}"
+        code = ex.text + "\n".join(ex.body) + "\n"
+        p = subprocess.run([sys.executable, "-c", code], cwd=d, capture_output=True, text=True, timeout=120)
+        assert p.returncode == 0, (p.stderr or p.stdout).strip()[-600:]
+        return f"runs{' with its assertions' if ex.body else ''}"
+
+    # -- results files ---------------------------------------------------------------------
+    def result(self, deck):
+        """The results file of a deck of the repository (run once)."""
+        if deck not in self.results:
+            d = self.fresh()
+            out = os.path.join(d, os.path.splitext(os.path.basename(deck))[0] + ".h5")
+            rc, _, err = self.run([self.feps, os.path.join(ROOT, deck), "--quiet", "--output", out], d)
+            assert rc == 0, f"feps {deck} exits {rc}: {err.strip()}"
+            self.results[deck] = out
+        return self.results[deck]
+
+    def check_h5_table(self, ex):
+        import h5py
+        import numpy as np
+        files = [h5py.File(self.result(d)) for d in LAYOUT_DECKS]
+        checked = 0
+        for row in ex.table:
+            path, shape, content = row[0].strip("`"), row[1], row[2]
+            if path in ("/summary", "/materials/<name>", "/steps/<NNNN>"):
+                checked += check_attribute_row(files, path, content)
+                continue
+            datasets = [(f, name) for f in files for name in expand(f, path)]
+            assert datasets, f"no file has {path}"
+            comps = [c for c in re.findall(r"`([a-z_0-9]+(?: [a-z_0-9]+)+|axial_force)`", content)
+                     if "components" in content or path.startswith("/steps")]
+            for f, name in datasets:
+                ds = f[name]
+                check_shape(f, name, ds, shape, content)
+                if comps:
+                    got = text(ds.attrs["components"])
+                    assert got in comps, f"{name}: components {got!r}, the table says {comps}"
+                checked += 1
+            if path == "/mesh/groups/<group>/connectivity":
+                checked += check_group_attributes(files, content)
+        return f"{len(ex.table)} rows, {checked} datasets/attributes in {len(files)} results files"
+
+    def check_xdmf_table(self, ex):
+        cells = {}
+        for deck in LAYOUT_DECKS:
+            h5 = self.result(deck)
+            import h5py
+            with h5py.File(h5) as f:
+                types = {g: text(f[f"mesh/groups/{g}"].attrs["element_type"]) for g in f["mesh/groups"]}
+            xmf = open(os.path.splitext(h5)[0] + ".xmf").read()
+            for grid, topo in re.findall(r'<Grid Name="([^"]+)"[^>]*>\s*<Topology ([^>]*)>', xmf):
+                group = next((g for g in types if grid == g or grid.startswith(g + "_") or grid.endswith("_" + g)), None)
+                if group:
+                    cells[types[group]] = topo
+        seen = 0
+        for row in ex.table:
+            names = re.findall(r"`([a-z0-9-]+)`", row[0])
+            cell = re.findall(r"`([A-Za-z_0-9]+)`", row[1])[0]
+            for name in names:
+                if name in cells:
+                    topo = cells[name]
+                    got = re.search(r'TopologyType="([^"]+)"', topo).group(1)
+                    assert got == cell, f"{name}: XDMF cell {got}, the table says {cell}"
+                    nodes = re.search(r'NodesPerElement="(\d+)"', topo)
+                    if nodes:
+                        want = re.findall(r"\d+", row[2])
+                        assert nodes.group(1) in want or row[2].startswith("all"), \
+                            f"{name}: NodesPerElement {nodes.group(1)}, the table says {row[2]}"
+                    seen += 1
+        assert seen >= 6, f"only {seen} element types of the table met in the results"
+        return f"{seen} element types against the XDMF files feps wrote"
+
+    # -- driver ----------------------------------------------------------------------------
+    def check(self, ex):
+        if ex.kind == "none":
+            return None
+        try:
+            said = getattr(self, "check_" + ex.kind.replace("-", "_"))(ex)
+        except (AssertionError, subprocess.TimeoutExpired, KeyError, StopIteration, OSError) as e:
+            self.failed += 1
+            print(f"  FAIL {ex.where} {ex.kind}: {type(e).__name__ + ': ' if not isinstance(e, AssertionError) else ''}{e}")
+            return False
+        self.passed += 1
+        print(f"  ok   {ex.where} {ex.kind}: {said}")
+        return True
+
+
+# The decks whose results cover every dataset of docs/output-format.md's table: solids, bars with
+# prestress (prestress_block), 3D interfaces (block_shear), nodal cylindrical systems (lame_hex20:
+# reaction_nodal, hex20), plane strain with line interfaces (contact_2d).
+LAYOUT_DECKS = ["test/data/prestress_block.dat", "test/data/block_shear.dat", "test/data/lame_hex20.dat",
+                "test/data/contact_2d.dat", "test/data/cube.dat"]
+
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def expand(f, pattern):
+    """The names in file f that a path of the table (with <NNNN>, <group>, <kind> ...) stands for."""
+    parts = pattern.strip("/").split("/")
+    names = [""]
+    for part in parts:
+        new = []
+        for n in names:
+            g = f[n] if n else f
+            if not hasattr(g, "keys"):
+                continue
+            if part.startswith("<"):
+                new += [f"{n}/{k}" if n else k for k in g.keys()]
+            elif part in g:
+                new.append(f"{n}/{part}" if n else part)
+        names = new
+    return [n for n in names if hasattr(f[n], "shape")]
+
+
+def check_shape(f, name, ds, shape, content):
+    import numpy as np
+    """A dataset's shape against the table's 'nnode x 3', 'npoints x 6', 'nelem x k' ..."""
+    nnode = f["mesh/coordinates"].shape[0]
+    dims = [s.strip() for s in shape.split(" x ")]
+    rows, cols = ds.shape
+    group = name.split("/")[-2] if name.endswith(("connectivity", "topology")) else name.split("/")[-1]
+    conn = f[f"mesh/groups/{group}/connectivity"] if f"mesh/groups/{group}/connectivity" in f else None
+    if dims[0] == "nnode":
+        assert rows == nnode, f"{name}: {rows} rows, nnode = {nnode}"
+    elif dims[0] == "nelem":
+        assert conn is not None and rows == conn.shape[0], f"{name}: {rows} rows, not nelem"
+    elif dims[0] == "npoints":
+        ppe = int(ds.attrs["points_per_element"])
+        assert rows == conn.shape[0] * ppe, f"{name}: {rows} rows, nelem x points_per_element = {conn.shape[0] * ppe}"
+    two_d = "interface" in name and "2D" in content and np.ptp(f["mesh/coordinates"][:, 2]) == 0
+    if dims[1].isdigit():
+        want = int(dims[1])
+        if two_d:
+            want = int(re.search(r"2D[^:]*: npoints x (\d)", content).group(1))
+        assert cols == want, f"{name}: {cols} columns, the table says {want}"
+    elif dims[1] == "k":
+        assert cols == conn.shape[1]
+    elif dims[1] == "c":
+        etype = text(f[f"mesh/groups/{group}"].attrs["element_type"])
+        assert cols == (conn.shape[1] // 2 if etype.startswith("interface") else conn.shape[1]), f"{name}: {cols} columns"
+
+
+def check_attribute_row(files, path, content):
+    """The attributes a row of the table lists (backticked lower-case names) are there."""
+    if path == "/summary":
+        names = [n for n in re.findall(r"`([a-z_]+)`", content) if n not in ("linear", "nonlinear", "fields")
+                 or n == "fields"]
+        names = [n for n in names if n not in ("lu_min_rcond",)]   # only after an LU: checked below
+        for f in files:
+            missing = [n for n in names if n not in f["summary"].attrs]
+            assert not missing, f"/summary lacks {missing}"
+        return len(names)
+    if path == "/steps/<NNNN>":
+        names = ("load_factor", "iterations", "residual")
+        for f in files:
+            for s in f["steps"]:
+                assert all(n in f["steps"][s].attrs for n in names), f"/steps/{s}: {list(f['steps'][s].attrs)}"
+        kinds = set()
+        for f in files:
+            for s in f["steps"]:
+                assert re.fullmatch(r"\d{4,}", s) and s == f"{int(s):04d}", f"step name {s}"
+        return len(names)
+    if path == "/materials/<name>":
+        kinds = set(re.findall(r"`(elastic|matsuoka|interface|bar)`", content))
+        seen = set()
+        for f in files:
+            for m in f["materials"]:
+                k = text(f["materials"][m].attrs["kind"])
+                assert k in kinds, f"/materials/{m}: kind {k!r}, the table says one of {sorted(kinds)}"
+                seen.add(k)
+        return len(seen)
+    return 0
+
+
+def check_group_attributes(files, content):
+    names = ["element_type", "material", "point_state_bytes", "point_state_bytes_per_element"]
+    for n in names:
+        assert f"`{n}`" in content, f"the table no longer names {n}"
+    count = 0
+    for f in files:
+        for g in f["mesh/groups"]:
+            a = f["mesh/groups"][g].attrs
+            assert all(n in a for n in names), f"/mesh/groups/{g}: {list(a)}"
+            count += 1
+    return count
+
+
+def check_attributes(path, spec):
+    """h5=PATH@ATTR=VALUE;... against a results file."""
+    import h5py
+    with h5py.File(path) as f:
+        for item in spec.split(";"):
+            where, pair = item.split("@")
+            name, _, want = pair.partition("=")
+            attrs = f[where].attrs
+            assert name in attrs, f"{where} has no attribute {name} ({sorted(attrs)})"
+            if want:
+                got = attrs[name]
+                try:
+                    ok = float(got) == float(want) and not isinstance(got, (bytes, str))
+                except (TypeError, ValueError):
+                    ok = text(got) == want
+                assert ok, f"{where}@{name} = {got!r}, the text says {want}"
+    return f"h5 {spec}"
+
+
+def records_of(text):
+    """The records of a deck: comments and blank lines dropped, spaces trimmed."""
+    out = []
+    for line in text.split("\n"):
+        line = line.split("!", 1)[0].strip()
+        if line:
+            out.append(line)
+    return out
+
+
+def first_difference(a, b):
+    for i, (x, y) in enumerate(zip(a, b)):
+        if x != y:
+            return f"record {i + 1}: {x!r} against {y!r}"
+    return f"{len(a)} records against {len(b)}"
+
+
+def split_records(text):
+    """The records of a block, each with its continuation lines (those starting with a digit,
+    a sign or a point)."""
+    out = []
+    for line in text.split("\n"):
+        if not line.strip():
+            continue
+        if out and re.match(r"\s*[0-9+\-.]", line):
+            out[-1] += "\n" + line
+        else:
+            out.append(line)
+    return out
+
+
+def number(out, label):
+    m = re.search(rf"^{label} +(\S+)$", out, re.M)
+    return m.group(1) if m else None
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--feps", default=os.environ.get("FEPS"), help="the program (default $FEPS)")
+    ap.add_argument("--verbose", action="store_true", help="keep the temporary folder, name it")
+    a = ap.parse_args()
+    if not a.feps:
+        ap.error("--feps (or $FEPS) names the program")
+    feps = os.path.abspath(a.feps)
+    all_examples, problems = [], []
+    for doc in DOCS:
+        found, bad = examples(doc)
+        all_examples += found
+        problems += bad
+    tmp = tempfile.mkdtemp(prefix="check_docs_")
+    c = Checker(feps, tmp, a.verbose)
+    try:
+        for p in problems:
+            c.failed += 1
+            print(f"  FAIL {p}")
+        for ex in all_examples:
+            c.check(ex)
+    finally:
+        if a.verbose:
+            print(f"(kept {tmp})")
+        else:
+            shutil.rmtree(tmp, ignore_errors=True)
+    skipped = sum(ex.kind == "none" for ex in all_examples)
+    print(f"check_docs: {c.passed} examples passed, {c.failed} failed, {skipped} marked as not checked")
+    return 1 if c.failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -23,6 +23,10 @@ records or code that the example needs but does not show. KINDs:
             too; h5=PATH@ATTR=VALUE;...: attributes of its results (VALUE a number or text,
             or empty for "exists"). stdout=REGEX: a line the run or check prints.
             files=NAME,...: files of test/data/docs beside the deck (for INCLUDE).
+            in=PATH: the block's records are records of that deck too (an example said
+            to be a deck's).
+  excerpt   in=PATH: the records of the example (an inline code span, say) are records of
+            that deck, in order.
   error     lines `feps: error: FILE:LINE: ...`: the body's first line is base=PATH, each
             further line the record that replaces line LINE of the base, in order. feps run on
             FILE (the base with that record, under the name the message gives) must exit 2
@@ -40,7 +44,12 @@ records or code that the example needs but does not show. KINDs:
             (nnode, npoints, nelem, numbers) and `components` it gives, and the listed
             attributes of /summary, /steps/<NNNN>, /mesh/groups/<g> and /materials/<m>.
   xdmf-table the XDMF cell table right after the marker, against the XDMF files feps writes.
+  count     glob=GLOB n=N: so many files of the repository match GLOB (a folder's size that
+            the text gives).
   none      not checked here; the rest of the marker says why.
+
+Besides, every path of the repository that the manuals name (test/data/..., input/...,
+scripts/..., docs/..., src/..., the benchmarks folder ../shared/...) must exist.
 
 Usage: check_docs.py [--feps PATH] [--verbose]; exit 1 when an example fails.
 """
@@ -58,7 +67,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOCS = ["README.md", "docs/input-format.md", "docs/output-format.md", "docs/performance.md",
         "docs/tradeoff.md"]
 MARK = "<!-- check:"
-KINDS = ("deck", "datain", "records", "error", "usage", "command", "python", "h5-table",
+KINDS = ("deck", "datain", "records", "excerpt", "count", "error", "usage", "command", "python", "h5-table",
          "xdmf-table", "none")
 
 
@@ -231,8 +240,25 @@ class Checker:
                 assert re.search(ex.args["stdout"], out, re.M), f"no line matching {ex.args['stdout']!r}"
             if "h5" in ex.args:
                 said.append(check_attributes(os.path.join(d, "run.h5"), ex.args["h5"]))
+        if "in" in ex.args:
+            said.append(self.check_excerpt(ex))
         return f"{len(parts)} deck(s) on {os.path.basename(ex.args['base'])} accepted" + \
             (": " + "; ".join(said) if said else "")
+
+    def check_excerpt(self, ex):
+        mine = records_of(ex.text)
+        theirs = records_of(open(os.path.join(ROOT, ex.args["in"])).read())
+        at = 0
+        for r in mine:
+            assert r in theirs[at:], f"{r!r} is no record of {ex.args['in']}" + \
+                (" after the one before" if r in theirs else "")
+            at = theirs.index(r, at) + 1
+        return f"records of {ex.args['in']}"
+
+    def check_count(self, ex):
+        got = len(glob.glob(os.path.join(ROOT, ex.args["glob"])))
+        assert got == int(ex.args["n"]), f"{got} files {ex.args['glob']}, the text says {ex.args['n']}"
+        return f"{got} files {ex.args['glob']}"
 
     def check_error(self, ex):
         head = dict(w.split("=", 1) for w in ex.body[0].split())
@@ -550,6 +576,24 @@ def number(out, label):
     return m.group(1) if m else None
 
 
+def missing_paths(doc):
+    """The paths of the repository (or of ../shared) that a manual names and that do not exist."""
+    out = []
+    fenced = False
+    for n, line in enumerate(open(os.path.join(ROOT, doc), encoding="utf-8"), 1):
+        if line.startswith("```"):
+            fenced = not fenced
+        if fenced or line.startswith("<!-- check:"):    # examples: their markers check them
+            continue
+        for path, after in re.findall(r"(?<![\w/.])((?:\.\./shared|test/data|input|scripts|docs|src|app)/[\w./-]*\w)(.?)",
+                                      line):
+            if after in "*<{" and after:                  # a pattern such as scripts/make_*.py
+                continue
+            if not os.path.exists(os.path.join(ROOT, path)):
+                out.append(f"{doc}:{n}: {path} does not exist")
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--feps", default=os.environ.get("FEPS"), help="the program (default $FEPS)")
@@ -562,7 +606,7 @@ def main():
     for doc in DOCS:
         found, bad = examples(doc)
         all_examples += found
-        problems += bad
+        problems += bad + missing_paths(doc)
     tmp = tempfile.mkdtemp(prefix="check_docs_")
     c = Checker(feps, tmp, a.verbose)
     try:

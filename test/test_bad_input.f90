@@ -37,6 +37,7 @@ contains
       new_unittest('duplicate node', test_duplicate_node), &
       new_unittest('non-positive Jacobian names the element', test_negative_jacobian), &
       new_unittest('undefined material', test_undefined_material), &
+      new_unittest('unknown element type: the message lists every type', test_element_type_unknown), &
       new_unittest('nu = 0.5 rejected', test_nu_half), &
       new_unittest('nu = -1 rejected', test_nu_minus_one), &
       new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
@@ -365,7 +366,7 @@ contains
   subroutine test_nset_undefined_node(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/nset_undefined_node.dat', err_input, &
-                        [character(len=40) :: 'nset_undefined_node.dat:25:', 'node 30 is not defined'], error)
+                        [character(len=40) :: 'nset_undefined_node.dat:25: field 3:', 'node 30 is not defined'], error)
   end subroutine test_nset_undefined_node
 
   !> The force used to count in the applied force and the reactions, and act on nothing.
@@ -507,7 +508,8 @@ contains
   subroutine test_material_key_twice(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/material_key_twice.dat', err_input, &
-                        [character(len=60) :: 'material_key_twice.dat:15: field 6:', 'NU is given twice'], error)
+                        [character(len=60) :: 'material_key_twice.dat:15: field 6:', &
+                         'material steel: NU is given twice (fields 5 and 6)'], error)
   end subroutine test_material_key_twice
 
   !> Names become HDF5 groups: a slash used to stop the run with exit 1 when the results were
@@ -624,8 +626,17 @@ contains
   subroutine test_undefined_material(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/undefined_material.dat', err_input, &
-                        [character(len=40) :: 'undefined_material.dat:8:', 'unobtainium'], error)
+                        [character(len=40) :: 'undefined_material.dat:8: field 4:', 'unobtainium'], error)
   end subroutine test_undefined_material
+
+  !> The list of types in the message is what GROUP accepts: it once left out hex8b.
+  subroutine test_element_type_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/element_type_unknown.dat', err_input, &
+                        [character(len=60) :: 'element_type_unknown.dat:8: field 3:', 'unknown element type "hex9"', &
+                         '(3D: hex8, hex8b, hex20, hex20r, interface-quad4', 'tri6, tri6-6, interface-line2', &
+                         'bar2 .. bar5'], error)
+  end subroutine test_element_type_unknown
 
   subroutine test_nu_half(error)
     type(error_t), allocatable, intent(out) :: error
@@ -693,7 +704,7 @@ contains
   subroutine test_vary2_alone(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/vary2_alone.dat', err_input, &
-                        [character(len=40) :: 'vary2_alone.dat:18:', 'give VARY= too'], error)
+                        [character(len=40) :: 'vary2_alone.dat:18: field 4:', 'give VARY= too'], error)
   end subroutine test_vary2_alone
 
   subroutine test_fix_prescribed(error)

@@ -343,8 +343,14 @@ class Checker:
         """The results file of a deck of the repository (run once)."""
         if deck not in self.results:
             d = self.fresh()
-            out = os.path.join(d, os.path.splitext(os.path.basename(deck))[0] + ".h5")
-            rc, _, err = self.run([self.feps, os.path.join(ROOT, deck), "--quiet", "--output", out], d)
+            path, *change = deck.split("|")
+            out = os.path.join(d, os.path.splitext(os.path.basename(path))[0] + ".h5")
+            text = open(os.path.join(ROOT, path)).read()
+            if change:
+                assert change[0] in text, f"{path} has no {change[0]}"
+                text = text.replace(change[0], change[1])
+            open(os.path.join(d, "deck.dat"), "w").write(text)
+            rc, _, err = self.run([self.feps, "deck.dat", "--quiet", "--output", out], d)
             assert rc == 0, f"feps {deck} exits {rc}: {err.strip()}"
             self.results[deck] = out
         return self.results[deck]
@@ -363,6 +369,7 @@ class Checker:
             assert datasets, f"no file has {path}"
             comps = [c for c in re.findall(r"`([a-z_0-9]+(?: [a-z_0-9]+)+|axial_force)`", content)
                      if "components" in content or path.startswith("/steps")]
+            comps += re.findall(r'`components = "([^"]+)"`', content)
             for f, name in datasets:
                 ds = f[name]
                 check_shape(f, name, ds, shape, content)
@@ -372,6 +379,21 @@ class Checker:
                 checked += 1
             if path == "/mesh/groups/<group>/connectivity":
                 checked += check_group_attributes(files, content)
+            if path.endswith("/reaction_nodal"):     # "written when some node has a nodal system"
+                assert "written when some node has a nodal system" in content
+                cube = files[LAYOUT_DECKS.index("test/data/cube.dat")]
+                assert not any("reaction_nodal" in cube["steps"][s] for s in cube["steps"]), \
+                    "reaction_nodal written for a model without nodal systems"
+        # "Every results dataset has a string attribute components"
+        for f in files:
+            for s in f["steps"]:
+                def visit(name, obj):
+                    if hasattr(obj, "shape"):
+                        assert "components" in obj.attrs, f"/steps/{s}/{name} has no components"
+                f["steps"][s].visititems(visit)
+        # "iterations (... 1 in a linear model ...)": the cube is linear
+        cube = files[LAYOUT_DECKS.index("test/data/cube.dat")]
+        assert all(cube["steps"][s].attrs["iterations"] == 1 for s in cube["steps"])
         return f"{len(ex.table)} rows, {checked} datasets/attributes in {len(files)} results files"
 
     def check_xdmf_table(self, ex):
@@ -389,8 +411,11 @@ class Checker:
         seen = 0
         for row in ex.table:
             names = re.findall(r"`([a-z0-9-]+)`", row[0])
+            span = re.fullmatch(r"`([a-z]+)(\d)` \.\.\. `\1(\d)`", row[0])   # `bar2` ... `bar5`
+            if span:
+                names = [span.group(1) + str(k) for k in range(int(span.group(2)), int(span.group(3)) + 1)]
             cell = re.findall(r"`([A-Za-z_0-9]+)`", row[1])[0]
-            for name in names:
+            for name in names + [n + "-nodal" for n in names if n.startswith("interface-")]:
                 if name in cells:
                     topo = cells[name]
                     got = re.search(r'TopologyType="([^"]+)"', topo).group(1)
@@ -401,8 +426,8 @@ class Checker:
                         assert nodes.group(1) in want or row[2].startswith("all"), \
                             f"{name}: NodesPerElement {nodes.group(1)}, the table says {row[2]}"
                     seen += 1
-        assert seen >= 6, f"only {seen} element types of the table met in the results"
-        return f"{seen} element types against the XDMF files feps wrote"
+        assert seen >= 14, f"only {seen} element types of the table met in the results ({sorted(cells)})"
+        return f"{seen} element types against the XDMF files feps wrote ({', '.join(sorted(cells))})"
 
     # -- driver ----------------------------------------------------------------------------
     def check(self, ex):
@@ -421,9 +446,16 @@ class Checker:
 
 # The decks whose results cover every dataset of docs/output-format.md's table: solids, bars with
 # prestress (prestress_block), 3D interfaces (block_shear), nodal cylindrical systems (lame_hex20:
-# reaction_nodal, hex20), plane strain with line interfaces (contact_2d).
+# reaction_nodal, hex20), plane strain with line interfaces (contact_2d); and, for the XDMF
+# table, more element types: curved bars of 3, 4 and 5 nodes (Tables 2.2 and 2.3), and decks
+# with one type changed ("deck|OLD|NEW"): hex8b, hex20r, tri6-6 and -nodal interfaces.
 LAYOUT_DECKS = ["test/data/prestress_block.dat", "test/data/block_shear.dat", "test/data/lame_hex20.dat",
-                "test/data/contact_2d.dat", "test/data/cube.dat"]
+                "test/data/contact_2d.dat", "test/data/cube.dat", "input/verification/table2_2_bar3.dat",
+                "input/verification/table2_3_bar4.dat", "input/verification/table2_2_bar5.dat",
+                "test/data/lame_hex8.dat|TYPE=hex8,|TYPE=hex8b,", "test/data/cantilever_hex20.dat|TYPE=hex20,|TYPE=hex20r,",
+                "test/data/contact_2d.dat|TYPE=interface-line3,|TYPE=interface-line3-nodal,",
+                "test/data/block_shear.dat|TYPE=interface-quad4,|TYPE=interface-quad4-nodal,",
+                "test/data/contact_2d.dat|TYPE=tri6,|TYPE=tri6-6,"]
 
 
 def text(v):

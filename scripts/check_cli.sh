@@ -122,6 +122,19 @@ for deck in test/data/bad/*.dat; do
   fi
 done
 
+# docs/output-format.md: a deck refused before its first step (exit 2) leaves the results an
+# earlier run wrote under the same name alone (22 of these decks, refused once the results file
+# was begun, used to remove them); a run that fails removes them (fpm test, bad_input suite).
+"$feps" test/data/cube.dat --quiet --output "$tmp/earlier.h5" >/dev/null 2>&1
+lost=""
+for deck in test/data/bad/*.dat; do
+  cp "$tmp/earlier.h5" "$tmp/stale.h5" && cp "$tmp/earlier.xmf" "$tmp/stale.xmf"
+  "$feps" "$deck" --output "$tmp/stale.h5" >/dev/null 2>&1
+  { [ -e "$tmp/stale.h5" ] && [ -e "$tmp/stale.xmf" ] && [ ! -e "$tmp/stale.h5.part" ]; } || lost="$lost $(basename "$deck")"
+done
+[ -z "$lost" ] && ok "every bad deck leaves an earlier run's results and XDMF file alone" \
+  || bad "bad decks that removed an earlier run's results:$lost"
+
 # A three-digit exponent keeps its E in the summary (es12.5 would print 1.08628+303), and the
 # largest displacement, whose squares overflow, is the closed form p l / E sqrt(1 + 2 nu^2).
 sed 's/E=200000\./E=1e-300/' test/data/cube.dat >"$tmp/cube_soft.dat"

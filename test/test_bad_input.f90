@@ -113,6 +113,8 @@ contains
                    nonfinite=.true.), &
       new_unittest('a failed run removes the results an earlier run left under its name', test_failed_run_removes_stale, &
                    nonfinite=.true.), &
+      new_unittest('a deck refused before its first step leaves the results an earlier run left', &
+                   test_refused_deck_keeps_earlier), &
       new_unittest('REPORT, TILT on a section without nodes: before the first step, and by --check', &
                    test_report_no_section), &
       new_unittest('REPORT, ROTATION spanning beyond its ring: before the first step, and by --check', &
@@ -832,6 +834,42 @@ contains
     inquire (file='build/test_bad_input.xmf', exist=exists)
     call check(error, .not. exists, 'the earlier XDMF file is gone')
   end subroutine test_failed_run_removes_stale
+
+  !> docs/output-format.md: a deck refused as bad input leaves an earlier run's results alone.
+  !! nu = 0.5 (checked when the materials are built) and a rigid-body mode (found by the first
+  !! factorization) are refused after the results file was begun: they used to remove cube.dat's
+  !! results and XDMF file, while an unknown keyword left them.
+  subroutine test_refused_deck_keeps_earlier(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: decks(2) = [character(len=40) :: 'test/data/bad/nu_half.dat', &
+                                               'test/data/bad/rigid_body_mode.dat']
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    logical :: exists(3)
+    integer :: i
+    do i = 1, size(decks)
+      call remove_outputs()
+      opt%deck = 'test/data/cube.dat'
+      opt%output = out
+      opt%solver = ''
+      call run_feps(opt, summary, error)
+      if (allocated(error)) return
+      opt%deck = trim(decks(i))
+      call run_feps(opt, summary, run_error)
+      call check(error, allocated(run_error), trim(decks(i)) // ' is refused')
+      if (allocated(error)) return
+      call check(error, any(run_error%code == [err_input, err_model]), trim(decks(i)) // ': ' // run_error%message)
+      if (allocated(error)) return
+      inquire (file=out, exist=exists(1))
+      inquire (file='build/test_bad_input.xmf', exist=exists(2))
+      inquire (file=out // '.part', exist=exists(3))
+      call check(error, exists(1) .and. exists(2) .and. .not. exists(3), trim(decks(i)) // &
+                 ': the earlier results and XDMF file are still there, and no .part file')
+      if (allocated(error)) return
+      deallocate (run_error)
+    end do
+  end subroutine test_refused_deck_keeps_earlier
 
   !> A REPORT's sections depend on the mesh only: they used to be looked for after the whole
   !! analysis, whose results were then thrown away, and --check passed the deck.

@@ -4,7 +4,7 @@
 module feps_program
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8, rad2deg
-  use feps_error, only: error_t, fatal_error, input_error, err_input, str
+  use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson
   use feps_deck, only: read_deck
@@ -88,6 +88,7 @@ module feps_program
   type, extends(observer_t) :: results_observer_t
     type(results_file_t) :: h5
     logical :: writing = .false.
+    integer :: steps_written = 0
     real(dp), allocatable :: last_displacement(:, :)
     type(model_t), pointer :: model => null()
     procedure(line_sink), pointer, nopass :: sink => null()
@@ -168,7 +169,10 @@ contains
     call write_mesh(obs%h5, model, error)
     if (.not. allocated(error)) call run_analysis(model, solver, obs, an, error)
     if (allocated(error)) then
-      call obs%h5%discard()
+      ! A deck refused before its first step (exit status 2: what --check finds too) leaves the
+      ! results of an earlier run alone; a run that failed removes them (they would pass for its).
+      call obs%h5%discard(keep_earlier=obs%steps_written == 0 .and. &
+                          any(error%code == [err_input, err_input_file, err_model]))
       return
     end if
     summary%solver = an%solver
@@ -498,6 +502,7 @@ contains
     real(dp) :: p(3)
     integer :: g, q, nc
     self%last_displacement = res%displacement
+    self%steps_written = self%steps_written + 1
     associate (f => self%model%fields)
       call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
       if (f%displacement .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', &

@@ -35,7 +35,8 @@ records or code that the example needs but does not show. KINDs:
   command   a shell command (a block of them, or an inline code span), run by bash in a
             sandbox of the repository (its folders linked, input/ a real folder) with `feps`
             the program under test. append=ARGS: added to every line that runs feps (for
-            example --check for a run too long here). status=N (default 0). stdout=REGEX.
+            example --check for a run too long here). status=N (default 0). stdout=REGEX,
+            stderr=REGEX. only=REGEX: run only the lines that match.
             files=GLOB:COUNT: so many files match GLOB afterwards.
   python    Python run in a temporary folder: h5=NAME:DECK first runs DECK into NAME; the
             body's lines are appended (assertions on what the block computed).
@@ -44,6 +45,10 @@ records or code that the example needs but does not show. KINDs:
             (nnode, npoints, nelem, numbers) and `components` it gives, and the listed
             attributes of /summary, /steps/<NNNN>, /mesh/groups/<g> and /materials/<m>.
   xdmf-table the XDMF cell table right after the marker, against the XDMF files feps writes.
+  gauss-table the table of integration points right after the marker (docs/output-format.md):
+            each row's point count and its points, in the order the table gives, against
+            scripts/feps_results.py's integration_points (which scripts/check_cli.sh holds to
+            feps's own rows) and the points_per_element feps writes for the types run here.
   count     glob=GLOB n=N: so many files of the repository match GLOB (a folder's size that
             the text gives).
   none      not checked here; the rest of the marker says why.
@@ -67,7 +72,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOCS = ["README.md", "docs/input-format.md", "docs/output-format.md", "docs/performance.md",
         "docs/tradeoff.md"]
 MARK = "<!-- check:"
-KINDS = ("deck", "datain", "records", "excerpt", "count", "error", "usage", "command", "python", "h5-table",
+KINDS = ("deck", "datain", "records", "excerpt", "count", "gauss-table", "error", "usage", "command", "python", "h5-table",
          "xdmf-table", "none")
 
 
@@ -142,7 +147,7 @@ def examples(doc):
             pending = None
             i = j + 1
             continue
-        if pending and line.startswith("|") and pending[1] in ("h5-table", "xdmf-table") and pending[0] == i:
+        if pending and line.startswith("|") and pending[1] in ("h5-table", "xdmf-table", "gauss-table") and pending[0] == i:
             j = i
             while j < len(lines) and lines[j].startswith("|"):
                 j += 1
@@ -316,9 +321,10 @@ class Checker:
         p = subprocess.run(["bash", "-c", script], cwd=work, capture_output=True, text=True, env=env, timeout=120)
         want = int(ex.args.get("status", 0))
         assert p.returncode == want, f"exit {p.returncode} (expected {want}): {(p.stderr or p.stdout).strip()[-400:]}"
-        if "stdout" in ex.args:
-            assert re.search(ex.args["stdout"], p.stdout, re.M), \
-                f"no line matching {ex.args['stdout']!r} in: {p.stdout[-400:]}"
+        for stream, text in (("stdout", p.stdout), ("stderr", p.stderr)):
+            if stream in ex.args:
+                assert re.search(ex.args[stream], text, re.M), \
+                    f"no line matching {ex.args[stream]!r} in its {stream}: {text[-400:]}"
         said = f"exit {want}"
         if "files" in ex.args:
             pattern, count = ex.args["files"].rsplit(":", 1)
@@ -428,6 +434,41 @@ class Checker:
                     seen += 1
         assert seen >= 14, f"only {seen} element types of the table met in the results ({sorted(cells)})"
         return f"{seen} element types against the XDMF files feps wrote ({', '.join(sorted(cells))})"
+
+    def check_gauss_table(self, ex):
+        import h5py
+        import numpy as np
+        sys.path.insert(0, os.path.join(ROOT, "scripts"))
+        import feps_results as fr
+        ppe_run = {}                                       # points_per_element feps wrote
+        for deck in LAYOUT_DECKS:
+            with h5py.File(self.result(deck)) as f:
+                last = max(f["steps"], key=int)
+                for kind in f["steps"][last]:
+                    if kind in ("stress", "interface", "bar"):
+                        for g in f["steps"][last][kind]:
+                            t = text(f[f"mesh/groups/{g}"].attrs["element_type"])
+                            ppe_run[t] = int(f["steps"][last][kind][g].attrs["points_per_element"])
+        nodes_of, points_of, checked = {}, {}, []
+        for row in ex.table:
+            names = re.findall(r"`([a-z0-9-]+)`", row[0])
+            span = re.match(r"`([a-z]+)(\d)` \.\.\. `\1(\d)`", row[0])
+            if span:
+                names = [span.group(1) + str(k) for k in range(int(span.group(2)), int(span.group(3)) + 1)]
+            rule, order = row[2], row[3]
+            for name in names:
+                same = re.match(r"as ([a-z0-9-]+)", row[1])
+                nodes_of[name] = nodes_of[same.group(1)] if same else gauss_nodes(row[1], name, nodes_of)
+                want = gauss_order(order, rule, name, nodes_of[name], points_of)
+                points_of[name] = want
+                p = int(re.search(r"(\d+)$", rule).group(1)) if not name.startswith("bar") else int(name[3:]) - 1
+                got, _ = fr.integration_points(name)
+                assert len(got) == p == len(want), f"{name}: {len(got)} points in the reader, the table says {p}"
+                assert np.allclose(got, want, atol=1e-12), f"{name}: the reader's points {got.tolist()}, the table's {want.tolist()}"
+                if name in ppe_run:
+                    assert ppe_run[name] == p, f"{name}: feps writes {ppe_run[name]} points per element, the table says {p}"
+                checked.append(name)
+        return f"{len(checked)} element types; points_per_element as feps wrote it for {len(set(checked) & set(ppe_run))}"
 
     # -- driver ----------------------------------------------------------------------------
     def check(self, ex):
@@ -551,6 +592,55 @@ def check_group_attributes(files, content):
             assert all(n in a for n in names), f"/mesh/groups/{g}: {list(a)}"
             count += 1
     return count
+
+
+def tuples(text, a=None):
+    """The points '(x, y)' or '(x,y,z)' of a text, fractions and 'a' (as in 1-2a) allowed."""
+    out = []
+    for t in re.findall(r"\(([-+0-9./a, ]+)\)", text):
+        parts = [s.strip() for s in t.split(",")]
+        if not all(re.fullmatch(r"[-+0-9./a]+", s) for s in parts) or len(parts) < 2:
+            continue
+        out.append([eval(re.sub(r"(\d)a", r"\1*a", s), {"a": a}) for s in parts])
+    return out
+
+
+def gauss_nodes(text, name, known):
+    """Natural coordinates of the nodes a row of the table gives (for 'in node order')."""
+    if name.startswith("interface-line"):
+        return [[float(v)] for v in re.search(r"s1 = ([-+0-9, ]+)", text).group(1).replace(" ", "").split(",") if v]
+    corners = known.get("interface-quad4", []) if "corners as quad4" in text else []
+    return corners + tuples(text)
+
+
+def gauss_order(order, rule, name, nodes, known):
+    """The points of a row, in the order its last column gives."""
+    import numpy as np
+    g = {2: [-1 / 3 ** 0.5, 1 / 3 ** 0.5], 3: [-0.6 ** 0.5, 0.0, 0.6 ** 0.5]}
+    n = re.match(r"(\d)(?:x\d)* Gauss", rule)
+    same = re.fullmatch(r"as ([a-z0-9-]+)", order)
+    if same:
+        return known[same.group(1)]
+    if "fastest" in order:                                 # tensor product, first coordinate fastest
+        dims = rule.split()[0].count("x") + 1
+        grids = np.meshgrid(*([g[int(n.group(1))]] * dims), indexing="ij")
+        return np.column_stack([x.ravel(order="F") for x in grids])
+    if order.startswith("ascending s1"):
+        return np.array(g[int(n.group(1))])[:, None]
+    if order.startswith("ascending s:"):
+        return np.polynomial.legendre.leggauss(int(name[3:]) - 1)[0][:, None]
+    if "with a =" in order:
+        a = [float(v) for v in re.findall(r"a = ([0-9.]+)", order)]
+        head = order.split(" with ")[0]
+        return np.array(tuples(head, a[0]) + tuples(head, a[1]))
+    if m := re.match(r"the (\d) lower nodes in node order", order):
+        pts = nodes[:int(m.group(1))] + (tuples(order.split("then the centre")[1]) if "centre" in order else [])
+        return np.array(pts, dtype=float)
+    if m := re.match(r"nodes ([\d, ]+)$", order):
+        return np.array([nodes[int(i) - 1] for i in m.group(1).split(",")], dtype=float)
+    if order.startswith("node order:"):
+        return np.array([[float(v)] for v in order.split(":")[1].split(",")])
+    return np.array(tuples(order), dtype=float)
 
 
 def check_attributes(path, spec):

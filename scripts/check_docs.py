@@ -15,10 +15,10 @@ records or code that the example needs but does not show. KINDs:
             file's records (comments and blank lines aside).
   datain    a file holding only a DATAIN mesh: feps reports nodes=N and elements=M.
   records   records of a deck: base=PATH (a deck of the repository; before=TEXT cuts it at
-            its first line starting with TEXT), then the body's records, then the block's,
-            and `feps --check` accepts the whole. each: every record of the block on its own
+            its first line starting with TEXT), then the body's records, then the block's
+            (then the body's records after a line '---'), and `feps --check` accepts the whole. each: every record of the block on its own
             (alternatives, such as three MATERIAL records of one name). applied=fx,fy,fz:
-            the applied force --check prints (relative 1e-6 of its largest component; with
+            the applied force --check prints (to its 6 digits: 1e-5 of its largest component; with
             each, one triple per record separated by ';', '*' for none). run: run the deck
             too; h5=PATH@ATTR=VALUE;...: attributes of its results (VALUE a number or text,
             or empty for "exists"). stdout=REGEX: a line the run or check prints.
@@ -227,8 +227,10 @@ class Checker:
             d = self.fresh()
             for name in filter(None, ex.args.get("files", "").split(",")):
                 shutil.copy(os.path.join(ROOT, "test/data/docs", name), d)
-            deck = "\n".join(base + ["! --- the marker's context ---"] + ex.body
-                             + ["! --- the example ---", part])
+            before, after = (ex.body[:ex.body.index("---")], ex.body[ex.body.index("---") + 1:]) \
+                if "---" in ex.body else (ex.body, [])
+            deck = "\n".join(base + ["! --- the marker's context ---"] + before
+                             + ["! --- the example ---", part, "! --- what uses it ---"] + after)
             open(os.path.join(d, "example.dat"), "w").write(deck)
             try:
                 out = self.feps_check("example.dat", d, ex, run="run" in ex.flags)
@@ -238,7 +240,7 @@ class Checker:
                 want = [float(v) for v in force.split(",")]
                 got = [float(v) for v in re.search(r"^applied force +(\S+) +(\S+) +(\S+)", out, re.M).groups()]
                 scale = max(abs(v) for v in want + got) or 1.0
-                assert max(abs(a - b) for a, b in zip(got, want)) <= 1e-6 * scale, \
+                assert max(abs(a - b) for a, b in zip(got, want)) <= 1e-5 * scale, \
                     f"applied force {got}, the text says {want} ({part.strip()[:60]})"
                 said.append(f"applied {force}")
             if "stdout" in ex.args:

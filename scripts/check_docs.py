@@ -34,8 +34,8 @@ records or code that the example needs but does not show. KINDs:
   usage     the usage lines of `feps --help`, word for word.
   command   a shell command (a block of them, or an inline code span), run by bash in a
             sandbox of the repository (its folders linked, input/ a real folder) with `feps`
-            the program under test. append=ARGS: added to every line that runs feps (for
-            example --check for a run too long here). status=N (default 0). stdout=REGEX,
+            the program under test. check-only: --check added to every line that runs feps
+            (a run too long here). status=N (default 0). stdout=REGEX,
             stderr=REGEX. only=REGEX: run only the lines that match.
             files=GLOB:COUNT: so many files match GLOB afterwards.
   python    Python run in a temporary folder: h5=NAME:DECK first runs DECK into NAME; the
@@ -112,7 +112,13 @@ def examples(doc):
     while i < len(lines):
         line = lines[i]
         inline = re.findall(r"<!-- check:(.*?)-->\s*`([^`]+)`", line)
+        # CommonMark: a line that starts with '<!--' is an HTML block (the code span after the
+        # marker would show as raw text), and an inline comment may not contain '--'.
+        if inline and line.lstrip().startswith("<!--"):
+            problems.append(f"{doc}:{i + 1}: an inline marker must not start its line (it would hide the code span)")
         for marker, code in inline:
+            if "--" in marker:
+                problems.append(f"{doc}:{i + 1}: an inline marker must not contain '--' (it would show as text)")
             kind, args, flags = parse_marker(marker)
             found.append(Example(doc, i + 1, kind, args, flags, [], code))
         if line.startswith(MARK) and not inline:
@@ -315,8 +321,8 @@ class Checker:
         lines = [l for l in ex.text.split("\n") if l.strip() and not l.lstrip().startswith("#")]
         if "only" in ex.args:
             lines = [l for l in lines if re.search(ex.args["only"], l)]
-        if "append" in ex.args:
-            lines = [re.sub(r"(^|&& *)(feps .*?)(\s+#.*)?$", lambda m: m.group(1) + m.group(2) + " " + ex.args["append"], l)
+        if "check-only" in ex.flags:                     # a run too long here: its --check
+            lines = [re.sub(r"(^|&& *)(feps .*?)(\s+#.*)?$", lambda m: m.group(1) + m.group(2) + " --check", l)
                      for l in lines]
         script = "set -e\nfeps() { \"$FEPS\" \"$@\"; }\n" + "\n".join(lines) + "\n"
         env = dict(os.environ, FEPS=self.feps)

@@ -81,6 +81,19 @@ expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.data
 grep -q "nodes *3375" "$tmp/out" && grep -q "elements *2496" "$tmp/out" && ok "Table 2.1 counts reported" \
   || bad "Table 2.1 counts reported"
 grep -q "min Jacobian" "$tmp/out" && ok "smallest Jacobian reported" || bad "smallest Jacobian reported"
+# A bare mesh with a block of 4-node elements: typed nodes4 and written, without an XDMF cell
+# (docs/output-format.md); it used to stop as an unsupported element type.
+"$feps" test/data/mesh_mixed.datain --output "$tmp/mixed.h5" >"$tmp/out" 2>&1
+python3 - "$tmp/mixed.h5" "$tmp/out" <<'PY' && ok "mesh-only with a nodes4 block: written, no XDMF cell for it" \
+  || bad "mesh-only with a nodes4 block: $(head -c 300 "$tmp/out")"
+import re, sys, h5py
+assert re.search(r"^min Jacobian +1.25000E-01$", open(sys.argv[2]).read(), re.M)   # the hex8 block's
+f = h5py.File(sys.argv[1])
+t = {g: f[f"mesh/groups/{g}"].attrs["element_type"] for g in f["mesh/groups"]}
+assert t == {"block1": b"nodes4", "block2": b"hex8"} or t == {"block1": "nodes4", "block2": "hex8"}, t
+assert list(f["xdmf"]) == ["block2"] and f["mesh/groups/block1/connectivity"].shape == (2, 4)
+assert 'Grid Name="block1"' not in open(sys.argv[1][:-3] + ".xmf").read()
+PY
 # A model of bars only has no solid Jacobian: --check says so instead of printing huge().
 "$feps" input/verification/table2_2_bar3.dat --check >"$tmp/out" 2>&1 \
   && grep -q "^min Jacobian *none (no solid element)$" "$tmp/out" && ok "bars only: min Jacobian none" \

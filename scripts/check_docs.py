@@ -187,7 +187,7 @@ class Checker:
         return d
 
     # -- decks -----------------------------------------------------------------------------
-    def feps_check(self, deck, cwd, ex, run=False):
+    def feps_check(self, deck, cwd, run=False):
         """--check (and with run, a run) of a deck: exit 0; the printed text."""
         rc, out, err = self.run([self.feps, deck, "--check"], cwd)
         if rc != 0:
@@ -202,7 +202,7 @@ class Checker:
     def check_deck(self, ex):
         d = self.fresh()
         open(os.path.join(d, "example.dat"), "w").write(ex.text)
-        out = self.feps_check("example.dat", d, ex)
+        out = self.feps_check("example.dat", d)
         if "same-as" in ex.args:
             mine = records_of(ex.text)
             theirs = records_of(open(os.path.join(ROOT, ex.args["same-as"])).read())
@@ -239,7 +239,7 @@ class Checker:
                              + ["! --- the example ---", part, "! --- what uses it ---"] + after)
             open(os.path.join(d, "example.dat"), "w").write(deck)
             try:
-                out = self.feps_check("example.dat", d, ex, run="run" in ex.flags)
+                out = self.feps_check("example.dat", d, run="run" in ex.flags)
             except AssertionError as e:
                 raise AssertionError(f"{e} [deck: {d}/example.dat]" if self.verbose else str(e))
             if force and force != "*":
@@ -371,7 +371,6 @@ class Checker:
 
     def check_h5_table(self, ex):
         import h5py
-        import numpy as np
         files = [h5py.File(self.result(d)) for d in LAYOUT_DECKS]
         checked = 0
         for row in ex.table:
@@ -560,9 +559,9 @@ def check_shape(f, name, ds, shape, content):
 def check_attribute_row(files, path, content):
     """The attributes a row of the table lists (backticked lower-case names) are there."""
     if path == "/summary":
-        names = [n for n in re.findall(r"`([a-z_]+)`", content) if n not in ("linear", "nonlinear", "fields")
-                 or n == "fields"]
-        names = [n for n in names if n not in ("lu_min_rcond",)]   # only after an LU: checked below
+        # the attribute names it lists; not the values of `analysis`, nor lu_min_rcond (only
+        # after an LU factorization)
+        names = [n for n in re.findall(r"`([a-z_]+)`", content) if n not in ("linear", "nonlinear", "lu_min_rcond")]
         for f in files:
             missing = [n for n in names if n not in f["summary"].attrs]
             assert not missing, f"/summary lacks {missing}"
@@ -572,7 +571,6 @@ def check_attribute_row(files, path, content):
         for f in files:
             for s in f["steps"]:
                 assert all(n in f["steps"][s].attrs for n in names), f"/steps/{s}: {list(f['steps'][s].attrs)}"
-        kinds = set()
         for f in files:
             for s in f["steps"]:
                 assert re.fullmatch(r"\d{4,}", s) and s == f"{int(s):04d}", f"step name {s}"

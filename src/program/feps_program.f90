@@ -427,6 +427,7 @@ contains
       end if
     end if
     angle = atan((interpolate(x1) - interpolate(x0)) / (x1 - x0)) * rad2deg
+    if (angle == 0.0_dp) angle = 0.0_dp   ! a zero slope over x1 < x0 is -0: printed as 0, not -0
   contains
     real(dp) function interpolate(x)
       real(dp), intent(in) :: x
@@ -460,6 +461,7 @@ contains
     call section_mean_ux(r%x_to, ux1)
     if (allocated(error)) return
     angle = -atan((ux1 - ux0) / (r%x_to - r%x_from)) * rad2deg
+    if (angle == 0.0_dp) angle = 0.0_dp   ! -atan(0) is -0: printed and written as 0, not -0
   contains
     subroutine section_mean_ux(z, ux)
       real(dp), intent(in) :: z

@@ -41,6 +41,7 @@ contains
       new_unittest('model B: skyline equals CHOLMOD', test_model_b_solvers), &
       new_unittest('model B: edge load integrates to 1000 kN', test_model_b_load), &
       new_unittest('Table 2.1 read as a mesh-only input', test_mesh_only), &
+      new_unittest('a mesh-only input with a block of another node count', test_mesh_only_mixed), &
       new_unittest('plane strain: tri6 strip under pressure, both rules', test_plane_strain), &
       new_unittest('patch test on a distorted hex8b (B-bar) mesh', test_patch_hex8b), &
       new_unittest('Lame cylinder near incompressibility and at negative nu: locking and B-bar', test_locking), &
@@ -663,6 +664,28 @@ contains
     if (allocated(error)) return
     call check(error, summary%bbox(1, 1), -100.0_dp, 'x min (r = 100 at theta = 180)', rel=1.0e-12_dp)
   end subroutine test_mesh_only
+
+  !> docs/output-format.md: a bare mesh's block of k nodes other than 8 or 20 is typed nodes<k>
+  !! and written; it used to stop the run ('unsupported element type "nodes4"'). The Jacobian
+  !! is the hex8 block's alone: a unit cube, 1/8.
+  subroutine test_mesh_only_mixed(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    logical :: exists
+    opt%deck = 'test/data/mesh_mixed.datain'
+    opt%output = 'build/test_mesh_mixed.h5'
+    opt%solver = ''
+    call run_feps(opt, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%mesh_only .and. summary%nodes == 12 .and. summary%elements == 3, &
+               'a mesh of 12 nodes and 3 elements: ' // str(summary%nodes) // ', ' // str(summary%elements))
+    if (allocated(error)) return
+    call check(error, summary%min_jacobian, 0.125_dp, 'smallest Jacobian (the hex8 block)', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    inquire (file='build/test_mesh_mixed.h5', exist=exists)
+    call check(error, exists, 'the mesh written to build/test_mesh_mixed.h5')
+  end subroutine test_mesh_only_mixed
 
   !> Plane-strain compression of a tri6 square against the closed form (3- and 6-point rules).
   subroutine test_plane_strain(error)

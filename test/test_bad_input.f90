@@ -37,6 +37,7 @@ contains
       new_unittest('duplicate node', test_duplicate_node), &
       new_unittest('non-positive Jacobian names the element', test_negative_jacobian), &
       new_unittest('undefined material', test_undefined_material), &
+      new_unittest('unknown element type: the message lists every type', test_element_type_unknown), &
       new_unittest('nu = 0.5 rejected', test_nu_half), &
       new_unittest('nu = -1 rejected', test_nu_minus_one), &
       new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
@@ -112,6 +113,8 @@ contains
                    nonfinite=.true.), &
       new_unittest('a failed run removes the results an earlier run left under its name', test_failed_run_removes_stale, &
                    nonfinite=.true.), &
+      new_unittest('a deck refused before its first step leaves the results an earlier run left', &
+                   test_refused_deck_keeps_earlier), &
       new_unittest('REPORT, TILT on a section without nodes: before the first step, and by --check', &
                    test_report_no_section), &
       new_unittest('REPORT, ROTATION spanning beyond its ring: before the first step, and by --check', &
@@ -365,7 +368,7 @@ contains
   subroutine test_nset_undefined_node(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/nset_undefined_node.dat', err_input, &
-                        [character(len=40) :: 'nset_undefined_node.dat:25:', 'node 30 is not defined'], error)
+                        [character(len=40) :: 'nset_undefined_node.dat:25: field 3:', 'node 30 is not defined'], error)
   end subroutine test_nset_undefined_node
 
   !> The force used to count in the applied force and the reactions, and act on nothing.
@@ -507,7 +510,8 @@ contains
   subroutine test_material_key_twice(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/material_key_twice.dat', err_input, &
-                        [character(len=60) :: 'material_key_twice.dat:15: field 6:', 'NU is given twice'], error)
+                        [character(len=60) :: 'material_key_twice.dat:15: field 6:', &
+                         'material steel: NU is given twice (fields 5 and 6)'], error)
   end subroutine test_material_key_twice
 
   !> Names become HDF5 groups: a slash used to stop the run with exit 1 when the results were
@@ -624,8 +628,17 @@ contains
   subroutine test_undefined_material(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/undefined_material.dat', err_input, &
-                        [character(len=40) :: 'undefined_material.dat:8:', 'unobtainium'], error)
+                        [character(len=40) :: 'undefined_material.dat:8: field 4:', 'unobtainium'], error)
   end subroutine test_undefined_material
+
+  !> The list of types in the message is what GROUP accepts: it once left out hex8b.
+  subroutine test_element_type_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/element_type_unknown.dat', err_input, &
+                        [character(len=60) :: 'element_type_unknown.dat:8: field 3:', 'unknown element type "hex9"', &
+                         '(3D: hex8, hex8b, hex20, hex20r, interface-quad4', 'tri6, tri6-6, interface-line2', &
+                         'bar2 .. bar5'], error)
+  end subroutine test_element_type_unknown
 
   subroutine test_nu_half(error)
     type(error_t), allocatable, intent(out) :: error
@@ -693,7 +706,7 @@ contains
   subroutine test_vary2_alone(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/vary2_alone.dat', err_input, &
-                        [character(len=40) :: 'vary2_alone.dat:18:', 'give VARY= too'], error)
+                        [character(len=40) :: 'vary2_alone.dat:18: field 4:', 'give VARY= too'], error)
   end subroutine test_vary2_alone
 
   subroutine test_fix_prescribed(error)
@@ -821,6 +834,42 @@ contains
     inquire (file='build/test_bad_input.xmf', exist=exists)
     call check(error, .not. exists, 'the earlier XDMF file is gone')
   end subroutine test_failed_run_removes_stale
+
+  !> docs/output-format.md: a deck refused as bad input leaves an earlier run's results alone.
+  !! nu = 0.5 (checked when the materials are built) and a rigid-body mode (found by the first
+  !! factorization) are refused after the results file was begun: they used to remove cube.dat's
+  !! results and XDMF file, while an unknown keyword left them.
+  subroutine test_refused_deck_keeps_earlier(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: decks(2) = [character(len=40) :: 'test/data/bad/nu_half.dat', &
+                                               'test/data/bad/rigid_body_mode.dat']
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    logical :: exists(3)
+    integer :: i
+    do i = 1, size(decks)
+      call remove_outputs()
+      opt%deck = 'test/data/cube.dat'
+      opt%output = out
+      opt%solver = ''
+      call run_feps(opt, summary, error)
+      if (allocated(error)) return
+      opt%deck = trim(decks(i))
+      call run_feps(opt, summary, run_error)
+      call check(error, allocated(run_error), trim(decks(i)) // ' is refused')
+      if (allocated(error)) return
+      call check(error, any(run_error%code == [err_input, err_model]), trim(decks(i)) // ': ' // run_error%message)
+      if (allocated(error)) return
+      inquire (file=out, exist=exists(1))
+      inquire (file='build/test_bad_input.xmf', exist=exists(2))
+      inquire (file=out // '.part', exist=exists(3))
+      call check(error, exists(1) .and. exists(2) .and. .not. exists(3), trim(decks(i)) // &
+                 ': the earlier results and XDMF file are still there, and no .part file')
+      if (allocated(error)) return
+      deallocate (run_error)
+    end do
+  end subroutine test_refused_deck_keeps_earlier
 
   !> A REPORT's sections depend on the mesh only: they used to be looked for after the whole
   !! analysis, whose results were then thrown away, and --check passed the deck.

@@ -436,7 +436,9 @@ contains
       if (allocated(error)) return
       key = to_lower(key)
       if (any(m%keys == key)) then
-        call input_error(error, rec%file, rec%line, to_upper(key) // ' is given twice', i)
+        call input_error(error, rec%file, rec%line, 'material ' // m%name // ': ' // to_upper(key) // &
+                         ' is given twice (fields ' // str(m%fields(maxloc(merge(1, 0, m%keys == key), dim=1))) // ' and ' // &
+                         str(i) // ')', i)
         return
       end if
       word = ''
@@ -486,7 +488,7 @@ contains
     end if
     g%element_type = to_lower(text)
     if (nodes_of(g%element_type) == 0) then
-      call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (3D: hex8, hex20, ' // &
+      call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (3D: hex8, hex8b, hex20, ' // &
                        'hex20r, interface-quad4, interface-quad8, interface-tri3, interface-tri6; 2D plane ' // &
                        'strain: tri6, tri6-6, interface-line2, interface-line3; -nodal after an interface type ' // &
                        'for nodal integration; bars: bar2 .. bar5)', ifield)
@@ -498,6 +500,7 @@ contains
       return
     end if
     g%material_name = text
+    g%material_field = ifield
     g%file = rec%file
     g%line = rec%line
     allocate (g%blocks(0))
@@ -793,7 +796,7 @@ contains
         model%groups(g)%material = model%find_material(model%groups(g)%material_name)
         if (model%groups(g)%material == 0) then
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'undefined material "' // &
-                           model%groups(g)%material_name // '"')
+                           model%groups(g)%material_name // '"', model%groups(g)%material_field)
           return
         end if
         if (material_family(model%materials(model%groups(g)%material)%kind) /= &
@@ -992,19 +995,22 @@ contains
     type(record_t), intent(in) :: records(:)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: groups(:)   !! restrict to the nodes of a group
-    integer :: s, n, g
+    integer :: s, n, g, ifield
     logical, allocatable :: inside(:), in_group(:)
+    character(len=:), allocatable :: text
+    logical :: found
     allocate (inside(model%nnode), in_group(model%nnode))
     do s = 1, size(model%node_sets)
       if (single(s) > 0) then
+        call option_text(records(s), 'NODE', text, ifield, found)   ! the field to name
         if (single(s) > model%nnode) then
           call input_error(error, records(s)%file, records(s)%line, 'node ' // str(single(s)) // &
-                           ' is out of range (the mesh has ' // str(model%nnode) // ' nodes)')
+                           ' is out of range (the mesh has ' // str(model%nnode) // ' nodes)', ifield)
           return
         end if
         if (.not. defined(single(s))) then
           call input_error(error, records(s)%file, records(s)%line, 'node ' // str(single(s)) // &
-                           ' is not defined (no DATAIN block or NODE record gives it)')
+                           ' is not defined (no DATAIN block or NODE record gives it)', ifield)
           return
         end if
         model%node_sets(s)%nodes = [single(s)]

@@ -342,7 +342,8 @@ contains
     call read_ramp('2', l%vary2_csys, l%vary2_coord, l%zero2, l%peak2_at)
     if (allocated(error)) return
     if (l%vary2_coord > 0 .and. l%vary_coord == 0) then
-      call input_error(error, rec%file, rec%line, 'VARY2 is the second variation: give VARY= too')
+      call option_text(rec, 'VARY2', text, ifield, found)   ! the field to name
+      call input_error(error, rec%file, rec%line, 'VARY2 is the second variation: give VARY= too', ifield)
       return
     end if
     tmp = [model%face_loads, l]

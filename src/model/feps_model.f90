@@ -34,6 +34,7 @@ module feps_model
     character(len=:), allocatable :: name
     character(len=:), allocatable :: element_type   !! 'hex8', 'hex20', 'hex20r'
     character(len=:), allocatable :: material_name
+    integer :: material_field = 0                   !! the GROUP record's MATERIAL= field (for errors)
     integer :: material = 0                         !! index into model%materials
     integer, allocatable :: connectivity(:, :)      !! (nodes per element, nelem), 1-based
     integer, allocatable :: blocks(:)               !! DATAIN element blocks it holds

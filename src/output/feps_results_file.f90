@@ -553,15 +553,22 @@ contains
 
   !> Give up the file: close what is open and delete `<path>.part`, and the results and XDMF
   !! files an earlier run left under this name: after a failed run they would pass for its
-  !! results. Harmless after `close`, twice, or before `create`.
-  subroutine discard(self)
+  !! results. With keep_earlier (a deck refused before its first step) only `<path>.part` goes.
+  !! Harmless after `close`, twice, or before `create`.
+  subroutine discard(self, keep_earlier)
     class(results_file_t), intent(inout) :: self
+    logical, intent(in), optional :: keep_earlier
     integer :: hdferr, status
+    logical :: keep
+    keep = .false.
+    if (present(keep_earlier)) keep = keep_earlier
     if (self%is_open) call release_handles(self, hdferr)
     if (self%part_exists) then
       status = c_remove(self%part_path // c_null_char)
-      status = c_remove(self%path // c_null_char)
-      status = c_remove(xdmf_file_name(self%path) // c_null_char)
+      if (.not. keep) then
+        status = c_remove(self%path // c_null_char)
+        status = c_remove(xdmf_file_name(self%path) // c_null_char)
+      end if
       self%part_exists = .false.
     end if
   end subroutine discard

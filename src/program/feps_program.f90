@@ -4,7 +4,7 @@
 module feps_program
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8, rad2deg
-  use feps_error, only: error_t, fatal_error, input_error, err_input, str
+  use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson
   use feps_deck, only: read_deck
@@ -88,6 +88,7 @@ module feps_program
   type, extends(observer_t) :: results_observer_t
     type(results_file_t) :: h5
     logical :: writing = .false.
+    integer :: steps_written = 0
     real(dp), allocatable :: last_displacement(:, :)
     type(model_t), pointer :: model => null()
     procedure(line_sink), pointer, nopass :: sink => null()
@@ -132,9 +133,7 @@ contains
     summary%output = output
 
     if (model%mesh_only) then
-      call build_kernels(model, kernels, error)
-      if (allocated(error)) return
-      call check_jacobians(model, kernels, summary%min_jacobian, error)
+      call mesh_jacobians(model, summary%min_jacobian, error)
       if (allocated(error)) return
       if (len(output) > 0) call write_mesh_only(output, model, error)
       summary%wall_time = wall_clock() - t0
@@ -168,7 +167,10 @@ contains
     call write_mesh(obs%h5, model, error)
     if (.not. allocated(error)) call run_analysis(model, solver, obs, an, error)
     if (allocated(error)) then
-      call obs%h5%discard()
+      ! A deck refused before its first step (exit status 2: what --check finds too) leaves the
+      ! results of an earlier run alone; a run that failed removes them (they would pass for its).
+      call obs%h5%discard(keep_earlier=obs%steps_written == 0 .and. &
+                          any(error%code == [err_input, err_input_file, err_model]))
       return
     end if
     summary%solver = an%solver
@@ -425,6 +427,7 @@ contains
       end if
     end if
     angle = atan((interpolate(x1) - interpolate(x0)) / (x1 - x0)) * rad2deg
+    if (angle == 0.0_dp) angle = 0.0_dp   ! a zero slope over x1 < x0 is -0: printed as 0, not -0
   contains
     real(dp) function interpolate(x)
       real(dp), intent(in) :: x
@@ -458,6 +461,7 @@ contains
     call section_mean_ux(r%x_to, ux1)
     if (allocated(error)) return
     angle = -atan((ux1 - ux0) / (r%x_to - r%x_from)) * rad2deg
+    if (angle == 0.0_dp) angle = 0.0_dp   ! -atan(0) is -0: printed and written as 0, not -0
   contains
     subroutine section_mean_ux(z, ux)
       real(dp), intent(in) :: z
@@ -498,6 +502,7 @@ contains
     real(dp) :: p(3)
     integer :: g, q, nc
     self%last_displacement = res%displacement
+    self%steps_written = self%steps_written + 1
     associate (f => self%model%fields)
       call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
       if (f%displacement .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', &
@@ -660,6 +665,27 @@ contains
       path = deck(slash + 1:) // '.h5'
     end if
   end function default_output
+
+  !> The smallest Jacobian of a bare DATAIN mesh, over its hex8 and hex20 blocks: a block of
+  !! another node count (typed nodes<k>) has no element to evaluate and is only counted and
+  !! written (it used to stop the run as an unsupported element type).
+  subroutine mesh_jacobians(model, min_detj, error)
+    type(model_t), intent(in) :: model
+    real(dp), intent(out) :: min_detj
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: solids
+    type(group_kernel_t), allocatable :: kernels(:)
+    integer :: g
+    solids%coords = model%coords
+    allocate (solids%groups(0))
+    do g = 1, size(model%groups)
+      if (model%groups(g)%element_type == 'hex8' .or. model%groups(g)%element_type == 'hex20') &
+        solids%groups = [solids%groups, model%groups(g)]
+    end do
+    call build_kernels(solids, kernels, error)
+    if (allocated(error)) return
+    call check_jacobians(solids, kernels, min_detj, error)
+  end subroutine mesh_jacobians
 
   subroutine write_mesh_only(path, model, error)
     character(len=*), intent(in) :: path

@@ -37,7 +37,7 @@ records or code that the example needs but does not show. KINDs:
             the program under test. check-only: --check added to every line that runs feps
             (a run too long here). status=N (default 0). stdout=REGEX,
             stderr=REGEX. only=REGEX: run only the lines that match.
-            files=GLOB:COUNT: so many files match GLOB afterwards.
+            files=GLOB:COUNT: so many new files match GLOB afterwards.
   python    Python run in a temporary folder: h5=NAME:DECK first runs DECK into NAME; the
             body's lines are appended (assertions on what the block computed).
   h5-table  the table of docs/output-format.md right after the marker: every path it names
@@ -326,6 +326,9 @@ class Checker:
                      for l in lines]
         script = "set -e\nfeps() { \"$FEPS\" \"$@\"; }\n" + "\n".join(lines) + "\n"
         env = dict(os.environ, FEPS=self.feps)
+        # files a command leaves are counted as new ones: the sandbox links the working tree's
+        # own files (a modelB.h5 of the README's main job, say), which are not the command's
+        before = set(glob.glob(os.path.join(work, ex.args["files"].rsplit(":", 1)[0]))) if "files" in ex.args else set()
         p = subprocess.run(["bash", "-c", script], cwd=work, capture_output=True, text=True, env=env, timeout=120)
         want = int(ex.args.get("status", 0))
         assert p.returncode == want, f"exit {p.returncode} (expected {want}): {(p.stderr or p.stdout).strip()[-400:]}"
@@ -336,7 +339,7 @@ class Checker:
         said = f"exit {want}"
         if "files" in ex.args:
             pattern, count = ex.args["files"].rsplit(":", 1)
-            got = len(glob.glob(os.path.join(work, pattern)))
+            got = len(set(glob.glob(os.path.join(work, pattern))) - before)
             assert got == int(count), f"{got} files {pattern}, expected {count}"
             said += f", {count} files {pattern}"
         return said

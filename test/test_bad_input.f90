@@ -33,6 +33,8 @@ contains
       new_unittest('truncated file', test_truncated), &
       new_unittest('empty file', test_empty), &
       new_unittest('missing file', test_missing_file), &
+      new_unittest('a directory given as the deck', test_deck_is_directory), &
+      new_unittest('two STAGE records with one name', test_stage_twice), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
       new_unittest('non-positive Jacobian names the element', test_negative_jacobian), &
@@ -448,11 +450,28 @@ contains
   !! not err_io, which is for results that cannot be written (exit 1).
   subroutine test_missing_file(error)
     type(error_t), allocatable, intent(out) :: error
-    call expect_failure('test/data/bad/no_such_deck.dat', err_input_file, &
-                        [character(len=60) :: 'test/data/bad/no_such_deck.dat: cannot open file'], error)
-    if (.not. allocated(error)) call expect_failure('test/data/bad/no_such_deck.dat', err_input_file, &
-      [character(len=60) :: 'test/data/bad/no_such_deck.dat: cannot open file'], error, check_only=.true.)
+    character(len=60), parameter :: pieces(1) = &
+      [character(len=60) :: 'test/data/bad/no_such_deck.dat: cannot open file: no such file']
+    call expect_failure('test/data/bad/no_such_deck.dat', err_input_file, pieces, error)
+    if (.not. allocated(error)) call expect_failure('test/data/bad/no_such_deck.dat', err_input_file, pieces, &
+                                                    error, check_only=.true.)
   end subroutine test_missing_file
+
+  !> A directory opens and reads as a file without records: it was reported as an empty file.
+  subroutine test_deck_is_directory(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad', err_input_file, &
+                        [character(len=60) :: 'test/data/bad: cannot open file: it is a directory'], error, &
+                        absent=[character(len=20) :: 'empty'])
+  end subroutine test_deck_is_directory
+
+  !> Stages are named in messages, progress lines and /steps: a second one of a name is refused.
+  subroutine test_stage_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/stage_twice.dat', err_input, &
+                        [character(len=60) :: 'stage_twice.dat:26: field 2:', &
+                         'STAGE "load" is defined twice (first at line 25)'], error, check_only=.true.)
+  end subroutine test_stage_twice
 
   subroutine test_node_out_of_range(error)
     type(error_t), allocatable, intent(out) :: error

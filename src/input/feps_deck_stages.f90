@@ -3,7 +3,7 @@
 module feps_deck_stages
   use feps_strings, only: to_upper, to_lower
   use feps_kinds, only: dp
-  use feps_error, only: error_t, input_error
+  use feps_error, only: error_t, input_error, str
   use feps_records, only: record_t, nfields, field_text
   use feps_model, only: model_t, name_len, stage_t, controls_t, method_names, report_t
   use feps_deck_fields, only: key_value, check_option_keys, option_real, option_text, require_fields, parse_real, parse_int
@@ -28,6 +28,14 @@ contains
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     st%name = field_text(rec, 2)
+    ! Messages, progress lines and /steps name a stage by its name: two alike would be ambiguous.
+    do i = 1, size(model%stages)
+      if (model%stages(i)%name == st%name) then
+        call input_error(error, rec%file, rec%line, 'STAGE "' // st%name // '" is defined twice (first at line ' // &
+                         str(model%stages(i)%line) // ')', 2)
+        return
+      end if
+    end do
     st%file = rec%file
     st%line = rec%line
     st%controls = model%controls

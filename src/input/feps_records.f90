@@ -59,8 +59,19 @@ contains
     character(len=:), allocatable :: line
     character(len=256) :: iomsg
     integer :: unit, iostat, lineno
-    logical :: eof
+    logical :: eof, exists
 
+    inquire (file=path, exist=exists)
+    if (.not. exists) then
+      call fatal_error(error, err_input_file, path // ': cannot open file: no such file')
+      return
+    end if
+    ! A directory opens and reads as an empty file; 'path/.' exists only for a directory (POSIX).
+    inquire (file=path // '/.', exist=exists)
+    if (exists) then
+      call fatal_error(error, err_input_file, path // ': cannot open file: it is a directory')
+      return
+    end if
     open (newunit=unit, file=path, status='old', action='read', form='formatted', &
           access='sequential', iostat=iostat, iomsg=iomsg)
     if (iostat /= 0) then

@@ -718,6 +718,31 @@ expect_arg_error "plot_stress_maps.py --norm 0" "argument --norm" \
   python3 scripts/plot_stress_maps.py --h5 "$tmp/b_cholmod.h5" --norm 0 --out "$tmp/m.png"
 expect_line "plot_interface_maps.py --step 99" 2 "no step 0099" \
   python3 scripts/plot_interface_maps.py --h5 "$tmp/main.h5" --group contact --step 99 --out "$tmp/m.png"
+# Issue 5's figures 7.7-7.8: model C's total joint deformation, on a coarse model C (24 deg elements,
+# 2 stage-2 steps, 1 equilibrium step: seconds). Its beta_bar must be postprocess_model_c.py's.
+python3 scripts/make_model_c.py --outdir "$tmp/mc_small" --cases C_G300_nu0.1_b0.09 --steps 2 --theta-step 24 >/dev/null \
+  && sed -i 's/^STAGE, s3, STEPS=100,/STAGE, s3, STEPS=1,/' "$tmp/mc_small/C_G300_nu0.1_b0.09.dat" \
+  && "$feps" "$tmp/mc_small/C_G300_nu0.1_b0.09.dat" --output "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" --quiet \
+  && python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" \
+       --out "$tmp/fig7_7.png" >"$tmp/out" 2>&1 && [ -s "$tmp/fig7_7.png" ] \
+  && python3 - "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" "$tmp/out" <<'PY' 2>/dev/null \
+  && ok "plot_joint_deformation.py --joint-total (Figures 7.7-7.8): beta_bar as postprocess_model_c.py" \
+  || bad "plot_joint_deformation.py --joint-total (Figures 7.7-7.8): $(head -c 300 "$tmp/out")"
+import re, sys
+sys.path.insert(0, "scripts")
+import postprocess_model_c as pmc
+printed = float(re.search(r"beta_bar \(x >= 250\) = ([0-9.]+) deg", open(sys.argv[2]).read()).group(1))
+want = pmc.postprocess(sys.argv[1], verbose=False)["beta_bar"]
+sys.exit(0 if abs(printed - want) <= 5e-6 else 1)
+PY
+expect_line "plot_joint_deformation.py --joint-total on a model B result" 2 "not a model C result" \
+  python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/main.h5" --out "$tmp/m.png"
+# Issue 5's interface of joint_models.py: exactly one line per model, 'MODEL Z=<mm> sigma_max=<MPa>'.
+python3 scripts/joint_models.py --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 --L 2500 --Ec 40000 --R 715 --r 600 \
+  >"$tmp/out" 2>&1 && [ "$(wc -l <"$tmp/out")" -eq 2 ] \
+  && grep -qx "australian Z=767.86 sigma_max=32.409" "$tmp/out" && grep -qx "haslem Z=504.67 sigma_max=43.709" "$tmp/out" \
+  && ok "joint_models.py prints 'australian Z=.. sigma_max=..' and 'haslem Z=.. sigma_max=..'" \
+  || bad "joint_models.py line format: $(head -c 300 "$tmp/out")"
 printf 'case,nu_p,sigma_max,status\na,-0.3,20.1,ok\nb,0.1,21.5,ok\n' >"$tmp/pc.csv"
 expect_line "plot_campaign.py --logx with nu_p = -0.3" 1 "row a: column 'nu_p' is -0.3" \
   python3 scripts/plot_campaign.py "$tmp/pc.csv" --x nu_p --y sigma_max --logx -o "$tmp/pc.png"

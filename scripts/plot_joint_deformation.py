@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """Axial displacement w along r = R at a pipe end section against x (thesis Figures 7.3-7.6), for one
 or more feps results, with the analytical lines of the Australian model and Haslem's flexible pipe
-model (scripts/joint_models.py).
+model (scripts/joint_models.py); with --joint-total, model C's total deformation at the joint
+(thesis Figures 7.7-7.8).
 
     python3 scripts/plot_joint_deformation.py --h5 FE1.h5 FE2.h5 FE3.h5 \\
         --labels "typical soil" "soft soil" "stiff soil" --out results/figures/fig7_3.png
+    python3 scripts/plot_joint_deformation.py --joint-total --h5 results/modelC/C_G300_nu*_b0.09/*.h5 \\
+        --out results/figures/fig7_7.png
 
 Numerical curves: w (uz of the chosen step) of the group's nodes on r = R (default: the group's
 largest nodal radius, 715 in model B) at z = Z (default: the group's largest z, the top pipe end),
@@ -22,6 +25,16 @@ L = 1250 mm (half the pipe: both ends are loaded, the mid-section does not rotat
   the model), so the line is drawn through w = 0 at x = 0 (--haslem-pivot moves that point).
 The lines' sign is that of the compressed end: w < 0 at the top end (largest z), w > 0 at the bottom.
 --edge +1 puts the loaded edge at x = +R (model C's bottom pipe).
+
+--joint-total (model C results of scripts/make_model_c.py's decks, thesis 7.4.2, Figures 7.7-7.8):
+the total deformation at the joint along r = 715, D(x) = -(w at the top pipe's mid-length section
+A-A, z = 2515, less the interface's jump uz(packing) - uz(bottom pipe)), compression positive, as
+scripts/postprocess_model_c.py computes it for beta_bar. Per file: the curve, the least-squares line
+over x >= 250 mm whose slope is beta_bar (dashed), and, unless --no-analytical, the Australian
+model's joint closure at that beta_bar, D = tan(beta_bar) (x - (R - Z)) for x > R - Z with its Z
+(a = 15 mm, E_p = 2 G_p (1 + nu_p) from the case name, q = 10 MPa; dotted). Haslem's model gives
+no closure profile across the joint, so it has no line here. --group, --radius, --z, --edge and the
+joint model parameters do not apply.
 """
 import argparse
 import os
@@ -78,6 +91,50 @@ def analytical_lines(params, edge, top, pivot, npts=400):
             f"Haslem (1996) (beta = {has.beta:.4f} deg)": (x, w_has)}, aus, has
 
 
+def joint_total(ax, args, markers):
+    """Model C: the total deformation at the joint per file (thesis Figures 7.7-7.8) on ax."""
+    import postprocess_model_c as pmc
+    for k, path in enumerate(args.h5):
+        try:
+            f = pmc.open_model_c(path)
+        except Error as exc:            # a missing or non-model-C file is a bad argument here
+            raise Error(str(exc), 2) from None
+        with f:
+            try:
+                step = fr.pick_step(f, args.step)
+            except ValueError as exc:
+                raise Error(str(exc), 2) from None
+            coords = f["mesh/coordinates"][...]
+            conn_top = f["mesh/groups/top_pipe/connectivity"][...]
+            conn_joint = f["mesh/groups/joint/connectivity"][...]
+            u = f[f"steps/{step}/displacement"][...]
+            case = fr.case_name(f)
+        bbar, _, _, _, x, d = pmc.beta_bar(coords, conn_top, conn_joint, u)
+        label = args.labels[k] if args.labels else case
+        line, = ax.plot(x, d, marker=markers[k % len(markers)], ms=3.5, lw=1.4,
+                        label=f"{label} (beta_bar = {bbar:.4f} deg)")
+        sel = x >= pmc.X_REGION - pmc.TOL
+        a, b = pmc._lsq_line(x[sel], d[sel])
+        xs = np.array([pmc.X_REGION, pmc.R_OUT])
+        ax.plot(xs, a + b * xs, "--", color=line.get_color(), lw=1.0)
+        text = (f"{path}: {label}: {len(x)} nodes on r = {pmc.R_OUT:g} at z = {pmc.Z_SECTION_AA:g}; D from "
+                f"{d.min():.4f} to {d.max():.4f} mm; beta_bar (x >= {pmc.X_REGION:g}) = {bbar:.5f} deg")
+        aus = pmc.analytical_at_beta_bar(case, bbar) if not args.no_analytical else {}
+        if aus:
+            z_aus = aus["australian_Z"]
+            xa = np.linspace(-pmc.R_OUT, pmc.R_OUT, 400)
+            da = np.tan(np.radians(bbar)) * np.clip(xa - (pmc.R_OUT - z_aus), 0.0, None)
+            ax.plot(xa, da, ":", color=line.get_color(), lw=1.5,
+                    label=f"Australian model at beta_bar (Z = {z_aus:.0f} mm)")
+            text += f"; Australian Z = {z_aus:.1f} mm"
+        print(text)
+    ax.axvline(pmc.X_REGION, color="0.6", lw=0.6, ls="-.")
+    ax.set_ylabel("total joint deformation D (mm, compression +)")
+    ax.set_xlim(-pmc.R_OUT, pmc.R_OUT)
+    return (f"Total deformation at the joint along r = {pmc.R_OUT:g} mm "
+            f"(section A-A less the interface)")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--h5", nargs="+", required=True, help="feps result files")
@@ -87,6 +144,8 @@ def main(argv=None):
     ap.add_argument("--z", type=finite, help="section z (default: the group's largest z, the top end)")
     ap.add_argument("--step", type=step_arg, help="step number (default the last stored)")
     ap.add_argument("--no-analytical", action="store_true", help="numerical curves only")
+    ap.add_argument("--joint-total", action="store_true",
+                    help="model C: total deformation at the joint (thesis Figures 7.7-7.8)")
     ap.add_argument("--edge", type=int, choices=[-1, 1], default=-1, help="loaded edge at x = edge * R (default -1)")
     ap.add_argument("--haslem-pivot", type=finite, default=0.0, help="x where Haslem's line is zero (default 0)")
     for key, value in TABLE7_1.items():
@@ -103,11 +162,21 @@ def main(argv=None):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    markers = "osd^v<>p"
+    if args.joint_total:
+        fig, ax = plt.subplots(figsize=(7.2, 4.8))
+        title = joint_total(ax, args, markers)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.set_xlabel("x (mm)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left")
+        ax.set_title(args.title or title, fontsize=10)
+        return save(fig, plt, args.out, args.dpi)
+
     params = {k: getattr(args, k) for k in TABLE7_1}
     x0, x1 = args.edge * (params["R"] - params["Z"]), args.edge * params["R"]   # the loaded region
     fig, ax = plt.subplots(figsize=(7.2, 4.8))
     top = True
-    markers = "osd^v<>p"
     for k, path in enumerate(args.h5):
         try:
             with fr.open_result(path) as f:
@@ -141,11 +210,15 @@ def main(argv=None):
     ax.legend(fontsize=8, loc="lower right" if (top and args.edge < 0) else "best")
     ax.set_title(args.title or f"Axial displacement w along r = {radius:g} mm at the pipe end z = {z:g} mm",
                  fontsize=10)
+    return save(fig, plt, args.out, args.dpi)
+
+
+def save(fig, plt, out, dpi):
     fig.tight_layout()
-    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-    fig.savefig(args.out, dpi=args.dpi)
+    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+    fig.savefig(out, dpi=dpi)
     plt.close(fig)
-    print(f"-> {args.out}")
+    print(f"-> {out}")
     return 0
 
 

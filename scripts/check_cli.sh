@@ -737,6 +737,21 @@ sys.exit(0 if abs(printed - want) <= 5e-6 else 1)
 PY
 expect_line "plot_joint_deformation.py --joint-total on a model B result" 2 "not a model C result" \
   python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/main.h5" --out "$tmp/m.png"
+# The maps' q: a model B or C result's own (4.21, 10 MPa), any other file must be given --norm
+# (it used to be 4.21 for every file: model A, C and chapter 9 maps silently divided by model B's).
+for case in "b_cholmod.h5 pipe 4.21" "mc_small/C_G300_nu0.1_b0.09.h5 top_pipe 10"; do
+  read -r h5 group q <<<"$case"
+  rm -f "$tmp/out1" "$tmp/out2"
+  python3 scripts/plot_stress_maps.py --h5 "$tmp/$h5" --group "$group" --out "$tmp/m1.png" >"$tmp/out1" 2>&1 \
+    && python3 scripts/plot_stress_maps.py --h5 "$tmp/$h5" --group "$group" --norm "$q" --out "$tmp/m2.png" >"$tmp/out2" 2>&1 \
+    && [ "$(sed 's/ -> .*//' "$tmp/out1")" = "$(sed 's/ -> .*//' "$tmp/out2")" ] \
+    && ok "plot_stress_maps.py without --norm on $h5 divides by q = $q" \
+    || bad "plot_stress_maps.py's q of $h5: $(head -c 300 "$tmp/out1") / $(head -c 300 "$tmp/out2")"
+done
+expect_line "plot_stress_maps.py without --norm on a file of no thesis model" 2 "give --norm" \
+  python3 scripts/plot_stress_maps.py --h5 "$tmp/beam.h5" --out "$tmp/m.png"
+expect_line "plot_interface_maps.py without --norm on a file of no thesis model" 2 "give --norm" \
+  python3 scripts/plot_interface_maps.py --h5 "$tmp/beam.h5" --out "$tmp/m.png"
 # Issue 5's interface of joint_models.py: exactly one line per model, 'MODEL Z=<mm> sigma_max=<MPa>'.
 python3 scripts/joint_models.py --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 --L 2500 --Ec 40000 --R 715 --r 600 \
   >"$tmp/out" 2>&1 && [ "$(wc -l <"$tmp/out")" -eq 2 ] \

@@ -304,3 +304,21 @@ def summary(f):
         else:
             out[key] = np.asarray(value).tolist()
     return out
+
+
+# The mean end pressure q (MPa) that normalises the thesis's stress contours, by model, known
+# from the /summary parameters its decks write (scripts/make_model_b.py, make_model_c.py):
+# model B: P = 1000 kN over the half annulus (thesis 5.3); model C: 10 MPa on the top end (6.2).
+MEAN_PRESSURE = {"model B": ("parameter_kind", 4.21), "model C": ("parameter_G_p", 10.0)}
+
+
+def mean_pressure(f):
+    """(q, model) of a result of a thesis model B or C deck, from its /summary parameters; (None,
+    None) for any other file, whose q the caller must be given (a default would be a silent
+    wrong number)."""
+    attrs = summary(f)
+    for model, (key, q) in MEAN_PRESSURE.items():
+        if key in attrs:
+            return q, model
+    return None, None
+

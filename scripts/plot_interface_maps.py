@@ -23,7 +23,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
 from feps_cli import Error, guard, positive, positive_int  # noqa: E402
-from plot_stress_maps import Q_MODEL_B, mark_peak, step_arg, step_label  # noqa: E402
+from plot_stress_maps import mark_peak, norm_of, step_arg, step_label  # noqa: E402
 
 STATE_NAMES = ["stuck", "sliding", "open"]
 
@@ -111,7 +111,9 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--h5", required=True, help="feps result file")
     ap.add_argument("--group", default="contact", help="interface group (default contact)")
-    ap.add_argument("--norm", type=positive, default=Q_MODEL_B, help="mean pressure q (MPa), default 4.21 (model B)")
+    ap.add_argument("--norm", type=positive,
+                    help="mean pressure q (MPa) (default: 4.21 for a model B result, 10 for model C; "
+                         "required for others)")
     ap.add_argument("--step", type=step_arg, help="step number (default the last stored)")
     ap.add_argument("--unfold", choices=["auto", "cylinder", "face"], default="auto")
     ap.add_argument("--shear", choices=["magnitude", "tau1", "tau2"], default="magnitude")
@@ -128,6 +130,7 @@ def main(argv=None):
 
     try:
         with fr.open_result(args.h5) as f:
+            args.norm = norm_of(f, args.norm)
             step = fr.pick_step(f, args.step)
             fr.require_group(f, args.group, lambda t: t.startswith("interface-") and "line" not in t,
                              "3D interface group")

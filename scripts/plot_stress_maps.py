@@ -28,7 +28,6 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
 from feps_cli import Error, guard, positive, positive_int  # noqa: E402
 
-Q_MODEL_B = 4.21   # MPa: P = 1000 kN over the half annulus (thesis 5.3)
 SOURCES = {"gauss": "Gauss points", "cell": "element averages", "nodes": "nodal"}
 FIELDS = {"tensile": (0, "most tensile principal stress"), "compressive": (1, "most compressive principal stress")}
 
@@ -214,6 +213,17 @@ def peak_text(theta, z, values, i):
     return f"peak {values[i]:.2f} at theta = {theta[i]:.0f} deg, z = {z[i]:.0f} mm (x)"
 
 
+def norm_of(f, norm):
+    """--norm if given, else the mean pressure of a thesis model B or C result (feps_results)."""
+    if norm is not None:
+        return norm
+    q, _ = fr.mean_pressure(f)
+    if q is None:
+        raise ValueError(f"{f.filename}: give --norm q (MPa): the file is no model B or C result "
+                         f"(their /summary parameters give q), so its mean pressure is not known")
+    return q
+
+
 def step_label(f, step):
     lf = f[f"steps/{step}"].attrs.get("load_factor")
     return f"step {step}" + (f", load factor {float(lf):.3g}" if lf is not None else "")
@@ -225,8 +235,9 @@ def main(argv=None):
     ap.add_argument("--group", default="pipe", help="solid element group (default pipe)")
     ap.add_argument("--surface", type=surface_arg, default="inner", help="inner, outer or r=VALUE (default inner)")
     ap.add_argument("--field", choices=sorted(FIELDS), default="tensile")
-    ap.add_argument("--norm", type=positive, default=Q_MODEL_B,
-                    help="mean pressure q (MPa) the stresses are divided by (default 4.21, model B)")
+    ap.add_argument("--norm", type=positive,
+                    help="mean pressure q (MPa) the stresses are divided by (default: 4.21 for a model B "
+                         "result, 10 for model C, known from its /summary parameters; required for others)")
     ap.add_argument("--step", type=step_arg, help="step number (default the last stored)")
     ap.add_argument("--source", choices=["gauss", "cell", "nodes"], default="gauss",
                     help="Gauss points nearest the surface (default), element averages, or nodal values "
@@ -245,6 +256,7 @@ def main(argv=None):
     column, field_name = FIELDS[args.field]
     try:
         with fr.open_result(args.h5) as f:
+            args.norm = norm_of(f, args.norm)
             step = fr.pick_step(f, args.step)
             fr.require_group(f, args.group, SOLID, "solid group")
             kind = "stress" if args.source == "nodes" else ("cell/principal" if args.source == "cell" else "principal")

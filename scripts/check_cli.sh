@@ -771,6 +771,8 @@ for v in nan inf; do
   expect_line "joint_models.py --beta $v" 2 "joint_models: need a finite beta" \
     python3 scripts/joint_models.py --beta $v --a 15 --Ep 660
 done
+expect_arg_error "joint_models.py --check with --beta (it would be ignored)" "--check takes no other option (given: --beta)" \
+  python3 scripts/joint_models.py --check --beta 0.1
 expect_arg_error "make_model_b.py --soil-radius 500 (inside the pipe)" "must exceed the pipe's outer radius 715" \
   python3 scripts/make_model_b.py --outdir "$tmp/x" --soil-radius 500
 expect_arg_error "make_model_c.py --steps -3" "argument --steps" python3 scripts/make_model_c.py --outdir "$tmp/x" --steps -3

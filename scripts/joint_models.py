@@ -347,6 +347,10 @@ def main(argv=None):
     ap.add_argument("--check", action="store_true", help="compare with thesis Tables 7.1 and 7.4")
     args = ap.parse_args(argv)
     if args.check:
+        given = [name for name in ("beta", "Z", "a", "Ep", "P", "json") if getattr(args, name) not in (None, False)]
+        given += [name for name in ("L", "Ec", "R", "r") if getattr(args, name) != DEFAULTS[name]]
+        if given:   # --check computes the thesis's own inputs: these would be ignored
+            ap.error("--check takes no other option (given: " + ", ".join("--" + n for n in given) + ")")
         return 1 if check() else 0
     if args.a is None or args.Ep is None:
         ap.error("--a and --Ep are required")

@@ -5,6 +5,8 @@
   python3 scripts/bench_calculix_friction.py --cases gauss --nx 40
   python3 scripts/bench_calculix_friction.py --feps build/.../feps --outdir /tmp/fric
   python3 scripts/bench_calculix_friction.py --cases nodal --e-lower 1e6   # the sharpest check
+  python3 scripts/bench_calculix_friction.py --family plane-strain          # tri6 + interface-line3
+  python3 scripts/bench_calculix_friction.py --family plane-strain --cases gauss --e-lower 1e6
 
 With nodal points on both sides and a stiff lower block (so that ccx's contact frame, which
 follows the deformed master surface, hardly rotates) the two codes discretize the same model
@@ -44,6 +46,25 @@ relative displacement passes the stick limit Ks |gamma| > mu Kn |eps_n|); and th
 shear stress along the joint (y = 0) at a few load levels. Writes feps.dat, ccx.inp, the runs'
 output and summary.md into --outdir (default results/calculix-friction-<date>, git-ignored).
 Installs calculix-ccx from Debian when ccx is missing (as scripts/bench_calculix.sh does).
+
+--family plane-strain: the same model in the x-y plane (y up; no symmetry plane, forces per mm of
+thickness), tri6 blocks with each quad cell of 5 x 5 mm split along a diagonal (as the chapter 3
+joint model, scripts/make_joint_2d.py), interface-line3 / interface-line3-nodal, against ccx's
+CPE6. ccx expands each CPE6 into a 15-node wedge of the *SOLID SECTION thickness (1 mm here) and
+ties the in-plane displacements through the thickness, so that its forces are those of the 1 mm
+slice, i.e. feps's per mm. Contact is defined on the triangles' edges, which become 8-node faces
+of the wedges. mu N = tan(30) * 100 N/mm = 57.735 N/mm.
+  gauss  interface-line3 (3-point Gauss) against face-to-face contact: both integrate the
+         stuck state exactly; an apples-to-apples check apart from the slip-front element.
+  nodal  interface-line3-nodal (Simpson: L/6, L/6, 2L/3) against node-to-surface contact, whose
+         spring areas on those faces are NOT Simpson's: 1/100 of the face at each of its 4 corner
+         nodes and 24/100 at each of its 4 middle nodes (ccx manual), i.e. 26/100 of the line at
+         each end and 48/100 at the middle. The joint's nodal stiffness is distributed
+         differently, and ccx's contact pressure alternates between the end and middle nodes
+         (the consistent load of a quadratic edge is Simpson's); a comparison of totals and
+         sliding, not of the nodal tractions. The interface totals of ccx use its spring areas.
+The .frd is written with OUTPUT=3D: ccx gives node-to-surface results at the expanded nodes,
+which are mapped back to the 2D nodes by their x, y.
 """
 import argparse
 import datetime
@@ -66,6 +87,15 @@ P = 1.0
 MU = math.tan(math.radians(PHI))
 N_TOTAL = P * L * W          # the interface's normal force, by equilibrium of the upper block
 F_SLIDE = MU * N_TOTAL       # closed form: the pull force once the whole joint slides
+
+# What differs between the element families. plane-strain: forces per mm of thickness (feps's
+# plane strain; ccx's expanded CPE6 with the *SOLID SECTION thickness 1 mm gives the same numbers).
+FAMILIES = {
+    "solid": dict(vert=2, npair=4, i_sn=2, i_state=3, area=L * W, n_total=N_TOTAL, f_slide=F_SLIDE,
+                  itypes={"gauss": "interface-quad4", "nodal": "interface-quad4-nodal"}),
+    "plane-strain": dict(vert=1, npair=3, i_sn=1, i_state=2, area=L, n_total=P * L, f_slide=MU * P * L,
+                         itypes={"gauss": "interface-line3", "nodal": "interface-line3-nodal"}),
+}
 
 
 # ------------------------------------------------------------------------------ feps deck
@@ -108,6 +138,48 @@ def feps_deck(nx, ny, nz1, nz2, steps, pull, itype, method, e_lower):
         "NSET, base, Z=0.\nNSET, sym, Y=0.\nFIX, base, ALL\nFIX, sym, Y\n",
         f"NSET, pull, GROUP=upper, X={L!r}\n",
         f"FSET, top, GROUP=upper, Z={H1 + H2!r}\n",
+        f"STAGE, press, STEPS=1, {method}, OUTPUT=1\n",
+        f"PRESSURE, top, VALUE={P!r}\n",
+        f"STAGE, pull, STEPS={steps}, {method}, OUTPUT=1\n",
+        f"DISPLACE, pull, X={pull!r}\n",
+    ])
+
+
+def feps_deck_2d(nx, ny1, ny2, steps, pull, itype, method, e_lower):
+    """The same model in plane strain (x along the joint, y up): tri6 blocks, each quad cell split
+    along its lower-left/upper-right diagonal as in scripts/make_joint_2d.py, line3 interfaces."""
+    dx = L / nx
+
+    def lattice(y0, nxe, nye, dy):
+        return (f"A, 1, 0., {y0!r},\n%, {2 * nxe + 1}, {dx / 2!r}, 0.,\n%, {2 * nye + 1}, 0., {dy / 2!r},\n"
+                "E,\n")
+
+    def tris(o, nxe, nye):
+        r = 2 * nxe + 1
+        a = [o + 1, o + 3, o + 2 * r + 3, o + 2, o + r + 3, o + r + 2]
+        b = [o + 1, o + 2 * r + 3, o + 2 * r + 1, o + r + 2, o + 2 * r + 2, o + r + 1]
+        return "".join("A, 6, " + ", ".join(map(str, t)) + f",\n%, {nxe}, *, 6, 2,\n%, {nye}, *, 6, {2 * r},\nE,\n"
+                       for t in (a, b))
+
+    rowl = 2 * (nx + 1) + 1       # nodes in a row of the lower block (one element longer, as in 3D)
+    n1 = rowl * (2 * ny1 + 1)     # nodes of the lower block; the upper block's follow
+    lo0 = 2 * ny1 * rowl + 1      # first node of the lower block's top row
+    joint = ("A, 6, " + ", ".join(map(str, [lo0, lo0 + 2, lo0 + 1, n1 + 1, n1 + 3, n1 + 2]))
+             + f",\n%, {nx}, *, 6, 2,\nE,\n")
+    return "".join([
+        "! Written by scripts/bench_calculix_friction.py --family plane-strain: a block pulled over\n",
+        "! another through a frictional interface (c = 0, psi = 0), the same model as the script's ccx.inp.\n",
+        f"TITLE, friction benchmark against CalculiX, plane strain ({itype})\n",
+        lattice(0.0, nx + 1, ny1, H1 / ny1), lattice(H1, nx, ny2, H2 / ny2),
+        "GROUP, lower, TYPE=tri6, MATERIAL=base\n", tris(0, nx + 1, ny1),
+        "GROUP, upper, TYPE=tri6, MATERIAL=block\n", tris(n1, nx, ny2),
+        f"GROUP, joint, TYPE={itype}, MATERIAL=contact\n", joint, "E,\n",
+        f"MATERIAL, base, ELASTIC, E={e_lower!r}, NU={NU!r}\n",
+        f"MATERIAL, block, ELASTIC, E={E!r}, NU={NU!r}\n",
+        f"MATERIAL, contact, INTERFACE, KN={KN!r}, KS={KS!r}, PHI={PHI!r}, PSI=0., C=0.\n",
+        "NSET, base, Y=0.\nFIX, base, X, Y\n",
+        f"NSET, pull, GROUP=upper, X={L!r}\n",
+        f"FSET, top, GROUP=upper, Y={H1 + H2!r}\n",
         f"STAGE, press, STEPS=1, {method}, OUTPUT=1\n",
         f"PRESSURE, top, VALUE={P!r}\n",
         f"STAGE, pull, STEPS={steps}, {method}, OUTPUT=1\n",
@@ -176,6 +248,60 @@ def ccx_input(h5path, steps, pull, case, sigma_inf, tol, e_lower):
     return "\n".join(out) + "\n"
 
 
+def ccx_input_2d(h5path, steps, pull, case, sigma_inf, tol, e_lower):
+    """ccx.inp of the plane-strain model: CPE6 (ccx expands them into 15-node wedges of the
+    *SOLID SECTION thickness, here 1 mm, so that its forces are per mm as feps's), contact on
+    the edges of the triangles (faces of the expanded wedges)."""
+    h = h5py.File(h5path, "r")
+    x = h["mesh/coordinates"][...]
+    lo = h["mesh/groups/lower/connectivity"][...]
+    up = h["mesh/groups/upper/connectivity"][...]
+    y = x[:, 1]
+    out = ["*HEADING", f"friction benchmark against feps, plane strain ({case}), written by "
+           "scripts/bench_calculix_friction.py", "*NODE"]
+    out += [f"{n}, {float(x[n - 1, 0])!r}, {float(x[n - 1, 1])!r}" for n in range(1, len(x) + 1)]
+    # feps's tri6 node order is ccx's (corners counter-clockwise, then mid-sides 1-2, 2-3, 3-1)
+    out.append("*ELEMENT, TYPE=CPE6, ELSET=LOWER")
+    out += [f"{i}, " + ", ".join(map(str, c)) for i, c in enumerate(lo, 1)]
+    out.append("*ELEMENT, TYPE=CPE6, ELSET=UPPER")
+    out += [f"{i}, " + ", ".join(map(str, c)) for i, c in enumerate(up, len(lo) + 1)]
+    lon, upn = np.unique(lo), np.unique(up)
+    out += nset_lines("NALL", range(1, len(x) + 1))
+    out += nset_lines("BASE", [n for n in lon if abs(y[n - 1]) < 1e-9])
+    out += nset_lines("PULL", [n for n in upn if abs(x[n - 1, 0] - L) < 1e-9])
+    edges = {"S1": [0, 1, 3], "S2": [1, 2, 4], "S3": [2, 0, 5]}    # ccx's faces of a triangle
+
+    def faces(conn, first, yface):
+        return [f"{i}, {f}" for i, c in enumerate(conn, first) for f, e in edges.items()
+                if np.all(np.abs(y[c[e] - 1] - yface) < 1e-9)]
+
+    out += ["*SURFACE, NAME=SMASTER, TYPE=ELEMENT"] + faces(lo, 1, H1)
+    out += ["*SURFACE, NAME=SSLAVE, TYPE=ELEMENT"] + faces(up, len(lo) + 1, H1)
+    out += ["*SURFACE, NAME=STOP, TYPE=ELEMENT"] + faces(up, len(lo) + 1, H1 + H2)
+    out += ["*MATERIAL, NAME=BASE", "*ELASTIC", f"{e_lower!r}, {NU!r}",
+            "*MATERIAL, NAME=BLOCK", "*ELASTIC", f"{E!r}, {NU!r}",
+            "*SOLID SECTION, ELSET=LOWER, MATERIAL=BASE", "1.", "*SOLID SECTION, ELSET=UPPER, MATERIAL=BLOCK", "1.",
+            "*SURFACE INTERACTION, NAME=JOINT", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"]
+    if case == "gauss":
+        out += [f"{KN!r}", "*FRICTION", f"{MU!r}, {KS!r}",
+                "*CONTACT PAIR, INTERACTION=JOINT, TYPE=SURFACE TO SURFACE", "SSLAVE, SMASTER"]
+    else:
+        out += [f"{KN!r}, {sigma_inf!r}", "*FRICTION", f"{MU!r}, {KS!r}",
+                "*CONTACT PAIR, INTERACTION=JOINT, TYPE=NODE TO SURFACE, SMALL SLIDING", "SSLAVE, SMASTER"]
+    out += ["*BOUNDARY", "BASE, 1, 2", "PULL, 1, 1, 0."]
+    controls = ["*CONTROLS, PARAMETERS=FIELD", f"{tol!r}, {tol!r}, , , {tol!r}"]
+    prints = ["*NODE PRINT, NSET=NALL", "U", "*NODE PRINT, NSET=PULL, TOTALS=ONLY", "RF"]
+    if case == "gauss":
+        prints += ["*CONTACT PRINT, SLAVE=SSLAVE, MASTER=SMASTER", "CF"]
+    # OUTPUT=3D: the .frd then holds the expanded nodes' coordinates; node-to-surface contact
+    # results are given at the expanded slave nodes, which are mapped back by their x, y
+    prints += ["*NODE FILE, OUTPUT=3D", "U", "*CONTACT FILE", "CDIS, CSTR"]
+    out += ["*STEP, INC=1000"] + controls + ["*STATIC", "1., 1.", "*DLOAD", f"STOP, P2, {P!r}"] + prints + ["*END STEP"]
+    out += (["*STEP, INC=1000"] + controls + ["*STATIC, DIRECT", f"{1.0 / steps!r}, 1.", "*BOUNDARY",
+                                              f"PULL, 1, 1, {pull!r}"] + prints + ["*END STEP"])
+    return "\n".join(out) + "\n"
+
+
 # ------------------------------------------------------------------------------ results
 
 def feps_results(h5path):
@@ -233,14 +359,20 @@ def ccx_dat(path):
     return steps
 
 
-def ccx_frd_contact(path):
-    """Per time: slave-node contact results {node: (copen, cslip1, cslip2, cpress, cshear1, cshear2)}."""
+def ccx_frd_contact(path, coords=None):
+    """Per time: slave-node contact results {node: (copen, cslip1, cslip2, cpress, cshear1, cshear2)}.
+    With coords (the frd's node coordinates are filled in), nodes by number."""
     out = {}
     t = None
     block = None
     with open(path) as f:
         for line in f:
-            if line.startswith("  100CL"):
+            if line.startswith("    2C"):
+                block = "COORDINATES"
+            elif line.startswith(" -1") and block == "COORDINATES":
+                if coords is not None:
+                    coords[int(line[3:13])] = [float(line[13 + 12 * k:25 + 12 * k]) for k in range(3)]
+            elif line.startswith("  100CL"):
                 t = round(float(line[12:25]), 9)
                 block = None
             elif line.startswith(" -4"):
@@ -257,19 +389,47 @@ def ccx_frd_contact(path):
     return out
 
 
+def map_expanded(con, coords, slaves, x):
+    """ccx's results at the nodes of its expanded (3D) plane-strain mesh, keyed by the 2D slave
+    node at the same x, y (all expanded nodes of one 2D node carry the same values: ccx ties them)."""
+    where = {(round(float(x[n - 1, 0]), 6), round(float(x[n - 1, 1]), 6)): n for n in slaves}
+    out = {}
+    for t, nodes in con.items():
+        out[t] = {}
+        for k, v in nodes.items():
+            c = coords.get(k)
+            n = where.get((round(c[0], 6), round(c[1], 6))) if c else None
+            if n is not None:
+                out[t][n] = v
+    return out
+
+
 # ------------------------------------------------------------------------------ comparison
 
-def point_weights(xe):
-    """Weights of an interface element's 4 points, 2x2 Gauss or nodal alike: a quarter of its
-    (rectangular) lower face each."""
+def point_weights(xe, itype="interface-quad4"):
+    """Weights of an interface element's points. quad4, 2x2 Gauss or nodal alike: a quarter of its
+    (rectangular) lower face each. line3 (ends, then the middle; length per mm of thickness):
+    Gauss 5/9, 8/9, 5/9 of half the length (points at s = -sqrt(3/5), 0, sqrt(3/5)); nodal
+    Simpson L/6, L/6, 2L/3 in node order."""
+    if itype.startswith("interface-line3"):
+        le = np.linalg.norm(xe[1] - xe[0])
+        if itype.endswith("-nodal"):
+            return le * np.array([1.0, 1.0, 4.0]) / 6.0
+        return le / 2.0 * np.array([5.0, 8.0, 5.0]) / 9.0
     area = np.linalg.norm(np.cross(xe[1] - xe[0], xe[3] - xe[0]))
     return np.full(4, area / 4.0)
 
 
 def to_nodes(itype, values):
     """Corner values of each element from its 4 point values (bilinear extrapolation for Gauss)."""
-    if itype == "interface-quad4-nodal":
+    if itype.endswith("-nodal"):
         return values
+    if itype == "interface-line3":
+        # the quadratic through the points s = -a, 0, a, at the nodes s = -1, 1, 0
+        a = math.sqrt(0.6)
+        m = np.array([[s * (s - a) / (2 * a * a), 1 - s * s / (a * a), s * (s + a) / (2 * a * a)]
+                      for s in (-1.0, 1.0, 0.0)])
+        return np.einsum("cg,egk->eck", m, values)
     s = math.sqrt(3.0)
     corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
     gp = [(-1, -1), (1, -1), (-1, 1), (1, 1)]
@@ -277,38 +437,53 @@ def to_nodes(itype, values):
     return np.einsum("cg,egk->eck", m, values)
 
 
-def compare(itype, pull, feps_h5, ccx_dir):
+def compare(itype, pull, feps_h5, ccx_dir, g=FAMILIES["solid"]):
     """Rows of the comparison table per written step, and what the distributions need."""
     fr = feps_results(feps_h5)
     cd = ccx_dat(os.path.join(ccx_dir, "ccx.dat"))
-    cc = ccx_frd_contact(os.path.join(ccx_dir, "ccx.frd"))
+    coords = {}
+    cc = ccx_frd_contact(os.path.join(ccx_dir, "ccx.frd"), coords)
     h = h5py.File(feps_h5, "r")
     x = h["mesh/coordinates"][...]
     joint = h["mesh/groups/joint/connectivity"][...]
-    lower, upper = joint[:, :4], joint[:, 4:]
+    npair, vert, isn, ist = g["npair"], g["vert"], g["i_sn"], g["i_state"]
+    lower, upper = joint[:, :npair], joint[:, npair:]
     if np.abs(x[lower - 1] - x[upper - 1]).max() > 1e-9:
         sys.exit("compare: the interface's two layers do not coincide (deck numbering)")
-    wts = np.concatenate([point_weights(x[c - 1]) for c in lower])
-    # tributary area of each slave (upper) node: a quarter of each face it belongs to
-    trib = {}
+    wts = np.concatenate([point_weights(x[c - 1], itype) for c in lower])
+    # tributary area of each slave (upper) node: a quarter of each face it belongs to (3D), the
+    # Simpson weights of each line (plane strain): the weights of feps's nodal rule
+    # spring: the area of ccx's node-to-surface spring at each slave node. For the 3D quad4 faces
+    # the same quarters; for the plane-strain faces (8-node quadrilaterals of the expanded wedges,
+    # weights 1/100 at the corners and 24/100 at the middle nodes, ccx manual) 26/100 of the line
+    # at each end (two corners and a mid-thickness node) and 48/100 at the middle.
+    trib, spring = {}, {}
     for c in upper:
-        a = np.linalg.norm(np.cross(x[c[1] - 1] - x[c[0] - 1], x[c[3] - 1] - x[c[0] - 1])) / 4.0
-        for n in c:
-            trib[n] = trib.get(n, 0.0) + a
+        if npair == 3:
+            a = point_weights(x[c - 1], "interface-line3-nodal")
+            b = np.array([0.26, 0.26, 0.48]) * np.linalg.norm(x[c[1] - 1] - x[c[0] - 1])
+        else:
+            a = np.full(4, np.linalg.norm(np.cross(x[c[1] - 1] - x[c[0] - 1], x[c[3] - 1] - x[c[0] - 1])) / 4.0)
+            b = a
+        for n, an, bn in zip(c, a, b):
+            trib[n] = trib.get(n, 0.0) + an
+            spring[n] = spring.get(n, 0.0) + bn
     pair = {}                     # upper node -> lower node at the same place
     for cl, cu in zip(lower, upper):
         for a, b in zip(cl, cu):
             pair[b] = a
     ups = np.array(sorted(pair))
     lows = np.array([pair[n] for n in ups])
-    area = L * W
+    if npair == 3:
+        cc = map_expanded(cc, coords, ups, x)
+    area = g["area"]
     times = sorted(cd)
     rows, dist = [], []
     umax_all = max(np.abs(s["u"]).max() for s in fr)
 
     def kinematic_slip(u):
         jump = u[ups - 1] - u[lows - 1]
-        return KS * np.abs(jump[:, 0]) > MU * KN * np.abs(jump[:, 2]) * (1 + 1e-3)
+        return KS * np.abs(jump[:, 0]) > MU * KN * np.abs(jump[:, vert]) * (1 + 1e-3)
 
     for k, s in enumerate(fr):
         t = s["t"]
@@ -317,8 +492,8 @@ def compare(itype, pull, feps_h5, ccx_dir):
         if abs(tc - t) > 1e-6:
             sys.exit(f"compare: no ccx output at time {t}")
         it = s["it"]
-        tx, sn = (it[:, 0] * wts).sum(), (it[:, 2] * wts).sum()
-        slip_feps = wts[it[:, 3] == 1].sum() / area
+        tx, sn = (it[:, 0] * wts).sum(), (it[:, isn] * wts).sum()
+        slip_feps = wts[it[:, ist] == 1].sum() / area
         # the .frd gives the time to 10 digits, the .dat to 7
         tf = min(cc, key=lambda v: abs(v - t)) if cc else None
         con = cc[tf] if tf is not None and abs(tf - t) < 1e-6 else {}
@@ -328,22 +503,22 @@ def compare(itype, pull, feps_h5, ccx_dir):
         kin_c = (np.array([trib[n] for n in ups]) * kinematic_slip(c["u"])).sum() / area
         du = np.abs(s["u"] - c["u"][:len(s["u"])]).max()
         if "cf" in c:
-            tx_ccx, n_ccx = -c["cf"][0], -c["cf"][2]
+            tx_ccx, n_ccx = -c["cf"][0], -c["cf"][vert]
         else:   # node-to-surface: spring stress times spring area (5 digits of the .frd)
-            tx_ccx = sum(v[4] * trib[n] for n, v in con.items() if n in trib)
-            n_ccx = -sum(v[3] * trib[n] for n, v in con.items() if n in trib)
+            tx_ccx = sum(v[4] * spring[n] for n, v in con.items() if n in spring)
+            n_ccx = -sum(v[3] * spring[n] for n, v in con.items() if n in spring)
         rows.append(dict(step=k, t=t, ux=(t - 1.0) * pull if t > 1 else 0.0, iters=s["iterations"],
                          f_feps=s["fx"], f_ccx=c["fx"], tx_feps=tx, tx_ccx=tx_ccx, n_feps=sn,
                          n_ccx=n_ccx, slip_feps=slip_feps, slip_ccx=slip_ccx, kin_feps=kin_f,
                          kin_ccx=kin_c, du=du / umax_all))
         dist.append((s, c, con))
-    # distributions along y = 0 (interface nodes), at a few partial-slip steps
-    line = [n for n in ups if abs(x[n - 1, 1]) < 1e-9]
+    # distributions along y = 0 (interface nodes; in plane strain all), at a few partial-slip steps
+    line = [n for n in ups if npair == 3 or abs(x[n - 1, 1]) < 1e-9]
     line.sort(key=lambda n: x[n - 1, 0])
     return rows, dist, line, pair, x, joint, itype
 
 
-def fmt_table(case, rows):
+def fmt_table(case, rows, g=FAMILIES["solid"]):
     out = [f"### Case {case}", "",
            "| step | ux pull mm | F feps N | F ccx N | F rel diff | F / (mu N) | interface shear feps / ccx N |"
            " normal feps / ccx N | slipped feps (points) | slipped ccx (nodes, .frd) | slipped by u, feps / ccx |"
@@ -352,30 +527,30 @@ def fmt_table(case, rows):
     for r in rows:
         rel = (r["f_ccx"] - r["f_feps"]) / max(abs(r["f_feps"]), 1e-30)
         out.append(f"| {r['step']} | {r['ux']:.4f} | {r['f_feps']:.3f} | {r['f_ccx']:.3f} | {rel:+.2e} | "
-                   f"{r['f_feps'] / F_SLIDE:.4f} | {r['tx_feps']:.3f} / {r['tx_ccx']:.3f} | "
+                   f"{r['f_feps'] / g['f_slide']:.4f} | {r['tx_feps']:.3f} / {r['tx_ccx']:.3f} | "
                    f"{r['n_feps']:.2f} / {r['n_ccx']:.2f} | {r['slip_feps']:.3f} | {r['slip_ccx']:.3f} | "
                    f"{r['kin_feps']:.3f} / {r['kin_ccx']:.3f} | {r['du']:.1e} | {r['iters']} |")
     return out
 
 
-def fmt_distribution(case, rows, dist, line, pair, x, joint, itype, picks):
+def fmt_distribution(case, rows, dist, line, pair, x, joint, itype, picks, g=FAMILIES["solid"]):
     out = []
-    lower = joint[:, :4]
-    upper = joint[:, 4:]
+    npair, isn = g["npair"], g["i_sn"]
+    upper = joint[:, npair:]
     for k in picks:
         s, c, con = dist[k]
         # feps nodal shear: the points' tau1 taken to the corners and averaged over elements
-        it = s["it"].reshape(len(joint), 4, 4)
-        corner = to_nodes(itype, it[:, :, :3])
+        it = s["it"].reshape(len(joint), npair, isn + 2)
+        corner = to_nodes(itype, it[:, :, :isn + 1])
         acc, cnt = {}, {}
         for e in range(len(joint)):
-            for a in range(4):
+            for a in range(npair):
                 n = upper[e, a]
                 acc[n] = acc.get(n, 0.0) + corner[e, a]
                 cnt[n] = cnt.get(n, 0) + 1
         r = rows[k]
         out += ["", f"{case}, step {k} (pull {r['ux']:.4f} mm, F feps {r['f_feps']:.2f} N = "
-                f"{r['f_feps'] / F_SLIDE:.3f} mu N): along the joint at y = 0", "",
+                f"{r['f_feps'] / g['f_slide']:.3f} mu N): along the joint" + (" at y = 0" if npair == 4 else ""), "",
                 "| x mm | slip ux_up - ux_low feps mm | ccx mm | tau_x feps MPa (nodal) | ccx MPa (.frd) |"
                 " sigma_n feps | ccx |",
                 "|---:|---:|---:|---:|---:|---:|---:|"]
@@ -388,19 +563,28 @@ def fmt_distribution(case, rows, dist, line, pair, x, joint, itype, picks):
             v = con.get(n, [0.0] * 6)
             # ccx's CSHEAR1: the shear the slave (upper) side exerts on the master along +x, the
             # sign of feps's tau1 (upper minus lower); CPRESS > 0 is a pressure (feps sigma_n < 0)
-            out.append(f"| {x[n - 1, 0]:.2f} | {sf:.4e} | {sc:.4e} | {tf[0]:.4f} | {v[4]:.4f} | {tf[2]:.4f} | "
+            out.append(f"| {x[n - 1, 0]:.2f} | {sf:.4e} | {sc:.4e} | {tf[0]:.4f} | {v[4]:.4f} | {tf[isn]:.4f} | "
                        f"{-v[3]:.4f} |")
             ds, smax, dtau = max(ds, abs(sf - sc)), max(smax, abs(sf)), max(dtau, abs(tf[0] - v[4]))
         out += ["", f"max |slip feps - slip ccx| / max slip = {ds / smax:.1e}; max |tau_x feps - tau_x ccx| = "
                 f"{dtau:.4f} MPa = {dtau / (MU * P):.3f} mu p"]
+        if npair == 3:
+            # both codes' recovered nodal stresses differ most near the pulled end; Kn times each
+            # code's own normal jump of the node pairs compares the solutions there, not the recovery
+            dn = max(KN * abs((s["u"][n - 1, 1] - s["u"][pair[n] - 1, 1]) - (c["u"][n - 1, 1] - c["u"][pair[n] - 1, 1]))
+                     for n in line)
+            out.append(f"Kn eps_n from the node pairs' displacements: max |feps - ccx| = {dn:.4f} MPa")
     return out
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--family", choices=sorted(FAMILIES), default="solid",
+                    help="solid: hex8 blocks and interface-quad4 (C3D8 in ccx; default); plane-strain: "
+                         "tri6 blocks and interface-line3 (CPE6 in ccx), forces per mm of thickness")
     ap.add_argument("--cases", default="gauss,nodal")
     ap.add_argument("--nx", type=int, default=20, help="elements along the joint (default 20, 5 mm)")
-    ap.add_argument("--ny", type=int, default=2)
+    ap.add_argument("--ny", type=int, default=2, help="elements across the joint (solid only)")
     ap.add_argument("--steps", type=int, default=30, help="increments of the pull (default 30)")
     ap.add_argument("--pull", type=float, default=0.06, help="pull displacement, mm (default 0.06)")
     ap.add_argument("--method", default="METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-9, CUTBACKS=20",
@@ -414,6 +598,8 @@ def main():
     ap.add_argument("--outdir")
     ap.add_argument("--reuse", action="store_true", help="keep the feps results already in --outdir")
     a = ap.parse_args()
+    g = FAMILIES[a.family]
+    plane = a.family == "plane-strain"
 
     if not shutil.which("ccx"):
         sudo = [] if os.geteuid() == 0 else ["sudo"]
@@ -428,20 +614,30 @@ def main():
                                                  check=True, capture_output=True, text=True).stdout.split()[-1])
     feps = os.path.abspath(feps)
     outdir = os.path.abspath(a.outdir or os.path.join(
-        ROOT, "results", "calculix-friction-" + datetime.datetime.now().strftime("%Y%m%d-%H%M%S")))
+        ROOT, "results",
+        "calculix-friction-" + ("2d-" if plane else "") + datetime.datetime.now().strftime("%Y%m%d-%H%M%S")))
     os.makedirs(outdir, exist_ok=True)
     ccx_version = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "calculix-ccx"], capture_output=True,
                                  text=True).stdout or "?"
-    summary = ["# feps against CalculiX: frictional interface", "",
+    summary = ["# feps against CalculiX: frictional interface" + (", plane strain" if plane else ""), "",
                f"date {datetime.datetime.now().isoformat(timespec='seconds')}; ccx {ccx_version}; feps {feps}",
-               f"command: python3 scripts/bench_calculix_friction.py {' '.join(sys.argv[1:])}", "",
-               f"mu N = tan({PHI:g} deg) * {N_TOTAL:g} N = {F_SLIDE:.4f} N (closed form of the sliding force)", ""]
+               f"command: python3 scripts/bench_calculix_friction.py {' '.join(sys.argv[1:])}", ""]
+    if plane:
+        summary += ["tri6 blocks (ccx: CPE6, thickness 1 mm) and interface-line3; forces in N per mm of "
+                    "thickness (feps's plane strain; ccx's forces for its 1 mm slice)", "",
+                    f"mu N = tan({PHI:g} deg) * {g['n_total']:g} N/mm = {g['f_slide']:.4f} N/mm (closed form of "
+                    "the sliding force)", ""]
+    else:
+        summary += [f"mu N = tan({PHI:g} deg) * {N_TOTAL:g} N = {F_SLIDE:.4f} N (closed form of the sliding force)", ""]
     for case in a.cases.split(","):
-        itype = {"gauss": "interface-quad4", "nodal": "interface-quad4-nodal"}[case]
+        itype = g["itypes"][case]
         d = os.path.join(outdir, case)
         os.makedirs(d, exist_ok=True)
         deck = os.path.join(d, "feps.dat")
-        open(deck, "w").write(feps_deck(a.nx, a.ny, 4, 2, a.steps, a.pull, itype, a.method, a.e_lower))
+        if plane:
+            open(deck, "w").write(feps_deck_2d(a.nx, 4, 2, a.steps, a.pull, itype, a.method, a.e_lower))
+        else:
+            open(deck, "w").write(feps_deck(a.nx, a.ny, 4, 2, a.steps, a.pull, itype, a.method, a.e_lower))
         t0 = datetime.datetime.now()
         reused = a.reuse and os.path.exists(os.path.join(d, "feps.h5"))
         if not reused:
@@ -449,8 +645,9 @@ def main():
                 subprocess.run([feps, deck, "--output", os.path.join(d, "feps.h5")], check=True, stdout=fo,
                                stderr=subprocess.STDOUT)
         t_feps = (datetime.datetime.now() - t0).total_seconds()
+        writer = ccx_input_2d if plane else ccx_input
         open(os.path.join(d, "ccx.inp"), "w").write(
-            ccx_input(os.path.join(d, "feps.h5"), a.steps, a.pull, case, a.sigma_inf, a.tol, a.e_lower))
+            writer(os.path.join(d, "feps.h5"), a.steps, a.pull, case, a.sigma_inf, a.tol, a.e_lower))
         t0 = datetime.datetime.now()
         with open(os.path.join(d, "ccx.out"), "w") as fo:
             subprocess.run(["ccx", "-i", "ccx"], cwd=d, check=True, stdout=fo, stderr=subprocess.STDOUT,
@@ -460,8 +657,8 @@ def main():
         if "Job finished" not in log:
             sys.exit(f"bench_calculix_friction: ccx failed, see {d}/ccx.out")
         ccx_iters = len(re.findall(r"^ iteration \d+", log, re.M))
-        rows, dist, line, pair, x, joint, itype = compare(itype, a.pull, os.path.join(d, "feps.h5"), d)
-        summary += fmt_table(case, rows)
+        rows, dist, line, pair, x, joint, itype = compare(itype, a.pull, os.path.join(d, "feps.h5"), d, g)
+        summary += fmt_table(case, rows, g)
         fe = open(os.path.join(d, "feps.out")).read()
         m = re.search(r"analysis\s+(.*)", fe)
         wall = "reused" if reused else f"wall {t_feps:.1f} s"
@@ -470,8 +667,8 @@ def main():
         # the partial-slip steps at about 1/4, 1/2 and 3/4 of mu N, and the last step
         picks = []
         for frac in (0.25, 0.5, 0.75):
-            picks.append(min(range(1, len(rows)), key=lambda k: abs(rows[k]["f_feps"] / F_SLIDE - frac)))
-        summary += fmt_distribution(case, rows, dist, line, pair, x, joint, itype, sorted(set(picks)))
+            picks.append(min(range(1, len(rows)), key=lambda k: abs(rows[k]["f_feps"] / g["f_slide"] - frac)))
+        summary += fmt_distribution(case, rows, dist, line, pair, x, joint, itype, sorted(set(picks)), g)
         summary.append("")
     text = "\n".join(summary) + "\n"
     open(os.path.join(outdir, "summary.md"), "w").write(text)

@@ -61,9 +61,10 @@ contains
     real(dp), intent(in) :: eta, s_min
     integer, intent(in) :: max_evaluations
     ls%evaluations = ls%evaluations + 1
-    ! still beyond the root at the shortest correction allowed: nothing shorter is tried
+    ! still beyond the root at the shortest correction allowed: nothing shorter is tried; a
+    ! residual that left double precision ends the search (the iteration then diverges)
     ls%done = abs(g) <= eta * ls%g0 .or. ls%evaluations >= max_evaluations .or. &
-              (g < 0.0_dp .and. ls%s <= s_min)
+              (g < 0.0_dp .and. ls%s <= s_min) .or. .not. (abs(g) <= huge(g))
     if (ls%done) return
     if (g < 0.0_dp) then
       ls%s_hi = ls%s

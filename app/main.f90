@@ -216,6 +216,9 @@ contains
             ' of the factorizations (UMFPACK: exact non-symmetric tangents; smallest rcond ' // &
             trim(adjustl(buf)) // ')'
         end if
+        if (s%line_search) write (output_unit, '(a)') 'line search      ' // str(s%line_searches) // &
+          ' of the iterations scaled (LINESEARCH=energy), ' // str(s%line_search_evaluations) // &
+          ' residual evaluations added'
       end if
       write (buf, '(i0)') s%matrix_nnz
       write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'

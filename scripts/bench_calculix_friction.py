@@ -27,6 +27,9 @@ held in x. Stage/step 2: that end face pulled by ux = --pull (default 0.06 mm) i
 increments. The interface shear is concentrated at the pulled end: slip starts there and
 spreads towards x = 0 until the whole joint slides at F = mu N = tan(30) * 1000 N = 577.35 N.
 
+feps runs full Newton-Raphson with its line search (LINESEARCH=energy), as ccx runs with its own;
+without it (--no-line-search) full Newton cycles at the slip front and needs cut-backs.
+
 Cases (--cases, default both):
   gauss  feps interface-quad4 (2x2 Gauss points) against ccx TYPE=SURFACE TO SURFACE (ccx's
          face-to-face penalty contact: the slave face is integrated at many points, 7 per
@@ -587,8 +590,11 @@ def main():
     ap.add_argument("--ny", type=int, default=2, help="elements across the joint (solid only)")
     ap.add_argument("--steps", type=int, default=30, help="increments of the pull (default 30)")
     ap.add_argument("--pull", type=float, default=0.06, help="pull displacement, mm (default 0.06)")
-    ap.add_argument("--method", default="METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-9, CUTBACKS=20",
-                    help="feps stage controls")
+    ap.add_argument("--method", help="feps stage controls (default: full Newton, MAXIT=50, DELTA1=1e-9, "
+                    "LINESEARCH=energy; with --no-line-search CUTBACKS=20 instead)")
+    ap.add_argument("--no-line-search", action="store_true",
+                    help="full Newton without its line search: it cycles at the slip front and needs up to 16 "
+                         "cut-backs in a step (hence CUTBACKS=20), as ccx does without its own")
     ap.add_argument("--tol", type=float, default=1e-7, help="ccx R_n, C_n, R_p (*CONTROLS, FIELD)")
     ap.add_argument("--sigma-inf", type=float, default=1e-6, help="ccx node-to-surface tension sigma_inf")
     ap.add_argument("--e-lower", type=float, default=E,
@@ -600,6 +606,9 @@ def main():
     a = ap.parse_args()
     g = FAMILIES[a.family]
     plane = a.family == "plane-strain"
+    if a.method is None:
+        a.method = "METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-9, " + (
+            "CUTBACKS=20" if a.no_line_search else "LINESEARCH=energy")
 
     if not shutil.which("ccx"):
         sudo = [] if os.geteuid() == 0 else ["sudo"]

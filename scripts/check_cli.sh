@@ -50,6 +50,12 @@ expect_status "unknown option" 2 "$feps" --frobnicate input/modelB.dat
 expect_status "bad --solver" 2 "$feps" test/data/cube.dat --solver lu
 expect_status "bad --method" 2 "$feps" test/data/cube.dat --method newton
 grep -q "full-newton-raphson" "$tmp/err" && ok "bad --method lists the methods" || bad "bad --method lists the methods"
+# A deck asking for LINESEARCH=energy run by a method it does not apply to: exit 2, the field named.
+expect_status "--method modified-newton-raphson on a LINESEARCH=energy deck" 2 "$feps" test/data/friction_pull.dat \
+  --method modified-newton-raphson --output "$tmp/fp.h5"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: --method modified-newton-raphson: LINESEARCH=energy.*friction_pull.dat:" "$tmp/err" \
+  && [ ! -e "$tmp/fp.h5" ] && ok "... names the line search and where it was asked, no result file" \
+  || bad "--method against LINESEARCH=energy: $(head -c 300 "$tmp/err")"
 # The cohesionless joint (c = 0) from zero load with full Newton: every step converges.
 expect_status "--method full-newton-raphson" 0 "$feps" test/data/joint_c0.dat --method full-newton-raphson \
   --output "$tmp/jc0.h5"

@@ -53,6 +53,8 @@ contains
       new_unittest('an option given twice in one record', test_option_given_twice), &
       new_unittest('a direction given twice under two names', test_direction_given_twice), &
       new_unittest('CONTROLS after a STAGE', test_controls_after_stage), &
+      new_unittest('LINESEARCH=energy for a method it does not apply to names its field', test_linesearch_method), &
+      new_unittest('an unknown LINESEARCH names its field', test_linesearch_unknown), &
       new_unittest('FIX with a KEY=value other than CSYS', test_fix_option), &
       new_unittest('FIX with CSYS= twice', test_fix_csys_twice), &
       new_unittest('REPORT with an unknown option', test_report_unknown_option), &
@@ -308,6 +310,22 @@ contains
     call expect_failure('test/data/bad/controls_after_stage.dat', err_input, &
                         [character(len=40) :: 'controls_after_stage.dat:25:', 'would not apply'], error)
   end subroutine test_controls_after_stage
+
+  !> LINESEARCH=energy given on CONTROLS reaches a stage of modified Newton-Raphson: the error
+  !! names the CONTROLS record's field, the method and the stage, before any step.
+  subroutine test_linesearch_method(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/linesearch_method.dat', err_input, &
+                        [character(len=40) :: 'linesearch_method.dat:24:', 'field 3', 'LINESEARCH=energy', &
+                         'modified-newton-raphson', 'stage s1'], error, before_first_step=.true.)
+  end subroutine test_linesearch_method
+
+  subroutine test_linesearch_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/linesearch_unknown.dat', err_input, &
+                        [character(len=40) :: 'linesearch_unknown.dat:23:', 'field 5', 'LINESEARCH "armijo"', &
+                         '(none, energy)'], error, before_first_step=.true.)
+  end subroutine test_linesearch_unknown
 
   !> FIX used to skip every field with an '=' in it, a misspelt CSYS= too.
   subroutine test_fix_option(error)

@@ -54,7 +54,11 @@ contains
       new_unittest('concrete at its tensile cap: the closest-point tension rule under full Newton', &
                    test_tension_cap_beam), &
       new_unittest('modified Newton-Raphson past a birth on yielded concrete: the elastic retry', &
-                   test_birth_on_yielded) &
+                   test_birth_on_yielded), &
+      new_unittest('a block pulled over a block: full Newton with the line search, no cut-back, mu N', &
+                   test_line_search_friction), &
+      new_unittest('the line search changes the way to a step''s solution, not the solution', &
+                   test_line_search_same_solution) &
       ]
   end subroutine collect_nonlinear
 
@@ -665,6 +669,106 @@ contains
       f = sum(reaction(2, :), mask=abs(model%coords(1, :) - 200.0_dp) < 1.0e-9_dp)
     end function tip_force
   end subroutine test_tension_cap_beam
+
+  !> test/data/friction_pull.dat (scripts/bench_calculix_friction.py's model reduced to 10 joint
+  !! elements and 10 pull steps): a block pressed with N = 1000 N onto another and pulled through
+  !! a cohesionless joint (phi = 30, psi = 0) from partial slip to full sliding. Full Newton
+  !! without a line search cycles at the slip front (points switching between sticking and
+  !! sliding) and needs cut-backs (12 measured, 719 iterations); with LINESEARCH=energy no step
+  !! is cut back (83 iterations measured, 39 corrections scaled). Both end fully sliding, where
+  !! the pull force is the closed form mu N = tan(30) 1000 N (1e-6; 8e-11 measured) and the
+  !! state does not depend on the path: the two runs took different sub-steps through partial
+  !! slip (2e-4 of max |u| apart there), a difference each sliding step shrinks five- to
+  !! six-fold, to 2.3e-8 of max |u| at the last step: equal to 1e-6 of max |u|.
+  subroutine test_line_search_friction(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: deck = 'test/data/friction_pull.dat'
+    real(dp), parameter :: mu_n = 1000.0_dp / sqrt(3.0_dp)
+    type(model_t) :: model
+    type(all_steps_t) :: searched, plain
+    type(analysis_summary_t) :: summary
+    real(dp) :: scale
+    integer :: s
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    call check(error, model%stages(2)%controls%line_search, 'LINESEARCH=energy read')
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', searched, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%cutbacks, 0, 'with the line search: cut-backs')
+    if (allocated(error)) return
+    call check(error, summary%unconverged_steps == 0 .and. summary%line_searches > 0 .and. &
+               summary%line_search_evaluations >= summary%line_searches, 'with the line search: every step ' // &
+               'converged, ' // str(summary%line_searches) // ' corrections scaled, ' // &
+               str(summary%line_search_evaluations) // ' residual evaluations added')
+    if (allocated(error)) return
+    call check(error, pull_force(model, searched), mu_n, 'with the line search: pull force at full sliding = mu N', &
+               rel=1.0e-6_dp)
+    if (allocated(error)) return
+
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    do s = 1, size(model%stages)
+      model%stages(s)%controls%line_search = .false.
+    end do
+    call run_analysis(model, 'cholmod', plain, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%cutbacks > 0 .and. summary%unconverged_steps == 0 .and. summary%line_searches == 0, &
+               'test premise: without the line search full Newton cycles and is cut back (' // &
+               str(summary%cutbacks) // ' cut-backs)')
+    if (allocated(error)) return
+    call check(error, pull_force(model, plain), mu_n, 'without the line search: pull force = mu N', rel=1.0e-6_dp)
+    if (allocated(error)) return
+    associate (us => searched%steps(size(searched%steps))%displacement, up => plain%steps(size(plain%steps))%displacement)
+      scale = maxval(abs(up))
+      call check(error, maxval(abs(us - up)), 0.0_dp, 'with and without the line search: the same displacements ' // &
+                 'at full sliding', abs=1.0e-6_dp * scale)
+    end associate
+  contains
+    !> The x reaction of the pulled end face (x = 100 of the upper block, z >= 20) at the last step.
+    real(dp) function pull_force(model, obs) result(f)
+      type(model_t), intent(in) :: model
+      type(all_steps_t), intent(in) :: obs
+      f = sum(obs%steps(size(obs%steps))%reaction(1, :), mask=abs(model%coords(1, :) - 100.0_dp) < 1.0e-9_dp .and. &
+              model%coords(3, :) > 20.0_dp - 1.0e-9_dp)
+    end function pull_force
+  end subroutine test_line_search_friction
+
+  !> test/data/beam_tension_cap.dat (see test_tension_cap_beam) converges by full Newton with and
+  !! without LINESEARCH=energy without a cut-back, so both runs take the same steps; the search
+  !! scales some corrections (10 measured, 29 iterations against 34) and must reach the same
+  !! solution: each run ends its steps at |R| / |P| < DELTA1 = 1e-9, so the stresses agree to
+  !! 1e-8 of the largest (DELTA1 and a factor 10 for the conditioning; 1.1e-11 measured).
+  subroutine test_line_search_same_solution(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: deck = 'test/data/beam_tension_cap.dat'
+    type(model_t) :: model
+    type(all_steps_t) :: plain, searched
+    type(analysis_summary_t) :: summary
+    integer :: k
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', plain, summary, error)
+    if (allocated(error)) return
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    model%stages(1)%controls%line_search = .true.
+    call run_analysis(model, 'cholmod', searched, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%cutbacks == 0 .and. summary%unconverged_steps == 0 .and. summary%line_searches > 0, &
+               'test premise: the search scaled corrections (' // str(summary%line_searches) // &
+               '), every step converged without a cut-back')
+    if (allocated(error)) return
+    call check(error, size(searched%steps), size(plain%steps), 'steps written')
+    if (allocated(error)) return
+    do k = 1, size(plain%steps)
+      associate (sp => plain%steps(k)%groups(1)%stress, ss => searched%steps(k)%groups(1)%stress)
+        call check(error, maxval(abs(ss - sp)), 0.0_dp, 'with and without the line search: the same stresses ' // &
+                   'at step ' // str(plain%steps(k)%step), abs=1.0e-8_dp * maxval(abs(sp)))
+      end associate
+      if (allocated(error)) return
+    end do
+  end subroutine test_line_search_same_solution
 
   !> Run a model that must stop with the clear message (a solver error): `msg` gets it; the test
   !! fails with `what` if the run ended well, or with the message if it failed otherwise.

@@ -15,6 +15,8 @@ module test_solution_methods
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
   use feps_test_observers, only: all_steps_t
+  use feps_line_search, only: line_search_t, line_search_begin, line_search_next, line_search_eta, &
+                              line_search_s_min, line_search_max_evaluations
   implicit none
   private
 
@@ -42,7 +44,10 @@ contains
       new_unittest('initial stiffness after a Newton-Raphson stage factorizes the elastic stiffness', &
                    test_initial_stiffness_after_tangent), &
       new_unittest('linear stages: LOAD= share plus own loads and displacements, OUTPUT=k, equilibrium', &
-                   test_staged_linear) &
+                   test_staged_linear), &
+      new_unittest('line search: the root of du . R(u + s du) on a line and across a kink', test_line_search_root), &
+      new_unittest('line search: one-DOF unloading from sliding, the overshoot 5-fold, s = 0.2 exactly', &
+                   test_line_search_unloading) &
       ]
   end subroutine collect_solution_methods
 
@@ -324,5 +329,131 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_staged_linear
+
+  !> The search of feps_line_search on scalar functions g(s) = du . R(u + s du) whose root is
+  !! known. A quadratic energy (linear g, the correction overshooting 5-fold: g = g0 (1 - 5 s))
+  !! has its root s = 0.2 found by the first secant step, exactly (1e-15). Across a kink (a gap
+  !! closing at s = 0.3, the stiffness 4 times higher beyond it: g = 1 - 2 s, then 0.4 - 8 (s -
+  !! 0.3), root s = 0.35) the Illinois steps reach the root to 1e-12 when asked (eta = 1e-14),
+  !! and with the defaults stop within line_search_max_evaluations at |g| <= eta g0. No search
+  !! without an overshoot (g(1) >= 0, or g(0) <= 0: du points uphill); the shortest correction is
+  !! line_search_s_min, where a search still beyond the root stops.
+  subroutine test_line_search_root(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(line_search_t) :: ls
+    integer :: n
+    call line_search_begin(ls, 3.0_dp, 3.0_dp * (1.0_dp - 5.0_dp), line_search_eta, line_search_s_min)
+    call check(error, .not. ls%done, 'linear g: an overshoot is searched')
+    if (allocated(error)) return
+    call check(error, ls%s, 0.2_dp, 'linear g: the first secant step is the root', abs=1.0e-15_dp)
+    if (allocated(error)) return
+    call line_search_next(ls, g_linear(ls%s), line_search_eta, line_search_s_min, line_search_max_evaluations)
+    call check(error, ls%done .and. ls%evaluations == 1, 'linear g: accepted after one evaluation')
+    if (allocated(error)) return
+
+    call line_search_begin(ls, g_kink(0.0_dp), g_kink(1.0_dp), 1.0e-14_dp, line_search_s_min)
+    n = 0
+    do while (.not. ls%done)
+      n = n + 1
+      call line_search_next(ls, g_kink(ls%s), 1.0e-14_dp, line_search_s_min, 100)
+    end do
+    call check(error, ls%s, 0.35_dp, 'kink: Illinois steps to the root', abs=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, n < 20, 'kink: Illinois converges superlinearly, ' // str(n) // ' evaluations')
+    if (allocated(error)) return
+    call line_search_begin(ls, g_kink(0.0_dp), g_kink(1.0_dp), line_search_eta, line_search_s_min)
+    do while (.not. ls%done)
+      call line_search_next(ls, g_kink(ls%s), line_search_eta, line_search_s_min, line_search_max_evaluations)
+    end do
+    call check(error, ls%evaluations <= line_search_max_evaluations .and. &
+               abs(g_kink(ls%s)) <= line_search_eta * g_kink(0.0_dp), &
+               'kink, defaults: |g(s)| <= eta g(0) within the evaluations allowed, s = ' // str(ls%s))
+    if (allocated(error)) return
+
+    call line_search_begin(ls, 1.0_dp, 0.2_dp, line_search_eta, line_search_s_min)
+    call check(error, ls%done .and. ls%s == 1.0_dp, 'no overshoot (g(1) > 0): the full correction')
+    if (allocated(error)) return
+    call line_search_begin(ls, -1.0_dp, -3.0_dp, line_search_eta, line_search_s_min)
+    call check(error, ls%done .and. ls%s == 1.0_dp, 'g(0) < 0: no search')
+    if (allocated(error)) return
+    call line_search_begin(ls, 0.3_dp, 0.3_dp - 0.3_dp / 0.05_dp, line_search_eta, line_search_s_min)
+    call check(error, ls%s, line_search_s_min, 'root at s = 0.05: clamped to s_min')
+    if (allocated(error)) return
+    call line_search_next(ls, 0.3_dp * (1.0_dp - ls%s / 0.05_dp), line_search_eta, line_search_s_min, &
+                          line_search_max_evaluations)
+    call check(error, ls%done .and. ls%s == line_search_s_min, 'still beyond the root at s_min: stop there')
+  contains
+    pure real(dp) function g_linear(s)
+      real(dp), intent(in) :: s
+      g_linear = 3.0_dp * (1.0_dp - 5.0_dp * s)
+    end function g_linear
+    pure real(dp) function g_kink(s)
+      real(dp), intent(in) :: s
+      if (s < 0.3_dp) then
+        g_kink = 1.0_dp - 2.0_dp * s
+      else
+        g_kink = 0.4_dp - 8.0_dp * (s - 0.3_dp)
+      end if
+    end function g_kink
+  end subroutine test_line_search_root
+
+  !> slide_1dof_unload_is.dat with its unloading stage by newton-raphson and by
+  !! full-newton-raphson with LINESEARCH=energy. The first unloading step starts from the sliding
+  !! tangent kb = 25, five times softer than the elastic unloading response 125: the correction
+  !! overshoots 5-fold, g(s) = du . R(u + s du) is linear in s, and its root s = 25 / 125 = 0.2
+  !! is found by one secant step. The step converges in one iteration with one residual
+  !! evaluation added; the later steps start from the elastic tangent and need no search (u =
+  !! 3.2 - 0.24 k, 1e-12, one iteration a step). Without it Newton-Raphson, whose tangent stays
+  !! that of the step's start, overshoots at any step size and stops; full Newton takes two
+  !! iterations.
+  subroutine test_line_search_unloading(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: newton(2) = [method_newton_raphson, method_full_newton_raphson]
+    type(model_t) :: model
+    type(all_steps_t) :: searched(2), plain(2)   !! an observer keeps the steps of every run it sees
+    type(analysis_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    integer :: i, k
+    character(len=:), allocatable :: label
+    do i = 1, 2
+      label = trim(method_names(newton(i))) // ' with the line search'
+      call read_deck('test/data/slide_1dof_unload_is.dat', model, error)
+      if (allocated(error)) return
+      model%stages(2)%controls%method = newton(i)
+      model%stages(2)%controls%max_iterations = 50
+      model%stages(2)%controls%line_search = .true.
+      call run_analysis(model, 'cholmod', searched(i), summary, error)
+      if (allocated(error)) return
+      do k = 0, 4
+        call check(error, searched(i)%steps(k + 1)%displacement(1, upper_node), 3.2_dp - 0.24_dp * k, label // &
+                   ': u at unloading step ' // str(k), rel=1.0e-12_dp)
+        if (allocated(error)) return
+        if (k == 0) cycle
+        call check(error, searched(i)%steps(k + 1)%iterations, 1, label // ': iterations in unloading step ' // str(k))
+        if (allocated(error)) return
+      end do
+      ! the loading stage's Newton-Raphson cuts its step 5 into quarters (test_cutback_restores)
+      call check(error, summary%line_searches == 1 .and. summary%line_search_evaluations == 1 .and. &
+                 summary%cutbacks == 2, label // ': one correction scaled, one evaluation added, no cut-back ' // &
+                 'but the loading stage''s 2: ' // str(summary%line_searches) // ', ' // &
+                 str(summary%line_search_evaluations) // ', ' // str(summary%cutbacks))
+      if (allocated(error)) return
+
+      call read_deck('test/data/slide_1dof_unload_is.dat', model, error)
+      if (allocated(error)) return
+      model%stages(2)%controls%method = newton(i)
+      model%stages(2)%controls%max_iterations = 50
+      call run_analysis(model, 'cholmod', plain(i), summary, run_error)
+      if (newton(i) == method_newton_raphson) then
+        call check(error, allocated(run_error), 'newton-raphson without the line search: expected to stop')
+      else if (allocated(run_error)) then
+        call test_failed(error, 'full-newton-raphson without the line search: ' // run_error%message)
+      else
+        call check(error, plain(i)%steps(2)%iterations, 2, 'full-newton-raphson without the line search: ' // &
+                   'iterations in unloading step 1')
+      end if
+      if (allocated(error)) return
+    end do
+  end subroutine test_line_search_unloading
 
 end module test_solution_methods

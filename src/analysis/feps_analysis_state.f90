@@ -38,6 +38,9 @@ module feps_analysis_state
     real(dp) :: lu_min_rcond = 0.0_dp        !! the smallest reciprocal condition estimate of those LU factors
     integer :: cutbacks = 0
     integer :: unconverged_steps = 0         !! steps accepted with |R| / |P| above delta1 (carried on)
+    logical :: line_search = .false.         !! some stage ran with LINESEARCH=energy
+    integer :: line_searches = 0             !! iterations whose correction was searched (scaled)
+    integer :: line_search_evaluations = 0   !! residual evaluations the searches added to the iterations'
     integer(i8) :: matrix_nnz = 0
     integer(i8) :: factor_nnz = 0
     real(dp) :: flops = 0.0_dp

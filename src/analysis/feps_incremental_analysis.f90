@@ -24,6 +24,8 @@ module feps_incremental_analysis
                                  init_states, state_bytes, change_supports, activate_groups, check_born_nodes, &
                                  stage_increments, set_trial, add_free, update_points, residual, &
                                  committed_residual, commit, restore, factorize_tangent, support_reaction
+  use feps_line_search, only: line_search_t, line_search_begin, line_search_next, line_search_eta, &
+                              line_search_s_min, line_search_max_evaluations
   use feps_step_report, only: progress_line, report_step, report_open_interfaces, writes_step, name_step, &
                               newly_open_points, collect_point_notes, stop_error
   implicit none
@@ -472,6 +474,8 @@ contains
     integer :: m, npairs
     logical :: use_bfgs
     real(dp), allocatable :: s_hist(:, :), y_hist(:, :), rho(:), r_old(:)
+    real(dp), allocatable :: du(:), r0(:), u_base(:, :)   !! line search: correction, R and u before it
+    real(dp) :: g0
 
     if (c%method == method_euler) then
       ! Euler drops the unbalanced force of the previous step (eq. 2.6.4 not applied).
@@ -497,6 +501,10 @@ contains
                 r_old(size(r)))
       npairs = 0
     end if
+    if (c%line_search) then
+      allocate (du(size(r)), r0(size(r)), u_base(3, size(an%u_t, 2)))
+      summary%line_search = .true.
+    end if
     do m = 1, c%max_iterations
       if (c%method == method_full_newton_raphson .and. m > 1) then
         ! Full Newton: the consistent tangent of the current iterate, refactorized every iteration
@@ -505,6 +513,7 @@ contains
         if (allocated(error)) exit
       end if
       t0 = wall_clock()
+      if (c%line_search) r0 = r
       if (use_bfgs) then
         r_old = r
         call bfgs_direction(an, s_hist(:, 1:npairs), y_hist(:, 1:npairs), rho(1:npairs), r, error)
@@ -515,6 +524,11 @@ contains
       end if
       if (allocated(error)) exit
       summary%time_solve = summary%time_solve + wall_clock() - t0
+      if (c%line_search) then
+        g0 = dot_product(r, r0)     ! du . R(u)
+        du = r
+        u_base = an%u_t
+      end if
       call add_free(an, r, an%u_t)
       if (use_bfgs) s_hist(:, npairs + 1) = r
       t0 = wall_clock()
@@ -526,6 +540,11 @@ contains
       ! The step's initial out-of-balance force is the scale only when load and reactions
       ! vanish (a block lifted off: no load, no reaction, no stress).
       if (pnorm <= 1.0e-8_dp * r_scale) pnorm = r_scale
+      ! LINESEARCH=energy: a converged iterate is kept as it is
+      if (c%line_search .and. .not. (rnorm / pnorm < c%delta1 .or. rnorm < c%delta2)) then
+        call search_line(model, an, dps, u_base, du, g0, r, rnorm, pnorm, summary, notes)
+        if (pnorm <= 1.0e-8_dp * r_scale) pnorm = r_scale
+      end if
       iters = m
       rel = rnorm / pnorm
       if (.not. (rnorm <= huge(rnorm))) then
@@ -559,6 +578,42 @@ contains
       ok = rel < max(c%divergence, c%delta1) .or. rnorm < c%delta2
     end select
   end subroutine substep
+
+  !> LINESEARCH=energy after an iteration whose full correction du (from u_base) left the
+  !! residual r: where the correction overshoots (feps_line_search), the residual is evaluated
+  !! again at u_base + s du for the factors the search asks for, and the last is kept (u_t,
+  !! the points' trial states and tangents, r, |R|, |P|). Each evaluation updates every point
+  !! from the committed state (path-independent within a step), as an iteration does.
+  subroutine search_line(model, an, dps, u_base, du, g0, r, rnorm, pnorm, summary, notes)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    real(dp), intent(in) :: dps(:)
+    real(dp), intent(in) :: u_base(:, :)
+    real(dp), intent(in) :: du(:)
+    real(dp), intent(in) :: g0                 !! du . R(u_base)
+    real(dp), intent(inout) :: r(:)
+    real(dp), intent(inout) :: rnorm, pnorm
+    type(analysis_summary_t), intent(inout) :: summary
+    character(len=:), allocatable, intent(inout) :: notes
+    type(line_search_t) :: ls
+    real(dp) :: t0
+    call line_search_begin(ls, g0, dot_product(du, r), line_search_eta, line_search_s_min)
+    if (ls%done) return
+    summary%line_searches = summary%line_searches + 1
+    do
+      t0 = wall_clock()
+      an%u_t = u_base
+      call add_free(an, ls%s * du, an%u_t)
+      call update_points(model, an, dps)
+      call collect_point_notes(model, an, .true., notes)
+      summary%time_update = summary%time_update + wall_clock() - t0
+      call residual(an, r, rnorm, pnorm)
+      summary%line_search_evaluations = summary%line_search_evaluations + 1
+      call line_search_next(ls, dot_product(du, r), line_search_eta, line_search_s_min, &
+                            line_search_max_evaluations)
+      if (ls%done) exit
+    end do
+  end subroutine search_line
 
   !> Quasi-Newton direction d = H r by the two-loop recursion of the BFGS inverse update
   !! (Matthies and Strang 1979) with the factorized stiffness K as H0 = K^-1; r is overwritten by

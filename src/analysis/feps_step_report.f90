@@ -151,6 +151,13 @@ contains
       hint = hint // '; newton-raphson keeps the tangent of the step''s start through its iterations: ' // &
         'try STAGE ..., METHOD=full-newton-raphson (the tangent of every iterate)'
     end if
+    if (st%controls%method == method_full_newton_raphson .and. .not. st%controls%line_search .and. &
+        opened == 0 .and. cutbacks_exhausted) then
+      ! Undamped Newton cycles over the kinks of a non-smooth law whatever the step size (the
+      ! block pulled over a block of scripts/bench_calculix_friction.py: 10 cut-backs).
+      hint = hint // '; full Newton may cycle where points switch between sticking and sliding (or ' // &
+        'loading and unloading): try STAGE ..., LINESEARCH=energy'
+    end if
     if (len(notes) > 0 .and. cutbacks_exhausted) hint = hint // '; ' // notes
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
                      ', load factor ' // str(lf) // ': ' // why // ' (relative residual ' // str(rel) // &

@@ -12,7 +12,7 @@ module feps_deck
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
-                        method_full_newton_raphson, is_2d_type, output_fields_t, field_names
+                        method_full_newton_raphson, is_2d_type, output_fields_t, field_names, line_search_refusal
   use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
                               parse_range_int, key_value, check_option_keys, option_text, get_csys_option, dof_index, dof_names, &
                               check_result_name, resolve_path, element_family, material_family
@@ -839,6 +839,8 @@ contains
     call check_loaded_nodes(model, error)
     if (allocated(error)) return
     call finish_stages(model)
+    call check_line_search(model, error)
+    if (allocated(error)) return
     call resolve_activations(model, error)
     if (.not. allocated(error)) call resolve_prestresses(model, error)
   end subroutine finish_model
@@ -959,6 +961,24 @@ contains
       end associate
     end do
   end subroutine finish_stages
+
+  !> LINESEARCH=energy where a stage's method cannot take it (feps_model's line_search_refusal):
+  !! an input error naming the record and field that asked for it (CONTROLS or STAGE) and the stage.
+  subroutine check_line_search(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer :: s
+    character(len=:), allocatable :: why
+    do s = 1, size(model%stages)
+      associate (c => model%stages(s)%controls)
+        why = line_search_refusal(c)
+        if (len(why) == 0) cycle
+        call input_error(error, c%line_search_file, c%line_search_line, why // ' (stage ' // &
+                         model%stages(s)%name // ')', c%line_search_field)
+        return
+      end associate
+    end do
+  end subroutine check_line_search
 
   !> A FORCE on a node that belongs to no element would act on nothing (its DOFs are not in the
   !! system) and yet count in the applied force: an error naming the FORCE record.

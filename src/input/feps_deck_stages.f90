@@ -84,11 +84,12 @@ contains
           if (colon > len(names)) exit
           names = names(colon + 1:)
         end do
-      case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE', 'ACCELERATION')
+      case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE', 'ACCELERATION', &
+            'LINESEARCH')
       case default
         call input_error(error, rec%file, rec%line, 'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
                          'ACTIVATE, METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ' // &
-                         'ACCELERATION)', i)
+                         'ACCELERATION, LINESEARCH)', i)
         return
       end select
     end do
@@ -116,7 +117,8 @@ contains
     call read_controls(rec, 2, model%controls, error)
   end subroutine read_controls_record
 
-  !> CONTROLS, METHOD=name, MAXIT=n, DELTA1..DELTA4=value, CUTBACKS=n (also inside STAGE).
+  !> CONTROLS, METHOD=name, MAXIT=n, DELTA1..DELTA4=value, CUTBACKS=n, ACCELERATION=..,
+  !! LINESEARCH=.. (also inside STAGE).
   subroutine read_controls(rec, first, c, error)
     type(record_t), intent(in) :: rec
     integer, intent(in) :: first
@@ -162,6 +164,19 @@ contains
           call input_error(error, rec%file, rec%line, 'unknown ACCELERATION "' // v // '" (none, bfgs)', i)
           return
         end select
+      case ('LINESEARCH')
+        select case (to_lower(v))
+        case ('energy')
+          c%line_search = .true.
+        case ('none')
+          c%line_search = .false.
+        case default
+          call input_error(error, rec%file, rec%line, 'unknown LINESEARCH "' // v // '" (none, energy)', i)
+          return
+        end select
+        c%line_search_file = rec%file
+        c%line_search_line = rec%line
+        c%line_search_field = i
       case ('DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE')
         call parse_real(v, x, error, rec, i)
         if (allocated(error)) return
@@ -184,7 +199,8 @@ contains
       case default
         if (first == 2) then
           call input_error(error, rec%file, rec%line, 'unknown CONTROLS option "' // k // &
-                           '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ACCELERATION)', i)
+                           '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ACCELERATION, ' // &
+                           'LINESEARCH)', i)
           return
         end if
       end select

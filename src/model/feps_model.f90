@@ -162,6 +162,12 @@ module feps_model
     real(dp) :: divergence = 1.0e-2_dp       !! a step ending with |R| / |P| above this diverged
     logical :: bfgs = .false.                !! quasi-Newton (BFGS) updates of the factorized stiffness
     logical :: max_iterations_set = .false.
+    logical :: line_search = .false.         !! LINESEARCH=energy: Newton corrections scaled by a line search
+    !> where LINESEARCH=energy was given (CONTROLS or STAGE record), for the error when the
+    !! method it reaches cannot take it
+    character(len=:), allocatable :: line_search_file
+    integer :: line_search_line = 0
+    integer :: line_search_field = 0
   end type controls_t
 
   !> A loading stage: its own load and displacement increments plus LOAD= times the
@@ -249,7 +255,7 @@ module feps_model
     procedure :: find_node_set, find_face_set, find_material, find_group
   end type model_t
 
-  public :: in_region, is_2d_type
+  public :: in_region, is_2d_type, line_search_refusal
 
   character(len=*), parameter :: types_2d(*) = [character(len=21) :: 'tri6', 'tri6-6', 'interface-line2', &
     'interface-line3', 'interface-line2-nodal', 'interface-line3-nodal']
@@ -362,6 +368,28 @@ contains
       n = n + size(self%groups(g)%connectivity, 2)
     end do
   end function model_nelem
+
+  !> Why the controls `c` cannot take LINESEARCH=energy, or '' when they can. The line search
+  !! scales the corrections of the methods that must converge every step (newton-raphson,
+  !! full-newton-raphson): it changes how a step reaches its solution, not which (to DELTA1).
+  !! The Euler methods take one iteration, and modified Newton-Raphson and initial stiffness
+  !! may end a step unconverged and carry the rest (thesis 2.6.3): there a search would change
+  !! the results the method defines. BFGS pairs would have to be built on the scaled
+  !! corrections (not done).
+  pure function line_search_refusal(c) result(why)
+    type(controls_t), intent(in) :: c
+    character(len=:), allocatable :: why
+    why = ''
+    if (.not. c%line_search) return
+    select case (c%method)
+    case (method_newton_raphson, method_full_newton_raphson)
+      if (c%bfgs .and. c%method == method_newton_raphson) &
+        why = 'LINESEARCH=energy does not combine with ACCELERATION=bfgs (METHOD=newton-raphson)'
+    case default
+      why = 'LINESEARCH=energy applies to METHOD=newton-raphson and full-newton-raphson, not to ' // &
+            trim(method_names(c%method))
+    end select
+  end function line_search_refusal
 
   !> Element types of plane-strain (2D) models.
   pure logical function is_2d_type(element_type)

@@ -6,7 +6,7 @@ module feps_program
   use feps_kinds, only: dp, i8, rad2deg
   use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
-                        method_full_newton_raphson
+                        method_full_newton_raphson, line_search_refusal
   use feps_deck, only: read_deck
   use feps_records, only: real_from_text
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
@@ -58,6 +58,9 @@ module feps_program
     real(dp) :: lu_min_rcond = 0.0_dp      !! the smallest reciprocal condition estimate of those LU factors
     integer :: cutbacks = 0
     integer :: unconverged_steps = 0
+    logical :: line_search = .false.       !! some stage ran with LINESEARCH=energy
+    integer :: line_searches = 0           !! iterations whose correction the line search scaled
+    integer :: line_search_evaluations = 0 !! residual evaluations those searches added
     real(dp) :: max_displacement = 0.0_dp
     integer :: max_displacement_node = 0
     real(dp) :: bbox(3, 2) = 0.0_dp
@@ -182,6 +185,9 @@ contains
     summary%lu_min_rcond = an%lu_min_rcond
     summary%cutbacks = an%cutbacks
     summary%unconverged_steps = an%unconverged_steps
+    summary%line_search = an%line_search
+    summary%line_searches = an%line_searches
+    summary%line_search_evaluations = an%line_search_evaluations
     summary%dofs = an%neq
     summary%unused_nodes = an%unused_nodes
     summary%factor_nnz = an%factor_nnz
@@ -277,6 +283,13 @@ contains
         case default
           if (c%max_iterations == 1) c%max_iterations = 10
         end select
+        ! a LINESEARCH=energy of the deck that the new method cannot take is bad input too
+        if (len(line_search_refusal(c)) > 0) then
+          call fatal_error(error, err_input, '--method ' // name // ': ' // line_search_refusal(c) // &
+                           ' (LINESEARCH=energy at ' // c%line_search_file // ':' // str(c%line_search_line) // &
+                           ', stage ' // model%stages(s)%name // ')')
+          return
+        end if
       end associate
     end do
   end subroutine override_method
@@ -579,6 +592,10 @@ contains
     if (.not. allocated(error)) call h5%write_summary_int('cutbacks', int(summary%cutbacks, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('unconverged_steps', int(summary%unconverged_steps, i8), &
                                                           error)
+    if (.not. allocated(error) .and. summary%line_search) call h5%write_summary_int('line_searches', &
+      int(summary%line_searches, i8), error)
+    if (.not. allocated(error) .and. summary%line_search) call h5%write_summary_int('line_search_evaluations', &
+      int(summary%line_search_evaluations, i8), error)
     ! trim: merge pads 'linear' to the length of 'nonlinear'
     if (.not. allocated(error)) call h5%write_summary_string('analysis', trim(merge('linear   ', 'nonlinear', &
                                                                                       summary%linear)), error)

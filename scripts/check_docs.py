@@ -506,7 +506,8 @@ LAYOUT_DECKS = ["test/data/prestress_block.dat", "test/data/block_shear.dat", "t
                 "test/data/lame_hex8.dat|TYPE=hex8,|TYPE=hex8b,", "test/data/cantilever_hex20.dat|TYPE=hex20,|TYPE=hex20r,",
                 "test/data/contact_2d.dat|TYPE=interface-line3,|TYPE=interface-line3-nodal,",
                 "test/data/block_shear.dat|TYPE=interface-quad4,|TYPE=interface-quad4-nodal,",
-                "test/data/contact_2d.dat|TYPE=tri6,|TYPE=tri6-6,"]
+                "test/data/contact_2d.dat|TYPE=tri6,|TYPE=tri6-6,",
+                "test/data/friction_pull.dat"]   # LINESEARCH=energy: /summary line_searches
 
 
 def text(v):
@@ -565,9 +566,13 @@ def check_attribute_row(files, path, content):
         # the attribute names it lists; not the values of `analysis`, nor lu_min_rcond (only
         # after an LU factorization)
         names = [n for n in re.findall(r"`([a-z_]+)`", content) if n not in ("linear", "nonlinear", "lu_min_rcond")]
+        # only when a stage ran with LINESEARCH=energy: both or neither, and some file has them
+        searched = ("line_searches", "line_search_evaluations")
         for f in files:
-            missing = [n for n in names if n not in f["summary"].attrs]
+            missing = [n for n in names if n not in f["summary"].attrs and n not in searched]
             assert not missing, f"/summary lacks {missing}"
+            assert len({n in f["summary"].attrs for n in searched}) == 1, f"/summary has one of {searched}"
+        assert any(searched[0] in f["summary"].attrs for f in files), f"no file has {searched}"
         return len(names)
     if path == "/steps/<NNNN>":
         names = ("load_factor", "iterations", "residual")

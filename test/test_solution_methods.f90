@@ -446,6 +446,8 @@ contains
       call run_analysis(model, 'cholmod', plain(i), summary, run_error)
       if (newton(i) == method_newton_raphson) then
         call check(error, allocated(run_error), 'newton-raphson without the line search: expected to stop')
+        if (.not. allocated(error)) call check(error, index(run_error%message, 'LINESEARCH=energy') > 0, &
+                                               'the stop names LINESEARCH=energy: ' // run_error%message)
       else if (allocated(run_error)) then
         call test_failed(error, 'full-newton-raphson without the line search: ' // run_error%message)
       else

@@ -150,6 +150,9 @@ contains
       ! first step), so cut-backs do not help where the path bends within every step.
       hint = hint // '; newton-raphson keeps the tangent of the step''s start through its iterations: ' // &
         'try STAGE ..., METHOD=full-newton-raphson (the tangent of every iterate)'
+      ! A tangent softer than the response (sliding, when it unloads) overshoots: the search
+      ! scales it (the one-DOF slide unloads in one iteration a step with s = 0.2).
+      if (.not. st%controls%line_search) hint = hint // ' or LINESEARCH=energy (scales corrections that overshoot)'
     end if
     if (st%controls%method == method_full_newton_raphson .and. .not. st%controls%line_search .and. &
         opened == 0 .and. cutbacks_exhausted) then

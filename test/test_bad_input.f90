@@ -210,16 +210,23 @@ contains
     end do
   end subroutine remove_outputs
 
-  subroutine test_valid(error)
+  !> Run `deck` as the feps command would, its results under `out`.
+  subroutine run_deck(deck, error)
+    character(len=*), intent(in) :: deck
     type(error_t), allocatable, intent(out) :: error
     type(run_options_t) :: opt
     type(run_summary_t) :: summary
-    logical :: exists
-    call remove_outputs()
-    opt%deck = 'test/data/cube.dat'
+    opt%deck = deck
     opt%output = out
     opt%solver = ''
     call run_feps(opt, summary, error)
+  end subroutine run_deck
+
+  subroutine test_valid(error)
+    type(error_t), allocatable, intent(out) :: error
+    logical :: exists
+    call remove_outputs()
+    call run_deck('test/data/cube.dat', error)
     if (allocated(error)) return
     inquire (file=out, exist=exists)
     call check(error, exists, 'result file written')
@@ -848,21 +855,15 @@ contains
   !! name must not leave them there, where they would pass for the failed run's results.
   subroutine test_failed_run_removes_stale(error)
     type(error_t), allocatable, intent(out) :: error
-    type(run_options_t) :: opt
-    type(run_summary_t) :: summary
     type(error_t), allocatable :: run_error
     logical :: exists
     call remove_outputs()
-    opt%deck = 'test/data/cube.dat'
-    opt%output = out
-    opt%solver = ''
-    call run_feps(opt, summary, error)
+    call run_deck('test/data/cube.dat', error)
     if (allocated(error)) return
     inquire (file=out, exist=exists)
     call check(error, exists, 'the first run wrote its results')
     if (allocated(error)) return
-    opt%deck = 'test/data/overflow_solution.dat'
-    call run_feps(opt, summary, run_error)
+    call run_deck('test/data/overflow_solution.dat', run_error)
     call check(error, allocated(run_error), 'the second run fails')
     if (allocated(error)) return
     inquire (file=out, exist=exists)
@@ -880,20 +881,14 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(len=*), parameter :: decks(2) = [character(len=40) :: 'test/data/bad/nu_half.dat', &
                                                'test/data/bad/rigid_body_mode.dat']
-    type(run_options_t) :: opt
-    type(run_summary_t) :: summary
     type(error_t), allocatable :: run_error
     logical :: exists(3)
     integer :: i
     do i = 1, size(decks)
       call remove_outputs()
-      opt%deck = 'test/data/cube.dat'
-      opt%output = out
-      opt%solver = ''
-      call run_feps(opt, summary, error)
+      call run_deck('test/data/cube.dat', error)
       if (allocated(error)) return
-      opt%deck = trim(decks(i))
-      call run_feps(opt, summary, run_error)
+      call run_deck(trim(decks(i)), run_error)
       call check(error, allocated(run_error), trim(decks(i)) // ' is refused')
       if (allocated(error)) return
       call check(error, any(run_error%code == [err_input, err_model]), trim(decks(i)) // ': ' // run_error%message)

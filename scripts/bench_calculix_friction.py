@@ -199,20 +199,57 @@ def nset_lines(name, nodes):
     return out
 
 
+def ccx_elements(x, lo, up, ccx_type, ndim):
+    """*NODE and the two blocks' *ELEMENT lines (feps's node and element numbers)."""
+    out = ["*NODE"]
+    out += [f"{n}, " + ", ".join(f"{float(v)!r}" for v in x[n - 1, :ndim]) for n in range(1, len(x) + 1)]
+    out.append(f"*ELEMENT, TYPE={ccx_type}, ELSET=LOWER")
+    out += [f"{i}, " + ", ".join(map(str, c)) for i, c in enumerate(lo, 1)]
+    out.append(f"*ELEMENT, TYPE={ccx_type}, ELSET=UPPER")
+    out += [f"{i}, " + ", ".join(map(str, c)) for i, c in enumerate(up, len(lo) + 1)]
+    return out
+
+
+def ccx_joint_and_steps(case, sigma_inf, tol, steps, pull, e_lower, thickness, supports, file_prints):
+    """Materials, the contact pair with friction, supports and the two steps (pressure, pull),
+    the same in both families but for the sections' thickness line, the supports and the
+    .frd output."""
+    out = ["*MATERIAL, NAME=BASE", "*ELASTIC", f"{e_lower!r}, {NU!r}",
+           "*MATERIAL, NAME=BLOCK", "*ELASTIC", f"{E!r}, {NU!r}",
+           "*SOLID SECTION, ELSET=LOWER, MATERIAL=BASE", *thickness,
+           "*SOLID SECTION, ELSET=UPPER, MATERIAL=BLOCK", *thickness,
+           "*SURFACE INTERACTION, NAME=JOINT", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"]
+    if case == "gauss":
+        out += [f"{KN!r}", "*FRICTION", f"{MU!r}, {KS!r}",
+                "*CONTACT PAIR, INTERACTION=JOINT, TYPE=SURFACE TO SURFACE", "SSLAVE, SMASTER"]
+    else:
+        out += [f"{KN!r}, {sigma_inf!r}", "*FRICTION", f"{MU!r}, {KS!r}",
+                "*CONTACT PAIR, INTERACTION=JOINT, TYPE=NODE TO SURFACE, SMALL SLIDING", "SSLAVE, SMASTER"]
+    out += ["*BOUNDARY"] + supports + ["PULL, 1, 1, 0."]
+    # ccx's default tolerances (0.5% of the average force) are far looser than feps's; both
+    # are tightened so that the comparison sees the models, not the iteration ends.
+    controls = ["*CONTROLS, PARAMETERS=FIELD", f"{tol!r}, {tol!r}, , , {tol!r}"]
+    prints = ["*NODE PRINT, NSET=NALL", "U", "*NODE PRINT, NSET=PULL, TOTALS=ONLY", "RF"]
+    if case == "gauss":
+        # the pair's total force (CF) exists for face-to-face contact only (ccx 2.20 crashes on
+        # it with node-to-surface contact); there the .frd's spring stresses times areas give it
+        prints += ["*CONTACT PRINT, SLAVE=SSLAVE, MASTER=SMASTER", "CF"]
+    prints += file_prints
+    out += ["*STEP, INC=1000"] + controls + ["*STATIC", "1., 1.", "*DLOAD", f"STOP, P2, {P!r}"] + prints + ["*END STEP"]
+    out += (["*STEP, INC=1000"] + controls + ["*STATIC, DIRECT", f"{1.0 / steps!r}, 1.", "*BOUNDARY",
+                                              f"PULL, 1, 1, {pull!r}"] + prints + ["*END STEP"])
+    return out
+
+
 def ccx_input(h5path, steps, pull, case, sigma_inf, tol, e_lower):
     h = h5py.File(h5path, "r")
     x = h["mesh/coordinates"][...]
     lo = h["mesh/groups/lower/connectivity"][...]
     up = h["mesh/groups/upper/connectivity"][...]
     z = x[:, 2]
-    out = ["*HEADING", f"friction benchmark against feps ({case}), written by scripts/bench_calculix_friction.py",
-           "*NODE"]
-    out += [f"{n}, {float(x[n - 1, 0])!r}, {float(x[n - 1, 1])!r}, {float(x[n - 1, 2])!r}" for n in range(1, len(x) + 1)]
+    out = ["*HEADING", f"friction benchmark against feps ({case}), written by scripts/bench_calculix_friction.py"]
     # feps's hex8 node order is Abaqus's: C3D8 face S1 is nodes 1-2-3-4 (here z = min), S2 5-8.
-    out.append("*ELEMENT, TYPE=C3D8, ELSET=LOWER")
-    out += [f"{i}, " + ", ".join(map(str, c)) for i, c in enumerate(lo, 1)]
-    out.append("*ELEMENT, TYPE=C3D8, ELSET=UPPER")
-    out += [f"{i}, " + ", ".join(map(str, c)) for i, c in enumerate(up, len(lo) + 1)]
+    out += ccx_elements(x, lo, up, "C3D8", 3)
     lon, upn = np.unique(lo), np.unique(up)
     out += nset_lines("NALL", range(1, len(x) + 1))
     out += nset_lines("BASE", [n for n in lon if abs(z[n - 1]) < 1e-9])
@@ -225,29 +262,8 @@ def ccx_input(h5path, steps, pull, case, sigma_inf, tol, e_lower):
     out += ["*SURFACE, NAME=SMASTER, TYPE=ELEMENT"] + faces(lo, 1, slice(4, 8), "S2", H1)
     out += ["*SURFACE, NAME=SSLAVE, TYPE=ELEMENT"] + faces(up, len(lo) + 1, slice(0, 4), "S1", H1)
     out += ["*SURFACE, NAME=STOP, TYPE=ELEMENT"] + faces(up, len(lo) + 1, slice(4, 8), "S2", H1 + H2)
-    out += ["*MATERIAL, NAME=BASE", "*ELASTIC", f"{e_lower!r}, {NU!r}",
-            "*MATERIAL, NAME=BLOCK", "*ELASTIC", f"{E!r}, {NU!r}",
-            "*SOLID SECTION, ELSET=LOWER, MATERIAL=BASE", "*SOLID SECTION, ELSET=UPPER, MATERIAL=BLOCK",
-            "*SURFACE INTERACTION, NAME=JOINT", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"]
-    if case == "gauss":
-        out += [f"{KN!r}", "*FRICTION", f"{MU!r}, {KS!r}",
-                "*CONTACT PAIR, INTERACTION=JOINT, TYPE=SURFACE TO SURFACE", "SSLAVE, SMASTER"]
-    else:
-        out += [f"{KN!r}, {sigma_inf!r}", "*FRICTION", f"{MU!r}, {KS!r}",
-                "*CONTACT PAIR, INTERACTION=JOINT, TYPE=NODE TO SURFACE, SMALL SLIDING", "SSLAVE, SMASTER"]
-    out += ["*BOUNDARY", "BASE, 1, 3", "SYM, 2, 2", "PULL, 1, 1, 0."]
-    # ccx's default tolerances (0.5% of the average force) are far looser than feps's; both
-    # are tightened so that the comparison sees the models, not the iteration ends.
-    controls = ["*CONTROLS, PARAMETERS=FIELD", f"{tol!r}, {tol!r}, , , {tol!r}"]
-    prints = ["*NODE PRINT, NSET=NALL", "U", "*NODE PRINT, NSET=PULL, TOTALS=ONLY", "RF"]
-    if case == "gauss":
-        # the pair's total force (CF) exists for face-to-face contact only (ccx 2.20 crashes on
-        # it with node-to-surface contact); there the .frd's spring stresses times areas give it
-        prints += ["*CONTACT PRINT, SLAVE=SSLAVE, MASTER=SMASTER", "CF"]
-    prints += ["*CONTACT FILE", "CDIS, CSTR"]
-    out += ["*STEP, INC=1000"] + controls + ["*STATIC", "1., 1.", "*DLOAD", f"STOP, P2, {P!r}"] + prints + ["*END STEP"]
-    out += (["*STEP, INC=1000"] + controls + ["*STATIC, DIRECT", f"{1.0 / steps!r}, 1.", "*BOUNDARY", f"PULL, 1, 1, {pull!r}"]
-            + prints + ["*END STEP"])
+    out += ccx_joint_and_steps(case, sigma_inf, tol, steps, pull, e_lower, thickness=[],
+                               supports=["BASE, 1, 3", "SYM, 2, 2"], file_prints=["*CONTACT FILE", "CDIS, CSTR"])
     return "\n".join(out) + "\n"
 
 
@@ -261,13 +277,9 @@ def ccx_input_2d(h5path, steps, pull, case, sigma_inf, tol, e_lower):
     up = h["mesh/groups/upper/connectivity"][...]
     y = x[:, 1]
     out = ["*HEADING", f"friction benchmark against feps, plane strain ({case}), written by "
-           "scripts/bench_calculix_friction.py", "*NODE"]
-    out += [f"{n}, {float(x[n - 1, 0])!r}, {float(x[n - 1, 1])!r}" for n in range(1, len(x) + 1)]
+           "scripts/bench_calculix_friction.py"]
     # feps's tri6 node order is ccx's (corners counter-clockwise, then mid-sides 1-2, 2-3, 3-1)
-    out.append("*ELEMENT, TYPE=CPE6, ELSET=LOWER")
-    out += [f"{i}, " + ", ".join(map(str, c)) for i, c in enumerate(lo, 1)]
-    out.append("*ELEMENT, TYPE=CPE6, ELSET=UPPER")
-    out += [f"{i}, " + ", ".join(map(str, c)) for i, c in enumerate(up, len(lo) + 1)]
+    out += ccx_elements(x, lo, up, "CPE6", 2)
     lon, upn = np.unique(lo), np.unique(up)
     out += nset_lines("NALL", range(1, len(x) + 1))
     out += nset_lines("BASE", [n for n in lon if abs(y[n - 1]) < 1e-9])
@@ -281,27 +293,11 @@ def ccx_input_2d(h5path, steps, pull, case, sigma_inf, tol, e_lower):
     out += ["*SURFACE, NAME=SMASTER, TYPE=ELEMENT"] + faces(lo, 1, H1)
     out += ["*SURFACE, NAME=SSLAVE, TYPE=ELEMENT"] + faces(up, len(lo) + 1, H1)
     out += ["*SURFACE, NAME=STOP, TYPE=ELEMENT"] + faces(up, len(lo) + 1, H1 + H2)
-    out += ["*MATERIAL, NAME=BASE", "*ELASTIC", f"{e_lower!r}, {NU!r}",
-            "*MATERIAL, NAME=BLOCK", "*ELASTIC", f"{E!r}, {NU!r}",
-            "*SOLID SECTION, ELSET=LOWER, MATERIAL=BASE", "1.", "*SOLID SECTION, ELSET=UPPER, MATERIAL=BLOCK", "1.",
-            "*SURFACE INTERACTION, NAME=JOINT", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"]
-    if case == "gauss":
-        out += [f"{KN!r}", "*FRICTION", f"{MU!r}, {KS!r}",
-                "*CONTACT PAIR, INTERACTION=JOINT, TYPE=SURFACE TO SURFACE", "SSLAVE, SMASTER"]
-    else:
-        out += [f"{KN!r}, {sigma_inf!r}", "*FRICTION", f"{MU!r}, {KS!r}",
-                "*CONTACT PAIR, INTERACTION=JOINT, TYPE=NODE TO SURFACE, SMALL SLIDING", "SSLAVE, SMASTER"]
-    out += ["*BOUNDARY", "BASE, 1, 2", "PULL, 1, 1, 0."]
-    controls = ["*CONTROLS, PARAMETERS=FIELD", f"{tol!r}, {tol!r}, , , {tol!r}"]
-    prints = ["*NODE PRINT, NSET=NALL", "U", "*NODE PRINT, NSET=PULL, TOTALS=ONLY", "RF"]
-    if case == "gauss":
-        prints += ["*CONTACT PRINT, SLAVE=SSLAVE, MASTER=SMASTER", "CF"]
     # OUTPUT=3D: the .frd then holds the expanded nodes' coordinates; node-to-surface contact
     # results are given at the expanded slave nodes, which are mapped back by their x, y
-    prints += ["*NODE FILE, OUTPUT=3D", "U", "*CONTACT FILE", "CDIS, CSTR"]
-    out += ["*STEP, INC=1000"] + controls + ["*STATIC", "1., 1.", "*DLOAD", f"STOP, P2, {P!r}"] + prints + ["*END STEP"]
-    out += (["*STEP, INC=1000"] + controls + ["*STATIC, DIRECT", f"{1.0 / steps!r}, 1.", "*BOUNDARY",
-                                              f"PULL, 1, 1, {pull!r}"] + prints + ["*END STEP"])
+    out += ccx_joint_and_steps(case, sigma_inf, tol, steps, pull, e_lower, thickness=["1."],
+                               supports=["BASE, 1, 2"],
+                               file_prints=["*NODE FILE, OUTPUT=3D", "U", "*CONTACT FILE", "CDIS, CSTR"])
     return "\n".join(out) + "\n"
 
 

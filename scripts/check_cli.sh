@@ -754,6 +754,42 @@ for case in "b_cholmod.h5 pipe 4.21" "mc_small/C_G300_nu0.1_b0.09.h5 top_pipe 10
     && ok "plot_stress_maps.py without --norm on $h5 divides by q = $q" \
     || bad "plot_stress_maps.py's q of $h5: $(head -c 300 "$tmp/out1") / $(head -c 300 "$tmp/out2")"
 done
+# feps's nodal averages (FIELDS nodal_stress) against plot_stress_maps.py's own extrapolation,
+# written independently (Lagrange products in numpy, not feps's monomial solve): hex8, hex20 with
+# 27 points, hex20r with 8; the same numbers to 1e-10 of the largest.
+sed 's/TYPE=hex20,/TYPE=hex20r,/' test/data/bending_hex20.dat >"$tmp/bending_hex20r.dat"
+cp test/data/lame_hex8.dat "$tmp/lame_hex8_nodal.dat" && echo "FIELDS, all, nodal_stress" >>"$tmp/lame_hex8_nodal.dat"
+"$feps" test/data/lame_hex20_nodal.dat --quiet --output "$tmp/n_hex20.h5" \
+  && "$feps" "$tmp/bending_hex20r.dat" --quiet --output "$tmp/n_hex20r.h5" \
+  && "$feps" "$tmp/lame_hex8_nodal.dat" --quiet --output "$tmp/n_hex8.h5" \
+  && python3 - "$tmp/n_hex20.h5" "$tmp/n_hex20r.h5" "$tmp/n_hex8.h5" <<'PY' >"$tmp/out" 2>&1 \
+  && ok "nodal_stress of hex20, hex20r and hex8 = plot_stress_maps.py's own extrapolation ($(cat "$tmp/out"))" \
+  || bad "nodal_stress against plot_stress_maps.py's extrapolation: $(head -c 300 "$tmp/out")"
+import sys
+import h5py
+import numpy as np
+sys.path.insert(0, "scripts")
+import feps_results as fr
+import plot_stress_maps as psm
+worst = 0.0
+for path in sys.argv[1:]:
+    with h5py.File(path) as f:
+        step = fr.last_step(f)
+        for g in f[f"steps/{step}/nodal_stress"]:
+            ds = f[f"steps/{step}/stress/{g}"]
+            ppe = int(ds.attrs["points_per_element"])
+            ext = psm.extrapolation_matrix(fr.element_type(f, g), ppe)
+            conn = fr.connectivity(f, g)
+            nodal = np.einsum("ng,egc->enc", ext, ds[...].reshape(-1, ppe, 6))
+            sums = np.zeros((f["mesh/coordinates"].shape[0], 6))
+            np.add.at(sums, conn.ravel(), nodal.reshape(-1, 6))
+            count = np.bincount(conn.ravel(), minlength=len(sums))
+            own = np.where(count[:, None] > 0, sums / np.maximum(count, 1)[:, None], 0.0)
+            got = f[f"steps/{step}/nodal_stress/{g}"][...]
+            worst = max(worst, np.abs(own - got).max() / np.abs(got).max())
+print(f"largest difference {worst:.1e} of the largest stress")
+sys.exit(0 if worst <= 1e-10 else 1)
+PY
 expect_line "plot_stress_maps.py without --norm on a file of no thesis model" 2 "give --norm" \
   python3 scripts/plot_stress_maps.py --h5 "$tmp/beam.h5" --out "$tmp/m.png"
 expect_line "plot_interface_maps.py without --norm on a file of no thesis model" 2 "give --norm" \

@@ -9,9 +9,10 @@
 axis), or a given radius. Values come from the Gauss points of the elements that reach the
 surface, the layer of points nearest to it in each element (--source gauss, default), from the
 element averages of those elements at their centroids (--source cell), or at the surface nodes
-(--source nodes: each element's Gauss-point stress tensors extrapolated to its nodes by the inverse
-of its shape functions, averaged over the elements sharing the node; the principal value of that
-tensor; reaches the pipe ends, and smooths the jumps between elements). Points that coincide in
+(--source nodes: each element's Gauss-point stress tensors extrapolated to its nodes by the
+polynomial through them, averaged over the elements sharing the node; the principal value of that
+tensor, as feps's nodal_principal field; reaches the pipe ends, and smooths the jumps between
+elements). Points that coincide in
 (theta, z) (an r = VALUE between two element layers) are averaged. The map covers the points'
 extent: Gauss points sit inside the elements, so it stops short of the pipe ends by the distance
 of the first point from the end (about 0.21 of the end element's length for 2x2x2 Gauss).
@@ -125,18 +126,40 @@ def surface_values(f, group, step, column, radius, source="gauss", tol=None, kin
     return merge_coincident(theta, z, values, radius)
 
 
+HEX8_CORNERS = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
+                         [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float)
+HEX20_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+
+
+def lagrange_1d(points, x):
+    """(len(x), len(points)) values at x of the 1D Lagrange polynomials through the points."""
+    out = np.ones((len(x), len(points)))
+    for i, pi in enumerate(points):
+        for j, pj in enumerate(points):
+            if j != i:
+                out[:, i] *= (x - pj) / (pi - pj)
+    return out
+
+
 def extrapolation_matrix(etype, ppe):
-    """(nodes, points) matrix taking Gauss-point values of one element to its nodes: the inverse of
-    the shape functions at the points (hex8; least squares for hex20 with 27 points); for hex20 with
-    2x2x2 points the corners come from the trilinear fit and each mid-edge node is the mean of its
-    edge's corners."""
+    """(nodes, points) matrix taking Gauss-point values of one element to its nodes, as feps's
+    nodal_stress does (written here independently): hex8 (and hex20 with 2x2x2 points at its
+    corners) the trilinear interpolant of the 8 points, which is the inverse of the hex8 shape
+    functions at the points; hex20 with 27 points the triquadratic Lagrange interpolant through
+    them, evaluated at the 20 nodes; hex20 with 2x2x2 points: each mid-edge node is the mean of
+    its edge's corners (the trilinear interpolant there)."""
     shapes, nodes = fr.integration_shapes(etype, ppe)
-    if etype == "hex8" or (nodes == 20 and ppe == 27):
-        return np.linalg.pinv(shapes)
+    if etype in ("hex8", "hex8b"):
+        return np.linalg.inv(shapes)
+    if nodes == 20 and ppe == 27:
+        g = np.sqrt(0.6) * np.array([-1.0, 0.0, 1.0])
+        xn = np.vstack([HEX8_CORNERS] + [0.5 * (HEX8_CORNERS[a] + HEX8_CORNERS[b])[None, :] for a, b in HEX20_EDGES])
+        lx, ly, lz = (lagrange_1d(g, xn[:, d]) for d in range(3))
+        # point k = i + 3 j + 9 l has coordinates (g_i, g_j, g_l)
+        return np.einsum("ni,nj,nl->nlji", lx, ly, lz).reshape(len(xn), 27)
     if nodes == 20 and ppe == 8:
         corners = np.linalg.inv(fr.integration_shapes("hex8")[0])
-        edges = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
-        return np.vstack([corners] + [0.5 * (corners[a] + corners[b])[None, :] for a, b in edges])
+        return np.vstack([corners] + [0.5 * (corners[a] + corners[b])[None, :] for a, b in HEX20_EDGES])
     raise ValueError(f"--source nodes: no extrapolation for {etype} with {ppe} points")
 
 

@@ -23,6 +23,7 @@ program tester
   use test_analysis_state, only: collect_analysis_state
   use test_principal, only: collect_principal
   use test_solution_methods, only: collect_solution_methods
+  use test_stress_recovery, only: collect_stress_recovery
   implicit none
 
   interface
@@ -60,7 +61,8 @@ program tester
     new_testsuite('prestress', collect_prestress), &
     new_testsuite('analysis_state', collect_analysis_state), &
     new_testsuite('principal', collect_principal), &
-    new_testsuite('solution_methods', collect_solution_methods) &
+    new_testsuite('solution_methods', collect_solution_methods), &
+    new_testsuite('stress_recovery', collect_stress_recovery) &
     ]
   nfail = run_testsuites(suites, only)
   if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran

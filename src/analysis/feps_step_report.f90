@@ -280,7 +280,7 @@ contains
     else if (kernel%is_interface) then
       group_output_wanted = fields%interface .or. fields%interface_strain
     else
-      group_output_wanted = fields%stress .or. fields%principal
+      group_output_wanted = fields%stress .or. fields%principal .or. fields%nodal_stress .or. fields%nodal_principal
     end if
   end function group_output_wanted
 

@@ -665,7 +665,8 @@ contains
     if (allocated(error)) return
     if (.not. st%fields_given) then
       model%fields = output_fields_t(displacement=.false., reaction=.false., stress=.false., principal=.false., &
-                                     interface=.false., interface_strain=.false., bar=.false.)
+                                     interface=.false., interface_strain=.false., bar=.false., &
+                                     nodal_stress=.false., nodal_principal=.false.)
       st%fields_given = .true.
     end if
     do i = 2, nfields(rec)
@@ -675,6 +676,7 @@ contains
         do k = 2, size(field_names)
           list = list // ', ' // trim(field_names(k))
         end do
+        list = list // ', all'
         call input_error(error, rec%file, rec%line, 'unknown field "' // field_text(rec, i) // '" (' // &
                          list // ')', i)
         return

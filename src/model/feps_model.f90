@@ -203,9 +203,9 @@ module feps_model
     integer :: line = 0
   end type report_t
 
-  !> Which result fields a run writes (deck keyword FIELDS; default: all). A field not asked
-  !! for is not computed either where that saves work (stress recovery of elastic groups,
-  !! principal stresses).
+  !> Which result fields a run writes (deck keyword FIELDS; default: all but the nodal
+  !! averages, which are written only when named). A field not asked for is not computed either
+  !! where that saves work (stress recovery of elastic groups, principal stresses).
   type, public :: output_fields_t
     logical :: displacement = .true.      !! /steps/N/displacement
     logical :: reaction = .true.          !! /steps/N/reaction (and reaction_nodal)
@@ -214,6 +214,8 @@ module feps_model
     logical :: interface = .true.         !! /steps/N/interface/<group> (tractions and state)
     logical :: interface_strain = .true.  !! /steps/N/interface_strain/<group>
     logical :: bar = .true.               !! /steps/N/bar/<group>
+    logical :: nodal_stress = .false.     !! /steps/N/nodal_stress/<solid group> (averaged at the nodes)
+    logical :: nodal_principal = .false.  !! /steps/N/nodal_principal/<solid group>
   contains
     procedure :: select => fields_select
     procedure :: names => fields_names
@@ -221,7 +223,7 @@ module feps_model
 
   !> The names FIELDS accepts, in output order.
   character(len=*), parameter, public :: field_names(*) = [character(len=16) :: 'displacement', 'reaction', &
-    'stress', 'principal', 'interface', 'interface_strain', 'bar']
+    'stress', 'principal', 'interface', 'interface_strain', 'bar', 'nodal_stress', 'nodal_principal']
 
   type, public :: model_t
     character(len=:), allocatable :: title
@@ -283,6 +285,18 @@ contains
       self%interface_strain = .true.
     case ('bar')
       self%bar = .true.
+    case ('nodal_stress')
+      self%nodal_stress = .true.
+    case ('nodal_principal')
+      self%nodal_principal = .true.
+    case ('all')      ! the default fields, to which FIELDS can add the nodal averages
+      self%displacement = .true.
+      self%reaction = .true.
+      self%stress = .true.
+      self%principal = .true.
+      self%interface = .true.
+      self%interface_strain = .true.
+      self%bar = .true.
     case default
       known = .false.
     end select
@@ -295,7 +309,7 @@ contains
     logical :: on(size(field_names))
     integer :: i
     on = [self%displacement, self%reaction, self%stress, self%principal, self%interface, &
-          self%interface_strain, self%bar]
+          self%interface_strain, self%bar, self%nodal_stress, self%nodal_principal]
     list = ''
     do i = 1, size(field_names)
       if (.not. on(i)) cycle

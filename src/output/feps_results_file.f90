@@ -254,21 +254,29 @@ contains
   end subroutine begin_step
 
   !> `/steps/<NNNN>/<name>`: values(ncomp, nnode) at the nodes, attribute `components`
-  !! (ncomp space-separated names, e.g. 'ux uy uz').
-  subroutine write_nodal(self, step, name, values, components, error)
+  !! (ncomp space-separated names, e.g. 'ux uy uz'). With `group`, the field belongs to that
+  !! element group, `/steps/<NNNN>/<name>/<group>`, and the XDMF file shows it on its grid only.
+  subroutine write_nodal(self, step, name, values, components, error, group)
     class(results_file_t), intent(inout) :: self
     integer, intent(in) :: step
     character(len=*), intent(in) :: name
     real(dp), intent(in) :: values(:, :)
     character(len=*), intent(in) :: components
     type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: group
     integer :: istep
-    character(len=:), allocatable :: dataset
+    character(len=:), allocatable :: dataset, owner
 
     call require_step(self, step, istep, error)
     if (allocated(error)) return
     call check_name(name, 'nodal field', error)
     if (allocated(error)) return
+    owner = ''
+    if (present(group)) then
+      call check_name(group, 'element group', error)
+      if (allocated(error)) return
+      owner = group
+    end if
     call check_components(components, size(values, 1), name, error)
     if (allocated(error)) return
     if (self%node_count > 0 .and. size(values, 2) /= self%node_count) then
@@ -277,11 +285,12 @@ contains
       return
     end if
     dataset = '/steps/' // step_group_name(step) // '/' // name
+    if (len(owner) > 0) dataset = dataset // '/' // owner
     call refuse_non_finite(values, dataset, components, 'node', error)
     if (allocated(error)) return
     call write_real_dataset(self, dataset, values, components, error)
     if (allocated(error)) return
-    call add_field(self%steps(istep), name, dataset, '', components, .true., size(values, 2), size(values, 1))
+    call add_field(self%steps(istep), name, dataset, owner, components, .true., size(values, 2), size(values, 1))
   end subroutine write_nodal
 
   !> `/steps/<NNNN>/<kind>/<group>`: values(ncomp, npoints) at the Gauss points, element-major, with

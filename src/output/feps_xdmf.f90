@@ -27,7 +27,8 @@ module feps_xdmf
   type, public :: xdmf_field_t
     character(len=:), allocatable :: name        !! attribute name (nodal) or prefix (cell), e.g. 'stress'
     character(len=:), allocatable :: dataset     !! absolute HDF5 path of the dataset
-    character(len=:), allocatable :: group       !! element group of a cell field; '' for a nodal field
+    character(len=:), allocatable :: group       !! element group of a cell field or of a group's nodal
+                                                 !! field; '' for a nodal field of every group
     character(len=:), allocatable :: components  !! space-separated component names
     logical :: nodal = .true.                    !! Center="Node" (else Center="Cell")
     integer :: rows = 0                          !! nodes or elements (h5py first dimension)
@@ -249,7 +250,8 @@ contains
             do f = 1, size(steps(istep)%fields)
               associate (field => steps(istep)%fields(f))
                 if (field%nodal) then
-                  if (field%rows == node_count) call put_attributes(pad // '  ', field, 'Node')
+                  if (field%rows == node_count .and. (len(field%group) == 0 .or. field%group == groups(g)%name)) &
+                    call put_attributes(pad // '  ', field, 'Node')
                 else if (field%group == groups(g)%name .and. field%rows == groups(g)%element_count) then
                   call put_attributes(pad // '  ', field, 'Cell')
                 end if

@@ -4,7 +4,7 @@
 module feps_program
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8, rad2deg
-  use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, str
+  use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, err_internal, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, line_search_refusal
   use feps_deck, only: read_deck
@@ -15,6 +15,9 @@ module feps_program
   use feps_observer, only: observer_t, step_result_t
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
+  use feps_element, only: element_t
+  use feps_element_factory, only: new_element
+  use feps_stress_recovery, only: extrapolation_matrix, nodal_average
   implicit none
   private
 
@@ -557,11 +560,55 @@ contains
                                        gr%points_per_element, error)
               deallocate (extra)
             end if
+            if ((f%nodal_stress .or. f%nodal_principal) .and. .not. allocated(error)) &
+              call write_nodal_stresses(self%h5, self%model, res%step, g, gr%stress, error)
           end if
         end associate
       end do
     end associate
   end subroutine observer_write_step
+
+  !> The stresses of solid group `g` extrapolated from its Gauss points to its nodes and
+  !! averaged there (feps_stress_recovery), and their principal values: the fields
+  !! nodal_stress and nodal_principal, one row per mesh node (zero at nodes of no element of
+  !! the group).
+  subroutine write_nodal_stresses(h5, model, step, g, stress, error)
+    type(results_file_t), intent(inout) :: h5
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: step, g
+    real(dp), intent(in) :: stress(:, :)       !! (6, points) element-major
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: e(:, :), nodal(:, :), principal(:, :)
+    integer, allocatable :: count(:)
+    real(dp) :: p(3)
+    integer :: node
+    logical :: ok
+    associate (group => model%groups(g))
+      call new_element(group%element_type, element, error)
+      if (allocated(error)) return
+      call extrapolation_matrix(element, e, ok)
+      if (.not. ok) then
+        call fatal_error(error, err_internal, 'group ' // group%name // ': no extrapolation from the Gauss points ' // &
+                         'of element type ' // group%element_type // ' to its nodes')
+        return
+      end if
+      allocate (nodal(size(stress, 1), model%nnode), count(model%nnode))
+      call nodal_average(e, group%connectivity, stress, model%nnode, nodal, count)
+      if (model%fields%nodal_stress) call h5%write_nodal(step, 'nodal_stress', nodal, 'sxx syy szz syz sxz sxy', &
+                                                         error, group=group%name)
+      if (allocated(error) .or. .not. model%fields%nodal_principal) return
+      allocate (principal(2, model%nnode))
+      principal = 0.0_dp
+      do node = 1, model%nnode
+        if (count(node) == 0) cycle
+        p = principal_values(nodal(:, node))
+        principal(:, node) = [p(1), p(3)]
+      end do
+      call h5%write_nodal(step, 'nodal_principal', principal, 'most_tensile most_compressive', error, &
+                          group=group%name)
+    end associate
+  end subroutine write_nodal_stresses
 
   subroutine write_summary(h5, model, summary, error)
     type(results_file_t), intent(inout) :: h5

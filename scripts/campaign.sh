@@ -12,8 +12,9 @@
 # (never run, failed, interrupted) is run from the start. Then results/NAME/summary.csv gets one
 # row per case (those of this call, then any other case folder of the campaign): case, status,
 # exit code, wall time, steps, iterations, factorizations, cut-backs, load factor reached, every
-# /summary attribute rotation_*_deg, and the peak most tensile principal stress (MPa, over all
-# Gauss points of the last step) of group pipe (PEAK_GROUP); the decks' PARAMETERS (/summary
+# /summary attribute rotation_*_deg and reaction_*_f[xyz] (REPORT records), and the peak most
+# tensile principal stress (MPa, over all Gauss points of the last step) of group pipe
+# (PEAK_GROUP); the decks' PARAMETERS (/summary
 # attributes parameter_<name>) come right after the case name, one column each.
 #
 # Environment:
@@ -154,7 +155,8 @@ for stem in stems:
             for key in ("steps", "iterations", "factorizations", "cutbacks"):
                 row[key] = int(s[key]) if key in s else ""
             for key in sorted(s):
-                if key.startswith("rotation_") and key.endswith("_deg"):
+                if (key.startswith("rotation_") and key.endswith("_deg")) or \
+                        (key.startswith("reaction_") and key[-3:] in ("_fx", "_fy", "_fz")):   # REPORT records
                     row[key] = f"{float(s[key]):.6g}"
                     if key not in rotations:
                         rotations.append(key)

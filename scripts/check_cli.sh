@@ -741,6 +741,21 @@ printed = float(re.search(r"beta_bar \(x >= 250\) = ([0-9.]+) deg", open(sys.arg
 want = pmc.postprocess(sys.argv[1], verbose=False)["beta_bar"]
 sys.exit(0 if abs(printed - want) <= 5e-6 else 1)
 PY
+# REPORT, REACTION of the model C decks: the top end's fx is the H that postprocess_model_c.py's
+# statics sums from the written reactions of the top pipe's end nodes.
+python3 -W ignore - "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" <<'PY' >"$tmp/out" 2>"$tmp/err" \
+  && ok "model C REPORT top_end: fx = postprocess_model_c.py's H ($(cat "$tmp/out"))" \
+  || bad "model C REPORT top_end against postprocess_model_c.py's H: $(head -c 300 "$tmp/out") $(head -c 300 "$tmp/err")"
+import sys
+import h5py
+sys.path.insert(0, "scripts")
+import postprocess_model_c as pmc
+with h5py.File(sys.argv[1]) as f:
+    fx = float(f["summary"].attrs["reaction_top_end_fx"])
+H = pmc.top_pipe_statics(sys.argv[1])["H"]
+print(f"{fx:.6g} N against {H:.6g} N")
+sys.exit(0 if abs(fx - H) <= 1e-9 * abs(H) and abs(H) > 0 else 1)
+PY
 expect_line "plot_joint_deformation.py --joint-total on a model B result" 2 "not a model C result" \
   python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/main.h5" --out "$tmp/m.png"
 # The maps' q: a model B or C result's own (4.21, 10 MPa), any other file must be given --norm

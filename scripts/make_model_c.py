@@ -356,6 +356,9 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
     out.append(rep + (f", REFERENCE={-ref:g}" if ref is not None else ""))
     out.append(f"REPORT, ROTATION, NAME=bottom_end, GROUP=bottom_pipe, R={R_OUT:g}., Z={Z_JOINT:g}., "
                "FROM=250., TO=715.")
+    out += ["! the force the imposed top-end displacement needs (fx: H = P e / L, the moment of the joint's",
+            "! eccentric contact resultant; postprocess_model_c.py --statics drives beam theory with it)",
+            "REPORT, REACTION, NAME=top_end, NSET=top_end_nodes"]
     out += ["", "SOLVER, cholmod", f"OUTPUT, {name}.h5", ""]
     return "\n".join(out)
 

@@ -58,6 +58,8 @@ contains
       new_unittest('FIX with a KEY=value other than CSYS', test_fix_option), &
       new_unittest('FIX with CSYS= twice', test_fix_csys_twice), &
       new_unittest('REPORT with an unknown option', test_report_unknown_option), &
+      new_unittest('REPORT, REACTION without NSET=', test_report_reaction_no_nset), &
+      new_unittest('REPORT, REACTION with an undefined node set', test_report_reaction_unknown_nset), &
       new_unittest('two SOLVER records', test_solver_twice), &
       new_unittest('two OUTPUT records', test_output_twice), &
       new_unittest('an E record with a field', test_extra_field_on_e), &
@@ -353,6 +355,19 @@ contains
     call expect_failure('test/data/bad/report_unknown_option.dat', err_input, &
                         [character(len=40) :: 'report_unknown_option.dat:24:', 'field 7', 'REFERNCE'], error)
   end subroutine test_report_unknown_option
+
+  subroutine test_report_reaction_no_nset(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/report_reaction_no_nset.dat', err_input, &
+                        [character(len=40) :: 'report_reaction_no_nset.dat:25:', 'needs NSET='], error)
+  end subroutine test_report_reaction_no_nset
+
+  subroutine test_report_reaction_unknown_nset(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/report_reaction_unknown_nset.dat', err_input, &
+                        [character(len=40) :: 'report_reaction_unknown_nset.dat:25:', 'field 4', &
+                         'undefined node set "bottm"'], error)
+  end subroutine test_report_reaction_unknown_nset
 
   subroutine test_solver_twice(error)
     type(error_t), allocatable, intent(out) :: error

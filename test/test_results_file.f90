@@ -35,7 +35,8 @@ contains
       new_unittest("step group names", test_step_names), &
       new_unittest("summary analysis is the bare word", test_summary_analysis_word), &
       new_unittest("PARAMETERS starting with a word: words as strings, numbers as reals", test_summary_parameters), &
-      new_unittest("xdmf topology of every element type", test_xdmf_every_type) &
+      new_unittest("xdmf topology of every element type", test_xdmf_every_type), &
+      new_unittest("REPORT, REACTION: resultants of the cube's reactions in closed form", test_reaction_report) &
     ]
   end subroutine collect_results_file
 
@@ -680,6 +681,52 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_summary_analysis_word
+
+  !> test/data/cube_reaction.dat: the cube of cube.dat (10 mm, p = 100 MPa on top) with REPORT,
+  !! REACTION on the bottom (fz = p A = 1e4 N, fx = fy = 0) and on the corner node at the origin
+  !! (p A_e / 4 = 625 N of its 5 x 5 mm face); each is also the sum of /steps/<last>/reaction
+  !! over the set's nodes, read back from the file.
+  subroutine test_reaction_report(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path
+    type(run_options_t) :: options
+    type(run_summary_t) :: summary
+    integer(hid_t) :: file_id
+    integer :: hdferr, n
+    real(dp) :: base(3), corner(3), from_file(3)
+    real(dp), allocatable :: reaction(:, :), x(:, :)
+    character(len=2), parameter :: axes(3) = ['fx', 'fy', 'fz']
+    path = scratch_path('reaction.h5')
+    options%deck = 'test/data/cube_reaction.dat'
+    options%output = path
+    options%quiet = .true.
+    call run_feps(options, summary, error)
+    if (allocated(error)) return
+    call open_read(path, file_id, error)
+    if (allocated(error)) return
+    do n = 1, 3
+      base(n) = real_attribute(file_id, '/summary', 'reaction_base_' // axes(n))
+      corner(n) = real_attribute(file_id, '/summary', 'reaction_corner_' // axes(n))
+    end do
+    call read_real(file_id, '/steps/' // step_group_name(1) // '/reaction', reaction, error)
+    if (.not. allocated(error)) call read_real(file_id, '/mesh/coordinates', x, error)
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(path)
+    call delete_file(scratch_path('reaction.xmf'))
+    if (allocated(error)) return
+    call check(error, base(3), 100.0_dp * 10.0_dp * 10.0_dp, 'bottom fz = p A', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, maxval(abs(base(1:2))), 0.0_dp, 'bottom fx, fy', abs=1.0e-9_dp)
+    if (allocated(error)) return
+    call check(error, corner(3), 100.0_dp * 5.0_dp * 5.0_dp / 4.0_dp, 'corner fz = p A_e / 4', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    from_file = 0.0_dp
+    do n = 1, size(x, 2)
+      if (abs(x(3, n)) < 1.0e-9_dp) from_file = from_file + reaction(:, n)
+    end do
+    call check(error, maxval(abs(base - from_file)), 0.0_dp, 'bottom resultant = sum of the written reactions', &
+               abs=1.0e-9_dp)
+  end subroutine test_reaction_report
 
   !> test/data/cube_parameters.dat: PARAMETERS, kind=F, E_s=144, tag=S1. write_parameters
   !! tested the number of a value that was no number (kind=F) before knowing it was one: a read

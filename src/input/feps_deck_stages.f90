@@ -209,7 +209,8 @@ contains
 
   !> REPORT, ROTATION, NAME=n, GROUP=g, R=radius, Z=section [, FROM=x0, TO=x1]
   !! [, REFERENCE=value in degrees], or REPORT, TILT, NAME=n, GROUP=g, FROM=z0, TO=z1
-  !! [, REFERENCE=...]: the tilt of the group's axis between two sections (thesis Table 7.2).
+  !! [, REFERENCE=...]: the tilt of the group's axis between two sections (thesis Table 7.2),
+  !! or REPORT, REACTION, NAME=n, NSET=s: the resultant of the support reactions on a node set.
   subroutine read_report(rec, model, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
@@ -222,11 +223,19 @@ contains
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     r%kind = to_lower(field_text(rec, 2))
-    if (r%kind /= 'rotation' .and. r%kind /= 'tilt') then
-      call input_error(error, rec%file, rec%line, 'unknown REPORT "' // field_text(rec, 2) // '" (ROTATION, TILT)', 2)
+    if (r%kind /= 'rotation' .and. r%kind /= 'tilt' .and. r%kind /= 'reaction') then
+      call input_error(error, rec%file, rec%line, 'unknown REPORT "' // field_text(rec, 2) // &
+                       '" (ROTATION, TILT, REACTION)', 2)
       return
     end if
     kind = to_upper(r%kind)
+    if (r%kind == 'reaction') then
+      call read_reaction_report(rec, model, r, error)
+      if (allocated(error)) return
+      tmp = [model%reports, r]
+      call move_alloc(tmp, model%reports)
+      return
+    end if
     if (r%kind == 'tilt') then
       call check_option_keys(rec, 3, error, allowed=[character(len=9) :: 'NAME', 'GROUP', 'FROM', 'TO', 'REFERENCE'])
     else
@@ -284,5 +293,31 @@ contains
     tmp = [model%reports, r]
     call move_alloc(tmp, model%reports)
   end subroutine read_report
+
+  !> The options of REPORT, REACTION: NAME= (default 'reaction') and NSET=, a node set defined
+  !! before the record.
+  subroutine read_reaction_report(rec, model, r, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(report_t), intent(inout) :: r
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    call check_option_keys(rec, 3, error, allowed=[character(len=4) :: 'NAME', 'NSET'])
+    if (allocated(error)) return
+    r%file = rec%file
+    r%line = rec%line
+    call option_text(rec, 'NAME', text, ifield, found)
+    r%name = r%kind
+    if (found) r%name = text
+    call option_text(rec, 'NSET', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'REPORT, REACTION needs NSET=<a node set>')
+      return
+    end if
+    r%node_set = model%find_node_set(text)
+    if (r%node_set == 0) call input_error(error, rec%file, rec%line, 'undefined node set "' // text // '"', ifield)
+  end subroutine read_reaction_report
 
 end module feps_deck_stages

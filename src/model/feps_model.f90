@@ -187,11 +187,13 @@ module feps_model
 
   !> A quantity computed after the run (thesis post-processing): 'rotation' is the rotation
   !! of the section z = const of a pipe from the axial displacements of its nodes on r = R at
-  !! theta = 180 and 0 deg.
+  !! theta = 180 and 0 deg; 'tilt' the tilt of a group's axis between two sections; 'reaction'
+  !! the resultant of the support reactions on a node set.
   type, public :: report_t
     character(len=:), allocatable :: name
     character(len=:), allocatable :: kind
     integer :: group = 0
+    integer :: node_set = 0                  !! 'reaction': index into model%node_sets
     real(dp) :: r = 0.0_dp
     real(dp) :: z = 0.0_dp
     logical :: has_span = .false.            !! FROM=/TO= x positions; else the extreme nodes

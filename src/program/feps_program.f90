@@ -96,6 +96,7 @@ module feps_program
     logical :: writing = .false.
     integer :: steps_written = 0
     real(dp), allocatable :: last_displacement(:, :)
+    real(dp), allocatable :: last_reaction(:, :)          !! (3, nnode) global, of the last step written
     type(model_t), pointer :: model => null()
     procedure(line_sink), pointer, nopass :: sink => null()
   contains
@@ -214,7 +215,7 @@ contains
       summary%group_names(g) = model%groups(g)%name
       summary%group_elements(g) = size(model%groups(g)%connectivity, 2)
     end do
-    call post_process(model, obs%last_displacement, obs%h5, summary, error)
+    call post_process(model, obs%last_displacement, obs%last_reaction, obs%h5, summary, error)
     if (allocated(error)) then
       call obs%h5%discard()
       return
@@ -340,6 +341,7 @@ contains
     allocate (u(3, model%nnode))
     u = 0.0_dp
     do k = 1, size(model%reports)
+      if (model%reports(k)%kind == 'reaction') cycle      ! its node set was checked when read
       if (model%reports(k)%kind == 'tilt') then
         call axis_tilt(model, model%reports(k), u, angle, error)
       else
@@ -349,10 +351,12 @@ contains
     end do
   end subroutine check_reports
 
-  !> REPORT records: rotations of pipe sections (thesis 7.3) from the final displacements.
-  subroutine post_process(model, u, h5, summary, error)
+  !> REPORT records: rotations of pipe sections (thesis 7.3) from the final displacements,
+  !! resultants of the final support reactions on node sets.
+  subroutine post_process(model, u, reaction, h5, summary, error)
     type(model_t), intent(in) :: model
     real(dp), intent(in) :: u(:, :)
+    real(dp), intent(in) :: reaction(:, :)     !! (3, nnode) global Cartesian, the last step's
     type(results_file_t), intent(inout) :: h5
     type(run_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
@@ -362,6 +366,12 @@ contains
     allocate (summary%reports(size(model%reports)))
     do k = 1, size(model%reports)
       associate (r => model%reports(k))
+        if (r%kind == 'reaction') then
+          call reaction_resultant(model, r, reaction, line, h5, error)
+          if (allocated(error)) return
+          summary%reports(k) = line
+          cycle
+        end if
         if (r%kind == 'tilt') then
           call axis_tilt(model, r, u, angle, error)
           if (allocated(error)) return
@@ -381,6 +391,33 @@ contains
       end associate
     end do
   end subroutine post_process
+
+  !> REPORT, REACTION: the sum of the support reactions (global x, y, z) over the nodes of the
+  !! report's node set, printed as one line and written to /summary as reaction_<name>_fx, _fy
+  !! and _fz (N). A node without a support in a direction contributes zero there.
+  subroutine reaction_resultant(model, r, reaction, line, h5, error)
+    type(model_t), intent(in) :: model
+    type(report_t), intent(in) :: r
+    real(dp), intent(in) :: reaction(:, :)
+    character(len=200), intent(out) :: line
+    type(results_file_t), intent(inout) :: h5
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: f(3)
+    integer :: d
+    character(len=2), parameter :: axes(3) = ['fx', 'fy', 'fz']
+    associate (nodes => model%node_sets(r%node_set)%nodes)
+      do d = 1, 3
+        f(d) = sum(reaction(d, nodes))
+      end do
+      write (line, '(a,i0,a,3(a,es14.6),a)') 'reaction ' // r%name // ' (set ' // &
+        model%node_sets(r%node_set)%name // ', ', size(nodes), trim(merge(' node): ', ' nodes):', size(nodes) == 1)), &
+        ' fx', f(1), ', fy', f(2), ', fz', f(3), ' N'
+    end associate
+    do d = 1, 3
+      call h5%write_summary_real('reaction_' // r%name // '_' // axes(d), f(d), error)
+      if (allocated(error)) return
+    end do
+  end subroutine reaction_resultant
 
   !> Rotation (degrees) of the section z = r%z from the axial displacements w of the group's
   !! nodes on r = R (thesis 7.3): (w(x1) - w(x0)) / (x1 - x0), with w interpolated linearly in x
@@ -518,6 +555,7 @@ contains
     real(dp) :: p(3)
     integer :: g, q, nc
     self%last_displacement = res%displacement
+    self%last_reaction = res%reaction
     self%steps_written = self%steps_written + 1
     associate (f => self%model%fields)
       call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)

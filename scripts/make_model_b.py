@@ -261,6 +261,9 @@ def deck(case, r_soil=2000.0):
         out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715.")
     else:
         out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500.")
+    out += ["! the anchor's z reaction: zero, as the self-equilibrated end loads require (SPEC 8); its x and",
+            "! y reactions are those of the soil's outer support at that node",
+            "REPORT, REACTION, NAME=anchor, NSET=anchor"]
     out += ["", "SOLVER, cholmod", f"OUTPUT, modelB_{case}.h5", ""]
     return "\n".join(out)
 

@@ -10,7 +10,7 @@ module feps_step_report
   use feps_assembly, only: group_kernel_t, element_strains
   use feps_material, only: state_open, state_elastic, state_tension
   use feps_observer, only: observer_t, step_result_t, group_result_t
-  use feps_analysis_state, only: analysis_t, support_reaction
+  use feps_analysis_state, only: analysis_t, support_reaction, support_reaction_nodal
   implicit none
   private
 
@@ -203,7 +203,7 @@ contains
     do n = 1, model%nnode
       if (.not. any(an%map%constrained(:, n))) cycle
       res%reaction(:, n) = support_reaction(an, n)
-      res%reaction_nodal(:, n) = matmul(transpose(an%map%basis(:, :, n)), res%reaction(:, n))
+      res%reaction_nodal(:, n) = support_reaction_nodal(an, n)
     end do
     res%has_nodal_systems = an%map%has_rotations()
     allocate (res%groups(size(model%groups)))

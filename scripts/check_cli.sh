@@ -741,6 +741,14 @@ printed = float(re.search(r"beta_bar \(x >= 250\) = ([0-9.]+) deg", open(sys.arg
 want = pmc.postprocess(sys.argv[1], verbose=False)["beta_bar"]
 sys.exit(0 if abs(printed - want) <= 5e-6 else 1)
 PY
+# Equilibrium of the written fields (scripts/check_equilibrium.py: nodal forces assembled with its
+# own shape functions from the stresses, tractions and reactions): the main job (FE1: hex8 and
+# interfaces, residual carried), SE1 (linear) and the coarse model C (packing, interface, soil).
+for h5 in main.h5 b_cholmod.h5 mc_small/C_G300_nu0.1_b0.09.h5; do
+  python3 scripts/check_equilibrium.py "$tmp/$h5" >"$tmp/out" 2>&1 \
+    && ok "check_equilibrium.py $h5: $(grep -c ': PASS' "$tmp/out") checks pass" \
+    || bad "check_equilibrium.py $h5: $(grep -v ': PASS' "$tmp/out" | head -c 400)"
+done
 # REPORT, REACTION of the model C decks: the top end's fx is the H that postprocess_model_c.py's
 # statics sums from the written reactions of the top pipe's end nodes.
 python3 -W ignore - "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" <<'PY' >"$tmp/out" 2>"$tmp/err" \

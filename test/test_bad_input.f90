@@ -60,6 +60,7 @@ contains
       new_unittest('REPORT with an unknown option', test_report_unknown_option), &
       new_unittest('REPORT, REACTION without NSET=', test_report_reaction_no_nset), &
       new_unittest('REPORT, REACTION with an undefined node set', test_report_reaction_unknown_nset), &
+      new_unittest('two REPORTs of one name', test_report_name_twice), &
       new_unittest('two SOLVER records', test_solver_twice), &
       new_unittest('two OUTPUT records', test_output_twice), &
       new_unittest('an E record with a field', test_extra_field_on_e), &
@@ -368,6 +369,15 @@ contains
                         [character(len=40) :: 'report_reaction_unknown_nset.dat:25:', 'field 4', &
                          'undefined node set "bottm"'], error)
   end subroutine test_report_reaction_unknown_nset
+
+  !> Each REPORT writes its values under its name: the second of one name used to overwrite the
+  !! first's in /summary.
+  subroutine test_report_name_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/report_name_twice.dat', err_input, &
+                        [character(len=48) :: 'report_name_twice.dat:25:', 'field 3', &
+                         'REPORT name "base" is used twice (first at line 24)'], error)
+  end subroutine test_report_name_twice
 
   subroutine test_solver_twice(error)
     type(error_t), allocatable, intent(out) :: error

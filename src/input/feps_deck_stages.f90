@@ -248,6 +248,8 @@ contains
     call option_text(rec, 'NAME', text, ifield, found)
     r%name = r%kind
     if (found) r%name = text
+    call refuse_duplicate_name(rec, model, r%name, merge(ifield, 2, found), error)
+    if (allocated(error)) return
     call option_text(rec, 'GROUP', text, ifield, found)
     if (.not. found) then
       call input_error(error, rec%file, rec%line, 'REPORT, ' // kind // ' needs GROUP=<the pipe group>')
@@ -311,6 +313,8 @@ contains
     call option_text(rec, 'NAME', text, ifield, found)
     r%name = r%kind
     if (found) r%name = text
+    call refuse_duplicate_name(rec, model, r%name, merge(ifield, 2, found), error)
+    if (allocated(error)) return
     call option_text(rec, 'NSET', text, ifield, found)
     if (.not. found) then
       call input_error(error, rec%file, rec%line, 'REPORT, REACTION needs NSET=<a node set>')
@@ -319,5 +323,23 @@ contains
     r%node_set = model%find_node_set(text)
     if (r%node_set == 0) call input_error(error, rec%file, rec%line, 'undefined node set "' // text // '"', ifield)
   end subroutine read_reaction_report
+
+  !> Each REPORT's values are written under its name (rotation_<name>_deg, reaction_<name>_fx):
+  !! two REPORTs of one name would write one value over the other.
+  subroutine refuse_duplicate_name(rec, model, name, ifield, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: ifield
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i
+    do i = 1, size(model%reports)
+      if (model%reports(i)%name == name) then
+        call input_error(error, rec%file, rec%line, 'REPORT name "' // name // '" is used twice (first at line ' // &
+                         str(model%reports(i)%line) // ')', ifield)
+        return
+      end if
+    end do
+  end subroutine refuse_duplicate_name
 
 end module feps_deck_stages

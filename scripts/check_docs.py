@@ -508,7 +508,8 @@ LAYOUT_DECKS = ["test/data/prestress_block.dat", "test/data/block_shear.dat", "t
                 "test/data/block_shear.dat|TYPE=interface-quad4,|TYPE=interface-quad4-nodal,",
                 "test/data/contact_2d.dat|TYPE=tri6,|TYPE=tri6-6,",
                 "test/data/friction_pull.dat",   # LINESEARCH=energy: /summary line_searches
-                "test/data/bending_hex20.dat"]   # FIELDS, all, nodal_stress, nodal_principal
+                "test/data/bending_hex20.dat",   # FIELDS, all, nodal_stress, nodal_principal
+                "test/data/block_contact_nodal.dat"]   # FIELDS, interface, nodal_interface
 
 
 def text(v):

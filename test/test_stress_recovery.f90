@@ -14,7 +14,8 @@ module test_stress_recovery
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_element, only: element_t
   use feps_element_factory, only: new_element
-  use feps_stress_recovery, only: extrapolation_matrix, nodal_average
+  use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average
+  use feps_interface_element, only: interface_element_t, new_interface_element
   use feps_program, only: run_options_t, run_summary_t, run_feps
   use hdf5, only: hid_t, hsize_t, h5open_f, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, h5dopen_f, h5dread_f, &
                   h5dclose_f, h5dget_space_f, h5sget_simple_extent_dims_f, h5sclose_f, H5T_NATIVE_DOUBLE, &
@@ -32,7 +33,10 @@ contains
       new_unittest('extrapolation reproduces the polynomials of each rule at the nodes', test_polynomials), &
       new_unittest('nodal average over one group''s elements', test_average), &
       new_unittest('hex20 cantilever in pure bending: exact nodal stresses in the results file', test_bending), &
-      new_unittest('hex20 Lame cylinder: nodal hoop stress at the bore against the closed form', test_lame) &
+      new_unittest('hex20 Lame cylinder: nodal hoop stress at the bore against the closed form', test_lame), &
+      new_unittest('interfaces: extrapolation reproduces the polynomials of each rule', test_interface_polynomials), &
+      new_unittest('contact under a linear pressure: exact nodal tractions in the results file', &
+                   test_contact_tractions) &
     ]
   end subroutine collect_stress_recovery
 
@@ -251,6 +255,117 @@ contains
     end do
     call check(error, bore, 43, 'bore nodes of the hex20 mesh')
   end subroutine test_lame
+
+  !> Every interface type, with its Gauss rule and with '-nodal': a polynomial of its rule's
+  !! space sampled at the points is found at the lower layer's nodes (1e-12). Spaces: quad4 2 x 2
+  !! and its nodes bilinear, quad8 3 x 3 (Gauss) and 8 nodes + centre biquadratic, tri3 (3 points
+  !! or nodes) and tri6-nodal (3 mid-edge nodes) linear, tri6 (6 points) quadratic, line2 linear,
+  !! line3 quadratic.
+  subroutine test_interface_polynomials(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=16), parameter :: types(6) = [character(len=16) :: 'interface-quad4', 'interface-quad8', &
+      'interface-tri3', 'interface-tri6', 'interface-line2', 'interface-line3']
+    integer, parameter :: degrees(2, 6) = reshape([1, 1, 2, 2, 1, 1, 2, 1, 1, 1, 2, 2], [2, 6])  ! (Gauss, nodal)
+    logical, parameter :: tensor(6) = [.true., .true., .false., .false., .true., .true.]
+    type(interface_element_t) :: element
+    real(dp), allocatable :: e(:, :), points(:, :), w(:), nodes(:, :), at_points(:), at_nodes(:)
+    real(dp) :: xi(3)
+    character(len=:), allocatable :: name
+    logical :: ok, lines
+    integer :: t, k, q, a
+    do t = 1, size(types)
+      do k = 1, 2
+        name = trim(types(t)) // trim(merge('      ', '-nodal', k == 1))
+        call new_interface_element(name, element, error)
+        if (allocated(error)) return
+        allocate (points(2, element%ngauss()), w(element%ngauss()), nodes(2, element%npairs()))
+        call element%integration_rule(points, w)
+        call element%node_coordinates(nodes)
+        call extrapolation_from_points(points, nodes, e, ok)
+        call check(error, ok, name // ': an extrapolation exists')
+        if (allocated(error)) return
+        lines = index(name, 'line') > 0
+        allocate (at_points(size(w)), at_nodes(size(nodes, 2)))
+        do q = 1, size(w)
+          xi = [points(:, q), 0.0_dp]
+          at_points(q) = surface_field(xi, degrees(k, t), tensor(t), lines)
+        end do
+        do a = 1, size(nodes, 2)
+          xi = [nodes(:, a), 0.0_dp]
+          at_nodes(a) = surface_field(xi, degrees(k, t), tensor(t), lines)
+        end do
+        call check(error, maxval(abs(matmul(e, at_points) - at_nodes)), 0.0_dp, name // ': polynomial at the nodes', &
+                   abs=1.0e-12_dp * maxval(abs(at_nodes)))
+        if (allocated(error)) return
+        deallocate (points, w, nodes, at_points, at_nodes)
+      end do
+    end do
+  end subroutine test_interface_polynomials
+
+  !> A polynomial in (s1, s2) with every term of the space: tensor products up to `degree` in
+  !! each of s1, s2 (s1 only for lines), or total degree `degree`.
+  pure real(dp) function surface_field(xi, degree, tensor, line)
+    real(dp), intent(in) :: xi(3)
+    integer, intent(in) :: degree
+    logical, intent(in) :: tensor, line
+    integer :: i, j
+    real(dp) :: c
+    surface_field = 0.0_dp
+    c = 0.3_dp
+    do j = 0, merge(0, degree, line)
+      do i = 0, degree
+        if (.not. tensor .and. i + j > degree) cycle
+        c = -1.7_dp * c + 0.9_dp
+        surface_field = surface_field + c * xi(1)**i * xi(2)**j
+      end do
+    end do
+  end function surface_field
+
+  !> test/data/block_contact_nodal.dat: two hex8 blocks and an interface-quad4 layer pressed by
+  !! p(x) = 1.5 (x + 10) / 30 MPa. The contact stress is linear, sigma_n = -p(x), tau = 0 (the
+  !! Gauss points have it to rounding), so the nodal tractions at the lower layer's 9 nodes are
+  !! -p(x) and 0 to 1e-12 of the peak, and the other nodes hold zero.
+  subroutine test_contact_tractions(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: options
+    type(run_summary_t) :: summary
+    real(dp), allocatable :: x(:, :), nodal(:, :), connectivity(:, :)
+    integer(hid_t) :: file_id
+    integer :: hdferr, n
+    logical :: lower
+    character(len=:), allocatable :: path
+    real(dp) :: p
+    path = 'build/feps_test_contact_nodal.h5'
+    options%deck = 'test/data/block_contact_nodal.dat'
+    options%output = path
+    options%quiet = .true.
+    call run_feps(options, summary, error)
+    if (allocated(error)) return
+    call h5open_f(hdferr)
+    call h5fopen_f(path, H5F_ACC_RDONLY_F, file_id, hdferr)
+    if (hdferr < 0) then
+      call test_failed(error, 'cannot open ' // path)
+      return
+    end if
+    call read_real(file_id, '/mesh/coordinates', x, error)
+    if (.not. allocated(error)) call read_real(file_id, '/steps/0002/nodal_interface/joint', nodal, error)
+    if (.not. allocated(error)) call read_real(file_id, '/mesh/groups/joint/connectivity', connectivity, error, &
+                                               integer_data=.true.)
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(path)
+    call delete_file('build/feps_test_contact_nodal.xmf')
+    if (allocated(error)) return
+    call check(error, size(nodal, 1) == 3, 'nodal_interface has tau1 tau2 sigma_n')
+    if (allocated(error)) return
+    do n = 1, size(x, 2)
+      lower = any(nint(connectivity(1:4, :)) == n)
+      p = merge(1.5_dp * (x(1, n) + 10.0_dp) / 30.0_dp, 0.0_dp, lower)
+      call check(error, nodal(3, n), -p, 'sigma_n at node ' // str(n), abs=1.5e-12_dp)
+      if (allocated(error)) return
+      call check(error, maxval(abs(nodal(1:2, n))), 0.0_dp, 'tau at node ' // str(n), abs=1.5e-12_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_contact_tractions
 
   ! ------------------------------------------------------------------ helpers
 

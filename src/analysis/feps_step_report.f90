@@ -278,7 +278,7 @@ contains
     if (kernel%is_bar) then
       group_output_wanted = fields%bar
     else if (kernel%is_interface) then
-      group_output_wanted = fields%interface .or. fields%interface_strain
+      group_output_wanted = fields%interface .or. fields%interface_strain .or. fields%nodal_interface
     else
       group_output_wanted = fields%stress .or. fields%principal .or. fields%nodal_stress .or. fields%nodal_principal
     end if

@@ -90,6 +90,7 @@ module feps_interface_element
     procedure :: element_type
     procedure :: shape
     procedure :: integration_rule
+    procedure :: node_coordinates
     procedure :: point_b
     procedure :: stiffness
     procedure :: internal_force
@@ -320,6 +321,29 @@ contains
       end select
     end if
   end subroutine integration_rule
+
+  !> Natural coordinates `s(2, npairs)` of the nodes of one layer, in connectivity order
+  !! (s(2, :) = 0 for lines).
+  pure subroutine node_coordinates(self, s)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(out) :: s(:, :)
+    s = 0.0_dp
+    select case (self%shape_kind)
+    case (interface_quad4)
+      s(:, 1:4) = quad_s(:, 1:4)
+    case (interface_quad8)
+      s(:, 1:8) = quad_s
+    case (interface_tri3)
+      s(:, 1:3) = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 3])
+    case (interface_tri6)
+      s(:, 1:6) = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
+                           0.5_dp, 0.0_dp, 0.5_dp, 0.5_dp, 0.0_dp, 0.5_dp], [2, 6])
+    case (interface_line2)
+      s(1, 1:2) = [-1.0_dp, 1.0_dp]
+    case (interface_line3)
+      s(1, 1:3) = [-1.0_dp, 1.0_dp, 0.0_dp]
+    end select
+  end subroutine node_coordinates
 
   ! ------------------------------------------------------------------ geometry
 

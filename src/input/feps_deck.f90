@@ -666,7 +666,7 @@ contains
     if (.not. st%fields_given) then
       model%fields = output_fields_t(displacement=.false., reaction=.false., stress=.false., principal=.false., &
                                      interface=.false., interface_strain=.false., bar=.false., &
-                                     nodal_stress=.false., nodal_principal=.false.)
+                                     nodal_stress=.false., nodal_principal=.false., nodal_interface=.false.)
       st%fields_given = .true.
     end if
     do i = 2, nfields(rec)

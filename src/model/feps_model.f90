@@ -218,6 +218,7 @@ module feps_model
     logical :: bar = .true.               !! /steps/N/bar/<group>
     logical :: nodal_stress = .false.     !! /steps/N/nodal_stress/<solid group> (averaged at the nodes)
     logical :: nodal_principal = .false.  !! /steps/N/nodal_principal/<solid group>
+    logical :: nodal_interface = .false.  !! /steps/N/nodal_interface/<interface group> (tractions at the nodes)
   contains
     procedure :: select => fields_select
     procedure :: names => fields_names
@@ -225,7 +226,8 @@ module feps_model
 
   !> The names FIELDS accepts, in output order.
   character(len=*), parameter, public :: field_names(*) = [character(len=16) :: 'displacement', 'reaction', &
-    'stress', 'principal', 'interface', 'interface_strain', 'bar', 'nodal_stress', 'nodal_principal']
+    'stress', 'principal', 'interface', 'interface_strain', 'bar', 'nodal_stress', 'nodal_principal', &
+    'nodal_interface']
 
   type, public :: model_t
     character(len=:), allocatable :: title
@@ -291,6 +293,8 @@ contains
       self%nodal_stress = .true.
     case ('nodal_principal')
       self%nodal_principal = .true.
+    case ('nodal_interface')
+      self%nodal_interface = .true.
     case ('all')      ! the default fields, to which FIELDS can add the nodal averages
       self%displacement = .true.
       self%reaction = .true.
@@ -311,7 +315,7 @@ contains
     logical :: on(size(field_names))
     integer :: i
     on = [self%displacement, self%reaction, self%stress, self%principal, self%interface, &
-          self%interface_strain, self%bar, self%nodal_stress, self%nodal_principal]
+          self%interface_strain, self%bar, self%nodal_stress, self%nodal_principal, self%nodal_interface]
     list = ''
     do i = 1, size(field_names)
       if (.not. on(i)) cycle

@@ -1,5 +1,6 @@
-!> Nodal stresses from Gauss-point stresses, as finite-element post-processors show them
-!! (Abaqus's and CalculiX's "averaged at nodes"): each element's Gauss-point values are
+!> Nodal stresses (and interface tractions) from their Gauss-point values, as finite-element
+!! post-processors show them
+!! (Abaqus's and CalculiX's "averaged at nodes"): each element's point values are
 !! extrapolated to its nodes with the polynomial that interpolates them, and the element values
 !! at a node are averaged over the elements of one group (never across groups: the stress of a
 !! pipe and of the soil around it differ at their common nodes).
@@ -18,33 +19,47 @@ module feps_stress_recovery
   implicit none
   private
 
-  public :: extrapolation_matrix, nodal_average
+  public :: extrapolation_matrix, extrapolation_from_points, nodal_average
 
 contains
 
-  !> `e(nen, ngauss)` maps an element's values at its Gauss points (in the rule's order) to its
-  !! nodes (in connectivity order): nodal = matmul(e, gauss). `ok` is false when the rule's
+  !> `e(nen, ngauss)` maps a solid element's values at its Gauss points (in the rule's order) to
+  !! its nodes (in connectivity order): nodal = matmul(e, gauss). `ok` is false when the rule's
   !! points determine no polynomial space of their own size (no feps element today).
   pure subroutine extrapolation_matrix(element, e, ok)
     class(element_t), intent(in) :: element
     real(dp), allocatable, intent(out) :: e(:, :)
     logical, intent(out) :: ok
-    real(dp), allocatable :: xi_gauss(:, :), w(:), xi_nodes(:, :), at_gauss(:, :), at_nodes(:, :)
-    integer, allocatable :: powers(:, :)
-    integer :: ng, nen
-
-    ng = element%ngauss()
-    nen = element%nnodes()
-    allocate (xi_gauss(3, ng), w(ng), xi_nodes(3, nen))
+    real(dp), allocatable :: xi_gauss(:, :), w(:), xi_nodes(:, :)
+    allocate (xi_gauss(3, element%ngauss()), w(element%ngauss()), xi_nodes(3, element%nnodes()))
     call element%gauss_rule(xi_gauss, w)
     call element%natural_coordinates(xi_nodes)
-    call polynomial_powers(xi_gauss, powers, ok)
-    if (.not. ok) return
-    at_gauss = monomials(xi_gauss, powers)     ! (ng, ng)
-    at_nodes = monomials(xi_nodes, powers)     ! (nen, ng)
-    ! e = at_nodes inv(at_gauss): solve at_gauss^T e^T = at_nodes^T
-    call solve_in_place(transpose(at_gauss), at_nodes, e, ok)
+    call extrapolation_from_points(xi_gauss, xi_nodes, e, ok)
   end subroutine extrapolation_matrix
+
+  !> `e(nnodes, npoints)`: the values at the nodes `nodes(:, nnodes)` of the polynomial that
+  !! interpolates values at the points `points(:, npoints)` (natural coordinates, up to 3 rows;
+  !! a coordinate that is the same at every point, such as the third of a surface, is not a
+  !! variable). `ok` false when the points determine no polynomial space of their own size.
+  pure subroutine extrapolation_from_points(points, nodes, e, ok)
+    real(dp), intent(in) :: points(:, :)
+    real(dp), intent(in) :: nodes(:, :)
+    real(dp), allocatable, intent(out) :: e(:, :)
+    logical, intent(out) :: ok
+    real(dp) :: xi_points(3, size(points, 2)), xi_nodes(3, size(nodes, 2))
+    real(dp), allocatable :: at_points(:, :), at_nodes(:, :)
+    integer, allocatable :: powers(:, :)
+    xi_points = 0.0_dp
+    xi_nodes = 0.0_dp
+    xi_points(:size(points, 1), :) = points
+    xi_nodes(:size(nodes, 1), :) = nodes
+    call polynomial_powers(xi_points, powers, ok)
+    if (.not. ok) return
+    at_points = monomials(xi_points, powers)   ! (npoints, npoints)
+    at_nodes = monomials(xi_nodes, powers)     ! (nnodes, npoints)
+    ! e = at_nodes inv(at_points): solve at_points^T e^T = at_nodes^T
+    call solve_in_place(transpose(at_points), at_nodes, e, ok)
+  end subroutine extrapolation_from_points
 
   !> Average over a group's elements of the values extrapolated to each node. `values(ncomp,
   !! nelem * p)` are element-major Gauss-point values (p = size(e, 2) points per element),

@@ -17,7 +17,8 @@ module feps_program
   use feps_principal, only: principal_values
   use feps_element, only: element_t
   use feps_element_factory, only: new_element
-  use feps_stress_recovery, only: extrapolation_matrix, nodal_average
+  use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average
+  use feps_interface_element, only: interface_element_t, new_interface_element
   implicit none
   private
 
@@ -585,6 +586,8 @@ contains
             if (f%interface_strain .and. .not. allocated(error)) call self%h5%write_gauss(res%step, &
               'interface_strain', name, gr%strain, trim(merge('gamma1 gamma2 eps_n', 'gamma eps_n        ', nc == 3)), &
               gr%points_per_element, error)
+            if (f%nodal_interface .and. .not. allocated(error)) &
+              call write_nodal_tractions(self%h5, self%model, res%step, g, gr%stress, error)
           else
             if (f%stress) call self%h5%write_gauss(res%step, 'stress', name, gr%stress, 'sxx syy szz syz sxz sxy', &
                                                    gr%points_per_element, error)
@@ -647,6 +650,39 @@ contains
                           group=group%name)
     end associate
   end subroutine write_nodal_stresses
+
+  !> The tractions of interface group `g` extrapolated from its integration points to the nodes
+  !! of its lower layer (the XDMF grid's) and averaged there: the field nodal_interface, one row
+  !! per mesh node (zero at nodes of no lower layer of the group).
+  subroutine write_nodal_tractions(h5, model, step, g, traction, error)
+    type(results_file_t), intent(inout) :: h5
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: step, g
+    real(dp), intent(in) :: traction(:, :)     !! (ncomp, points) element-major: tau1 tau2 sigma_n | tau sigma_n
+    type(error_t), allocatable, intent(out) :: error
+    type(interface_element_t) :: element
+    real(dp), allocatable :: e(:, :), points(:, :), w(:), nodes(:, :), nodal(:, :)
+    integer, allocatable :: count(:)
+    logical :: ok
+    associate (group => model%groups(g))
+      call new_interface_element(group%element_type, element, error)
+      if (allocated(error)) return
+      allocate (points(2, element%ngauss()), w(element%ngauss()), nodes(2, element%npairs()))
+      call element%integration_rule(points, w)
+      call element%node_coordinates(nodes)
+      call extrapolation_from_points(points, nodes, e, ok)
+      if (.not. ok) then
+        call fatal_error(error, err_internal, 'group ' // group%name // ': no extrapolation from the points ' // &
+                         'of element type ' // group%element_type // ' to its nodes')
+        return
+      end if
+      allocate (nodal(size(traction, 1), model%nnode), count(model%nnode))
+      call nodal_average(e, group%connectivity(1:element%npairs(), :), traction, model%nnode, nodal, count)
+      call h5%write_nodal(step, 'nodal_interface', nodal, &
+                          trim(merge('tau1 tau2 sigma_n', 'tau sigma_n      ', size(traction, 1) == 3)), error, &
+                          group=group%name)
+    end associate
+  end subroutine write_nodal_tractions
 
   subroutine write_summary(h5, model, summary, error)
     type(results_file_t), intent(inout) :: h5

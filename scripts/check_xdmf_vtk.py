@@ -17,9 +17,10 @@ and the layout of docs/output-format.md, not through the XDMF file:
 - cells: one per element, of the VTK type of the group's element_type (the XDMF table), whose
   point ids are the element's connectivity - 1 (the lower layer, its first half, for interface
   elements);
-- point data: each nodal dataset of the step (displacement, reaction, reaction_nodal: one vector
-  each) on every block, and /steps/<NNNN>/<field>/<group> (nodal_stress, nodal_principal) on its
-  group's block as one scalar <field>_<component> per column;
+- point data: each nodal dataset of the step on every block, and /steps/<NNNN>/<field>/<group>
+  (nodal_stress, nodal_principal) on its group's block: one vector when its components are global
+  x y z (displacement, reaction), else one scalar <field>_<component> per column (reaction_nodal,
+  whose f1 f2 f3 are in each node's own system);
 - cell data: each column of /steps/<NNNN>/cell/<kind>/<group> as the scalar <kind>_<component>;
 - no array VTK shows beyond these; values equal to 1e-12 relative (of the largest magnitude of the
   array), integers exactly;
@@ -146,6 +147,13 @@ def text_attr(obj, key, default=""):
     return value.decode() if isinstance(value, bytes) else str(value)
 
 
+def global_vector(components):
+    """A nodal field VTK should read as one vector: three global Cartesian components, such as
+    'ux uy uz' or 'fx fy fz'. reaction_nodal's 'f1 f2 f3', in each node's own system, is three
+    scalars (a vector is drawn along global x y z)."""
+    return len(components) == 3 and all(w.endswith(a) for w, a in zip(components, "xyz"))
+
+
 def first_error(lines):
     """': <the first line VTK printed>' or ''."""
     return (": VTK: " + lines[0]) if lines else ""
@@ -240,10 +248,10 @@ class Checker:
             elif hasattr(item, "shape"):
                 values = np.asarray(item[...])
                 if values.ndim == 2 and values.shape[0] == nnode:
-                    if values.shape[1] == 3:
+                    comps = text_attr(item, "components").split()
+                    if global_vector(comps):
                         point[key] = values
                     else:
-                        comps = text_attr(item, "components").split()
                         for c in range(values.shape[1]):
                             name = key if values.shape[1] == 1 else "%s_%s" % (key, comps[c])
                             point[name] = values[:, c]
@@ -256,7 +264,7 @@ class Checker:
                     if "points_per_element" in ds.attrs:
                         continue
                     comps = text_attr(ds, "components").split()
-                    if values.shape[1] == 3:
+                    if global_vector(comps):
                         point[key] = values
                     else:
                         for c in range(values.shape[1]):

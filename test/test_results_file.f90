@@ -28,6 +28,7 @@ contains
       new_unittest("step datasets and cell averages", test_step_datasets), &
       new_unittest("summary attributes", test_summary), &
       new_unittest("xdmf file and rename", test_xdmf_file), &
+      new_unittest("xdmf: only global x y z nodal fields are vectors", test_xdmf_nodal_system_field), &
       new_unittest("mesh-only xdmf", test_mesh_only_xdmf), &
       new_unittest("discard leaves no file", test_discard), &
       new_unittest("contract violations are errors", test_contract_errors), &
@@ -463,6 +464,50 @@ contains
     call delete_file(path)
     call delete_file(xmf)
   end subroutine test_xdmf_file
+
+  !> A vector attribute is drawn in global x y z (glyphs, Warp By Vector): reaction_nodal, whose
+  !! columns f1 f2 f3 are in each node's own system (radial, hoop, axial), must not be one. At a
+  !! node at theta = 90 a hoop force f2 points along -x; a vector would draw it along +y.
+  subroutine test_xdmf_nodal_system_field(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path, xmf, text
+    type(results_file_t) :: file
+    character(len=*), parameter :: columns(3) = ['f1', 'f2', 'f3']
+    integer :: c
+
+    path = scratch_path('nodal_system.h5')
+    xmf = scratch_path('nodal_system.xmf')
+    call file%create(path, error)
+    if (.not. allocated(error)) call file%write_mesh(sample_coordinates(), error)
+    if (.not. allocated(error)) call file%write_group('pipe', 'hex8', sample_connectivity(), error)
+    if (.not. allocated(error)) call file%begin_step(1, 1.0_dp, 1, 0.0_dp, error)
+    if (.not. allocated(error)) call file%write_nodal(1, 'displacement', sample_displacement(), 'ux uy uz', error)
+    if (.not. allocated(error)) call file%write_nodal(1, 'reaction', sample_displacement(), 'fx fy fz', error)
+    if (.not. allocated(error)) call file%write_nodal(1, 'reaction_nodal', sample_displacement(), 'f1 f2 f3', error)
+    if (.not. allocated(error)) call file%close(error)
+    if (allocated(error)) then
+      call file%discard()
+      return
+    end if
+    text = file_text(xmf)
+    call check(error, occurrences(text, 'Name="displacement" AttributeType="Vector" Center="Node"'), 1, &
+               'displacement (ux uy uz) a vector')
+    if (.not. allocated(error)) call check(error, occurrences(text, &
+                                           'Name="reaction" AttributeType="Vector" Center="Node"'), 1, &
+                                           'reaction (fx fy fz) a vector')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'Name="reaction_nodal"'), 0, &
+                                           'reaction_nodal (f1 f2 f3) not a vector')
+    do c = 1, 3
+      if (.not. allocated(error)) call check(error, occurrences(text, 'Name="reaction_nodal_' // columns(c) // &
+                                             '" AttributeType="Scalar" Center="Node"'), 1, &
+                                             'reaction_nodal_' // columns(c) // ' a nodal scalar')
+      if (.not. allocated(error)) call check(error, occurrences(text, 'NumberType="Int" Format="XML">0 ' // &
+                                             str(c - 1) // ' 1 1 12 1</DataItem>'), 1, &
+                                             'reaction_nodal_' // columns(c) // ': column ' // str(c) // ' of 12 rows')
+    end do
+    call delete_file(path)
+    call delete_file(xmf)
+  end subroutine test_xdmf_nodal_system_field
 
   subroutine test_mesh_only_xdmf(error)
     type(error_t), allocatable, intent(out) :: error

@@ -263,14 +263,16 @@ contains
       end do
     end subroutine put_group_grids
 
-    !> A nodal 3-column field becomes one Vector; anything else one Scalar per column (a hyperslab).
+    !> A nodal field of global x y z components (e.g. 'ux uy uz') becomes one Vector; anything
+    !! else one Scalar per column (a hyperslab). Readers draw a Vector in global axes, so a field
+    !! in nodal systems ('f1 f2 f3' of reaction_nodal) must not be one.
     subroutine put_attributes(pad, field, center)
       character(len=*), intent(in) :: pad
       type(xdmf_field_t), intent(in) :: field
       character(len=*), intent(in) :: center
       integer :: c
       character(len=:), allocatable :: name
-      if (field%nodal .and. field%columns == 3) then
+      if (field%nodal .and. field%columns == 3 .and. global_xyz(field%components)) then
         call put(pad // '<Attribute Name="' // escape(field%name) // '" AttributeType="Vector" Center="' // &
                  center // '">')
         call put(pad // '  ' // data_item(field%rows, 3, 'Float', '8', escape(field%dataset)))
@@ -308,6 +310,20 @@ contains
     end function data_item
 
   end subroutine write_xdmf
+
+  !> True when the three words of `components` end in x, y and z (global Cartesian components).
+  pure logical function global_xyz(components)
+    character(len=*), intent(in) :: components
+    character(len=*), parameter :: axes = 'xyz'
+    character(len=:), allocatable :: w
+    integer :: c
+    global_xyz = count_words(components) == 3
+    do c = 1, 3
+      if (.not. global_xyz) return
+      w = word(components, c)
+      global_xyz = w(len(w):) == axes(c:c)
+    end do
+  end function global_xyz
 
   !> Full-precision text of a real.
   pure function real_text(x) result(s)

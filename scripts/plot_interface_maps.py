@@ -13,6 +13,11 @@ see feps_results.py for the others). The surface is unfolded about the global z 
 compression negative) and the shear tau / q, tau = sqrt(tau1^2 + tau2^2) (--shear magnitude,
 default) or one component tau1 / tau2 of the local frame (e1 = dx/ds1 of the element). A third
 panel (--state) shows where points stick, slide or are open.
+
+--source nodes draws the tractions averaged at the lower layer's nodes instead
+(/steps/NNNN/nodal_interface/<group>, written when the deck's FIELDS names nodal_interface):
+they reach the edges of the interface, where the Gauss points stop short; the state panel keeps
+the points' states.
 """
 import argparse
 import os
@@ -118,6 +123,9 @@ def main(argv=None):
     ap.add_argument("--unfold", choices=["auto", "cylinder", "face"], default="auto")
     ap.add_argument("--shear", choices=["magnitude", "tau1", "tau2"], default="magnitude")
     ap.add_argument("--state", action="store_true", help="add a panel with the contact state")
+    ap.add_argument("--source", choices=["gauss", "nodes"], default="gauss",
+                    help="tractions at the integration points (default) or averaged at the nodes "
+                         "(the nodal_interface field)")
     ap.add_argument("--levels", type=positive_int, default=12)
     ap.add_argument("--title", help="figure title (default: case, group, step)")
     ap.add_argument("--dpi", type=positive_int, default=110)
@@ -136,6 +144,13 @@ def main(argv=None):
                              "3D interface group")
             fr.require(f, f"steps/{step}/interface/{args.group}", " (left out of the run's FIELDS?)")
             x, data = interface_points(f, args.group, step)
+            x_state, state = x, np.rint(data[:, 3]).astype(int)
+            if args.source == "nodes":
+                fr.require(f, f"steps/{step}/nodal_interface/{args.group}",
+                           " (written only when the deck's FIELDS names nodal_interface)")
+                conn = fr.connectivity(f, args.group)
+                lower = np.unique(conn[:, :conn.shape[1] // 2])
+                x, data = fr.coordinates(f)[lower], f[f"steps/{step}/nodal_interface/{args.group}"][...][lower]
             kind = surface_kind(f, args.group) if args.unfold == "auto" else args.unfold
             case = fr.case_name(f)
             title = args.title or f"{case}: interface {args.group} / q (q = {args.norm:g} MPa), {step_label(f, step)}"
@@ -155,12 +170,14 @@ def main(argv=None):
     i_s = contour_panel(fig, axes[1], theta, v, shear, scale, ylabel, shear_name, "turbo", args.levels,
                         use_max=args.shear == "magnitude" or shear.max() >= -shear.min())
     if args.state:
-        state_panel(fig, axes[2], theta, v, np.rint(data[:, 3]).astype(int), ylabel, scale)
+        theta_s, v_s, _, _ = unfolded(x_state, kind)
+        state_panel(fig, axes[2], theta_s, v_s, state, ylabel, scale)
     fig.suptitle(title, fontsize=10)
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     fig.savefig(args.out, dpi=args.dpi)
     plt.close(fig)
-    print(f"{case} interface {args.group} ({kind}, {len(sigma_n)} points): sigma_n/q min {sigma_n.min():.4f} "
+    where = "nodes" if args.source == "nodes" else "points"
+    print(f"{case} interface {args.group} ({kind}, {len(sigma_n)} {where}): sigma_n/q min {sigma_n.min():.4f} "
           f"at theta={theta[i_n]:.1f}, {ylabel.split()[0]}={v[i_n]:.1f}; shear/q peak {shear[i_s]:.4f} "
           f"at theta={theta[i_s]:.1f}, {ylabel.split()[0]}={v[i_s]:.1f} -> {args.out}")
     return 0

@@ -19,7 +19,7 @@ module feps_stress_recovery
   implicit none
   private
 
-  public :: extrapolation_matrix, extrapolation_from_points, nodal_average
+  public :: extrapolation_matrix, extrapolation_from_points, nodal_average, fill_outside
 
 contains
 
@@ -89,6 +89,19 @@ contains
       if (count(node) > 1) nodal(:, node) = nodal(:, node) / real(count(node), dp)
     end do
   end subroutine nodal_average
+
+  !> Give the nodes of no element of the group (count 0) each column's smallest value over the
+  !! group's nodes. Viewers colour a field by its range over all the points of a grid, and feps's
+  !! XDMF grid of a group holds every mesh node: zeros there would stretch the colour scale to 0.
+  pure subroutine fill_outside(nodal, count)
+    real(dp), intent(inout) :: nodal(:, :)     !! (ncomp, nnode)
+    integer, intent(in) :: count(:)            !! (nnode) from nodal_average
+    integer :: c
+    if (.not. any(count > 0)) return
+    do c = 1, size(nodal, 1)
+      where (count == 0) nodal(c, :) = minval(nodal(c, :), mask=count > 0)
+    end do
+  end subroutine fill_outside
 
   !> Exponents `powers(3, n)` of the n monomials the points `xi(3, n)` interpolate uniquely;
   !! `ok` false when neither a tensor product nor a complete polynomial has n terms.

@@ -17,7 +17,7 @@ module feps_program
   use feps_principal, only: principal_values
   use feps_element, only: element_t
   use feps_element_factory, only: new_element
-  use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average
+  use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average, fill_outside
   use feps_interface_element, only: interface_element_t, new_interface_element
   implicit none
   private
@@ -611,8 +611,8 @@ contains
 
   !> The stresses of solid group `g` extrapolated from its Gauss points to its nodes and
   !! averaged there (feps_stress_recovery), and their principal values: the fields
-  !! nodal_stress and nodal_principal, one row per mesh node (zero at nodes of no element of
-  !! the group).
+  !! nodal_stress and nodal_principal, one row per mesh node (at nodes of no element of the
+  !! group each column's smallest value over the group's nodes: fill_outside).
   subroutine write_nodal_stresses(h5, model, step, g, stress, error)
     type(results_file_t), intent(inout) :: h5
     type(model_t), intent(in) :: model
@@ -636,9 +636,6 @@ contains
       end if
       allocate (nodal(size(stress, 1), model%nnode), count(model%nnode))
       call nodal_average(e, group%connectivity, stress, model%nnode, nodal, count)
-      if (model%fields%nodal_stress) call h5%write_nodal(step, 'nodal_stress', nodal, 'sxx syy szz syz sxz sxy', &
-                                                         error, group=group%name)
-      if (allocated(error) .or. .not. model%fields%nodal_principal) return
       allocate (principal(2, model%nnode))
       principal = 0.0_dp
       do node = 1, model%nnode
@@ -646,6 +643,11 @@ contains
         p = principal_values(nodal(:, node))
         principal(:, node) = [p(1), p(3)]
       end do
+      call fill_outside(nodal, count)
+      call fill_outside(principal, count)
+      if (model%fields%nodal_stress) call h5%write_nodal(step, 'nodal_stress', nodal, 'sxx syy szz syz sxz sxy', &
+                                                         error, group=group%name)
+      if (allocated(error) .or. .not. model%fields%nodal_principal) return
       call h5%write_nodal(step, 'nodal_principal', principal, 'most_tensile most_compressive', error, &
                           group=group%name)
     end associate
@@ -653,7 +655,7 @@ contains
 
   !> The tractions of interface group `g` extrapolated from its integration points to the nodes
   !! of its lower layer (the XDMF grid's) and averaged there: the field nodal_interface, one row
-  !! per mesh node (zero at nodes of no lower layer of the group).
+  !! per mesh node (at nodes of no lower layer of the group each column's smallest value: fill_outside).
   subroutine write_nodal_tractions(h5, model, step, g, traction, error)
     type(results_file_t), intent(inout) :: h5
     type(model_t), intent(in) :: model
@@ -678,6 +680,7 @@ contains
       end if
       allocate (nodal(size(traction, 1), model%nnode), count(model%nnode))
       call nodal_average(e, group%connectivity(1:element%npairs(), :), traction, model%nnode, nodal, count)
+      call fill_outside(nodal, count)
       call h5%write_nodal(step, 'nodal_interface', nodal, &
                           trim(merge('tau1 tau2 sigma_n', 'tau sigma_n      ', size(traction, 1) == 3)), error, &
                           group=group%name)

@@ -317,6 +317,13 @@ class Checker:
                              % (wrong.size, e + 1, got[e].tolist(), conn[e].tolist()))
                 elif block.GetNumberOfPoints() == nnode:
                     self.check_shape(where, block, etype, got, coords)
+        if step is not None:       # the step's load factor as field data (Center="Grid")
+            fd = block.GetFieldData().GetArray("load_factor")
+            want = float(f["steps"][step].attrs["load_factor"])
+            if fd is None or fd.GetNumberOfTuples() != 1:
+                self.bad(where, "no field data load_factor")
+            elif fd.GetValue(0) != want:
+                self.bad(where, "field data load_factor %r, HDF5 %r" % (fd.GetValue(0), want))
         point, cell = self.expected_arrays(f, step, name, nnode, nelem)
         for kind, want, attrs in (("point", point, block.GetPointData()),
                                   ("cell", cell, block.GetCellData())):

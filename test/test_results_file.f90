@@ -457,6 +457,11 @@ contains
                                            'six cell scalars for the stress')
     if (.not. allocated(error)) call check(error, occurrences(text, 'Name="stress_sxy"'), 1, &
                                            'stress_sxy attribute')
+    ! the step's load factor as grid data, which XDMF readers give as field data
+    if (.not. allocated(error)) call check(error, occurrences(text, '<Attribute Name="load_factor" ' // &
+                                           'AttributeType="Scalar" Center="Grid">'), 1, 'load factor as grid data')
+    if (.not. allocated(error)) call check(error, occurrences(text, 'Format="XML">' // &
+                                           '5.0000000000000000E-001</DataItem>'), 1, 'its value, 0.5')
     if (.not. allocated(error)) call check(error, occurrences(text, '<Grid'), &
                                            occurrences(text, '</Grid>'), 'Grid elements balanced')
     if (.not. allocated(error)) call check(error, occurrences(text, '<DataItem'), &

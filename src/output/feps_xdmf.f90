@@ -246,6 +246,12 @@ contains
         call put(pad // '    ' // data_item(node_count, 3, 'Float', '8', '/mesh/coordinates'))
         call put(pad // '  </Geometry>')
         if (istep > 0) then
+          ! the step's load factor as grid (field) data, which readers show beside the arrays
+          ! (XDMF readers ignore the step's Information element)
+          call put(pad // '  <Attribute Name="load_factor" AttributeType="Scalar" Center="Grid">')
+          call put(pad // '    <DataItem Dimensions="1" NumberType="Float" Precision="8" Format="XML">' // &
+                   real_text(steps(istep)%load_factor) // '</DataItem>')
+          call put(pad // '  </Attribute>')
           if (allocated(steps(istep)%fields)) then
             do f = 1, size(steps(istep)%fields)
               associate (field => steps(istep)%fields(f))

@@ -17,9 +17,8 @@ module test_stress_recovery
   use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average
   use feps_interface_element, only: interface_element_t, new_interface_element
   use feps_program, only: run_options_t, run_summary_t, run_feps
-  use hdf5, only: hid_t, hsize_t, h5open_f, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, h5dopen_f, h5dread_f, &
-                  h5dclose_f, h5dget_space_f, h5sget_simple_extent_dims_f, h5sclose_f, H5T_NATIVE_DOUBLE, &
-                  H5T_NATIVE_INTEGER, h5lexists_f
+  use feps_h5_testing, only: scratch_path, open_read, read_real, read_int, delete_file, file_text, occurrences
+  use hdf5, only: hid_t, h5fclose_f, h5lexists_f
   implicit none
   private
 
@@ -155,42 +154,28 @@ contains
   !! (FIELDS, all, ...), and the XDMF file shows the nodal fields on the group's grid.
   subroutine test_bending(error)
     type(error_t), allocatable, intent(out) :: error
-    type(run_options_t) :: options
-    type(run_summary_t) :: summary
-    real(dp), allocatable :: x(:, :), nodal(:, :), principal(:, :), connectivity(:, :)
+    real(dp), allocatable :: x(:, :), nodal(:, :), principal(:, :)
+    integer, allocatable :: connectivity(:, :)
     integer(hid_t) :: file_id
     integer :: hdferr, n
     logical :: used, exists
-    character(len=:), allocatable :: path, xmf
+    character(len=:), allocatable :: xmf
     real(dp) :: exact
-    path = 'build/feps_test_bending.h5'
-    xmf = 'build/feps_test_bending.xmf'
-    options%deck = 'test/data/bending_hex20.dat'
-    options%output = path
-    options%quiet = .true.
-    call run_feps(options, summary, error)
+    call run_and_open('test/data/bending_hex20.dat', 'bending', 'beam', file_id, x, connectivity, error)
     if (allocated(error)) return
-    call h5open_f(hdferr)
-    call h5fopen_f(path, H5F_ACC_RDONLY_F, file_id, hdferr)
-    if (hdferr < 0) then
-      call test_failed(error, 'cannot open ' // path)
-      return
-    end if
-    call read_real(file_id, '/mesh/coordinates', x, error)
-    if (.not. allocated(error)) call read_real(file_id, '/steps/0001/nodal_stress/beam', nodal, error)
+    call read_real(file_id, '/steps/0001/nodal_stress/beam', nodal, error)
     if (.not. allocated(error)) call read_real(file_id, '/steps/0001/nodal_principal/beam', principal, error)
-    if (.not. allocated(error)) call read_real(file_id, '/mesh/groups/beam/connectivity', connectivity, error, &
-                                               integer_data=.true.)
     if (.not. allocated(error)) then
       call h5lexists_f(file_id, '/steps/0001/stress', exists, hdferr)
       call check(error, exists, 'FIELDS, all, ...: the Gauss-point stresses are written too')
     end if
-    call h5fclose_f(file_id, hdferr)
+    xmf = file_text(scratch_path('bending.xmf'))
+    call close_and_delete(file_id, 'bending')
     if (allocated(error)) return
     call check(error, size(nodal, 1) == 6 .and. size(nodal, 2) == size(x, 2), 'nodal_stress is 6 x nnode')
     if (allocated(error)) return
     do n = 1, size(x, 2)
-      used = any(nint(connectivity) == n)
+      used = any(connectivity == n)
       ! a node of no element holds each column's smallest value over the group (fill_outside):
       ! sxx -100 (at y = 0), most tensile 0, most compressive -100
       exact = merge(20.0_dp * (x(2, n) - 5.0_dp), -100.0_dp, used)
@@ -206,11 +191,9 @@ contains
                  abs=1.0e-10_dp * 100.0_dp)
       if (allocated(error)) return
     end do
-    call check(error, index(file_text(xmf), '<Attribute Name="nodal_stress_sxx" AttributeType="Scalar" ' // &
-               'Center="Node">') > 0 .and. index(file_text(xmf), 'nodal_principal/beam') > 0, &
+    call check(error, occurrences(xmf, '<Attribute Name="nodal_stress_sxx" AttributeType="Scalar" ' // &
+               'Center="Node">') == 1 .and. occurrences(xmf, 'nodal_principal/beam') == 2, &
                'the XDMF file shows the nodal fields')
-    call delete_file(path)
-    call delete_file(xmf)
   end subroutine test_bending
 
   !> test/data/lame_hex20.dat (a = 600, b = 715 mm, p = 10 MPa, plane strain, 8 hex20 through
@@ -219,38 +202,21 @@ contains
   !! Gauss-point hoop stress (r = 603.2) is 0.6% lower.
   subroutine test_lame(error)
     type(error_t), allocatable, intent(out) :: error
-    type(run_options_t) :: options
-    type(run_summary_t) :: summary
-    real(dp), allocatable :: x(:, :), nodal(:, :), connectivity(:, :)
+    real(dp), allocatable :: x(:, :), nodal(:, :)
+    integer, allocatable :: connectivity(:, :)
     real(dp), parameter :: a = 600.0_dp, b = 715.0_dp, p = 10.0_dp
     real(dp) :: hoop, exact, c, s
     integer(hid_t) :: file_id
-    integer :: hdferr, n, bore
-    character(len=:), allocatable :: path
-    path = 'build/feps_test_lame_nodal.h5'
-    options%deck = 'test/data/lame_hex20_nodal.dat'
-    options%output = path
-    options%quiet = .true.
-    call run_feps(options, summary, error)
+    integer :: n, bore
+    call run_and_open('test/data/lame_hex20_nodal.dat', 'lame_nodal', 'wall', file_id, x, connectivity, error)
     if (allocated(error)) return
-    call h5open_f(hdferr)
-    call h5fopen_f(path, H5F_ACC_RDONLY_F, file_id, hdferr)
-    if (hdferr < 0) then
-      call test_failed(error, 'cannot open ' // path)
-      return
-    end if
-    call read_real(file_id, '/mesh/coordinates', x, error)
-    if (.not. allocated(error)) call read_real(file_id, '/steps/0001/nodal_stress/wall', nodal, error)
-    if (.not. allocated(error)) call read_real(file_id, '/mesh/groups/wall/connectivity', connectivity, error, &
-                                               integer_data=.true.)
-    call h5fclose_f(file_id, hdferr)
-    call delete_file(path)
-    call delete_file('build/feps_test_lame_nodal.xmf')
+    call read_real(file_id, '/steps/0001/nodal_stress/wall', nodal, error)
+    call close_and_delete(file_id, 'lame_nodal')
     if (allocated(error)) return
     exact = p * a**2 / (b**2 - a**2) * (1.0_dp + b**2 / a**2)
     bore = 0
     do n = 1, size(x, 2)
-      if (abs(hypot(x(1, n), x(2, n)) - a) > 1.0e-6_dp .or. .not. any(nint(connectivity) == n)) cycle
+      if (abs(hypot(x(1, n), x(2, n)) - a) > 1.0e-6_dp .or. .not. any(connectivity == n)) cycle
       bore = bore + 1
       c = x(1, n) / a
       s = x(2, n) / a
@@ -332,38 +298,21 @@ contains
   !! -p(x) and 0 to 1e-12 of the peak; the other nodes hold the columns' smallest values.
   subroutine test_contact_tractions(error)
     type(error_t), allocatable, intent(out) :: error
-    type(run_options_t) :: options
-    type(run_summary_t) :: summary
-    real(dp), allocatable :: x(:, :), nodal(:, :), connectivity(:, :)
+    real(dp), allocatable :: x(:, :), nodal(:, :)
+    integer, allocatable :: connectivity(:, :)
     integer(hid_t) :: file_id
-    integer :: hdferr, n
+    integer :: n
     logical :: lower
-    character(len=:), allocatable :: path
     real(dp) :: p
-    path = 'build/feps_test_contact_nodal.h5'
-    options%deck = 'test/data/block_contact_nodal.dat'
-    options%output = path
-    options%quiet = .true.
-    call run_feps(options, summary, error)
+    call run_and_open('test/data/block_contact_nodal.dat', 'contact_nodal', 'joint', file_id, x, connectivity, error)
     if (allocated(error)) return
-    call h5open_f(hdferr)
-    call h5fopen_f(path, H5F_ACC_RDONLY_F, file_id, hdferr)
-    if (hdferr < 0) then
-      call test_failed(error, 'cannot open ' // path)
-      return
-    end if
-    call read_real(file_id, '/mesh/coordinates', x, error)
-    if (.not. allocated(error)) call read_real(file_id, '/steps/0002/nodal_interface/joint', nodal, error)
-    if (.not. allocated(error)) call read_real(file_id, '/mesh/groups/joint/connectivity', connectivity, error, &
-                                               integer_data=.true.)
-    call h5fclose_f(file_id, hdferr)
-    call delete_file(path)
-    call delete_file('build/feps_test_contact_nodal.xmf')
+    call read_real(file_id, '/steps/0002/nodal_interface/joint', nodal, error)
+    call close_and_delete(file_id, 'contact_nodal')
     if (allocated(error)) return
     call check(error, size(nodal, 1) == 3, 'nodal_interface has tau1 tau2 sigma_n')
     if (allocated(error)) return
     do n = 1, size(x, 2)
-      lower = any(nint(connectivity(1:4, :)) == n)
+      lower = any(connectivity(1:4, :) == n)
       ! the other nodes hold each column's smallest value over the lower layer: sigma_n -1.5
       p = merge(1.5_dp * (x(1, n) + 10.0_dp) / 30.0_dp, 1.5_dp, lower)
       call check(error, nodal(3, n), -p, 'sigma_n at node ' // str(n), abs=1.5e-12_dp)
@@ -375,58 +324,37 @@ contains
 
   ! ------------------------------------------------------------------ helpers
 
-  subroutine read_real(file_id, path, values, error, integer_data)
-    integer(hid_t), intent(in) :: file_id
-    character(len=*), intent(in) :: path
-    real(dp), allocatable, intent(out) :: values(:, :)
+  !> Run `deck` quietly into the scratch file `stem`.h5 and open it for reading; read the mesh
+  !! coordinates and the connectivity of `group`.
+  subroutine run_and_open(deck, stem, group, file_id, x, connectivity, error)
+    character(len=*), intent(in) :: deck, stem, group
+    integer(hid_t), intent(out) :: file_id
+    real(dp), allocatable, intent(out) :: x(:, :)
+    integer, allocatable, intent(out) :: connectivity(:, :)
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in), optional :: integer_data
-    integer(hid_t) :: dataset_id, space_id
-    integer(hsize_t) :: dims(2), maxdims(2)
-    integer, allocatable :: ints(:, :)
+    type(run_options_t) :: options
+    type(run_summary_t) :: summary
     integer :: hdferr
-    call h5dopen_f(file_id, path, dataset_id, hdferr)
-    if (hdferr < 0) then
-      call test_failed(error, 'no dataset ' // path)
-      return
-    end if
-    call h5dget_space_f(dataset_id, space_id, hdferr)
-    call h5sget_simple_extent_dims_f(space_id, dims, maxdims, hdferr)
-    call h5sclose_f(space_id, hdferr)
-    if (present(integer_data)) then
-      allocate (ints(dims(1), dims(2)))
-      call h5dread_f(dataset_id, H5T_NATIVE_INTEGER, ints, dims, hdferr)
-      values = real(ints, dp)
-    else
-      allocate (values(dims(1), dims(2)))
-      call h5dread_f(dataset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
-    end if
-    call h5dclose_f(dataset_id, hdferr)
-    if (hdferr < 0) call test_failed(error, 'cannot read ' // path)
-  end subroutine read_real
+    options%deck = deck
+    options%output = scratch_path(stem // '.h5')
+    options%quiet = .true.
+    call run_feps(options, summary, error)
+    if (allocated(error)) return
+    call open_read(options%output, file_id, error)
+    if (allocated(error)) return
+    call read_real(file_id, '/mesh/coordinates', x, error)
+    if (.not. allocated(error)) call read_int(file_id, '/mesh/groups/' // group // '/connectivity', connectivity, error)
+    if (allocated(error)) call h5fclose_f(file_id, hdferr)
+  end subroutine run_and_open
 
-  subroutine delete_file(path)
-    character(len=*), intent(in) :: path
-    integer :: unit, ios
-    open (newunit=unit, file=path, status='old', iostat=ios)
-    if (ios == 0) close (unit, status='delete')
-  end subroutine delete_file
-
-  !> The whole text of a file ('' if it cannot be read).
-  function file_text(path) result(text)
-    character(len=*), intent(in) :: path
-    character(len=:), allocatable :: text
-    character(len=1000) :: line
-    integer :: unit, ios
-    text = ''
-    open (newunit=unit, file=path, status='old', action='read', iostat=ios)
-    if (ios /= 0) return
-    do
-      read (unit, '(a)', iostat=ios) line
-      if (ios /= 0) exit
-      text = text // trim(line) // new_line('a')
-    end do
-    close (unit)
-  end function file_text
+  !> Close the result of run_and_open and delete it and its XDMF file.
+  subroutine close_and_delete(file_id, stem)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: stem
+    integer :: hdferr
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(scratch_path(stem // '.h5'))
+    call delete_file(scratch_path(stem // '.xmf'))
+  end subroutine close_and_delete
 
 end module test_stress_recovery

@@ -868,6 +868,13 @@ expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapt
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).
 tester=${FEPS_TESTER:-$(fpm test --runner echo 2>/dev/null | tail -n 1)}
 expect_line "fpm test -- nosuchsuite" 2 'no test suite "nosuchsuite" (the suites: datain' "$tester" nosuchsuite
+# The XDMF files of this run's results, read with VTK's XDMF reader (ParaView's "XDMF Reader";
+# setup.sh installs vtk) and compared with their HDF5 files: every step, block, cell, point,
+# array and load factor (scripts/check_xdmf_vtk.py).
+xmfs=("$tmp"/*.xmf "$tmp"/mc_small/*.xmf)
+python3 scripts/check_xdmf_vtk.py "${xmfs[@]}" >"$tmp/out" 2>&1 \
+  && ok "check_xdmf_vtk.py: the ${#xmfs[@]} XDMF files of these checks read back as their HDF5 files hold them" \
+  || bad "check_xdmf_vtk.py: $(grep -v ': ok with' "$tmp/out" | head -c 400)"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Idempotent set-up of everything feps needs on a fresh Debian bookworm machine (run as root).
 # Debian: compiler, BLAS/LAPACK, SuiteSparse (CHOLMOD), METIS, HDF5 with Fortran bindings.
-# PyPI: fpm (the Fortran package manager), numpy, h5py, matplotlib.
+# PyPI: fpm (the Fortran package manager), numpy, h5py, matplotlib, and vtk (only for
+# scripts/check_xdmf_vtk.py: the XDMF files read as ParaView reads them).
 set -euo pipefail
 
 debs=(gfortran libopenblas-dev liblapack-dev libsuitesparse-dev libmetis-dev
@@ -17,7 +18,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-py=(fpm numpy h5py matplotlib)
+py=(fpm numpy h5py matplotlib vtk)
 need_py=()
 for p in "${py[@]}"; do
   python3 -m pip show -q "$p" >/dev/null 2>&1 || need_py+=("$p")

@@ -61,6 +61,7 @@ contains
     options%output = ''
     options%solver = ''
     options%method = ''
+    options%fields = ''
     n = command_argument_count()
     i = 0
     do while (i < n)
@@ -79,7 +80,7 @@ contains
         options%quiet = .true.
       case ('--check')
         options%check_only = .true.
-      case ('-o', '--output', '--solver', '--method', '--maxit')
+      case ('-o', '--output', '--solver', '--method', '--maxit', '--fields')
         if (i == n) then
           write (error_unit, '(a)') 'feps: error: ' // arg // ' needs a value (see feps --help)'
           status = 2
@@ -88,6 +89,13 @@ contains
         i = i + 1
         if (arg == '--method') then
           options%method = argument(i)
+        else if (arg == '--fields') then
+          options%fields = argument(i)
+          if (len_trim(options%fields) == 0) then
+            write (error_unit, '(a)') 'feps: error: --fields takes a list of result fields, e.g. all,nodal_principal'
+            status = 2
+            return
+          end if
         else if (arg == '--maxit') then
           options%max_iterations = whole_number(argument(i))
           if (options%max_iterations < 1) then
@@ -156,8 +164,8 @@ contains
     write (output_unit, '(a)') &
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
-      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N] [--check]', &
-      '                 [--quiet]', &
+      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N]', &
+      '                 [--fields LIST] [--check] [--quiet]', &
       '       feps --help | --version', &
       '', &
       '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
@@ -170,6 +178,8 @@ contains
       '                       (overrides the deck)', &
       '      --maxit N        at most N iterations per step in every stage (overrides the deck''s', &
       '                       MAXIT; euler and modified-euler keep their one iteration)', &
+      '      --fields LIST    the result fields to write, comma-separated as the FIELDS record names', &
+      '                       them (overrides the deck''s FIELDS), e.g. all,nodal_principal', &
       '      --check          check the deck and the model: everything a run checks before its', &
       '                       first step, every stage''s loads, and one factorization of the', &
       '                       elastic stiffness per stage (missing supports); take no step,', &

@@ -70,6 +70,15 @@ for opt in --output -o; do
 done
 expect_status "bad --maxit" 2 "$feps" test/data/cube.dat --maxit many
 grep -q "\-\-maxit takes a whole number" "$tmp/err" && ok "bad --maxit says what it takes" || bad "bad --maxit says what it takes"
+# --fields replaces the deck's FIELDS; a misspelt name is one line, exit 2, no result file.
+expect_status "bad --fields" 2 "$feps" test/data/cube.dat --fields displacement,stresses --output "$tmp/f.h5"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q -- '--fields: unknown field "stresses"' "$tmp/err" && [ ! -e "$tmp/f.h5" ] \
+  && ok "bad --fields names the option and the field, no result file" \
+  || bad "bad --fields: $(head -c 300 "$tmp/err")"
+"$feps" test/data/cube.dat --fields all,nodal_principal --output "$tmp/f.h5" --quiet \
+  && python3 -c 'import sys, h5py; f = h5py.File(sys.argv[1]); s = f["steps/0001"]; sys.exit(0 if "nodal_principal" in s and "stress" in s and "nodal_stress" not in s else 1)' "$tmp/f.h5" \
+  && ok "--fields all,nodal_principal adds the nodal principal stresses to the default fields" \
+  || bad "--fields all,nodal_principal"
 # --maxit overrides the deck's MAXIT=200 both ways: 3 iterations cannot follow the unzipping
 # of test/data/unzip.dat (stop, exit 1, the message names --maxit, no result file), 200 can.
 expect_status "--maxit 3 stops at the unzipping" 1 "$feps" test/data/unzip.dat --maxit 3 --output "$tmp/u3.h5"

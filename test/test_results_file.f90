@@ -2,7 +2,7 @@
 !! with the HDF5 API and compared exactly with the values written (all are exact binary fractions).
 module test_results_file
   use feps_kinds, only: dp, i8
-  use feps_error, only: err_internal, err_solver, str
+  use feps_error, only: err_internal, err_solver, err_input, str
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_results_file, only: results_file_t, step_group_name
   use feps_program, only: run_options_t, run_summary_t, run_feps
@@ -35,7 +35,8 @@ contains
       new_unittest("summary analysis is the bare word", test_summary_analysis_word), &
       new_unittest("PARAMETERS starting with a word: words as strings, numbers as reals", test_summary_parameters), &
       new_unittest("xdmf topology of every element type", test_xdmf_every_type), &
-      new_unittest("REPORT, REACTION: resultants of the cube's reactions in closed form", test_reaction_report) &
+      new_unittest("REPORT, REACTION: resultants of the cube's reactions in closed form", test_reaction_report), &
+      new_unittest("--fields replaces the deck's FIELDS; an unknown name is an input error", test_fields_option) &
     ]
   end subroutine collect_results_file
 
@@ -574,6 +575,52 @@ contains
     call check(error, maxval(abs(base - from_file)), 0.0_dp, 'bottom resultant = sum of the written reactions', &
                abs=1.0e-9_dp)
   end subroutine test_reaction_report
+
+  !> --fields (run_options_t%fields) in place of the deck's FIELDS: 'displacement, nodal_principal'
+  !! writes those two only (the nodal principal stresses of the uniaxial cube: 0 and -100 MPa at
+  !! every node), and /summary fields names them; a misspelt name stops the run before any file
+  !! with an input error naming the option and the name.
+  subroutine test_fields_option(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: path, fields
+    type(run_options_t) :: options
+    type(run_summary_t) :: summary
+    integer(hid_t) :: file_id
+    integer :: hdferr
+    integer(hsize_t) :: dims(2)
+    real(dp), allocatable :: principal(:, :)
+    type(error_t), allocatable :: refused
+    path = scratch_path('fields_option.h5')
+    options%deck = 'test/data/cube.dat'
+    options%output = path
+    options%quiet = .true.
+    options%fields = 'displacement, nodal_principal'
+    call run_feps(options, summary, error)
+    if (allocated(error)) return
+    call open_read(path, file_id, error)
+    if (allocated(error)) return
+    fields = string_attribute(file_id, '/summary', 'fields')
+    call read_real(file_id, '/steps/0001/nodal_principal/block', principal, error)
+    if (.not. allocated(error)) call dataset_dims(file_id, '/steps/0001/displacement', dims, error)
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(path)
+    call delete_file(scratch_path('fields_option.xmf'))
+    if (allocated(error)) return
+    call check(error, fields == 'displacement nodal_principal', "/summary fields is '" // fields // "'")
+    if (allocated(error)) return
+    call check(error, maxval(abs(principal(1, :))), 0.0_dp, 'most tensile nodal stress', abs=1.0e-9_dp)
+    if (allocated(error)) return
+    call check(error, maxval(abs(principal(2, :) + 100.0_dp)), 0.0_dp, 'most compressive nodal stress', abs=1.0e-9_dp)
+    if (allocated(error)) return
+    options%fields = 'displacement,stresses'
+    call run_feps(options, summary, refused)
+    call check(error, allocated(refused), 'a misspelt --fields name is refused')
+    if (allocated(error)) return
+    call check(error, refused%code == err_input .and. index(refused%message, &
+               '--fields: unknown field "stresses"') > 0, 'the error names --fields and the name: ' // refused%message)
+    if (allocated(error)) return
+    call check(error, .not. file_exists(path) .and. .not. file_exists(path // '.part'), 'no results file')
+  end subroutine test_fields_option
 
   !> test/data/cube_parameters.dat: PARAMETERS, kind=F, E_s=144, tag=S1. write_parameters
   !! tested the number of a value that was no number (kind=F) before knowing it was one: a read

@@ -12,7 +12,7 @@ module feps_deck
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
-                        method_full_newton_raphson, is_2d_type, output_fields_t, field_names, line_search_refusal
+                        method_full_newton_raphson, is_2d_type, known_fields, line_search_refusal
   use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
                               parse_range_int, key_value, check_option_keys, option_text, get_csys_option, dof_index, dof_names, &
                               check_result_name, resolve_path, element_family, material_family
@@ -658,27 +658,19 @@ contains
     type(model_t), intent(inout) :: model
     type(deck_state_t), intent(inout) :: st
     type(error_t), allocatable, intent(out) :: error
-    integer :: i, k
+    integer :: i
     logical :: known
-    character(len=:), allocatable :: list
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     if (.not. st%fields_given) then
-      model%fields = output_fields_t(displacement=.false., reaction=.false., stress=.false., principal=.false., &
-                                     interface=.false., interface_strain=.false., bar=.false., &
-                                     nodal_stress=.false., nodal_principal=.false., nodal_interface=.false.)
+      call model%fields%clear()
       st%fields_given = .true.
     end if
     do i = 2, nfields(rec)
       call model%fields%select(to_lower(field_text(rec, i)), known)
       if (.not. known) then
-        list = trim(field_names(1))
-        do k = 2, size(field_names)
-          list = list // ', ' // trim(field_names(k))
-        end do
-        list = list // ', all'
         call input_error(error, rec%file, rec%line, 'unknown field "' // field_text(rec, i) // '" (' // &
-                         list // ')', i)
+                         known_fields() // ')', i)
         return
       end if
     end do

@@ -222,6 +222,7 @@ module feps_model
   contains
     procedure :: select => fields_select
     procedure :: names => fields_names
+    procedure :: clear => fields_clear
   end type output_fields_t
 
   !> The names FIELDS accepts, in output order.
@@ -261,7 +262,7 @@ module feps_model
     procedure :: find_node_set, find_face_set, find_material, find_group
   end type model_t
 
-  public :: in_region, is_2d_type, line_search_refusal
+  public :: in_region, is_2d_type, line_search_refusal, known_fields
 
   character(len=*), parameter :: types_2d(*) = [character(len=21) :: 'tri6', 'tri6-6', 'interface-line2', &
     'interface-line3', 'interface-line2-nodal', 'interface-line3-nodal']
@@ -307,6 +308,32 @@ contains
       known = .false.
     end select
   end subroutine fields_select
+
+  !> No field selected (the start of a FIELDS record or of --fields).
+  pure subroutine fields_clear(self)
+    class(output_fields_t), intent(inout) :: self
+    self%displacement = .false.
+    self%reaction = .false.
+    self%stress = .false.
+    self%principal = .false.
+    self%interface = .false.
+    self%interface_strain = .false.
+    self%bar = .false.
+    self%nodal_stress = .false.
+    self%nodal_principal = .false.
+    self%nodal_interface = .false.
+  end subroutine fields_clear
+
+  !> The names FIELDS and --fields accept, comma-separated, for error messages.
+  pure function known_fields() result(list)
+    character(len=:), allocatable :: list
+    integer :: k
+    list = trim(field_names(1))
+    do k = 2, size(field_names)
+      list = list // ', ' // trim(field_names(k))
+    end do
+    list = list // ', all'
+  end function known_fields
 
   !> The selected fields as one space-separated list (for the results file's summary).
   pure function fields_names(self) result(list)

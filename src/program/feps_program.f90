@@ -6,8 +6,9 @@ module feps_program
   use feps_kinds, only: dp, i8, rad2deg
   use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, err_internal, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
-                        method_full_newton_raphson, line_search_refusal
+                        method_full_newton_raphson, line_search_refusal, known_fields
   use feps_deck, only: read_deck
+  use feps_strings, only: to_lower
   use feps_records, only: real_from_text
   use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
   use feps_clock, only: wall_clock
@@ -31,6 +32,7 @@ module feps_program
     character(len=:), allocatable :: solver
     character(len=:), allocatable :: method     !! overrides every stage's METHOD when not empty
     integer :: max_iterations = 0               !! overrides every stage's MAXIT when positive
+    character(len=:), allocatable :: fields     !! overrides the deck's FIELDS when not empty: names, comma-separated
     logical :: quiet = .false.
     logical :: check_only = .false.             !! check the deck and the model, solve nothing, write nothing
   end type run_options_t
@@ -159,6 +161,12 @@ contains
       end if
     end if
     if (options%max_iterations > 0) call override_max_iterations(model, options%max_iterations)
+    if (allocated(options%fields)) then
+      if (len(options%fields) > 0) then
+        call override_fields(model, options%fields, error)
+        if (allocated(error)) return
+      end if
+    end if
     call check_reports(model, error)
     if (allocated(error)) return
     if (options%check_only) then
@@ -298,6 +306,30 @@ contains
       end associate
     end do
   end subroutine override_method
+
+  !> --fields LIST: the result fields to write, as a FIELDS record would name them (comma-
+  !! separated; `all` for the default seven), in place of the deck's FIELDS.
+  subroutine override_fields(model, list, error)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: list
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: rest, name
+    logical :: found
+    integer :: comma
+    call model%fields%clear()
+    rest = list
+    do while (len(rest) > 0)
+      comma = index(rest, ',')
+      if (comma == 0) comma = len(rest) + 1
+      name = trim(adjustl(rest(:comma - 1)))
+      rest = rest(min(comma + 1, len(rest) + 1):)
+      call model%fields%select(to_lower(name), found)
+      if (.not. found) then
+        call fatal_error(error, err_input, '--fields: unknown field "' // name // '" (' // known_fields() // ')')
+        return
+      end if
+    end do
+  end subroutine override_fields
 
   !> Every stage's iteration limit per step (MAXIT), after any --method override. The Euler
   !! methods keep their single iteration: that is what they are.

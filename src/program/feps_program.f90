@@ -668,15 +668,17 @@ contains
       end if
       allocate (nodal(size(stress, 1), model%nnode), count(model%nnode))
       call nodal_average(e, group%connectivity, stress, model%nnode, nodal, count)
-      allocate (principal(2, model%nnode))
-      principal = 0.0_dp
-      do node = 1, model%nnode
-        if (count(node) == 0) cycle
-        p = principal_values(nodal(:, node))
-        principal(:, node) = [p(1), p(3)]
-      end do
+      if (model%fields%nodal_principal) then     ! of the averaged tensors, before the filling
+        allocate (principal(2, model%nnode))
+        principal = 0.0_dp
+        do node = 1, model%nnode
+          if (count(node) == 0) cycle
+          p = principal_values(nodal(:, node))
+          principal(:, node) = [p(1), p(3)]
+        end do
+        call fill_outside(principal, count)
+      end if
       call fill_outside(nodal, count)
-      call fill_outside(principal, count)
       if (model%fields%nodal_stress) call h5%write_nodal(step, 'nodal_stress', nodal, 'sxx syy szz syz sxz sxy', &
                                                          error, group=group%name)
       if (allocated(error) .or. .not. model%fields%nodal_principal) return

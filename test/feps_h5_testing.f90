@@ -3,7 +3,8 @@
 module feps_h5_testing
   use feps_kinds, only: dp, i8
   use feps_testing, only: error_t, test_failed
-  use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fopen_f, H5F_ACC_RDONLY_F, &
+  use feps_program, only: run_options_t, run_summary_t, run_feps
+  use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, &
                   h5dopen_f, h5dread_f, h5dclose_f, h5dget_space_f, h5sget_simple_extent_ndims_f, &
                   h5sget_simple_extent_dims_f, h5sclose_f, h5aopen_by_name_f, h5aread_f, h5aclose_f, &
                   h5aget_type_f, h5tget_size_f, h5tcopy_f, h5tset_size_f, h5tclose_f, H5T_FORTRAN_S1, &
@@ -12,10 +13,39 @@ module feps_h5_testing
   implicit none
   private
 
+  public :: run_and_open, close_and_delete
   public :: scratch_path, open_read, dataset_dims, read_real, read_int, string_attribute, real_attribute, &
             int_attribute, int64_attribute, file_exists, delete_file, file_text, occurrences
 
 contains
+
+  !> Run `deck` quietly into the scratch file `stem`.h5 (with --fields `fields` when given) and
+  !! open the result for reading.
+  subroutine run_and_open(deck, stem, file_id, error, fields)
+    character(len=*), intent(in) :: deck, stem
+    integer(hid_t), intent(out) :: file_id
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: fields
+    type(run_options_t) :: options
+    type(run_summary_t) :: summary
+    options%deck = deck
+    options%output = scratch_path(stem // '.h5')
+    options%quiet = .true.
+    if (present(fields)) options%fields = fields
+    call run_feps(options, summary, error)
+    if (allocated(error)) return
+    call open_read(options%output, file_id, error)
+  end subroutine run_and_open
+
+  !> Close a result of run_and_open and delete it and its XDMF file.
+  subroutine close_and_delete(file_id, stem)
+    integer(hid_t), intent(in) :: file_id
+    character(len=*), intent(in) :: stem
+    integer :: hdferr
+    call h5fclose_f(file_id, hdferr)
+    call delete_file(scratch_path(stem // '.h5'))
+    call delete_file(scratch_path(stem // '.xmf'))
+  end subroutine close_and_delete
 
   !> A scratch file name: under build/ when run from the package root, else /tmp.
   function scratch_path(name) result(path)

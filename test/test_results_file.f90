@@ -6,7 +6,8 @@ module test_results_file
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_results_file, only: results_file_t, step_group_name
   use feps_program, only: run_options_t, run_summary_t, run_feps
-  use feps_h5_testing, only: scratch_path, open_read, dataset_dims, read_real, read_int, string_attribute, &
+  use feps_h5_testing, only: run_and_open, close_and_delete, scratch_path, open_read, dataset_dims, read_real, &
+                             read_int, string_attribute, &
                              real_attribute, int_attribute, int64_attribute, file_exists, delete_file, &
                              file_text, occurrences
   use hdf5, only: hid_t, hsize_t, h5fclose_f
@@ -536,21 +537,12 @@ contains
   !! over the set's nodes, read back from the file.
   subroutine test_reaction_report(error)
     type(error_t), allocatable, intent(out) :: error
-    character(len=:), allocatable :: path
-    type(run_options_t) :: options
-    type(run_summary_t) :: summary
     integer(hid_t) :: file_id
-    integer :: hdferr, n
+    integer :: n
     real(dp) :: base(3), corner(3), from_file(3)
     real(dp), allocatable :: reaction(:, :), x(:, :)
     character(len=2), parameter :: axes(3) = ['fx', 'fy', 'fz']
-    path = scratch_path('reaction.h5')
-    options%deck = 'test/data/cube_reaction.dat'
-    options%output = path
-    options%quiet = .true.
-    call run_feps(options, summary, error)
-    if (allocated(error)) return
-    call open_read(path, file_id, error)
+    call run_and_open('test/data/cube_reaction.dat', 'reaction', file_id, error)
     if (allocated(error)) return
     do n = 1, 3
       base(n) = real_attribute(file_id, '/summary', 'reaction_base_' // axes(n))
@@ -558,9 +550,7 @@ contains
     end do
     call read_real(file_id, '/steps/' // step_group_name(1) // '/reaction', reaction, error)
     if (.not. allocated(error)) call read_real(file_id, '/mesh/coordinates', x, error)
-    call h5fclose_f(file_id, hdferr)
-    call delete_file(path)
-    call delete_file(scratch_path('reaction.xmf'))
+    call close_and_delete(file_id, 'reaction')
     if (allocated(error)) return
     call check(error, base(3), 100.0_dp * 10.0_dp * 10.0_dp, 'bottom fz = p A', rel=1.0e-12_dp)
     if (allocated(error)) return
@@ -586,25 +576,16 @@ contains
     type(run_options_t) :: options
     type(run_summary_t) :: summary
     integer(hid_t) :: file_id
-    integer :: hdferr
     integer(hsize_t) :: dims(2)
     real(dp), allocatable :: principal(:, :)
     type(error_t), allocatable :: refused
-    path = scratch_path('fields_option.h5')
-    options%deck = 'test/data/cube.dat'
-    options%output = path
-    options%quiet = .true.
-    options%fields = 'displacement, nodal_principal'
-    call run_feps(options, summary, error)
-    if (allocated(error)) return
-    call open_read(path, file_id, error)
+    call run_and_open('test/data/cube.dat', 'fields_option', file_id, error, &
+                      fields='displacement, nodal_principal')
     if (allocated(error)) return
     fields = string_attribute(file_id, '/summary', 'fields')
     call read_real(file_id, '/steps/0001/nodal_principal/block', principal, error)
     if (.not. allocated(error)) call dataset_dims(file_id, '/steps/0001/displacement', dims, error)
-    call h5fclose_f(file_id, hdferr)
-    call delete_file(path)
-    call delete_file(scratch_path('fields_option.xmf'))
+    call close_and_delete(file_id, 'fields_option')
     if (allocated(error)) return
     call check(error, fields == 'displacement nodal_principal', "/summary fields is '" // fields // "'")
     if (allocated(error)) return
@@ -612,6 +593,10 @@ contains
     if (allocated(error)) return
     call check(error, maxval(abs(principal(2, :) + 100.0_dp)), 0.0_dp, 'most compressive nodal stress', abs=1.0e-9_dp)
     if (allocated(error)) return
+    path = scratch_path('fields_option.h5')
+    options%deck = 'test/data/cube.dat'
+    options%output = path
+    options%quiet = .true.
     options%fields = 'displacement,stresses'
     call run_feps(options, summary, refused)
     call check(error, allocated(refused), 'a misspelt --fields name is refused')
@@ -628,26 +613,15 @@ contains
   !! on (scripts/check_runtime.sh runs this test under such a build).
   subroutine test_summary_parameters(error)
     type(error_t), allocatable, intent(out) :: error
-    character(len=:), allocatable :: path, kind, tag
-    type(run_options_t) :: options
-    type(run_summary_t) :: summary
+    character(len=:), allocatable :: kind, tag
     integer(hid_t) :: file_id
-    integer :: hdferr
     real(dp) :: e_s
-    path = scratch_path('parameters.h5')
-    options%deck = 'test/data/cube_parameters.dat'
-    options%output = path
-    options%quiet = .true.
-    call run_feps(options, summary, error)
-    if (allocated(error)) return
-    call open_read(path, file_id, error)
+    call run_and_open('test/data/cube_parameters.dat', 'parameters', file_id, error)
     if (allocated(error)) return
     kind = string_attribute(file_id, '/summary', 'parameter_kind')
     e_s = real_attribute(file_id, '/summary', 'parameter_E_s')
     tag = string_attribute(file_id, '/summary', 'parameter_tag')
-    call h5fclose_f(file_id, hdferr)
-    call delete_file(path)
-    call delete_file(scratch_path('parameters.xmf'))
+    call close_and_delete(file_id, 'parameters')
     call check(error, kind == 'F' .and. len(kind) == 1, "parameter_kind is '" // kind // "', expected 'F'")
     if (allocated(error)) return
     call check(error, e_s, 144.0_dp, 'parameter_E_s', abs=0.0_dp)

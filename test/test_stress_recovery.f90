@@ -16,9 +16,9 @@ module test_stress_recovery
   use feps_element_factory, only: new_element
   use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average
   use feps_interface_element, only: interface_element_t, new_interface_element
-  use feps_program, only: run_options_t, run_summary_t, run_feps
-  use feps_h5_testing, only: scratch_path, open_read, read_real, read_int, delete_file, file_text, occurrences
-  use hdf5, only: hid_t, h5fclose_f, h5lexists_f
+  use feps_h5_testing, only: run_and_open, close_and_delete, scratch_path, read_real, read_int, file_text, &
+                             occurrences
+  use hdf5, only: hid_t, h5lexists_f
   implicit none
   private
 
@@ -161,7 +161,7 @@ contains
     logical :: used, exists
     character(len=:), allocatable :: xmf
     real(dp) :: exact
-    call run_and_open('test/data/bending_hex20.dat', 'bending', 'beam', file_id, x, connectivity, error)
+    call open_with_mesh('test/data/bending_hex20.dat', 'bending', 'beam', file_id, x, connectivity, error)
     if (allocated(error)) return
     call read_real(file_id, '/steps/0001/nodal_stress/beam', nodal, error)
     if (.not. allocated(error)) call read_real(file_id, '/steps/0001/nodal_principal/beam', principal, error)
@@ -208,7 +208,7 @@ contains
     real(dp) :: hoop, exact, c, s
     integer(hid_t) :: file_id
     integer :: n, bore
-    call run_and_open('test/data/lame_hex20_nodal.dat', 'lame_nodal', 'wall', file_id, x, connectivity, error)
+    call open_with_mesh('test/data/lame_hex20_nodal.dat', 'lame_nodal', 'wall', file_id, x, connectivity, error)
     if (allocated(error)) return
     call read_real(file_id, '/steps/0001/nodal_stress/wall', nodal, error)
     call close_and_delete(file_id, 'lame_nodal')
@@ -304,7 +304,7 @@ contains
     integer :: n
     logical :: lower
     real(dp) :: p
-    call run_and_open('test/data/block_contact_nodal.dat', 'contact_nodal', 'joint', file_id, x, connectivity, error)
+    call open_with_mesh('test/data/block_contact_nodal.dat', 'contact_nodal', 'joint', file_id, x, connectivity, error)
     if (allocated(error)) return
     call read_real(file_id, '/steps/0002/nodal_interface/joint', nodal, error)
     call close_and_delete(file_id, 'contact_nodal')
@@ -324,37 +324,18 @@ contains
 
   ! ------------------------------------------------------------------ helpers
 
-  !> Run `deck` quietly into the scratch file `stem`.h5 and open it for reading; read the mesh
-  !! coordinates and the connectivity of `group`.
-  subroutine run_and_open(deck, stem, group, file_id, x, connectivity, error)
+  !> run_and_open, then the mesh coordinates and the connectivity of `group`.
+  subroutine open_with_mesh(deck, stem, group, file_id, x, connectivity, error)
     character(len=*), intent(in) :: deck, stem, group
     integer(hid_t), intent(out) :: file_id
     real(dp), allocatable, intent(out) :: x(:, :)
     integer, allocatable, intent(out) :: connectivity(:, :)
     type(error_t), allocatable, intent(out) :: error
-    type(run_options_t) :: options
-    type(run_summary_t) :: summary
-    integer :: hdferr
-    options%deck = deck
-    options%output = scratch_path(stem // '.h5')
-    options%quiet = .true.
-    call run_feps(options, summary, error)
-    if (allocated(error)) return
-    call open_read(options%output, file_id, error)
+    call run_and_open(deck, stem, file_id, error)
     if (allocated(error)) return
     call read_real(file_id, '/mesh/coordinates', x, error)
     if (.not. allocated(error)) call read_int(file_id, '/mesh/groups/' // group // '/connectivity', connectivity, error)
-    if (allocated(error)) call h5fclose_f(file_id, hdferr)
-  end subroutine run_and_open
-
-  !> Close the result of run_and_open and delete it and its XDMF file.
-  subroutine close_and_delete(file_id, stem)
-    integer(hid_t), intent(in) :: file_id
-    character(len=*), intent(in) :: stem
-    integer :: hdferr
-    call h5fclose_f(file_id, hdferr)
-    call delete_file(scratch_path(stem // '.h5'))
-    call delete_file(scratch_path(stem // '.xmf'))
-  end subroutine close_and_delete
+    if (allocated(error)) call close_and_delete(file_id, stem)
+  end subroutine open_with_mesh
 
 end module test_stress_recovery

@@ -498,6 +498,25 @@ python3 scripts/make_model_b.py --outdir "$tmp/mb" >/dev/null && diff -r input/m
 sys.exit(m.deck("FE1").replace("OUTPUT, modelB_FE1.h5", "OUTPUT, modelB.h5") != open("input/modelB.dat").read())' \
   && ok "make_model_b.py's defaults = input/modelB and input/modelB.dat" \
   || bad "make_model_b.py's defaults = input/modelB and input/modelB.dat"
+# The model B mesh study's decks (make_model_b.py --refine, --element): a lattice of
+# (4k + 1 + 1 + 8k) r x (54k + 1) theta x (48k + 1) z nodes for hex20:k with interfaces, the same
+# lattice as hex8:2k; both pass --check.
+for m in "1 hex20" "2 hex8"; do
+  set -- $m
+  python3 scripts/make_model_b.py --outdir "$tmp/mb_study" --cases FE1 --refine $1 --element $2 >/dev/null \
+    && "$feps" "$tmp/mb_study/FE1_$2_r$1.dat" --check >"$tmp/out" 2>&1 \
+    && grep -q "^nodes *$((14 * 55 * 49))$" "$tmp/out" \
+    && ok "model B FE1 --refine $1 --element $2: $((14 * 55 * 49)) nodes, --check passes" \
+    || bad "model B FE1 --refine $1 --element $2: $(grep -E '^nodes|error' "$tmp/out")"
+done
+# The study reads its quantities from a run: on the decks' own mesh the peak nodal tension is at
+# its point A (r 600, theta 110, z 0), so the two columns must agree.
+python3 scripts/study_mesh_modelB.py --cases SE1 --meshes hex8:1 --feps "$feps" --out "$tmp/mb_mesh" >/dev/null 2>"$tmp/err" \
+  && python3 -c 'import csv, sys; r = next(csv.DictReader(open(sys.argv[1])))
+sys.exit(not (r["node_s1_max_at"] == "600.0/110.00/0.0" and float(r["s1@A"]) == float(r["node_s1_max"]) > 7))' \
+  "$tmp/mb_mesh/results.csv" \
+  && ok "study_mesh_modelB.py on SE1's own mesh: peak nodal s1 at point A" \
+  || bad "study_mesh_modelB.py on SE1's own mesh: $(head -c 300 "$tmp/err") $(tail -1 "$tmp/mb_mesh/results.csv" 2>/dev/null | head -c 300)"
 # Each thesis deck carries its own case's values (SPEC section 8 and thesis chapters 3-6, 9, typed
 # here independently of the generators): a generator that mixed up cases would still be byte-stable.
 python3 - <<'PY' >"$tmp/out" 2>&1 && ok "every thesis deck carries its case's materials, loads and steps (SPEC 8)" \

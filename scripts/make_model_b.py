@@ -19,6 +19,12 @@ Case names <kind><load>_Es<E>[_phi<phi>[_psi<psi>]] (phi for F and P only; psi w
 from phi), e.g. FE_Es144_phi15, the thesis's FE1. The interface stiffnesses scale with the soil
 as the thesis's three soils do (Ks = 50 E_s / 144, Kn = 2 Ks MPa/mm); c = 0.05 MPa throughout.
 Then `scripts/campaign.sh NAME input/sweepB/*.dat` runs them and gathers one CSV.
+
+Mesh convergence (scripts/study_mesh_modelB.py runs it): `--refine k` splits every element of the
+decks' mesh into k x k x k, and `--element hex20` uses 20-node hexahedra and 8-pair interfaces on
+that element layout; the decks are then named <case>_<element>_r<k>.dat:
+
+    python3 scripts/make_model_b.py --outdir /tmp/mesh --cases SE1,FE1 --refine 2 --element hex20
 """
 import argparse
 import os
@@ -44,24 +50,47 @@ def soil_layers(r_soil):
     return [b * scale for b in base]
 
 
-def node_block(interfaces, r_soil):
-    lines = ["A, 3, 600., 0., 0.,", "%, 3, 57.5, 0., 0.,          ! pipe wall: r = 600, 657.5, 715"]
+def node_block(interfaces, r_soil, m=1):
+    """The node block: r fastest, then theta, then z. m > 1 puts m lattice intervals in every
+    interval of the decks' mesh (refinement, and the mid-side nodes of hex20 at m = 2 x refine)."""
+    if m == 1:
+        lines = ["A, 3, 600., 0., 0.,", "%, 3, 57.5, 0., 0.,          ! pipe wall: r = 600, 657.5, 715"]
+        if interfaces:
+            lines.append("%, -1, 0., 0., 0.,           ! r = 715 again: the soil's face (coincident nodes)")
+        for d in soil_layers(r_soil):
+            lines.append(f"%, -1, {d:.4f}, 0., 0.,")
+        lines += [
+            "%, 7, 0., 10., 0.,           ! theta = 0 .. 60",
+            "%, -6, 0., 7.5, 0.,          ! theta = 105",
+            "%, -15, 0., 5., 0.,          ! theta = 180",
+            "%, 5, 0., 0., 50.,           ! z = 0 .. 200",
+            "%, -3, 0., 0., 100.,         ! z = 500",
+            "%, -5, 0., 0., 150.,         ! z = 1250",
+            "%, -5, 0., 0., 150.,         ! z = 2000",
+            "%, -3, 0., 0., 100.,         ! z = 2300",
+            "%, -4, 0., 0., 50.,          ! z = 2500",
+            "E,",
+        ]
+        return lines
+
+    def f(v):
+        text = f"{v / m:.10g}"
+        return text if "." in text or "e" in text else text + "."
+    lines = ["A, 3, 600., 0., 0.,", f"%, {2 * m + 1}, {f(57.5)}, 0., 0.,     ! pipe wall: r = 600 .. 715"]
     if interfaces:
         lines.append("%, -1, 0., 0., 0.,           ! r = 715 again: the soil's face (coincident nodes)")
     for d in soil_layers(r_soil):
-        lines.append(f"%, -1, {d:.4f}, 0., 0.,")
-    lines += [
-        "%, 7, 0., 10., 0.,           ! theta = 0 .. 60",
-        "%, -6, 0., 7.5, 0.,          ! theta = 105",
-        "%, -15, 0., 5., 0.,          ! theta = 180",
-        "%, 5, 0., 0., 50.,           ! z = 0 .. 200",
-        "%, -3, 0., 0., 100.,         ! z = 500",
-        "%, -5, 0., 0., 150.,         ! z = 1250",
-        "%, -5, 0., 0., 150.,         ! z = 2000",
-        "%, -3, 0., 0., 100.,         ! z = 2300",
-        "%, -4, 0., 0., 50.,          ! z = 2500",
-        "E,",
-    ]
+        lines.append(f"%, {-m}, {f(d)}, 0., 0.,")
+    lines += [f"%, {6 * m + 1}, 0., {f(10.0)}, 0.,     ! theta = 0 .. 60",
+              f"%, {-6 * m}, 0., {f(7.5)}, 0.,     ! theta = 105",
+              f"%, {-15 * m}, 0., {f(5.0)}, 0.,     ! theta = 180",
+              f"%, {4 * m + 1}, 0., 0., {f(50.0)},     ! z = 0 .. 200",
+              f"%, {-3 * m}, 0., 0., {f(100.0)},     ! z = 500",
+              f"%, {-5 * m}, 0., 0., {f(150.0)},     ! z = 1250",
+              f"%, {-5 * m}, 0., 0., {f(150.0)},     ! z = 2000",
+              f"%, {-3 * m}, 0., 0., {f(100.0)},     ! z = 2300",
+              f"%, {-4 * m}, 0., 0., {f(50.0)},     ! z = 2500",
+              "E,"]
     return lines
 
 
@@ -123,13 +152,30 @@ def check_parameters(es, phi, psi):
         raise ValueError(f"psi = {psi:g}: the dilation angle must lie in [0, phi] deg")
 
 
-def deck(case, r_soil=2000.0):
+ELEMENTS = ("hex8", "hex20")
+
+
+def mesh_suffix(refine, element):
+    """'' for the decks' mesh (hex8, refine 1), else e.g. '_hex20_r2' (deck and result names)."""
+    return "" if (refine, element) == (1, "hex8") else f"_{element}_r{refine}"
+
+
+def deck(case, r_soil=2000.0, refine=1, element="hex8"):
+    """The deck of `case`. `refine` splits every element of the decks' mesh into refine^3 and
+    `element` = 'hex20' uses 20-node hexahedra and 8-pair interfaces on that mesh (the mesh
+    convergence study, docs/verification.md); the defaults give the thesis decks."""
     kind, load, number, es, ks, kn, phi, psi = parse_case(case)
+    if element not in ELEMENTS or refine < 1:
+        raise ValueError(f"element {element!r}, refine {refine}: hex8 or hex20, refine >= 1")
     name = SOILS[number][0] if number else f"E_s = {es:g} MPa"
     interfaces = kind == "F"
-    nr = 8 if interfaces else 7                 # nodes along r
-    layer = nr * 28                             # nodes in one z layer
-    first_soil = 4 if interfaces else 3         # r index + 1 of the soil's inner face
+    quadratic = element == "hex20"
+    m = refine * (2 if quadratic else 1)        # lattice intervals per interval of the decks' mesh
+    step = 2 if quadratic else 1                # lattice intervals per element
+    nr = 2 * m + 1 + 4 * m + (1 if interfaces else 0)   # nodes along r
+    layer = nr * (27 * m + 1)                   # nodes in one z layer
+    first_soil = 2 * m + 1 + (1 if interfaces else 0)   # r index + 1 of the soil's inner face
+    suffix = mesh_suffix(refine, element)
     edge = load == "E"
     title = {"S": "elastic soil", "F": "interfaces pipe/soil, elastic soil", "P": "Matsuoka soil"}[kind]
     out = [
@@ -141,6 +187,11 @@ def deck(case, r_soil=2000.0):
         "! 6 x 10, 6 x 7.5, 15 x 5 deg (finer on the loaded side, theta = 180), z graded 50/100/150 mm",
         "! from each end.",
     ]
+    if suffix:
+        out += [f"! Mesh convergence study (make_model_b.py --refine {refine} --element {element}): every element",
+                f"! of that mesh split into {refine} x {refine} x {refine}"
+                + (", 20-node hexahedra and 8-pair interfaces (unused face- and body-centre" if quadratic else "."),
+                ] + (["! lattice nodes belong to no element and carry no unknowns)."] if quadratic else [])
     if not edge:
         # the diagonal problem is symmetric under (x, z) -> (-x, 2500 - z); the mesh is not
         out += ["! The diagonal load's lower end (x = 220..715, theta 0..72 deg) lies on the 10 deg elements;",
@@ -169,22 +220,46 @@ def deck(case, r_soil=2000.0):
             "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
             params,
             "", "! --- nodes: r fastest, then theta (28), then z (25) ---"]
-    out += node_block(interfaces, r_soil)
-    out += ["", "GROUP, pipe, TYPE=hex8, MATERIAL=concrete",
-            f"A, 8, 1, 2, {nr + 2}, {nr + 1}, {layer + 1}, {layer + 2}, {layer + nr + 2}, {layer + nr + 1},",
-            "%, 2, *, 8, 1,", f"%, 27, *, 8, {nr},", f"%, 24, *, 8, {layer},", "E,",
-            "", "GROUP, soil, TYPE=hex8, MATERIAL=soil",
-            f"A, 8, {first_soil}, {first_soil + 1}, {first_soil + nr + 1}, {first_soil + nr}, "
-            f"{first_soil + layer}, {first_soil + layer + 1}, {first_soil + layer + nr + 1}, {first_soil + layer + nr},",
-            "%, 4, *, 8, 1,", f"%, 27, *, 8, {nr},", f"%, 24, *, 8, {layer},", "E,"]
+    out += node_block(interfaces, r_soil, m)
+
+    def node(i, j, k, base=1):
+        """Node number at lattice offsets (r, theta, z) from node `base`."""
+        return base + i + j * nr + k * layer
+
+    def solid(base):
+        """The first element's nodes: hex8 corners (bottom face counter-clockwise, then the top),
+        and for hex20 the mid-edges (bottom 1-2, 2-3, 3-4, 4-1, the top, then the verticals)."""
+        s = step
+        corners = [(0, 0, 0), (s, 0, 0), (s, s, 0), (0, s, 0)]
+        nodes = [node(i, j, 0, base) for i, j, _ in corners] + [node(i, j, s, base) for i, j, _ in corners]
+        if quadratic:
+            mids = [(1, 0), (2, 1), (1, 2), (0, 1)]
+            nodes += [node(i, j, 0, base) for i, j in mids] + [node(i, j, 2, base) for i, j in mids]
+            nodes += [node(i, j, 1, base) for i, j, _ in corners]
+        return nodes
+
+    def element_block(nodes, copies):
+        first = ", ".join(str(n) for n in nodes)
+        k = len(nodes)
+        return [f"A, {k}, {first},"] + [f"%, {n}, *, {k}, {inc}," for n, inc in copies] + ["E,"]
+
+    solid_type = "hex20" if quadratic else "hex8"
+    around = [(27 * refine, step * nr), (24 * refine, step * layer)]
+    out += ["", f"GROUP, pipe, TYPE={solid_type}, MATERIAL=concrete"]
+    out += element_block(solid(1), [(2 * refine, step)] + around)
+    out += ["", f"GROUP, soil, TYPE={solid_type}, MATERIAL=soil"]
+    out += element_block(solid(first_soil), [(4 * refine, step)] + around)
     if interfaces:
         # lower layer: the pipe's outer face (theta then z: normal +r, towards the soil)
-        lo = [3, 3 + nr, 3 + nr + layer, 3 + layer]
+        o = 2 * m + 1
+        corners = [(0, 0), (step, 0), (step, step), (0, step)]
+        lo = [node(0, j, k, o) for j, k in corners]
+        if quadratic:
+            lo += [node(0, j, k, o) for j, k in [(1, 0), (2, 1), (1, 2), (0, 1)]]
         up = [n + 1 for n in lo]
         out += ["", "! lower layer = the pipe's outer face, upper = the soil's inner face",
-                "GROUP, contact, TYPE=interface-quad4, MATERIAL=pipe_soil",
-                "A, 8, " + ", ".join(str(n) for n in lo + up) + ",",
-                f"%, 27, *, 8, {nr},", f"%, 24, *, 8, {layer},", "E,"]
+                f"GROUP, contact, TYPE=interface-quad{8 if quadratic else 4}, MATERIAL=pipe_soil"]
+        out += element_block(lo + up, around)
     out += ["E,", "", "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2"]
     if kind == "P":
         out.append(f"MATERIAL, soil, MATSUOKA, E={es:g}, NU=0.2, PHI={num(phi)}, PSI={num(psi)}, C=0.05")
@@ -264,7 +339,7 @@ def deck(case, r_soil=2000.0):
     out += ["! the anchor's z reaction: zero, as the self-equilibrated end loads require (SPEC 8); its x and",
             "! y reactions are those of the soil's outer support at that node",
             "REPORT, REACTION, NAME=anchor, NSET=anchor"]
-    out += ["", "SOLVER, cholmod", f"OUTPUT, modelB_{case}.h5", ""]
+    out += ["", "SOLVER, cholmod", f"OUTPUT, modelB_{case}{suffix}.h5", ""]
     return "\n".join(out)
 
 
@@ -274,6 +349,10 @@ def main():
                     help="the soil's outer radius (mm, beyond the pipe's 715; default 2000)")
     ap.add_argument("--outdir", default=os.path.join(ROOT, "input", "modelB"))
     ap.add_argument("--cases", default="", help="comma-separated case ids (default: all 18)")
+    ap.add_argument("--refine", type=int, default=1,
+                    help="split every element into refine^3 (mesh convergence study; default 1)")
+    ap.add_argument("--element", choices=ELEMENTS, default="hex8",
+                    help="hex8 (the decks) or hex20 with 8-pair interfaces (default hex8)")
     grid = ap.add_argument_group("parametric grid (every combination)")
     grid.add_argument("--kinds", default="F", help="soil models: S elastic, F interfaces, P Matsuoka (default F)")
     grid.add_argument("--loads", default="E", help="E edge, D diagonal (default E)")
@@ -304,12 +383,15 @@ def main():
             parse_case(case)
     except ValueError as e:
         ap.error(str(e))
+    if args.refine < 1:
+        ap.error(f"--refine {args.refine}: must be 1 or more")
     cases = list(dict.fromkeys(cases))
+    suffix = mesh_suffix(args.refine, args.element)
     os.makedirs(args.outdir, exist_ok=True)
     for case in cases:
-        with open(os.path.join(args.outdir, f"{case}.dat"), "w") as f:
-            f.write(deck(case, args.soil_radius))
-    if not args.cases and args.soil_radius == 2000.0 and args.outdir == os.path.join(ROOT, "input", "modelB"):
+        with open(os.path.join(args.outdir, f"{case}{suffix}.dat"), "w") as f:
+            f.write(deck(case, args.soil_radius, args.refine, args.element))
+    if not args.cases and not suffix and args.soil_radius == 2000.0 and args.outdir == os.path.join(ROOT, "input", "modelB"):
         text = deck("FE1").replace("OUTPUT, modelB_FE1.h5", "OUTPUT, modelB.h5")
         with open(os.path.join(ROOT, "input", "modelB.dat"), "w") as f:
             f.write(text)

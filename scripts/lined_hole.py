@@ -335,7 +335,7 @@ def ref_tractions(ref, R):
     return srr90, 2 * D, 2 * srt45
 
 
-def write_deck(path, dim, bond, level, Es, nus, K, p, phi=None, rout_factor=10.0, far="exact"):
+def write_deck(path, dim, bond, level, Es, nus, K, p, phi=None, rout_factor=10.0, far="exact", nodal=False):
     ref = LinedHole(Es=Es, nus=nus, K=K, p=p, bond="slip" if bond != "bonded" else "bonded")
     a, b = A_BORE, B_OUT
     R = rout_factor * b
@@ -379,7 +379,7 @@ def write_deck(path, dim, bond, level, Es, nus, K, p, phi=None, rout_factor=10.0
             io = 1 + NT * 2 * nr_ring
             e = [io + 2, io, io + 1, first_soil + 2, first_soil, first_soil + 1]
             L += ["! lower layer: the ring at r = b, listed in decreasing theta (normal +r, tau = -s_rtheta)",
-                  "GROUP, contact, TYPE=interface-line3, MATERIAL=contact",
+                  f"GROUP, contact, TYPE=interface-line3{'-nodal' if nodal else ''}, MATERIAL=contact",
                   "A, 6, " + ", ".join(map(str, e)) + ",", f"%, {nt}, *, 6, 2,", "E,"]
         else:
             NRr, NRs = 2 * nr_ring + 1, 2 * ns + 1
@@ -388,7 +388,7 @@ def write_deck(path, dim, bond, level, Es, nus, K, p, phi=None, rout_factor=10.0
             order = [(0, 0), (2, 0), (2, 2), (0, 2), (1, 0), (2, 1), (1, 2), (0, 1)]
             e = [lo(j, k) for j, k in order] + [up(j, k) for j, k in order]
             L += ["! lower layer: the ring at r = b, s1 along +theta, s2 along +z (normal +r, tau1 = s_rtheta)",
-                  "GROUP, contact, TYPE=interface-quad8, MATERIAL=contact",
+                  f"GROUP, contact, TYPE=interface-quad8{'-nodal' if nodal else ''}, MATERIAL=contact",
                   "A, 16, " + ", ".join(map(str, e[:8])) + ",", ", ".join(map(str, e[8:])) + ",",
                   f"%, {nt}, *, 16, 2,", "E,"]
     L.append("E,")
@@ -418,7 +418,9 @@ def write_deck(path, dim, bond, level, Es, nus, K, p, phi=None, rout_factor=10.0
     elif bond == "slip":
         L.append("STAGE, load, STEPS=1, METHOD=full-newton-raphson")
     else:
-        L.append("STAGE, load, STEPS=10, METHOD=full-newton-raphson")
+        L.append("! stick and slip: full Newton with the line search; with the Gauss rule (not -nodal) it cycles on the")
+        L.append("! level-1 mesh for phi = 15 (docs/verification.md, \"A pipe in elastic ground\")")
+        L.append("STAGE, load, STEPS=10, METHOD=full-newton-raphson, LINESEARCH=energy")
     L.append("FIELDS, all, nodal_stress, nodal_interface")
     with open(path, "w") as f:
         f.write("\n".join(L) + "\n")
@@ -546,6 +548,7 @@ def main(argv=None):
     ap.add_argument("--phi", type=float, default=20.0)
     ap.add_argument("--rout", type=float, default=10.0, help="outer radius / b")
     ap.add_argument("--far", default="exact", choices=("exact", "uniform"))
+    ap.add_argument("--nodal", action="store_true", help="nodal (Lobatto) integration of the interface")
     ap.add_argument("--name", help="deck file name (default from the case)")
     ap.add_argument("--Es", type=float, default=144.0)
     ap.add_argument("--nus", type=float, default=0.2)
@@ -561,7 +564,7 @@ def main(argv=None):
         name = args.name or f"lined_{args.bond}_{args.dim}d_l{args.level}.dat"
         path = os.path.join(args.decks, name)
         write_deck(path, args.dim, args.bond, args.level, args.Es, args.nus, args.K, args.p, phi=args.phi,
-                   rout_factor=args.rout, far=args.far)
+                   rout_factor=args.rout, far=args.far, nodal=args.nodal)
         print(path)
         return 0
     if args.results:

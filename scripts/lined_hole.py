@@ -142,6 +142,15 @@ class LinedHole:
         ut = sum(ci * ri for ci, ri in zip(c, self._ut(r, region))) * np.sin(2 * t)
         return ur, ut
 
+    def thrust_moment(self, t):
+        """Hoop thrust N = int s_tt dr (N/mm, compression negative) and bending moment
+        M = int s_tt (r - (a + b) / 2) dr (N mm/mm) of the ring at theta t: 10-point Gauss."""
+        x, w = np.polynomial.legendre.leggauss(10)
+        h = (self.b - self.a) / 2
+        r = self.a + h * (1 + x)
+        stt = self.stress(r, t, "ring")[1]
+        return h * np.sum(w * stt), h * np.sum(w * stt * (r - (self.a + self.b) / 2))
+
     def region(self, r):
         return np.where(np.asarray(r) <= self.b, "ring", "soil")
 
@@ -491,6 +500,22 @@ def compare(path, quiet=False):
         add("interface tau (/ p)", np.abs(tau), np.abs(want[2]), p)
     want_u = ref.displacement(r[bore], t[bore], "ring")[0]
     add("u_r bore", ur[bore], want_u, np.max(np.abs(want_u)))
+    for deg in (0.0, 90.0):
+        line = ring_nodes[(np.abs(t[ring_nodes] - math.radians(deg)) < 1e-9)]
+        line = np.unique(np.round(r[line], 9), return_index=True)[1], line
+        nodes = line[1][line[0]]
+        nodes = nodes[np.argsort(r[nodes])]
+        if len(nodes) % 2 == 1 and len(nodes) >= 3:
+            stt = polar_stress(sr[nodes], t[nodes])[1]
+            rr = r[nodes]
+            h = (rr[-1] - rr[0]) / (len(rr) - 1)
+            wts = np.ones(len(rr))
+            wts[1:-1:2], wts[2:-1:2] = 4, 2
+            n_fe = h / 3 * np.sum(wts * stt)
+            m_fe = h / 3 * np.sum(wts * stt * (rr - (ref.a + ref.b) / 2))
+            n_ex, m_ex = ref.thrust_moment(math.radians(deg))
+            out[f"thrust N {deg:g} deg"] = (abs(n_fe - n_ex) / abs(n_ex), n_ex)
+            out[f"moment M {deg:g} deg"] = (abs(m_fe - m_ex) / abs(m_ex), m_ex)
     if not quiet:
         print(f"{path}: {bond}, K = {ref.K:g}, soil E = {float(mat['e']):g} nu = {float(mat['nu']):g}; "
               f"max |feps - exact| over the nodes / max |exact| on the arc")
@@ -533,6 +558,9 @@ def print_reference(ref):
         so = ref.stress(ref.b, t, "soil")
         ua = ref.displacement(ref.a, t, "ring")[0]
         print(f"{deg:6.1f} {sa[1]:14.7e} {sb[1]:14.7e} {sb[0]:14.7e} {sb[2]:14.7e} {so[1]:14.7e} {ua:14.7e}")
+    for deg in (0.0, 90.0):
+        n, m = ref.thrust_moment(math.radians(deg))
+        print(f"ring at theta = {deg:g}: thrust N = {n:.7e} N/mm, moment M = {m:.7e} N mm/mm")
     print("constants: axisymmetric al1 be1 be2 =", " ".join(f"{v:.10e}" for v in ref.axi))
     print("           cos 2theta A B C D C' D' =", " ".join(f"{v:.10e}" for v in ref.dev))
 

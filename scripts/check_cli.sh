@@ -891,6 +891,29 @@ python3 scripts/make_symmetry_decks.py --outdir "$tmp/sym" >/dev/null && cmp -s 
   || bad "make_symmetry_decks.py --outdir writes test/data's decks"
 expect_arg_error "make_symmetry_decks.py --bogus" "unrecognized arguments" python3 scripts/make_symmetry_decks.py --bogus
 expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" python3 scripts/stability_extremes.py --only bogus
+# The lined hole (docs/verification.md, "A pipe in elastic ground"): the closed form's own checks
+# (equilibrium and compatibility by finite differences, which the Fortran test does not repeat),
+# the test's seven decks written again byte for byte, and one run compared with the closed form by
+# the script (its own numpy solution, independent of the test's Fortran one).
+python3 scripts/lined_hole.py --check >"$tmp/out" 2>&1 && grep -q "^all checks pass" "$tmp/out" \
+  && ok "lined_hole.py --check: the closed form's self-checks" || bad "lined_hole.py --check: $(grep FAIL "$tmp/out" | head -c 300)"
+lh_ok=1
+for c in bonded_2 slip_2 bonded_3 slip_3; do
+  python3 scripts/lined_hole.py --decks "$tmp/lh" --bond "${c%_*}" --dim "${c#*_}" --level 2 --name "lined_${c}d.dat" \
+    >/dev/null && cmp -s "$tmp/lh/lined_${c}d.dat" "test/data/lined_${c}d.dat" || lh_ok=0
+done
+for c in "bonded:" "slip:--nodal" "friction:--nodal --phi 15"; do
+  python3 scripts/lined_hole.py --decks "$tmp/lh" --bond "${c%%:*}" ${c#*:} --level 1 --far uniform --rout 40 \
+    --name "lined_far_${c%%:*}.dat" >/dev/null && cmp -s "$tmp/lh/lined_far_${c%%:*}.dat" "test/data/lined_far_${c%%:*}.dat" \
+    || lh_ok=0
+done
+[ "$lh_ok" -eq 1 ] && ok "lined_hole.py writes test/data/lined_*.dat" || bad "lined_hole.py writes test/data/lined_*.dat"
+"$feps" test/data/lined_slip_2d.dat --output "$tmp/lined_slip.h5" --quiet >/dev/null 2>&1 \
+  && python3 -c 'import sys; sys.path.insert(0, "scripts"); import lined_hole as l
+e = l.compare(sys.argv[1], quiet=True)
+sys.exit(not (e["s_tt bore"][0] < 1.3e-2 and e["u_r bore"][0] < 4.5e-4 and e["interface tau (/ p)"][0] < 1e-12))' \
+  "$tmp/lined_slip.h5" && ok "lined_hole.py: the tri6 full-slip run against the closed form" \
+  || bad "lined_hole.py: the tri6 full-slip run against the closed form"
 expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapter 9 results" \
   python3 scripts/orderings_model_a_ch9.py "$tmp/empty"
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).

@@ -24,6 +24,7 @@ program tester
   use test_principal, only: collect_principal
   use test_solution_methods, only: collect_solution_methods
   use test_stress_recovery, only: collect_stress_recovery
+  use test_lined_hole, only: collect_lined_hole
   implicit none
 
   interface
@@ -62,7 +63,8 @@ program tester
     new_testsuite('analysis_state', collect_analysis_state), &
     new_testsuite('principal', collect_principal), &
     new_testsuite('solution_methods', collect_solution_methods), &
-    new_testsuite('stress_recovery', collect_stress_recovery) &
+    new_testsuite('stress_recovery', collect_stress_recovery), &
+    new_testsuite('lined_hole', collect_lined_hole) &
     ]
   nfail = run_testsuites(suites, only)
   if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran

@@ -27,7 +27,10 @@ pipe; q = 4.21 MPa, the model's mean end pressure):
                on the bore, where the decks' mesh has its peak tension; B = (715, 180, 2500),
                the loaded outer edge of the end; C = (600, 180, 1250) on the bore at mid-length
   sn_min, tau_max   (interface cases) the most compressive normal and largest shear traction
-               at the interface's nodes (`nodal_interface`)
+               at the interface's nodes (`nodal_interface`), found at the loaded edge's end of
+               the interface (theta 180, z 0 or 2500)
+  sn@D, sn@E   the interface's normal traction at D = (715, 180, 200), under the load near the
+               end, and E = (715, 90, 1250) at mid-length
 For each quantity and each element type with meshes k, 2k, 4k, the observed order of
 convergence p = log2(|q_k - q_2k| / |q_2k - q_4k|) and the Richardson estimate
 q_4k + (q_4k - q_2k) / (2^p - 1) are tabulated (with k, 2k only: the change, no estimate).
@@ -53,15 +56,18 @@ from feps_cli import Error, feps_option, guard, positive_int  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 POINTS = {"A": (600.0, 110.0, 0.0), "B": (715.0, 180.0, 2500.0), "C": (600.0, 180.0, 1250.0)}
+# interface points, on the pipe's outer face (the interface's lower layer)
+INTERFACE_POINTS = {"D": (715.0, 180.0, 200.0), "E": (715.0, 90.0, 1250.0)}
 FIELDS = "all,nodal_stress,nodal_principal,nodal_interface"
 COLUMNS = ["case", "element", "refine", "status", "dofs", "elements", "wall_s", "peak_mb",
            "steps", "factorizations", "iterations", "unconverged_steps", "rotation",
            "node_s1_max", "node_s1_max_at", "gp_s1_max", "gp_s1_max_at",
            "node_s3_min", "node_s3_min_at", "gp_s3_min", "gp_s3_min_at",
-           "s1@A", "s3@A", "s1@B", "s3@B", "s1@C", "s3@C", "sn_min", "tau_max"]
+           "s1@A", "s3@A", "s1@B", "s3@B", "s1@C", "s3@C", "sn_min", "sn_min_at", "tau_max", "sn@D", "sn@E"]
 # the quantities the tables show, with the number of decimals
 QUANTITIES = [("rotation", 6), ("node_s1_max", 4), ("gp_s1_max", 4), ("node_s3_min", 3), ("gp_s3_min", 3),
-              ("s1@A", 4), ("s3@B", 3), ("s1@C", 4), ("s3@C", 4), ("sn_min", 4), ("tau_max", 4)]
+              ("s1@A", 4), ("s3@B", 3), ("s1@C", 4), ("s3@C", 4), ("sn_min", 4), ("tau_max", 4),
+              ("sn@D", 5), ("sn@E", 5)]
 
 
 def mesh_list(text):
@@ -125,7 +131,7 @@ def node_at(f, nodes, point, r, t, z):
     pr, pt, pz = point
     hit = np.nonzero((abs(r[nodes] - pr) < 1e-2) & (abs(t[nodes] - pt) < 1e-4) & (abs(z[nodes] - pz) < 1e-2))[0]
     if hit.size != 1:
-        raise Error(f"{f.filename}: {hit.size} pipe nodes at r, theta, z = {point} (expected one)")
+        raise Error(f"{f.filename}: {hit.size} nodes at r, theta, z = {point} (expected one)")
     return hit[0]
 
 
@@ -155,10 +161,13 @@ def quantities(h5):
         if "nodal_interface/contact" in step:
             lower = np.unique(fr.connectivity(f, "contact")[:, :fr.connectivity(f, "contact").shape[1] // 2])
             traction = step["nodal_interface/contact"][...][lower]
-            out["sn_min"] = float(traction[:, 2].min())
+            i = int(np.argmin(traction[:, 2]))
+            out["sn_min"], out["sn_min_at"] = traction[i, 2], where(r[lower[i]], t[lower[i]], z[lower[i]])
             out["tau_max"] = float(np.hypot(traction[:, 0], traction[:, 1]).max())
+            for name, point in INTERFACE_POINTS.items():
+                out[f"sn@{name}"] = traction[node_at(f, lower, point, r, t, z), 2]
         else:
-            out["sn_min"] = out["tau_max"] = ""
+            out["sn_min"] = out["sn_min_at"] = out["tau_max"] = out["sn@D"] = out["sn@E"] = ""
     return out
 
 
@@ -203,7 +212,8 @@ def tables(rows):
                          f"{float(r['peak_mb']):.0f} | {r['factorizations']} | " + " | ".join(cells) + " |")
         lines += ["", "Peak locations (r / theta / z): " + "; ".join(
             f"{r['element']}:{r['refine']} node s1 {r['node_s1_max_at']}, Gauss s1 {r['gp_s1_max_at']}, "
-            f"node s3 {r['node_s3_min_at']}" for r in runs), ""]
+            f"node s3 {r['node_s3_min_at']}" + (f", interface sn {r['sn_min_at']}" if r.get("sn_min_at") else "")
+            for r in runs), ""]
         conv = []
         for element in dict.fromkeys(r["element"] for r in runs):
             by_k = {int(r["refine"]): r for r in runs if r["element"] == element}

@@ -255,6 +255,8 @@ def main(argv=None):
     except ValueError as exc:
         raise Error(str(exc), 2)
     out = os.path.abspath(args.out)
+    if args.report_only and not os.path.isdir(out):
+        raise Error(f"--out {args.out}: no such folder", 2)
     os.makedirs(out, exist_ok=True)
     csv_path = os.path.join(out, "results.csv")
     rows = {(r["case"], r["element"], r["refine"]): r for r in read_rows(csv_path)}
@@ -279,6 +281,8 @@ def main(argv=None):
                 w.writeheader()
                 for r in rows.values():
                     w.writerow({c: r.get(c, "") for c in COLUMNS})
+    if not rows:
+        raise Error(f"no runs of {args.cases} on {','.join(f'{e}:{k}' for e, k in args.meshes)} in {out}")
     with open(os.path.join(out, "tables.md"), "w") as fh:
         fh.write(tables(list(rows.values())))
     print(f"wrote {csv_path} and {os.path.join(out, 'tables.md')}")

@@ -37,6 +37,7 @@ contains
       new_unittest("apex_and_zero_shear", test_apex), &
       new_unittest("update_continuous_across_gap_zone", test_gap_continuity), &
       new_unittest("oblique_slip_3d", test_oblique_slip), &
+      new_unittest("no_shear_stiffness_full_slip", test_no_shear_stiffness), &
       new_unittest("tangent_finite_difference", test_tangent_fd), &
       new_unittest("tangent_eq_2_3_18", test_tangent_continuum), &
       new_unittest("symmetric_tangent", test_symmetric), &
@@ -360,6 +361,60 @@ contains
                   state_elastic, sig, st, dt)
     call check(error, st, state_open, 'tension beyond the apex opens')
   end subroutine test_gap_opening
+
+  !> KS = 0 is full slip: no shear stress in any state and a zero shear tangent, while the
+  !! normal behaviour is the usual one: elastic in compression and in tension below the apex
+  !! c / tan phi (phi = 30, c = 10: 17.32), open beyond it. With phi = 0 and c > 0 the gap zone
+  !! is never reached, so the contact holds in tension too (bilateral full slip); with
+  !! phi = c = 0 it opens at sigma_n >= 0 (unilateral). Nothing divides by the zero hardening
+  !! ks + kn tan phi tan psi.
+  subroutine test_no_shear_stiffness(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(interface_mohr_coulomb_t) :: m
+    real(dp) :: sig(3), dt(3, 3), zero(3), d_normal(3, 3)
+    integer :: st
+    zero = 0.0_dp
+    d_normal = 0.0_dp
+    d_normal(3, 3) = 2000.0_dp
+    m = make(2000.0_dp, 0.0_dp, 10.0_dp, 30.0_dp, 10.0_dp)
+    call m%update(zero, zero, [5.0_dp, -3.0_dp, -0.01_dp], state_elastic, sig, st, dt)
+    call check(error, st, state_elastic, 'compression with shear: elastic')
+    if (allocated(error)) return
+    call check_vector(error, sig, [0.0_dp, 0.0_dp, -20.0_dp], 'compression: no shear stress', 1.0e-13_dp)
+    if (allocated(error)) return
+    call check_matrix(error, dt, d_normal, 'compression: tangent diag(0, 0, kn)', 0.0_dp)
+    if (allocated(error)) return
+    call m%update(zero, zero, [1.0_dp, 0.0_dp, 0.005_dp], state_elastic, sig, st, dt)
+    call check(error, st, state_elastic, 'tension below the apex: elastic')
+    if (allocated(error)) return
+    call check_vector(error, sig, [0.0_dp, 0.0_dp, 10.0_dp], 'tension below the apex', 1.0e-13_dp)
+    if (allocated(error)) return
+    call m%update(zero, zero, [1.0_dp, 0.0_dp, 0.01_dp], state_elastic, sig, st, dt)
+    call check(error, st, state_open, 'tension beyond the apex (20 > 17.32) opens')
+    if (allocated(error)) return
+    call check_vector(error, sig, zero, 'open', 0.0_dp)
+    if (allocated(error)) return
+    ! bilateral: phi = 0, c = 1
+    m = make(2000.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp)
+    call m%update(zero, zero, [3.0_dp, 4.0_dp, 1.0_dp], state_elastic, sig, st, dt)
+    call check(error, st, state_elastic, 'phi = 0, c > 0: tension held')
+    if (allocated(error)) return
+    call check_vector(error, sig, [0.0_dp, 0.0_dp, 2000.0_dp], 'phi = 0, c > 0: sigma_n = kn eps_n', 1.0e-12_dp)
+    if (allocated(error)) return
+    call check_matrix(error, dt, d_normal, 'phi = 0, c > 0: tangent diag(0, 0, kn)', 0.0_dp)
+    if (allocated(error)) return
+    ! unilateral: phi = c = 0, on the surface (f = 0) in compression, and in tension
+    m = make(2000.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp)
+    call m%update(zero, zero, [1.0_dp, 0.0_dp, -0.01_dp], state_elastic, sig, st, dt)
+    call check(error, finite(sig) .and. finite(pack(dt, .true.)), 'phi = c = 0 in compression: finite')
+    if (allocated(error)) return
+    call check_vector(error, sig, [0.0_dp, 0.0_dp, -20.0_dp], 'phi = c = 0 in compression', 1.0e-13_dp)
+    if (allocated(error)) return
+    call check_matrix(error, dt, d_normal, 'phi = c = 0 in compression: tangent', 0.0_dp)
+    if (allocated(error)) return
+    call m%update(zero, zero, [1.0_dp, 0.0_dp, 0.01_dp], state_elastic, sig, st, dt)
+    call check(error, st, state_open, 'phi = c = 0 in tension opens')
+  end subroutine test_no_shear_stiffness
 
   !> Eq. 2.3.22: an open point with eps0_n = 0.02 and deps_n = -0.05 closes at t = 0.6:
   !! sig = t D deps, elastic; with a larger shear the restarted trial slides; an open point
@@ -709,6 +764,11 @@ contains
       call test_failed(error, 'wrong material type')
     end select
     if (allocated(error)) return
+    call new_interface_mohr_coulomb(material_spec('joint', 'interface', k3, [2000.0_dp, 0.0_dp, 30.0_dp]), mat, err)
+    if (allocated(err)) then
+      call test_failed(error, 'KS = 0 (full slip) rejected: ' // err%message)
+      return
+    end if
     call new_interface_mohr_coulomb(material_spec('joint', 'interface', k3, [2000.0_dp, 1000.0_dp, 30.0_dp]), mat, err)
     if (allocated(err)) then
       call test_failed(error, 'c and psi should default: ' // err%message)

@@ -5,7 +5,8 @@
 !! stresses [tau1 tau2 sigma_n] or [tau sigma_n] (tension positive). The component count
 !! is taken from the size of the arrays passed in.
 !!
-!! Elastic: D = diag(ks, ks, kn) (eq. 2.3.13). Yield f = tau^2 - (c - sigma_n tan phi)^2
+!! Elastic: D = diag(ks, ks, kn) (eq. 2.3.13); ks = 0 is full slip (no shear stress ever).
+!! Yield f = tau^2 - (c - sigma_n tan phi)^2
 !! (eq. 2.3.14), plastic potential g with dilation angle psi (eq. 2.3.16). On the yield
 !! surface f and g have the same gradients as the cones F = tau - c + sigma_n tan phi and
 !! G = tau + sigma_n tan psi, so the closest-point return along D dG/dsigma is closed form
@@ -169,8 +170,10 @@ contains
     ! trial stress itself against the gap zone would make the stress jump from the cone to
     ! zero across sigma_n_tr = c / tan phi (Newton iterations then cycle). The extra
     ! sigma_n >= 0 keeps a frictionless, cohesionless interface (phi = c = 0) in contact under
-    ! compression instead of treating every state as open.
-    if (sn_tr >= 0.0_dp .and. &
+    ! compression instead of treating every state as open. The trial in the gap zone
+    ! (sigma_n tan phi >= c) follows from the apex test when ks > 0; with ks = 0 the apex test
+    ! holds everywhere, and this one alone decides.
+    if (sn_tr >= 0.0_dp .and. sn_tr * tan_phi - self%c >= 0.0_dp .and. &
         self%ks * (sn_tr * tan_phi - self%c) >= tau_tr * self%kn * tan_phi * tan_psi) then
       sig = 0.0_dp
       state = state_open
@@ -179,7 +182,9 @@ contains
 
     strength = self%c - sn_tr * tan_phi
     f_lin = tau_tr - strength
-    if (f_lin < -yield_tolerance * (tau_tr + abs(sn_tr) * tan_phi + self%c)) then
+    ! Without shear stiffness (ks = 0: full slip) there is no shear stress to slide: a point in
+    ! contact is elastic.
+    if (self%ks == 0.0_dp .or. f_lin < -yield_tolerance * (tau_tr + abs(sn_tr) * tan_phi + self%c)) then
       sig = sig_tr
       state = state_elastic
       do i = 1, n
@@ -228,7 +233,7 @@ contains
   end function mc_symmetric_tangent
 
   !> A Mohr-Coulomb interface from MATERIAL parameters KN, KS, PHI (required), C and PSI
-  !! (default 0), angles in degrees. Checks kn > 0, ks > 0, c >= 0, 0 <= phi < 90 and
+  !! (default 0), angles in degrees. Checks kn > 0, ks >= 0 (0: full slip), c >= 0, 0 <= phi < 90 and
   !! 0 <= psi <= phi, and rejects unknown keys; errors name the record's file and line and,
   !! where one parameter is at fault, its field.
   subroutine new_interface_mohr_coulomb(spec, material, error)
@@ -240,12 +245,14 @@ contains
 
     call check_known_keys(spec, known, error)
     if (.not. allocated(error)) call get_parameter(spec, 'kn', kn, error, positive=.true.)
-    if (.not. allocated(error)) call get_parameter(spec, 'ks', ks, error, positive=.true.)
+    if (.not. allocated(error)) call get_parameter(spec, 'ks', ks, error)
     if (.not. allocated(error)) call get_parameter(spec, 'c', c, error, default=0.0_dp)
     if (.not. allocated(error)) call get_parameter(spec, 'phi', phi, error)
     if (.not. allocated(error)) call get_parameter(spec, 'psi', psi, error, default=0.0_dp)
     if (allocated(error)) return
-    if (.not. (c >= 0.0_dp .and. c <= huge(c))) then
+    if (.not. (ks >= 0.0_dp .and. ks <= huge(ks))) then
+      call material_error(error, spec, 'KS = ' // str(ks) // ' must be non-negative and finite', 'ks')
+    else if (.not. (c >= 0.0_dp .and. c <= huge(c))) then
       call material_error(error, spec, 'C = ' // str(c) // ' must be non-negative and finite', 'c')
     else if (.not. (phi >= 0.0_dp .and. phi < 90.0_dp)) then
       call material_error(error, spec, 'PHI = ' // str(phi) // ' must lie in [0, 90) degrees', 'phi')

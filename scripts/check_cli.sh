@@ -893,7 +893,7 @@ expect_arg_error "make_symmetry_decks.py --bogus" "unrecognized arguments" pytho
 expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" python3 scripts/stability_extremes.py --only bogus
 # The lined hole (docs/verification.md, "A pipe in elastic ground"): the closed form's own checks
 # (equilibrium and compatibility by finite differences, which the Fortran test does not repeat),
-# the test's seven decks written again byte for byte, and one run compared with the closed form by
+# the test's eight decks written again byte for byte, and one run compared with the closed form by
 # the script (its own numpy solution, independent of the test's Fortran one).
 python3 scripts/lined_hole.py --check >"$tmp/out" 2>&1 && grep -q "^all checks pass" "$tmp/out" \
   && ok "lined_hole.py --check: the closed form's self-checks" || bad "lined_hole.py --check: $(grep FAIL "$tmp/out" | head -c 300)"
@@ -907,6 +907,9 @@ for c in "bonded:" "slip:--nodal" "friction:--nodal --phi 15"; do
     --name "lined_far_${c%%:*}.dat" >/dev/null && cmp -s "$tmp/lh/lined_far_${c%%:*}.dat" "test/data/lined_far_${c%%:*}.dat" \
     || lh_ok=0
 done
+python3 scripts/lined_hole.py --decks "$tmp/lh" --bond bilateral --dim 2 --level 2 --K -0.5 \
+  --name lined_bilateral_2d.dat >/dev/null && cmp -s "$tmp/lh/lined_bilateral_2d.dat" test/data/lined_bilateral_2d.dat \
+  || lh_ok=0
 [ "$lh_ok" -eq 1 ] && ok "lined_hole.py writes test/data/lined_*.dat" || bad "lined_hole.py writes test/data/lined_*.dat"
 "$feps" test/data/lined_slip_2d.dat --output "$tmp/lined_slip.h5" --quiet >/dev/null 2>&1 \
   && python3 -c 'import sys; sys.path.insert(0, "scripts"); import lined_hole as l

@@ -406,6 +406,10 @@ def write_deck(path, dim, bond, level, Es, nus, K, p, phi=None, rout_factor=10.0
     if bond == "slip":
         L.append("! full slip: phi = c = 0 leaves tau = 0 exactly at every point in compression")
         L.append("MATERIAL, contact, INTERFACE, KN=1000., KS=1000., PHI=0., C=0.")
+    elif bond == "bilateral":
+        L.append("! full slip that also holds in tension: no shear stiffness, and with phi = 0, c > 0 the")
+        L.append("! interface never reaches its gap zone (c - sigma_n tan phi <= 0), so it never opens")
+        L.append("MATERIAL, contact, INTERFACE, KN=1000., KS=0., PHI=0., C=1.")
     elif bond == "friction":
         L.append(f"MATERIAL, contact, INTERFACE, KN=1000., KS=1000., PHI={phi:g}, C=0.")
     L += ["NSET, xzero, X=0.", "NSET, yzero, Y=0.", "FIX, xzero, X", "FIX, yzero, Y"]
@@ -424,7 +428,7 @@ def write_deck(path, dim, bond, level, Es, nus, K, p, phi=None, rout_factor=10.0
               f"TRACTION, outer, Y={-p:.15e}, VARY=Y, ZERO=0., PEAK={R:.10g}"]
     if bond == "bonded":
         pass
-    elif bond == "slip":
+    elif bond in ("slip", "bilateral"):
         L.append("STAGE, load, STEPS=1, METHOD=full-newton-raphson")
     else:
         L.append("! stick and slip: full Newton with the line search; with the Gauss rule (not -nodal) it cycles on the")
@@ -458,7 +462,7 @@ def compare(path, quiet=False):
     mat = f["materials/soil"].attrs
     refs = {k: LinedHole(a=par("a"), b=par("b"), Es=float(mat["e"]), nus=float(mat["nu"]), p=par("p"), K=par("K"),
                          bond=k) for k in ("bonded", "slip")}
-    ref = refs["slip" if bond == "slip" else "bonded"]
+    ref = refs["slip" if bond in ("slip", "bilateral") else "bonded"]
     last = max(f["steps"], key=int)
     st = f["steps"][last]
     x = f["mesh/coordinates"][...]
@@ -470,7 +474,7 @@ def compare(path, quiet=False):
     ring_nodes, soil_nodes = used("ring"), used("soil")
     on = lambda nodes, rad: nodes[np.abs(r[nodes] - rad) < 1e-6 * rad]
     out = {}
-    if bond not in ("bonded", "slip"):
+    if bond not in ("bonded", "slip", "bilateral"):
         return key_values(f, st, ref, refs, r, t, ur, ring_nodes, on, quiet)
 
     def add(name, got, want, scale):
@@ -572,7 +576,9 @@ def main(argv=None):
     ap.add_argument("--decks", metavar="DIR", help="write the benchmark's decks into DIR")
     ap.add_argument("--level", type=int, default=1)
     ap.add_argument("--dim", type=int, default=2, choices=(2, 3))
-    ap.add_argument("--bond", default="bonded", choices=("bonded", "slip", "friction"))
+    ap.add_argument("--bond", default="bonded", choices=("bonded", "slip", "bilateral", "friction"),
+                    help="bonded (shared nodes); slip (PHI = C = 0: opens in tension); bilateral (KS = 0, "
+                         "PHI = 0, C = 1: slip that holds in tension); friction (--phi)")
     ap.add_argument("--phi", type=float, default=20.0)
     ap.add_argument("--rout", type=float, default=10.0, help="outer radius / b")
     ap.add_argument("--far", default="exact", choices=("exact", "uniform"))

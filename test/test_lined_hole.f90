@@ -47,6 +47,8 @@ contains
       new_unittest('plane strain tri6, full slip (interface-line3, phi = c = 0)', test_slip_2d), &
       new_unittest('hex20 slice, bonded', test_bonded_3d), &
       new_unittest('hex20 slice, full slip (interface-quad8, phi = c = 0)', test_slip_3d), &
+      new_unittest('plane strain tri6, bilateral full slip (KS = 0) with the contact in tension (K = -0.5)', &
+                   test_bilateral_2d), &
       new_unittest('friction (phi = 15, c = 0): between bonded and full slip, sliding in part', test_friction) &
     ]
   end subroutine collect_lined_hole
@@ -319,11 +321,12 @@ contains
   !! hoop stress at the bore and at r = b, the soil's s_rr, s_rt and s_tt at r = b (each relative
   !! to the largest exact value on its arc; s_rt in full slip relative to p), u_r at the bore, and
   !! for an interface the nodal s_n (relative) and |tau| (absolute, MPa).
-  subroutine run_errors(deck, stem, slip, three_d, err, error)
+  subroutine run_errors(deck, stem, slip, three_d, err, error, k)
     character(len=*), intent(in) :: deck, stem
     logical, intent(in) :: slip, three_d
     real(dp), intent(out) :: err(8)
     type(error_t), allocatable, intent(out) :: error
+    real(dp), intent(in), optional :: k          !! the far field's ratio K (default 0.5)
     integer(hid_t) :: file_id
     real(dp), allocatable :: x(:, :), u(:, :), s_ring(:, :), s_soil(:, :), traction(:, :)
     integer, allocatable :: conn_ring(:, :), conn_soil(:, :)
@@ -331,7 +334,11 @@ contains
     type(lined_hole_t) :: ref
     real(dp) :: r, t, want(3), got(3), ue(2), ur, scale(8), diff(8)
     integer :: n
-    ref = lined_hole(144.0_dp, 0.2_dp, 0.5_dp, slip)
+    if (present(k)) then
+      ref = lined_hole(144.0_dp, 0.2_dp, k, slip)
+    else
+      ref = lined_hole(144.0_dp, 0.2_dp, 0.5_dp, slip)
+    end if
     call run_and_open(deck, stem, file_id, error, fields='all,nodal_stress,nodal_interface')
     if (allocated(error)) return
     call read_real(file_id, '/mesh/coordinates', x, error)
@@ -456,6 +463,19 @@ contains
     if (.not. allocated(error)) call check_errors(err, [9.1e-3_dp, 1.7e-2_dp, 2.1e-3_dp, 1.4e-3_dp, 2.3e-3_dp, &
                                                        2.9e-4_dp, 4.2e-3_dp], .true., 'hex20 slip', error)
   end subroutine test_slip_3d
+
+  !> KS = 0 with PHI = 0, C = 1: full slip that also holds in tension (the interface never
+  !! reaches its gap zone). Under K = -0.5 the exact full-slip contact is in tension around
+  !! theta = 0 (s_rr(b) = +0.081 MPa), where the unilateral full slip (PHI = C = 0) opens and is
+  !! 21% off at the bore and 51% in the contact stress; the bilateral one follows the closed form
+  !! to the discretisation error of the unilateral case in compression.
+  subroutine test_bilateral_2d(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: err(8)
+    call run_errors('test/data/lined_bilateral_2d.dat', 'lined_bilateral_2d', .true., .false., err, error, k=-0.5_dp)
+    if (.not. allocated(error)) call check_errors(err, [1.6e-2_dp, 1.2e-2_dp, 6.6e-3_dp, 9.1e-3_dp, 4.1e-3_dp, &
+                                                       4.4e-4_dp, 2.4e-2_dp], .true., 'tri6 bilateral', error)
+  end subroutine test_bilateral_2d
 
   !> A frictional interface has no closed form; its answers must lie between the bonded and the
   !! full-slip ones. The three runs share the mesh (tri6, level 1) and the uniform far-field

@@ -917,6 +917,8 @@ e = l.compare(sys.argv[1], quiet=True)
 sys.exit(not (e["s_tt bore"][0] < 1.3e-2 and e["u_r bore"][0] < 4.5e-4 and e["interface tau (/ p)"][0] < 1e-12))' \
   "$tmp/lined_slip.h5" && ok "lined_hole.py: the tri6 full-slip run against the closed form" \
   || bad "lined_hole.py: the tri6 full-slip run against the closed form"
+expect_line "lined_hole.py on a missing results file" 2 "no such results file" \
+  python3 scripts/lined_hole.py "$tmp/no_such_lined.h5"
 expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapter 9 results" \
   python3 scripts/orderings_model_a_ch9.py "$tmp/empty"
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).

@@ -603,6 +603,9 @@ def main(argv=None):
         return 0
     if args.results:
         for path in args.results:
+            if not os.path.isfile(path):
+                print(f"lined_hole: {path}: no such results file", file=sys.stderr)
+                return 2
             compare(path)
         return 0
     for bond in ("bonded", "slip"):

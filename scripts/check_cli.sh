@@ -197,6 +197,21 @@ python3 scripts/fuzz_input.py --feps "$tmp/crash" --cases 2 --out "$tmp/fuzzc" >
   && ok "fuzz flags a crash and keeps the mutants" || bad "fuzz flags a crash: exit $got, $(head -c 300 "$tmp/out")"
 python3 scripts/fuzz_input.py --feps "$tmp/hang" --cases 1 --timeout 1 --out "$tmp/fuzzh" >"$tmp/out" 2>&1; got=$?
 [ "$got" -eq 1 ] && grep -q "no answer within 1 s" "$tmp/out" && ok "fuzz flags a hang" || bad "fuzz flags a hang: exit $got, $(head -c 300 "$tmp/out")"
+# With --run, a run past --timeout that keeps writing progress lines is slow, not hung (it gets up
+# to 3 x --timeout); one that stops writing them for 15 s is a hang.
+printf '#!/bin/sh
+for i in 1 2 3 4; do echo "stage 1  step $i/4"; sleep 1; done
+' >"$tmp/slow" && chmod +x "$tmp/slow"
+printf '#!/bin/sh
+echo "stage 1  step 1/4"
+sleep 60
+' >"$tmp/stall" && chmod +x "$tmp/stall"
+python3 scripts/fuzz_input.py --feps "$tmp/slow" --cases 1 --timeout 2 --run --out "$tmp/fuzzs" >"$tmp/out" 2>&1 \
+  && ok "fuzz --run: a slow run still stepping past --timeout is not a hang" \
+  || bad "fuzz --run: a slow run still stepping past --timeout: $(head -c 300 "$tmp/out")"
+python3 scripts/fuzz_input.py --feps "$tmp/stall" --cases 1 --timeout 1 --run --out "$tmp/fuzzst" >"$tmp/out" 2>&1; got=$?
+[ "$got" -eq 1 ] && grep -q "no new progress line for 15 s" "$tmp/out" && ok "fuzz --run flags a run that stalls after a step" \
+  || bad "fuzz --run flags a run that stalls: exit $got, $(head -c 300 "$tmp/out")"
 
 # --check: the whole model checked and factorized once, no step taken, no file written.
 expect_status "--check input/modelB.dat" 0 "$feps" input/modelB.dat --check --output "$tmp/chk.h5"

@@ -17,8 +17,9 @@ A case passes when feps ends with
     such as a step that does not converge after its cut-backs),
 and, when it did not end with 0, left no result file. Anything else fails: another exit
 status (a crash, a Fortran runtime error), more than one line, a message without the file, a
-run past `--timeout` (a hang; a run still stepping through a mutated STEPS= of 100 000 or
-more is reported as a long run instead), or memory past `--memory-gb` (the limit turns a runaway
+run past `--timeout` (a hang; with `--run`, a run still writing progress lines gets up to three
+times --timeout, as long as it writes one at least every 15 s, and a run still stepping through
+a mutated STEPS= of 100 000 or more is reported as a long run instead), or memory past `--memory-gb` (the limit turns a runaway
 allocation into a failure instead of taking the machine). Failing mutants are copied to
 `--out` (default results/fuzz) with the command that failed. Exit status 1 if any case failed.
 
@@ -83,6 +84,41 @@ def limit_memory(gigabytes):
         limit = int(gigabytes * 2**30)
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
     return apply
+
+
+# A run past --timeout that is still writing progress lines (steps, cut-backs) is slow, not hung:
+# it gets up to SLOW_FACTOR x --timeout in all, as long as its progress grows at least every
+# QUIET seconds. (A mutated mesh can make a plastic run cut back at every step: one such mutant
+# takes 66 s in the debug build to reach its clear "does not converge" stop.)
+SLOW_FACTOR = 3.0
+QUIET = 15.0
+
+
+def run_with_progress(command, cwd, stdout, progress, timeout, running, memory_gb):
+    """(exit status, stderr) of feps; subprocess.TimeoutExpired (the process killed) when it runs
+    past `timeout` without progress for QUIET s (only analyses, `running`, write progress), or
+    past SLOW_FACTOR x `timeout`. stderr goes to a file beside the progress file (a pipe could
+    fill while nobody reads it)."""
+    errors = progress + '.err'
+    with open(errors, 'w') as stderr:
+        proc = subprocess.Popen(command, cwd=cwd, stdout=stdout, stderr=stderr, preexec_fn=limit_memory(memory_gb))
+        waited, size = 0.0, -1
+        limit = timeout
+        while True:
+            try:
+                proc.wait(timeout=limit - waited)
+                break
+            except subprocess.TimeoutExpired:
+                waited = limit
+                grown = os.path.getsize(progress)
+                if not running or grown == size or waited >= SLOW_FACTOR * timeout:
+                    proc.kill()
+                    proc.wait()
+                    raise
+                size = grown
+                limit = waited + QUIET
+    with open(errors) as f:
+        return proc.returncode, f.read()
 
 
 def long_run(progress):
@@ -170,14 +206,12 @@ def main():
             progress = os.path.join(work, 'progress.txt')
             try:
                 with open(progress, 'w') as stdout:
-                    done = subprocess.run(command, cwd=copies[folder], stdout=stdout, stderr=subprocess.PIPE,
-                                          text=True, timeout=args.timeout,
-                                          preexec_fn=limit_memory(args.memory_gb))
+                    returncode, stderr = run_with_progress(command, copies[folder], stdout, progress,
+                                                           args.timeout, args.run, args.memory_gb)
                 leftovers = [p for p in (result, result + '.part') if os.path.exists(p)]
-                problem = judge(done.returncode, done.stderr, mutant, args.run,
-                                leftovers if done.returncode != 0 else [])
-                outcomes[done.returncode] = outcomes.get(done.returncode, 0) + 1
-                message = done.stderr.strip().replace('\n', ' | ')[:300]
+                problem = judge(returncode, stderr, mutant, args.run, leftovers if returncode != 0 else [])
+                outcomes[returncode] = outcomes.get(returncode, 0) + 1
+                message = stderr.strip().replace('\n', ' | ')[:300]
             except subprocess.TimeoutExpired:
                 steps = long_run(progress)
                 if steps:
@@ -186,7 +220,9 @@ def main():
                     print(f'long run (not a failure): {os.path.relpath(deck, ROOT)} mutated to {steps} steps, '
                           f'still stepping after {args.timeout:g} s')
                 else:
-                    problem, message = f'no answer within {args.timeout:g} s', ''
+                    problem, message = (f'no answer within {args.timeout:g} s' + (
+                        f', then no new progress line for {QUIET:g} s (or still running at '
+                        f'{SLOW_FACTOR * args.timeout:g} s)' if args.run else ''), '')
                     outcomes['timeout'] = outcomes.get('timeout', 0) + 1
             for p in (result, result + '.part', os.path.splitext(result)[0] + '.xmf'):
                 if os.path.exists(p):

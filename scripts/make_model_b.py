@@ -53,43 +53,31 @@ def soil_layers(r_soil):
 def node_block(interfaces, r_soil, m=1):
     """The node block: r fastest, then theta, then z. m > 1 puts m lattice intervals in every
     interval of the decks' mesh (refinement, and the mid-side nodes of hex20 at m = 2 x refine)."""
-    if m == 1:
-        lines = ["A, 3, 600., 0., 0.,", "%, 3, 57.5, 0., 0.,          ! pipe wall: r = 600, 657.5, 715"]
-        if interfaces:
-            lines.append("%, -1, 0., 0., 0.,           ! r = 715 again: the soil's face (coincident nodes)")
-        for d in soil_layers(r_soil):
-            lines.append(f"%, -1, {d:.4f}, 0., 0.,")
-        lines += [
-            "%, 7, 0., 10., 0.,           ! theta = 0 .. 60",
-            "%, -6, 0., 7.5, 0.,          ! theta = 105",
-            "%, -15, 0., 5., 0.,          ! theta = 180",
-            "%, 5, 0., 0., 50.,           ! z = 0 .. 200",
-            "%, -3, 0., 0., 100.,         ! z = 500",
-            "%, -5, 0., 0., 150.,         ! z = 1250",
-            "%, -5, 0., 0., 150.,         ! z = 2000",
-            "%, -3, 0., 0., 100.,         ! z = 2300",
-            "%, -4, 0., 0., 50.,          ! z = 2500",
-            "E,",
-        ]
-        return lines
-
-    def f(v):
+    def inc(v):
         text = f"{v / m:.10g}"
         return text if "." in text or "e" in text else text + "."
-    lines = ["A, 3, 600., 0., 0.,", f"%, {2 * m + 1}, {f(57.5)}, 0., 0.,     ! pipe wall: r = 600 .. 715"]
+
+    def row(count, dr=0.0, dt=0.0, dz=0.0, comment="", soil=False):
+        # the decks' soil layers are written to 4 decimals; a refined layer to 10 digits
+        body = f"%, {count}, {f'{dr:.4f}' if soil and m == 1 else inc(dr)}, {inc(dt)}, {inc(dz)},"
+        return f"{body:<29}! {comment}" if comment else body
+
+    def first(n):                       # a new direction's node count, n nodes on the decks' mesh
+        return (n - 1) * m + 1
+
+    lines = ["A, 3, 600., 0., 0.,", row(first(3), dr=57.5, comment="pipe wall: r = 600, 657.5, 715")]
     if interfaces:
-        lines.append("%, -1, 0., 0., 0.,           ! r = 715 again: the soil's face (coincident nodes)")
-    for d in soil_layers(r_soil):
-        lines.append(f"%, {-m}, {f(d)}, 0., 0.,")
-    lines += [f"%, {6 * m + 1}, 0., {f(10.0)}, 0.,     ! theta = 0 .. 60",
-              f"%, {-6 * m}, 0., {f(7.5)}, 0.,     ! theta = 105",
-              f"%, {-15 * m}, 0., {f(5.0)}, 0.,     ! theta = 180",
-              f"%, {4 * m + 1}, 0., 0., {f(50.0)},     ! z = 0 .. 200",
-              f"%, {-3 * m}, 0., 0., {f(100.0)},     ! z = 500",
-              f"%, {-5 * m}, 0., 0., {f(150.0)},     ! z = 1250",
-              f"%, {-5 * m}, 0., 0., {f(150.0)},     ! z = 2000",
-              f"%, {-3 * m}, 0., 0., {f(100.0)},     ! z = 2300",
-              f"%, {-4 * m}, 0., 0., {f(50.0)},     ! z = 2500",
+        lines.append(row(-1, comment="r = 715 again: the soil's face (coincident nodes)"))
+    lines += [row(-m, dr=d, soil=True) for d in soil_layers(r_soil)]
+    lines += [row(first(7), dt=10.0, comment="theta = 0 .. 60"),
+              row(-6 * m, dt=7.5, comment="theta = 105"),
+              row(-15 * m, dt=5.0, comment="theta = 180"),
+              row(first(5), dz=50.0, comment="z = 0 .. 200"),
+              row(-3 * m, dz=100.0, comment="z = 500"),
+              row(-5 * m, dz=150.0, comment="z = 1250"),
+              row(-5 * m, dz=150.0, comment="z = 2000"),
+              row(-3 * m, dz=100.0, comment="z = 2300"),
+              row(-4 * m, dz=50.0, comment="z = 2500"),
               "E,"]
     return lines
 

@@ -432,36 +432,40 @@ contains
     if (slip) call check(error, err(8) <= 1.0e-12_dp, what // ': ' // trim(names(8)) // ' ' // str(err(8)))
   end subroutine check_errors
 
+  !> Run test/data/<stem>.dat and hold its errors (run_errors) to `tol` (check_errors).
+  subroutine check_case(stem, slip, three_d, tol, what, error, k)
+    character(len=*), intent(in) :: stem, what
+    logical, intent(in) :: slip, three_d
+    real(dp), intent(in) :: tol(7)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), intent(in), optional :: k
+    real(dp) :: err(8)
+    call run_errors('test/data/' // stem // '.dat', stem, slip, three_d, err, error, k)
+    if (.not. allocated(error)) call check_errors(err, tol, slip, what, error)
+  end subroutine check_case
+
   subroutine test_bonded_2d(error)
     type(error_t), allocatable, intent(out) :: error
-    real(dp) :: err(8)
-    call run_errors('test/data/lined_bonded_2d.dat', 'lined_bonded_2d', .false., .false., err, error)
-    if (.not. allocated(error)) call check_errors(err, [1.2e-2_dp, 1.0e-2_dp, 4.0e-3_dp, 1.0e-2_dp, 5.0e-3_dp, &
-                                                       2.5e-4_dp, 0.0_dp], .false., 'tri6 bonded', error)
+    call check_case('lined_bonded_2d', .false., .false., [1.2e-2_dp, 1.0e-2_dp, 4.0e-3_dp, 1.0e-2_dp, 5.0e-3_dp, &
+                    2.5e-4_dp, 0.0_dp], 'tri6 bonded', error)
   end subroutine test_bonded_2d
 
   subroutine test_slip_2d(error)
     type(error_t), allocatable, intent(out) :: error
-    real(dp) :: err(8)
-    call run_errors('test/data/lined_slip_2d.dat', 'lined_slip_2d', .true., .false., err, error)
-    if (.not. allocated(error)) call check_errors(err, [1.3e-2_dp, 1.0e-2_dp, 2.0e-3_dp, 3.5e-3_dp, 3.0e-3_dp, &
-                                                       4.5e-4_dp, 8.1e-3_dp], .true., 'tri6 slip', error)
+    call check_case('lined_slip_2d', .true., .false., [1.3e-2_dp, 1.0e-2_dp, 2.0e-3_dp, 3.5e-3_dp, 3.0e-3_dp, &
+                    4.5e-4_dp, 8.1e-3_dp], 'tri6 slip', error)
   end subroutine test_slip_2d
 
   subroutine test_bonded_3d(error)
     type(error_t), allocatable, intent(out) :: error
-    real(dp) :: err(8)
-    call run_errors('test/data/lined_bonded_3d.dat', 'lined_bonded_3d', .false., .true., err, error)
-    if (.not. allocated(error)) call check_errors(err, [8.0e-3_dp, 1.7e-2_dp, 2.5e-3_dp, 2.5e-3_dp, 5.2e-3_dp, &
-                                                       1.0e-4_dp, 0.0_dp], .false., 'hex20 bonded', error)
+    call check_case('lined_bonded_3d', .false., .true., [8.0e-3_dp, 1.7e-2_dp, 2.5e-3_dp, 2.5e-3_dp, 5.2e-3_dp, &
+                    1.0e-4_dp, 0.0_dp], 'hex20 bonded', error)
   end subroutine test_bonded_3d
 
   subroutine test_slip_3d(error)
     type(error_t), allocatable, intent(out) :: error
-    real(dp) :: err(8)
-    call run_errors('test/data/lined_slip_3d.dat', 'lined_slip_3d', .true., .true., err, error)
-    if (.not. allocated(error)) call check_errors(err, [9.1e-3_dp, 1.7e-2_dp, 2.1e-3_dp, 1.4e-3_dp, 2.3e-3_dp, &
-                                                       2.9e-4_dp, 4.2e-3_dp], .true., 'hex20 slip', error)
+    call check_case('lined_slip_3d', .true., .true., [9.1e-3_dp, 1.7e-2_dp, 2.1e-3_dp, 1.4e-3_dp, 2.3e-3_dp, &
+                    2.9e-4_dp, 4.2e-3_dp], 'hex20 slip', error)
   end subroutine test_slip_3d
 
   !> KS = 0 with PHI = 0, C = 1: full slip that also holds in tension (the interface never
@@ -471,10 +475,8 @@ contains
   !! to the discretisation error of the unilateral case in compression.
   subroutine test_bilateral_2d(error)
     type(error_t), allocatable, intent(out) :: error
-    real(dp) :: err(8)
-    call run_errors('test/data/lined_bilateral_2d.dat', 'lined_bilateral_2d', .true., .false., err, error, k=-0.5_dp)
-    if (.not. allocated(error)) call check_errors(err, [1.6e-2_dp, 1.2e-2_dp, 6.6e-3_dp, 9.1e-3_dp, 4.1e-3_dp, &
-                                                       4.4e-4_dp, 2.4e-2_dp], .true., 'tri6 bilateral', error)
+    call check_case('lined_bilateral_2d', .true., .false., [1.6e-2_dp, 1.2e-2_dp, 6.6e-3_dp, 9.1e-3_dp, 4.1e-3_dp, &
+                    4.4e-4_dp, 2.4e-2_dp], 'tri6 bilateral', error, k=-0.5_dp)
   end subroutine test_bilateral_2d
 
   !> A frictional interface has no closed form; its answers must lie between the bonded and the

@@ -637,6 +637,23 @@ python3 scripts/make_model_c.py --outdir "$tmp/mc_neg" --Gp 300 --nup -0.3,0.4 -
   && ok "make_model_c.py --nup -0.3,0.4 writes both decks" || bad "make_model_c.py --nup -0.3,0.4: $(head -c 300 "$tmp/err")"
 expect_status "make_model_c.py --nup 0.5" 2 python3 scripts/make_model_c.py --outdir "$tmp/x" --nup 0.5
 grep -q "nu_p = 0.5" "$tmp/err" && ok "the error names nu_p" || bad "the error names nu_p: $(head -c 300 "$tmp/err")"
+# The joint interface's dilation angle: psi = 20 is the thesis's deck, any other is named
+# _psi<psi> and differs from it only in PSI (and its name, comments and PARAMETERS).
+python3 scripts/make_model_c.py --outdir "$tmp/mc_psi" --Gp 900 --nup 0.4 --beta 0.27 --psi 0,20 >/dev/null \
+  && cmp -s input/modelC/C_G900_nu0.4_b0.27.dat "$tmp/mc_psi/C_G900_nu0.4_b0.27.dat" \
+  && diff <(grep -v '^!\|^TITLE\|^PARAMETERS\|^REPORT\|^OUTPUT' input/modelC/C_G900_nu0.4_b0.27.dat | sed 's/PSI=20\./PSI=0./') \
+          <(grep -v '^!\|^TITLE\|^PARAMETERS\|^REPORT\|^OUTPUT' "$tmp/mc_psi/C_G900_nu0.4_b0.27_psi0.dat") >/dev/null \
+  && grep -q "^PARAMETERS, .*, psi_joint=0$" "$tmp/mc_psi/C_G900_nu0.4_b0.27_psi0.dat" \
+  && python3 -c "import sys; sys.path.insert(0, 'scripts'); import make_model_c as m
+assert m.parse_case('C_G900_nu0.4_b0.27_Es1440_psi0') == (900, 0.4, 0.27, 1440, 0)
+for bad in ('C_G900_nu0.4_b0.27_psi0_Es1440', 'C_G900_nu0.4_b0.27_psi0_psi5', 'C_G900_nu0.4_b0.27_x1'):
+    try: m.parse_case(bad)
+    except ValueError: pass
+    else: raise SystemExit(bad)" \
+  && ok "make_model_c.py --psi 0,20: the thesis's deck and one with PSI=0. only; case names parse" \
+  || bad "make_model_c.py --psi 0,20: the thesis's deck and one with PSI=0. only; case names parse"
+expect_status "make_model_c.py --psi 25" 2 python3 scripts/make_model_c.py --outdir "$tmp/x" --psi 25
+grep -q "psi = 25" "$tmp/err" && ok "the error names psi" || bad "the error names psi: $(head -c 300 "$tmp/err")"
 expect_status "make_model_b.py --psi above --phi" 2 python3 scripts/make_model_b.py --outdir "$tmp/x" --soil-E 144 \
   --phi 10 --psi 20
 python3 scripts/make_model_b.py --outdir "$tmp/mb_grid" --kinds F,S --loads E --soil-E 144,50 >/dev/null

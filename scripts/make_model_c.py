@@ -10,10 +10,10 @@ Parametric campaigns beyond the thesis's twelve cases: give lists, and a deck is
 combination (the thesis's own cases among them are the same decks as above):
 
     python3 scripts/make_model_c.py --outdir input/sweep --Gp 300,600,900 --nup 0.1 --beta 0.09,0.18
-                                    [--soil-E 144,1440]
+                                    [--soil-E 144,1440] [--psi 0,10,20]
 
 Case names: C_G<G_p>_nu<nu_p>_b<beta>, with _Es<E_s> appended when the soil's E is not the
-thesis's 144 MPa. Stage-2 steps off the thesis grid: at least the thesis's 250 and one step per
+thesis's 144 MPa and _psi<psi> when the joint interface's dilation angle is not its 20 deg. Stage-2 steps off the thesis grid: at least the thesis's 250 and one step per
 0.000 54 deg of misalignment (500 at 0.27 deg), rounded up to 50 (see stage2_steps).
 
 Quarter model (y >= 0, z >= 0) of the symmetric three-pipe system, thesis Fig. 6.2 and SPEC
@@ -42,6 +42,7 @@ Z_TOP_END = Z_TOP_BOTTOM + L_PIPE         # 3765: the loaded end
 Z_SECTION_AA = Z_TOP_BOTTOM + L_PIPE / 2  # 2515: mid-length of the top pipe (thesis Fig. 7.7)
 Q = 10.0                                   # MPa on the top end
 KN_JOINT, KS_JOINT = 800.0, 400.0          # MPa/mm, the packing/bottom-pipe interface (thesis 6.2)
+PHI_JOINT = PSI_JOINT = 20.0               # deg: its friction and dilation angles (thesis 6.2)
 BETAS = (0.09, 0.27)
 SHEAR_MODULI = (300.0, 900.0)
 POISSON = (0.1, 0.4, -0.3)
@@ -76,9 +77,11 @@ Z_TOP_STEPS = [12.5] * 4 + [25.0] * 4 + [50.0] * 4 + [100.0] * 3 + [150.0] * 4 \
 SOIL_E = 144.0             # MPa (thesis 6.1)
 
 
-def case_name(G, nu, beta, soil_E=SOIL_E):
+def case_name(G, nu, beta, soil_E=SOIL_E, psi=PSI_JOINT):
     name = f"C_G{G:g}_nu{nu:g}_b{beta:g}"
-    return name if soil_E == SOIL_E else name + f"_Es{soil_E:g}"
+    if soil_E != SOIL_E:
+        name += f"_Es{soil_E:g}"
+    return name if psi == PSI_JOINT else name + f"_psi{psi:g}"
 
 
 def all_cases():
@@ -86,18 +89,26 @@ def all_cases():
 
 
 def parse_case(name):
-    """(G, nu, beta, soil_E) of a case name C_G300_nu0.1_b0.09[_Es1440]."""
+    """(G, nu, beta, soil_E, psi) of a case name C_G300_nu0.1_b0.09[_Es1440][_psi0]."""
     parts = name.split("_")
+    bad = ValueError(f"case name {name!r} is not C_G<G_p>_nu<nu_p>_b<beta>[_Es<E_s>][_psi<psi>]")
     try:
-        if len(parts) not in (4, 5) or parts[0] != "C" or not (parts[1].startswith("G") and
-                                                                 parts[2].startswith("nu") and parts[3].startswith("b")):
-            raise ValueError
-        soil_E = float(parts[4][2:]) if len(parts) == 5 and parts[4].startswith("Es") else SOIL_E
-        if len(parts) == 5 and not parts[4].startswith("Es"):
-            raise ValueError
-        return float(parts[1][1:]), float(parts[2][2:]), float(parts[3][1:]), soil_E
+        if len(parts) < 4 or parts[0] != "C" or not (parts[1].startswith("G") and
+                                                     parts[2].startswith("nu") and parts[3].startswith("b")):
+            raise bad
+        optional = {"Es": SOIL_E, "psi": PSI_JOINT}
+        seen = []
+        for part in parts[4:]:
+            key = next((k for k in optional if part.startswith(k)), None)
+            # each suffix once, in the order case_name writes them
+            if key is None or key in seen or (seen and list(optional).index(key) < list(optional).index(seen[-1])):
+                raise bad
+            optional[key] = float(part[len(key):])
+            seen.append(key)
+        return (float(parts[1][1:]), float(parts[2][2:]), float(parts[3][1:]), optional["Es"],
+                optional["psi"])
     except ValueError:
-        raise ValueError(f"case name {name!r} is not C_G<G_p>_nu<nu_p>_b<beta>[_Es<E_s>]") from None
+        raise bad from None
 
 
 def stage2_steps(G, beta):
@@ -109,7 +120,7 @@ def stage2_steps(G, beta):
     return max(250, 50 * math.ceil(500.0 * beta / 0.27 / 50.0 - 1e-9))
 
 
-def check_parameters(G, nu, beta, soil_E):
+def check_parameters(G, nu, beta, soil_E, psi=PSI_JOINT):
     """The ranges a deck can be written for (the materials' own checks are feps's)."""
     if not G > 0.0:
         raise ValueError(f"G_p = {G:g}: the packing's shear modulus must be positive")
@@ -119,6 +130,9 @@ def check_parameters(G, nu, beta, soil_E):
         raise ValueError(f"beta = {beta:g} deg: the misalignment must lie in (0, 5) deg")
     if not soil_E > 0.0:
         raise ValueError(f"E_s = {soil_E:g}: the soil's Young's modulus must be positive")
+    if not 0.0 <= psi <= PHI_JOINT:
+        raise ValueError(f"psi = {psi:g}: the joint interface's dilation angle must lie in [0, {PHI_JOINT:g}] deg "
+                         "(its friction angle)")
 
 
 def soil_layers(r_soil):
@@ -218,15 +232,16 @@ def hex_record(node, it, ir, iz):
 
 
 def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=SOIL_E,
-         wall=WALL_ELEMENTS, z_refine=1):
+         wall=WALL_ELEMENTS, z_refine=1, psi=PSI_JOINT):
     """The deck text of one case; theta_step is the element size (deg) beyond theta = 12, wall the
-    elements through the pipe wall, z_refine the number of parts each z element is cut into."""
-    check_parameters(G, nu, beta, soil_E)
+    elements through the pipe wall, z_refine the number of parts each z element is cut into, psi
+    the joint interface's dilation angle (deg)."""
+    check_parameters(G, nu, beta, soil_E, psi)
     if steps is not None and steps < 1:
         raise ValueError(f"{steps} stage-2 steps: at least 1 is needed")
     thetas = theta_steps(theta_step)
     m = Mesh(r_soil, thetas, wall, z_refine)
-    name = case_name(G, nu, beta, soil_E)
+    name = case_name(G, nu, beta, soil_E, psi)
     delta = L_PIPE * math.tan(math.radians(beta))
     nsteps = steps or stage2_steps(G, beta)
     E_p = 2.0 * G * (1.0 + nu)
@@ -251,7 +266,9 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
         f"!   r = 600..715, {npl} hex8 layers, bonded to the top pipe (shared nodes at z = 1265).",
         "! - one layer of interface-quad4 between the bottom pipe's end face (lower layer, normal +z) and the",
         "!   packing (upper layer): coincident nodes at z = 1250 (two node blocks: the bottom one ends at",
-        "!   z = 1250, the top one starts there). Kn = 800, Ks = 400 MPa/mm, phi = psi = 20 deg, c = 0.05 MPa.",
+        "!   z = 1250, the top one starts there). Kn = 800, Ks = 400 MPa/mm, " +
+        ("phi = psi = 20 deg, c = 0.05 MPa." if psi == PSI_JOINT else
+         f"phi = 20, psi = {psi:g} deg (thesis 6.2: 20), c = 0.05 MPa."),
         "! - top pipe: full length 2500 (z = 1265..3765), NOT in soil: thesis 6.2 has soil only around the",
         "!   bottom half pipe ('a half pipe with its surrounding soil at the bottom, a complete pipe on the",
         "!   top'). Its only supports are the joint, the symmetry plane y = 0 and the prescribed x",
@@ -273,7 +290,8 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
         "! towards x = -715 (theta = 180), as thesis Figs. 6.4 and 6.11.",
         f"TITLE, Model C {name}: packing G_p = {G:g}, nu_p = {nu:g}, beta = {beta:g} deg, q = {Q:g} MPa",
         "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
-        f"PARAMETERS, G_p={G:g}, nu_p={nu:g}, beta={beta:g}, E_s={soil_E:g}",
+        f"PARAMETERS, G_p={G:g}, nu_p={nu:g}, beta={beta:g}, E_s={soil_E:g}" +
+        ("" if psi == PSI_JOINT else f", psi_joint={psi:g}"),
         "",
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
         f"A, 3, {R_IN:g}., 0., 0.,",
@@ -316,7 +334,8 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
             "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2",
             f"MATERIAL, soil, ELASTIC, E={soil_E:g}{'.' if float(soil_E).is_integer() else ''}, NU=0.2",
             f"MATERIAL, packing, ELASTIC, G={G:g}, NU={nu:g}",
-            f"MATERIAL, pipe_packing, INTERFACE, KN={KN_JOINT:g}., KS={KS_JOINT:g}., PHI=20., PSI=20., C=0.05",
+            f"MATERIAL, pipe_packing, INTERFACE, KN={KN_JOINT:g}., KS={KS_JOINT:g}., PHI={PHI_JOINT:g}., "
+            f"PSI={psi:g}{'.' if float(psi).is_integer() else ''}, C=0.05",
             "",
             "! --- supports (thesis 6.2) ---",
             f"NSET, soil_outer, CSYS=3, R={radius_text(r_soil)}, TOL=0.01",
@@ -351,7 +370,7 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
             "! top pipe's mid-length section A-A (beta_bar before the interface's own deformation is taken",
             "! out; negative: w falls towards x = +715; REFERENCE = minus the thesis's beta_bar) and of the",
             "! bottom pipe's end face (thesis Figs. 7.5/7.6) ---"]
-    ref = thesis_beta_bar(G, nu, beta) if soil_E == SOIL_E else None
+    ref = thesis_beta_bar(G, nu, beta) if soil_E == SOIL_E and psi == PSI_JOINT else None
     rep = f"REPORT, ROTATION, NAME=section_AA, GROUP=top_pipe, R={R_OUT:g}., Z={Z_SECTION_AA:g}., FROM=250., TO=715."
     out.append(rep + (f", REFERENCE={-ref:g}" if ref is not None else ""))
     out.append(f"REPORT, ROTATION, NAME=bottom_end, GROUP=bottom_pipe, R={R_OUT:g}., Z={Z_JOINT:g}., "
@@ -405,30 +424,33 @@ def main():
     grid.add_argument("--nup", type=number_list, help="packing Poisson's ratios nu_p, e.g. 0.1,0.4,-0.3")
     grid.add_argument("--beta", type=number_list, help="applied misalignment angles (deg), e.g. 0.09,0.18")
     grid.add_argument("--soil-E", type=number_list, help=f"soil Young's moduli (MPa; default {SOIL_E:g})")
+    grid.add_argument("--psi", type=number_list,
+                      help=f"dilation angles of the joint interface (deg, 0..{PHI_JOINT:g}; default {PSI_JOINT:g})")
     args = ap.parse_args(attach_negative_lists(sys.argv[1:]))
     try:
         theta_steps(args.theta_step)
     except ValueError as e:
         ap.error(str(e))
-    if args.cases and any(v is not None for v in (args.Gp, args.nup, args.beta, args.soil_E)):
-        ap.error("give either --cases or the grid lists (--Gp, --nup, --beta, --soil-E), not both")
+    lists = (args.Gp, args.nup, args.beta, args.soil_E, args.psi)
+    if args.cases and any(v is not None for v in lists):
+        ap.error("give either --cases or the grid lists (--Gp, --nup, --beta, --soil-E, --psi), not both")
     try:
         if args.cases:
             cases = [parse_case(c) for c in args.cases.split(",") if c]
-        elif any(v is not None for v in (args.Gp, args.nup, args.beta, args.soil_E)):
-            cases = [(G, nu, b, e) for e in (args.soil_E or [SOIL_E]) for b in (args.beta or BETAS)
-                     for G in (args.Gp or SHEAR_MODULI) for nu in (args.nup or POISSON)]
+        elif any(v is not None for v in lists):
+            cases = [(G, nu, b, e, psi) for psi in (args.psi or [PSI_JOINT]) for e in (args.soil_E or [SOIL_E])
+                     for b in (args.beta or BETAS) for G in (args.Gp or SHEAR_MODULI) for nu in (args.nup or POISSON)]
         else:
-            cases = [c + (SOIL_E,) for c in all_cases()]
+            cases = [c + (SOIL_E, PSI_JOINT) for c in all_cases()]
         for c in cases:
             check_parameters(*c)
     except ValueError as e:
         ap.error(str(e))
     os.makedirs(args.outdir, exist_ok=True)
-    for G, nu, beta, soil_E in cases:
-        with open(os.path.join(args.outdir, f"{case_name(G, nu, beta, soil_E)}.dat"), "w") as f:
+    for G, nu, beta, soil_E, psi in cases:
+        with open(os.path.join(args.outdir, f"{case_name(G, nu, beta, soil_E, psi)}.dat"), "w") as f:
             f.write(deck(G, nu, beta, args.soil_radius, args.steps, args.theta_step, soil_E,
-                         args.wall_elements, args.z_refine))
+                         args.wall_elements, args.z_refine, psi))
     print(f"wrote {len(cases)} decks to {args.outdir}")
 
 

@@ -434,8 +434,8 @@ def result_cases(results_dir):
     thesis = list(thesis_values())
     found = [d for d in os.listdir(results_dir) if os.path.exists(case_h5(results_dir, d))] \
         if os.path.isdir(results_dir) else []
-    # parametric cases by (E_s, beta, G_p, nu_p); a name make_model_c.py did not write comes last
-    key = lambda c: (math.isnan(case_parameters(c)[0]), [case_parameters(c)[i] for i in (3, 2, 0, 1)], c)
+    # parametric cases by (psi, E_s, beta, G_p, nu_p); a name make_model_c.py did not write comes last
+    key = lambda c: (math.isnan(case_parameters(c)[0]), [case_parameters(c)[i] for i in (4, 3, 2, 0, 1)], c)
     return [c for c in thesis if c in found] + sorted((c for c in found if c not in thesis), key=key)
 
 
@@ -482,7 +482,7 @@ def table(results_dir, csv_out=None):
                 "s2_sigma_max", "s2_residual", "wall_time", "iterations", "cutbacks"]
         with open(csv_out, "w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["case", "G_p", "nu_p", "beta", "E_s"] + keys +
+            w.writerow(["case", "G_p", "nu_p", "beta", "E_s", "psi_joint"] + keys +
                        ["thesis_beta_star", "thesis_beta_bar", "thesis_Z", "thesis_sigma_max"])
             for case, r in out:
                 t = ref.get(case)
@@ -510,13 +510,14 @@ def analytical_at_beta_bar(case, beta_bar):
 
 
 def case_parameters(case):
-    """(G_p, nu_p, beta, E_s) of a case name C_G300_nu0.1_b0.09[_Es1440] (make_model_c.py)."""
+    """(G_p, nu_p, beta, E_s, psi_joint) of a case name C_G300_nu0.1_b0.09[_Es1440][_psi0]
+    (make_model_c.py)."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import make_model_c
     try:
         return make_model_c.parse_case(case)
     except ValueError:
-        return (float("nan"),) * 4
+        return (float("nan"),) * 5
 
 
 E_CONCRETE, NU_CONCRETE, Q_TOP = 40000.0, 0.2, 10.0

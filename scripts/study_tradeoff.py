@@ -236,8 +236,8 @@ def model_c_deck(case):
     (21 864 DOFs; input/modelC now uses 3 deg, docs/verification.md, model C mesh sensitivity)."""
     sys.path.insert(0, os.path.join(ROOT, "scripts"))
     import make_model_c
-    G, nu, beta, soil_E = make_model_c.parse_case(case)
-    src = make_model_c.deck(G, nu, beta, theta_step=6.0, soil_E=soil_E)
+    G, nu, beta, soil_E, psi = make_model_c.parse_case(case)
+    src = make_model_c.deck(G, nu, beta, theta_step=6.0, soil_E=soil_E, psi=psi)
 
     def make(element, n, steps, tol, method):
         return rewrite_stages(src, steps, tol)

@@ -13,8 +13,9 @@ combination (the thesis's own cases among them are the same decks as above):
                                     [--soil-E 144,1440] [--psi 0,10,20]
 
 Case names: C_G<G_p>_nu<nu_p>_b<beta>, with _Es<E_s> appended when the soil's E is not the
-thesis's 144 MPa and _psi<psi> when the joint interface's dilation angle is not its 20 deg. Stage-2 steps off the thesis grid: at least the thesis's 250 and one step per
-0.000 54 deg of misalignment (500 at 0.27 deg), rounded up to 50 (see stage2_steps).
+thesis's 144 MPa and _psi<psi> when the joint interface's dilation angle is not its 20 deg.
+Stage-2 steps off the thesis grid: at least the thesis's 250 and one step per 0.000 54 deg of
+misalignment (500 at 0.27 deg), rounded up to 50 (see stage2_steps).
 
 Quarter model (y >= 0, z >= 0) of the symmetric three-pipe system, thesis Fig. 6.2 and SPEC
 section 8: the bottom half pipe (z 0..1250) in soil, a 15 mm packing (z 1250..1265) bonded to

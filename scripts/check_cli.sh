@@ -525,10 +525,13 @@ for m in "1 hex20" "2 hex8"; do
     || bad "model B FE1 --refine $1 --element $2: $(grep -E '^nodes|error' "$tmp/out")"
 done
 # The study reads its quantities from a run: on the decks' own mesh the peak nodal tension is at
-# its point A (r 600, theta 110, z 0), so the two columns must agree.
+# its point A (r 600, theta 110, z 0), so the two columns must agree. Both ends carry the same
+# load, so the mirror point at z = 2500 has the same peak to rounding and may come out first.
 python3 scripts/study_mesh_modelB.py --cases SE1 --meshes hex8:1 --feps "$feps" --out "$tmp/mb_mesh" >/dev/null 2>"$tmp/err" \
   && python3 -c 'import csv, sys; r = next(csv.DictReader(open(sys.argv[1])))
-sys.exit(not (r["node_s1_max_at"] == "600.0/110.00/0.0" and float(r["s1@A"]) == float(r["node_s1_max"]) > 7))' \
+peak, at_a = float(r["node_s1_max"]), float(r["s1@A"])
+sys.exit(not (r["node_s1_max_at"] in ("600.0/110.00/0.0", "600.0/110.00/2500.0") and abs(at_a - peak) <= 1e-12 * peak
+              and peak > 7))' \
   "$tmp/mb_mesh/results.csv" \
   && ok "study_mesh_modelB.py on SE1's own mesh: peak nodal s1 at point A" \
   || bad "study_mesh_modelB.py on SE1's own mesh: $(head -c 300 "$tmp/err") $(tail -1 "$tmp/mb_mesh/results.csv" 2>/dev/null | head -c 300)"

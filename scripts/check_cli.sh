@@ -813,6 +813,22 @@ printed = float(re.search(r"beta_bar \(x >= 250\) = ([0-9.]+) deg", open(sys.arg
 want = pmc.postprocess(sys.argv[1], verbose=False)["beta_bar"]
 sys.exit(0 if abs(printed - want) <= 5e-6 else 1)
 PY
+# beta_bar takes the interface's elastic closure sigma_n / Kn out of w at A-A, with sigma_n
+# extrapolated from each interface element's Gauss points to its nodes. Where the joint is
+# elastic and closed (every point of the coarse case on r = 715, x >= 250: beta = 0.09) that is
+# the nodal jump itself, so the reading equals the one that takes out the whole relative
+# displacement; at sliding points they differ by the dilatant opening (docs/verification.md).
+python3 - "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" <<'PY' >"$tmp/out" 2>"$tmp/err" \
+  && ok "model C beta_bar: the elastic closure from the extrapolated sigma_n is the nodal jump where the joint is elastic ($(cat "$tmp/out"))" \
+  || bad "model C beta_bar: elastic closure against the nodal jump: $(head -c 300 "$tmp/out") $(head -c 300 "$tmp/err")"
+import sys
+sys.path.insert(0, "scripts")
+import postprocess_model_c as pmc
+r = pmc.postprocess(sys.argv[1], verbose=False)
+print(f"{r['beta_bar']:.10f} = {r['beta_bar_whole_jump']:.10f} deg, nothing taken out {r['beta_bar_raw']:.6f}")
+sys.exit(0 if abs(r["beta_bar"] - r["beta_bar_whole_jump"]) <= 1e-12 and
+         abs(r["beta_bar"] - r["beta_bar_raw"]) > 1e-4 else 1)
+PY
 # Equilibrium of the written fields (scripts/check_equilibrium.py: nodal forces assembled with its
 # own shape functions from the stresses, tractions and reactions): the main job (FE1: hex8 and
 # interfaces, residual carried), SE1 (linear) and the coarse model C (packing, interface, soil).

@@ -28,7 +28,7 @@ The lines' sign is that of the compressed end: w < 0 at the top end (largest z),
 
 --joint-total (model C results of scripts/make_model_c.py's decks, thesis 7.4.2, Figures 7.7-7.8):
 the total deformation at the joint along r = 715, D(x) = -(w at the top pipe's mid-length section
-A-A, z = 2515, less the interface's jump uz(packing) - uz(bottom pipe)), compression positive, as
+A-A, z = 2515, less the interface's elastic closure sigma_n / Kn), compression positive, as
 scripts/postprocess_model_c.py computes it for beta_bar. Per file: the curve, the least-squares line
 over x >= 250 mm whose slope is beta_bar (dashed), and, unless --no-analytical, the Australian
 model's joint closure at that beta_bar, D = tan(beta_bar) (x - (R - Z)) for x > R - Z with its Z
@@ -108,8 +108,9 @@ def joint_total(ax, args, markers):
             conn_top = f["mesh/groups/top_pipe/connectivity"][...]
             conn_joint = f["mesh/groups/joint/connectivity"][...]
             u = f[f"steps/{step}/displacement"][...]
+            traction = f[f"steps/{step}/interface/joint"][...]
             case = fr.case_name(f)
-        bbar, _, _, _, x, d = pmc.beta_bar(coords, conn_top, conn_joint, u)
+        bbar, _, x, d = pmc.beta_bar(coords, conn_top, conn_joint, u, traction)
         label = args.labels[k] if args.labels else case
         line, = ax.plot(x, d, marker=markers[k % len(markers)], ms=3.5, lw=1.4,
                         label=f"{label} (beta_bar = {bbar:.4f} deg)")
@@ -132,7 +133,7 @@ def joint_total(ax, args, markers):
     ax.set_ylabel("total joint deformation D (mm, compression +)")
     ax.set_xlim(-pmc.R_OUT, pmc.R_OUT)
     return (f"Total deformation at the joint along r = {pmc.R_OUT:g} mm "
-            f"(section A-A less the interface)")
+            f"(section A-A less the interface's elastic closure)")
 
 
 def main(argv=None):

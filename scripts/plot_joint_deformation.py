@@ -107,6 +107,11 @@ def joint_total(ax, args, markers):
             coords = f["mesh/coordinates"][...]
             conn_top = f["mesh/groups/top_pipe/connectivity"][...]
             conn_joint = f["mesh/groups/joint/connectivity"][...]
+            for field in ("displacement", "interface/joint"):
+                if f"steps/{step}/{field}" not in f:
+                    raise Error(f"{path}: no /steps/{step}/{field} (the total joint deformation is read from "
+                                "the displacements and the interface's normal stress: do not leave them out with "
+                                "FIELDS)", 2)
             u = f[f"steps/{step}/displacement"][...]
             traction = f[f"steps/{step}/interface/joint"][...]
             case = fr.case_name(f)

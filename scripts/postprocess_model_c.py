@@ -62,6 +62,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import feps_results as fr  # noqa: E402
 from feps_cli import Error, benchmark_file, guard  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -141,10 +142,9 @@ def interface_normal_stress_at(conn_joint, traction, nodes):
     field through its 2x2 Gauss points extrapolated to its corners, averaged over the elements
     that share the node (as feps's nodal_interface field). Exact for a bilinear sigma_n, so at a
     node whose elements are all elastic and in contact, sigma_n / Kn is the nodal jump."""
-    # value at corner c = sum over Gauss points g of L_g(c), L_g the bilinear Lagrange basis on
-    # the Gauss points (first natural coordinate fastest, as GAUSS_POINTS)
-    extrap = np.array([[0.25 * (1 + xg * xi / GAUSS ** 2) * (1 + yg * eta / GAUSS ** 2) for xg, yg in GAUSS_POINTS]
-                       for xi, eta in CORNERS])
+    # the bilinear interpolant of the 4 point values at the corners: the inverse of the corner
+    # shape functions at the points (feps_results has feps's rule and point order)
+    extrap = np.linalg.inv(fr.integration_shapes("interface-quad4")[0])
     sn = traction[:, 2].reshape(len(conn_joint), 4)
     total, count = {}, {}
     for elem, values in zip(conn_joint[:, :4] - 1, sn @ extrap.T):

@@ -137,27 +137,26 @@ TAKE_OUT = ("elastic", "whole", "none")
 KN_INTERFACE = 800.0   # MPa/mm, the model C interface's normal stiffness (thesis 6.2, SPEC section 8)
 
 
-def interface_normal_stress_at(conn_joint, traction, nodes):
-    """sigma_n of the interface (MPa) at the given lower-layer nodes: each element's bilinear
-    field through its 2x2 Gauss points extrapolated to its corners, averaged over the elements
-    that share the node (as feps's nodal_interface field). Exact for a bilinear sigma_n, so at a
-    node whose elements are all elastic and in contact, sigma_n / Kn is the nodal jump."""
+def interface_normal_stress_nodal(conn_joint, traction, nnode):
+    """sigma_n of the interface (MPa) at every node (nan off its lower layer): each element's
+    bilinear field through its 2x2 Gauss points extrapolated to its corners, averaged over the
+    elements that share the node (as feps's nodal_interface field). Exact for a bilinear sigma_n,
+    so at a node whose elements are all elastic and in contact, sigma_n / Kn is the nodal jump."""
     # the bilinear interpolant of the 4 point values at the corners: the inverse of the corner
     # shape functions at the points (feps_results has feps's rule and point order)
     extrap = np.linalg.inv(fr.integration_shapes("interface-quad4")[0])
-    sn = traction[:, 2].reshape(len(conn_joint), 4)
-    total, count = {}, {}
-    for elem, values in zip(conn_joint[:, :4] - 1, sn @ extrap.T):
-        for n, v in zip(elem, values):
-            total[n] = total.get(n, 0.0) + v
-            count[n] = count.get(n, 0) + 1
-    return np.array([total[n] / count[n] for n in nodes])
+    corners = traction[:, 2].reshape(len(conn_joint), 4) @ extrap.T
+    ids = (conn_joint[:, :4] - 1).ravel()
+    count = np.bincount(ids, minlength=nnode)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.bincount(ids, weights=corners.ravel(), minlength=nnode) / count
 
 
-def joint_deformation(coords, conn_top, conn_joint, u, radius, traction=None, take_out="elastic"):
+def joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n=None, take_out="elastic"):
     """x and the total joint deformation D = -(w_AA - jump) (mm, compression positive) along r = radius,
     where jump is what is taken out of w_AA as the interface's deformation:
-    'elastic': its elastic closure sigma_n / Kn (the tabulated beta_bar; traction needed),
+    'elastic': its elastic closure sigma_n / Kn (the tabulated beta_bar; sigma_n: the nodal
+    normal stress of interface_normal_stress_nodal),
     'whole': its whole normal relative displacement uz(packing) - uz(bottom pipe) at the node
     pairs, which also holds the dilatant opening of sliding points,
     'none': nothing (D = -w_AA)."""
@@ -169,7 +168,7 @@ def joint_deformation(coords, conn_top, conn_joint, u, radius, traction=None, ta
     pairs = joint_pairs(conn_joint)
     lower = np.array([n for n in pairs if abs(radii[n] - radius) < TOL])
     if take_out == "elastic":
-        jumps = interface_normal_stress_at(conn_joint, traction, lower) / KN_INTERFACE
+        jumps = sigma_n[lower] / KN_INTERFACE
     elif take_out == "whole":
         jumps = np.array([u[pairs[n], 2] - u[n, 2] for n in lower])
     else:
@@ -194,7 +193,8 @@ def beta_bar(coords, conn_top, conn_joint, u, traction):
     """beta_bar (deg): least-squares slope over x >= 250 on r = 715 of D, w_AA less the interface's
     elastic closure; with the variants (a dict: secant, wall-averaged, nothing taken out, the
     whole relative displacement taken out) and the curve (x, D)."""
-    x, d = joint_deformation(coords, conn_top, conn_joint, u, R_OUT, traction)
+    sigma_n = interface_normal_stress_nodal(conn_joint, traction, len(coords))
+    x, d = joint_deformation(coords, conn_top, conn_joint, u, R_OUT, sigma_n)
     secant = (np.interp(R_OUT, x, d) - np.interp(X_REGION, x, d)) / (R_OUT - X_REGION)
     # every node radius of the wall (600, 657.5, 715 with the decks' 2 elements through it):
     # D(theta) averaged over r, x taken on the mid radius
@@ -202,7 +202,7 @@ def beta_bar(coords, conn_top, conn_joint, u, traction):
     wall_radii = sorted(set(np.round(radii[(radii > R_IN - TOL) & (radii < R_OUT + TOL)], 6)))
     ds = []
     for radius in wall_radii:
-        xr, dr = joint_deformation(coords, conn_top, conn_joint, u, radius, traction)
+        xr, dr = joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n)
         ds.append((xr / radius, dr))
     d_mean = np.mean([dr for _, dr in ds], axis=0)
     x_mid = ds[0][0] * 0.5 * (R_IN + R_OUT)

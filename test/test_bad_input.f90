@@ -700,13 +700,15 @@ contains
                         [character(len=40) :: 'undefined_material.dat:8: field 4:', 'unobtainium'], error)
   end subroutine test_undefined_material
 
-  !> The list of types in the message is what GROUP accepts: it once left out hex8b.
+  !> The list of types in the message is what GROUP accepts (it once left out hex8b): the
+  !! element catalog's names, by family.
   subroutine test_element_type_unknown(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/element_type_unknown.dat', err_input, &
                         [character(len=60) :: 'element_type_unknown.dat:8: field 3:', 'unknown element type "hex9"', &
-                         '(3D: hex8, hex8b, hex20, hex20r, interface-quad4', 'tri6, tri6-6, interface-line2', &
-                         'bar2 .. bar5'], error)
+                         '(solids: hex8, hex8b, hex20, hex20r, tri6, tri6-6', &
+                         'interfaces: interface-quad4, interface-quad4-nodal,', 'interface-line3-nodal;', &
+                         'bars: bar2, bar3, bar4, bar5;'], error)
   end subroutine test_element_type_unknown
 
   subroutine test_nu_half(error)

@@ -11,7 +11,7 @@ module test_elements
   use feps_hex8, only: hex8_t
   use feps_hex20, only: hex20_t
   use feps_hex8_bbar, only: hex8_bbar_t
-  use feps_element_factory, only: new_element
+  use feps_element_catalog, only: new_element => new_solid_element
   implicit none
   private
 

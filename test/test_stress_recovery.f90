@@ -13,7 +13,7 @@ module test_stress_recovery
   use feps_error, only: str
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_element, only: element_t
-  use feps_element_factory, only: new_element
+  use feps_element_catalog, only: new_element => new_solid_element
   use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average
   use feps_interface_element, only: interface_element_t, new_interface_element
   use feps_h5_testing, only: run_and_open, close_and_delete, scratch_path, read_real, read_int, file_text, &

@@ -9,7 +9,7 @@ module test_tri6
   use feps_lapack, only: dsyev
   use feps_element, only: element_t
   use feps_tri6, only: tri6_t
-  use feps_element_factory, only: new_element
+  use feps_element_catalog, only: new_element => new_solid_element
   implicit none
   private
 

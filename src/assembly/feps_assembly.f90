@@ -7,9 +7,9 @@ module feps_assembly
   use feps_dof_map, only: dof_map_t
   use feps_sparse_matrix, only: csr_matrix_t
   use feps_element, only: element_t
-  use feps_element_factory, only: new_element
-  use feps_interface_element, only: interface_element_t, new_interface_element, is_interface_type
-  use feps_bar_element, only: bar_element_t, new_bar_element, is_bar_type
+  use feps_element_catalog, only: new_solid_element, family_interface, family_bar
+  use feps_interface_element, only: interface_element_t, new_interface_element
+  use feps_bar_element, only: bar_element_t, new_bar_element
   use feps_material, only: material_slot_t
   use feps_material_factory, only: new_material
   implicit none
@@ -42,14 +42,14 @@ contains
     allocate (kernels(size(model%groups)))
     do g = 1, size(model%groups)
       associate (k => kernels(g), grp => model%groups(g))
-        k%is_interface = is_interface_type(grp%element_type)
-        k%is_bar = is_bar_type(grp%element_type)
+        k%is_interface = grp%element%family == family_interface
+        k%is_bar = grp%element%family == family_bar
         if (k%is_interface) then
           call new_interface_element(grp%element_type, k%iface, error)
         else if (k%is_bar) then
           call new_bar_element(grp%element_type, k%bar, error)
         else
-          call new_element(grp%element_type, k%element, error)
+          call new_solid_element(grp%element_type, k%element, error)
         end if
         if (allocated(error)) then
           call input_error(error, grp%file, grp%line, 'group ' // grp%name // ': unsupported element type "' // &

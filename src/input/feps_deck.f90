@@ -12,10 +12,12 @@ module feps_deck
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
-                        method_full_newton_raphson, is_2d_type, known_fields, line_search_refusal
+                        method_full_newton_raphson, known_fields, line_search_refusal
   use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
                               parse_range_int, key_value, check_option_keys, option_text, get_csys_option, dof_index, dof_names, &
-                              check_result_name, resolve_path, element_family, material_family
+                              check_result_name, resolve_path, material_family
+  use feps_element_catalog, only: element_info, known_element_types, family_name, family_solid, family_interface, &
+                                  family_bar, bare_mesh_type
   use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
   use feps_deck_stages, only: read_stage, read_controls_record, read_report
   implicit none
@@ -467,6 +469,7 @@ contains
     type(element_group_t) :: g
     type(element_group_t), allocatable :: tmp(:)
     character(len=:), allocatable :: text
+    type(error_t), allocatable :: unknown
     integer :: ifield, lo, hi, b
     logical :: found
 
@@ -486,14 +489,15 @@ contains
       call input_error(error, rec%file, rec%line, 'GROUP needs TYPE=<element type>')
       return
     end if
-    g%element_type = to_lower(text)
-    if (nodes_of(g%element_type) == 0) then
-      call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (3D: hex8, hex8b, hex20, ' // &
-                       'hex20r, interface-quad4, interface-quad8, interface-tri3, interface-tri6; 2D plane ' // &
-                       'strain: tri6, tri6-6, interface-line2, interface-line3; -nodal after an interface type ' // &
-                       'for nodal integration; bars: bar2 .. bar5)', ifield)
+    call element_info(text, g%element, unknown)
+    if (allocated(unknown)) then
+      call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (solids: ' // &
+                       known_element_types(family_solid) // '; interfaces: ' // &
+                       known_element_types(family_interface) // '; bars: ' // known_element_types(family_bar) // &
+                       '; 2D plane strain: tri6, tri6-6 and the line interfaces)', ifield)
       return
     end if
+    g%element_type = g%element%name
     call option_text(rec, 'MATERIAL', text, ifield, found)
     if (.not. found) then
       call input_error(error, rec%file, rec%line, 'GROUP needs MATERIAL=<name>')
@@ -601,7 +605,7 @@ contains
       call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
       return
     end if
-    if (index(model%groups(s%group)%element_type, 'interface-') == 1) then
+    if (model%groups(s%group)%element%family == family_interface) then
       call input_error(error, rec%file, rec%line, 'face sets take faces of solid elements; group "' // text // &
                        '" holds interface elements', ifield)
       return
@@ -686,6 +690,7 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(error_t), allocatable, intent(out) :: error
     logical, allocatable :: defined(:)
+    type(error_t), allocatable :: unknown
     integer :: nnode, i, g, b, nel, k, first
 
     ! Nodes: DATAIN blocks first, explicit NODE records at their numbers.
@@ -720,14 +725,12 @@ contains
       allocate (model%groups(size(st%mesh%blocks)))
       do b = 1, size(st%mesh%blocks)
         model%groups(b)%name = 'block' // str(b)
-        select case (st%mesh%blocks(b)%nodes_per_element)
-        case (8)
-          model%groups(b)%element_type = 'hex8'
-        case (20)
-          model%groups(b)%element_type = 'hex20'
-        case default
+        model%groups(b)%element_type = bare_mesh_type(st%mesh%blocks(b)%nodes_per_element)
+        if (len(model%groups(b)%element_type) > 0) then
+          call element_info(model%groups(b)%element_type, model%groups(b)%element, unknown)
+        else
           model%groups(b)%element_type = 'nodes' // str(st%mesh%blocks(b)%nodes_per_element)
-        end select
+        end if
         model%groups(b)%material_name = ''
         model%groups(b)%connectivity = st%mesh%blocks(b)%connectivity
         model%groups(b)%blocks = [b]
@@ -766,11 +769,11 @@ contains
         do k = 1, size(model%groups(g)%blocks)
           b = model%groups(g)%blocks(k)
           nel = nel + size(st%mesh%blocks(b)%connectivity, 2)
-          if (st%mesh%blocks(b)%nodes_per_element /= nodes_of(model%groups(g)%element_type)) then
+          if (st%mesh%blocks(b)%nodes_per_element /= model%groups(g)%element%nnodes) then
             call input_error(error, st%mesh%blocks(b)%file, st%mesh%blocks(b)%line, 'element block ' // str(b) &
                              // ' has ' // str(st%mesh%blocks(b)%nodes_per_element) // ' nodes per element, but ' &
                              // 'group ' // model%groups(g)%name // ' is ' // model%groups(g)%element_type // &
-                             ' (' // str(nodes_of(model%groups(g)%element_type)) // ' nodes)')
+                             ' (' // str(model%groups(g)%element%nnodes) // ' nodes)')
             return
           end if
         end do
@@ -779,7 +782,7 @@ contains
                            ' has no elements')
           return
         end if
-        allocate (model%groups(g)%connectivity(nodes_of(model%groups(g)%element_type), nel))
+        allocate (model%groups(g)%connectivity(model%groups(g)%element%nnodes, nel))
         first = 0
         do k = 1, size(model%groups(g)%blocks)
           b = model%groups(g)%blocks(k)
@@ -794,7 +797,7 @@ contains
           return
         end if
         if (material_family(model%materials(model%groups(g)%material)%kind) /= &
-            element_family(model%groups(g)%element_type)) then
+            family_name(model%groups(g)%element%family)) then
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
                            ' (' // model%groups(g)%element_type // ') cannot use material ' // &
                            model%groups(g)%material_name // ' (' // model%materials(model%groups(g)%material)%kind // &
@@ -820,9 +823,9 @@ contains
       return
     end if
     ! A model is plane strain when its groups are 2D types; 2D and 3D do not mix.
-    model%plane_strain = is_2d_type(model%groups(1)%element_type)
+    model%plane_strain = model%groups(1)%element%dimension == 2
     do g = 2, size(model%groups)
-      if (is_2d_type(model%groups(g)%element_type) .neqv. model%plane_strain) then
+      if ((model%groups(g)%element%dimension == 2) .neqv. model%plane_strain) then
         call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
                          ' (' // model%groups(g)%element_type // ') mixes 2D (plane strain) and 3D element types')
         return
@@ -1099,35 +1102,5 @@ contains
       call input_error(error, rec%file, rec%line, 'the selection gives no coordinate range')
     end if
   end subroutine read_region
-
-  pure integer function nodes_of(element_type)
-    character(len=*), intent(in) :: element_type
-    select case (element_type)
-    case ('hex8', 'hex8b', 'interface-quad4', 'interface-quad4-nodal')
-      nodes_of = 8
-    case ('hex20', 'hex20r')
-      nodes_of = 20
-    case ('interface-quad8', 'interface-quad8-nodal')
-      nodes_of = 16
-    case ('interface-tri3', 'interface-tri3-nodal')
-      nodes_of = 6
-    case ('interface-tri6', 'interface-tri6-nodal')
-      nodes_of = 12
-    case ('tri6', 'tri6-6')
-      nodes_of = 6
-    case ('interface-line2', 'interface-line2-nodal', 'bar4')
-      nodes_of = 4
-    case ('interface-line3', 'interface-line3-nodal')
-      nodes_of = 6
-    case ('bar2')
-      nodes_of = 2
-    case ('bar3')
-      nodes_of = 3
-    case ('bar5')
-      nodes_of = 5
-    case default
-      nodes_of = 0
-    end select
-  end function nodes_of
 
 end module feps_deck

@@ -13,7 +13,7 @@ module feps_deck_fields
 
   public :: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, parse_range_int
   public :: key_value, check_option_keys, option_text, option_real, get_csys_option, dof_index, dof_names, check_result_name
-  public :: resolve_path, element_family, material_family
+  public :: resolve_path, material_family
 
 contains
 
@@ -325,19 +325,6 @@ contains
     slash = index(base, '/', back=.true.)
     full = base(:slash) // path
   end function resolve_path
-
-  !> 'interface', 'bar' or 'solid' for an element type and for a material kind.
-  pure function element_family(element_type) result(family)
-    character(len=*), intent(in) :: element_type
-    character(len=:), allocatable :: family
-    if (index(element_type, 'interface-') == 1) then
-      family = 'interface'
-    else if (index(element_type, 'bar') == 1) then
-      family = 'bar'
-    else
-      family = 'solid'
-    end if
-  end function element_family
 
   !> 'interface', 'bar' or 'solid' for a material kind.
   pure function material_family(kind) result(family)

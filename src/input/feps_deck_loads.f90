@@ -7,9 +7,10 @@ module feps_deck_loads
   use feps_error, only: error_t, input_error, str
   use feps_records, only: record_t, keyword, nfields, field_text
   use feps_coordinate_system, only: csys_cartesian, csys_cylindrical
+  use feps_element_catalog, only: family_bar
   use feps_model, only: model_t, constraint_t, nodal_load_t, face_load_t, load_pressure, load_traction, prestress_t
   use feps_deck_fields, only: key_value, check_option_keys, dof_index, dof_names, get_csys_option, option_text, &
-                              require_fields, parse_real, element_family
+                              require_fields, parse_real
   implicit none
   private
 
@@ -197,7 +198,7 @@ contains
       call input_error(error, rec%file, rec%line, 'undefined element group "' // name // '"', 2)
       return
     end if
-    if (element_family(model%groups(p%group)%element_type) /= 'bar') then
+    if (model%groups(p%group)%element%family /= family_bar) then
       call input_error(error, rec%file, rec%line, 'PRESTRESS acts on bars; group "' // name // '" holds ' // &
                        model%groups(p%group)%element_type // ' elements', 2)
       return

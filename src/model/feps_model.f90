@@ -4,6 +4,7 @@
 module feps_model
   use feps_kinds, only: dp
   use feps_coordinate_system, only: coordinate_system_t
+  use feps_element_catalog, only: element_info_t, family_interface
   implicit none
   private
 
@@ -32,7 +33,9 @@ module feps_model
   !> Elements of one type and one material.
   type, public :: element_group_t
     character(len=:), allocatable :: name
-    character(len=:), allocatable :: element_type   !! 'hex8', 'hex20', 'hex20r'
+    character(len=:), allocatable :: element_type   !! the element catalog's name ('nodes<k>': an
+                                                    !! untyped block of a bare DATAIN mesh)
+    type(element_info_t) :: element                 !! what the catalog says of it (family 0: untyped)
     character(len=:), allocatable :: material_name
     integer :: material_field = 0                   !! the GROUP record's MATERIAL= field (for errors)
     integer :: material = 0                         !! index into model%materials
@@ -262,10 +265,7 @@ module feps_model
     procedure :: find_node_set, find_face_set, find_material, find_group
   end type model_t
 
-  public :: in_region, is_2d_type, line_search_refusal, known_fields
-
-  character(len=*), parameter :: types_2d(*) = [character(len=21) :: 'tri6', 'tri6-6', 'interface-line2', &
-    'interface-line3', 'interface-line2-nodal', 'interface-line3-nodal']
+  public :: in_region, line_search_refusal, known_fields
 
 contains
 
@@ -438,23 +438,13 @@ contains
     end select
   end function line_search_refusal
 
-  !> Element types of plane-strain (2D) models.
-  pure logical function is_2d_type(element_type)
-    character(len=*), intent(in) :: element_type
-    integer :: i
-    is_2d_type = .false.
-    do i = 1, size(types_2d)
-      if (element_type == trim(types_2d(i))) is_2d_type = .true.
-    end do
-  end function is_2d_type
-
   !> True if some group holds interface elements.
   pure logical function has_interfaces(self)
     class(model_t), intent(in) :: self
     integer :: g
     has_interfaces = .false.
     do g = 1, size(self%groups)
-      if (index(self%groups(g)%element_type, 'interface-') == 1) has_interfaces = .true.
+      if (self%groups(g)%element%family == family_interface) has_interfaces = .true.
     end do
   end function has_interfaces
 

@@ -15,8 +15,8 @@ module feps_results_file
   use feps_kinds, only: dp, i8
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_error, only: error_t, fatal_error, err_io, err_internal, err_solver, str
-  use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_type, &
-                       xdmf_cell_nodes, xdmf_topology_path, count_words, is_xdmf_name, word
+  use feps_element_catalog, only: element_info_t, element_info, family_name, point_coordinates
+  use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_path, count_words, is_xdmf_name, word
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
@@ -157,18 +157,28 @@ contains
   end subroutine write_mesh
 
   !> `/mesh/groups/<name>/connectivity`: connectivity(k, nelem), 1-based node numbers, and the
-  !! group attribute `element_type`; when XDMF can show the type, the 0-based nodes of its XDMF
-  !! cell at `/xdmf/<name>/topology` (all k, or the lower layer of an interface element).
-  subroutine write_group(self, name, element_type, connectivity, error, material)
+  !! group attribute `element_type`; for a type of the element catalog also what the catalog
+  !! says of it (attributes `family`, `dimension`, `points_per_element`, `result_field`,
+  !! `components`, `xdmf_topology`: the scripts read these, never a table of their own) and the
+  !! 0-based nodes of its XDMF cell at `/xdmf/<name>/topology` (all k, or the lower layer of an
+  !! interface element). Given the mesh `coordinates`, also `/mesh/groups/<name>/points`: the
+  !! global coordinates of its integration points, in the rows of its point datasets. An untyped
+  !! block of a bare DATAIN mesh (`nodes<k>`) has none of these.
+  subroutine write_group(self, name, element_type, connectivity, error, material, coordinates)
     class(results_file_t), intent(inout) :: self
     character(len=*), intent(in) :: name
     character(len=*), intent(in) :: element_type
     integer, intent(in) :: connectivity(:, :)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: material   !! its material's name (attribute `material`)
+    real(dp), intent(in), optional :: coordinates(:, :)  !! (3, nnode) the mesh: with it a catalog type's
+                                                         !! integration points go to `points`
     integer(hid_t) :: group_id
     integer :: hdferr, cell_nodes
     type(xdmf_group_t), allocatable :: grown(:)
+    type(element_info_t) :: info
+    type(error_t), allocatable :: unknown
+    real(dp), allocatable :: xg(:, :)
 
     call require_open(self, error)
     if (allocated(error)) return
@@ -187,24 +197,49 @@ contains
     call write_string_attribute(group_id, 'element_type', element_type, error)
     if (present(material) .and. .not. allocated(error)) call write_string_attribute(group_id, 'material', material, &
                                                                                      error)
+    call element_info(element_type, info, unknown)
+    if (.not. allocated(unknown) .and. .not. allocated(error)) call write_catalog_attributes(group_id, info, error)
     call h5gclose_f(group_id, hdferr)
     if (allocated(error)) return
     call write_int_dataset(self, '/mesh/groups/' // name // '/connectivity', connectivity, error)
     if (allocated(error)) return
-    cell_nodes = xdmf_cell_nodes(element_type, size(connectivity, 1))
-    if (len(xdmf_topology_type(element_type)) > 0) then
+    cell_nodes = size(connectivity, 1)
+    if (allocated(unknown)) then
+      info%xdmf_topology = ''
+    else
+      cell_nodes = info%xdmf_cell_nodes
       call write_int_dataset(self, xdmf_topology_path(name), connectivity(:cell_nodes, :) - 1, error)
       if (allocated(error)) return
+      if (present(coordinates)) then
+        call point_coordinates(element_type, coordinates, connectivity, xg, error)
+        if (.not. allocated(error)) call write_real_dataset(self, '/mesh/groups/' // name // '/points', xg, 'x y z', &
+                                                            error)
+        if (allocated(error)) return
+      end if
     end if
 
     allocate (grown(size(self%groups) + 1))
     grown(:size(self%groups)) = self%groups
     grown(size(grown))%name = name
     grown(size(grown))%element_type = element_type
+    grown(size(grown))%topology = info%xdmf_topology
     grown(size(grown))%nodes_per_element = cell_nodes
     grown(size(grown))%element_count = size(connectivity, 2)
     call move_alloc(grown, self%groups)
   end subroutine write_group
+
+  !> The element catalog's answers for a group's type, as attributes of its HDF5 group.
+  subroutine write_catalog_attributes(group_id, info, error)
+    integer(hid_t), intent(in) :: group_id
+    type(element_info_t), intent(in) :: info
+    type(error_t), allocatable, intent(out) :: error
+    call write_string_attribute(group_id, 'family', family_name(info%family), error)
+    if (.not. allocated(error)) call write_int_attribute(group_id, 'dimension', info%dimension, error)
+    if (.not. allocated(error)) call write_int_attribute(group_id, 'points_per_element', info%npoints, error)
+    if (.not. allocated(error)) call write_string_attribute(group_id, 'result_field', info%result_field, error)
+    if (.not. allocated(error)) call write_string_attribute(group_id, 'components', info%component_names, error)
+    if (.not. allocated(error)) call write_string_attribute(group_id, 'xdmf_topology', info%xdmf_topology, error)
+  end subroutine write_catalog_attributes
 
   !> Group `/steps/<NNNN>` with attributes `load_factor`, `iterations` and `residual`.
   subroutine begin_step(self, step, load_factor, iterations, residual, error)

@@ -13,13 +13,14 @@ module feps_xdmf
   implicit none
   private
 
-  public :: write_xdmf, xdmf_topology_type, xdmf_cell_nodes, xdmf_topology_path, count_words, word, is_xdmf_name
+  public :: write_xdmf, xdmf_topology_path, count_words, word, is_xdmf_name
 
   !> An element group as the XDMF file needs it.
   type, public :: xdmf_group_t
     character(len=:), allocatable :: name           !! group name, as in `/mesh/groups/<name>`
-    character(len=:), allocatable :: element_type   !! feps element type, e.g. 'hex8'
-    integer :: nodes_per_element = 0                !! nodes of the XDMF cell (xdmf_cell_nodes)
+    character(len=:), allocatable :: element_type   !! feps element type (the element catalog's name)
+    character(len=:), allocatable :: topology       !! its XDMF TopologyType ('': none, not shown)
+    integer :: nodes_per_element = 0                !! nodes of the XDMF cell
     integer :: element_count = 0
   end type xdmf_group_t
 
@@ -43,57 +44,6 @@ module feps_xdmf
   end type xdmf_step_t
 
 contains
-
-  !> XDMF topology type for a feps element type; '' when XDMF has no matching cell.
-  !! Node orders match: hex20 and tri6 list corners then mid-edges as Hexahedron_20 and
-  !! Triangle_6 do. Interface elements (lower layer, then upper layer) are shown by their lower
-  !! layer, a surface or a line (XDMF has no cell with two layers of quadratic nodes), with the
-  !! '-nodal' variants as the Gauss ones; interface-line3 lists ends then middle as Edge_3. Bars
-  !! are polylines through their nodes in order (bar3 lists the middle node second, Edge_3 last).
-  pure function xdmf_topology_type(element_type) result(topology)
-    character(len=*), intent(in) :: element_type
-    character(len=:), allocatable :: topology
-    character(len=*), parameter :: nodal = '-nodal'
-    character(len=:), allocatable :: base
-    integer :: n
-    base = trim(element_type)
-    n = len(base)
-    if (n > len(nodal)) then
-      if (base(n - len(nodal) + 1:) == nodal) base = base(:n - len(nodal))
-    end if
-    select case (base)
-    case ('hex8', 'hex8b')
-      topology = 'Hexahedron'
-    case ('hex20', 'hex20r')
-      topology = 'Hexahedron_20'
-    case ('tri3', 'interface-tri3')
-      topology = 'Triangle'
-    case ('tri6', 'tri6-6', 'interface-tri6')
-      topology = 'Triangle_6'
-    case ('quad4', 'interface-quad4')
-      topology = 'Quadrilateral'
-    case ('interface-quad8')
-      topology = 'Quadrilateral_8'
-    case ('interface-line3')
-      topology = 'Edge_3'
-    case ('bar2', 'bar3', 'bar4', 'bar5', 'interface-line2')
-      topology = 'Polyline'
-    case default
-      topology = ''
-    end select
-  end function xdmf_topology_type
-
-  !> Nodes of the XDMF cell of an element with `nodes_per_element` nodes: the first half (the
-  !! lower layer) for interface elements, all of them otherwise.
-  pure integer function xdmf_cell_nodes(element_type, nodes_per_element)
-    character(len=*), intent(in) :: element_type
-    integer, intent(in) :: nodes_per_element
-    if (index(element_type, 'interface-') == 1) then
-      xdmf_cell_nodes = nodes_per_element / 2
-    else
-      xdmf_cell_nodes = nodes_per_element
-    end if
-  end function xdmf_cell_nodes
 
   !> True when a results file name ends in '.xmf' (any letter case): the XDMF file written beside
   !! the results is named `<name without extension>.xmf` and would replace them (or, on a
@@ -228,7 +178,7 @@ contains
       integer :: g, f
       pad = repeat(' ', indent)
       do g = 1, size(groups)
-        topology = xdmf_topology_type(groups(g)%element_type)
+        topology = groups(g)%topology
         if (len(topology) == 0) cycle
         call put(pad // '<Grid Name="' // escape(groups(g)%name) // '" GridType="Uniform">')
         if (topology == 'Polyline') then

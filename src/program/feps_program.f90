@@ -17,7 +17,7 @@ module feps_program
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
   use feps_element, only: element_t
-  use feps_element_factory, only: new_element
+  use feps_element_catalog, only: new_solid_element, family_solid
   use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average, fill_outside
   use feps_interface_element, only: interface_element_t, new_interface_element
   implicit none
@@ -600,19 +600,19 @@ contains
         'reaction_nodal', res%reaction_nodal, 'f1 f2 f3', error)
       do g = 1, size(res%groups)
         if (allocated(error)) return
-        associate (gr => res%groups(g), name => self%model%groups(g)%name)
+        associate (gr => res%groups(g), name => self%model%groups(g)%name, element => self%model%groups(g)%element)
           if (.not. allocated(gr%stress)) cycle      ! no field of this group was asked for
           if (gr%is_bar) then
-            call self%h5%write_gauss(res%step, 'bar', name, gr%stress, 'axial_force', gr%points_per_element, error)
+            call self%h5%write_gauss(res%step, element%result_field, name, gr%stress, element%component_names, &
+                                     gr%points_per_element, error)
           else if (gr%is_interface) then
             nc = size(gr%stress, 1)
             if (f%interface) then
               allocate (extra(nc + 1, size(gr%state)))
               extra(1:nc, :) = gr%stress
               extra(nc + 1, :) = real(gr%state, dp)
-              call self%h5%write_gauss(res%step, 'interface', name, extra, &
-                                       trim(merge('tau1 tau2 sigma_n state', 'tau sigma_n state      ', nc == 3)), &
-                                       gr%points_per_element, error)
+              call self%h5%write_gauss(res%step, element%result_field, name, extra, &
+                                       element%component_names // ' state', gr%points_per_element, error)
               deallocate (extra)
             end if
             if (f%interface_strain .and. .not. allocated(error)) call self%h5%write_gauss(res%step, &
@@ -621,8 +621,8 @@ contains
             if (f%nodal_interface .and. .not. allocated(error)) &
               call write_nodal_tractions(self%h5, self%model, res%step, g, gr%stress, error)
           else
-            if (f%stress) call self%h5%write_gauss(res%step, 'stress', name, gr%stress, 'sxx syy szz syz sxz sxy', &
-                                                   gr%points_per_element, error)
+            if (f%stress) call self%h5%write_gauss(res%step, element%result_field, name, gr%stress, &
+                                                   element%component_names, gr%points_per_element, error)
             if (f%principal .and. .not. allocated(error)) then
               allocate (extra(2, size(gr%stress, 2)))
               do q = 1, size(gr%stress, 2)
@@ -658,7 +658,7 @@ contains
     integer :: node
     logical :: ok
     associate (group => model%groups(g))
-      call new_element(group%element_type, element, error)
+      call new_solid_element(group%element_type, element, error)
       if (allocated(error)) return
       call extrapolation_matrix(element, e, ok)
       if (.not. ok) then
@@ -841,8 +841,9 @@ contains
     end if
   end function default_output
 
-  !> The smallest Jacobian of a bare DATAIN mesh, over its hex8 and hex20 blocks: a block of
-  !! another node count (typed nodes<k>) has no element to evaluate and is only counted and
+  !> The smallest Jacobian of a bare DATAIN mesh, over its typed blocks (element_catalog's
+  !! bare_mesh_type: hex8, hex20): a block of another node count (typed nodes<k>) has no
+  !! element to evaluate and is only counted and
   !! written (it used to stop the run as an unsupported element type).
   subroutine mesh_jacobians(model, min_detj, error)
     type(model_t), intent(in) :: model
@@ -854,8 +855,7 @@ contains
     solids%coords = model%coords
     allocate (solids%groups(0))
     do g = 1, size(model%groups)
-      if (model%groups(g)%element_type == 'hex8' .or. model%groups(g)%element_type == 'hex20') &
-        solids%groups = [solids%groups, model%groups(g)]
+      if (model%groups(g)%element%family == family_solid) solids%groups = [solids%groups, model%groups(g)]
     end do
     call build_kernels(solids, kernels, error)
     if (allocated(error)) return
@@ -885,7 +885,7 @@ contains
     if (allocated(error)) return
     do g = 1, size(model%groups)
       call h5%write_group(model%groups(g)%name, model%groups(g)%element_type, model%groups(g)%connectivity, error, &
-                          material=model%groups(g)%material_name)
+                          material=model%groups(g)%material_name, coordinates=model%coords)
       if (allocated(error)) return
     end do
   end subroutine write_mesh

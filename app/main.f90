@@ -6,7 +6,7 @@ program feps_main
   use feps_error, only: error_t, err_input, err_input_file, err_model, str
   use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version
   use feps_strings, only: sci
-  use feps_xdmf, only: is_xdmf_name
+  use feps_paths, only: is_xdmf_name
   implicit none
 
   interface

@@ -3,8 +3,9 @@
 
 The guide asks for: one module per file, named after it; implicit none; private by default;
 an intent on every dummy argument; library code that never stops or prints; no common,
-equivalence or goto; FORD doc comments on public procedures; no global mutable state. The
-compiler enforces none of these, so this script does (it runs in .ci/run). `--list-rules`
+equivalence or goto; FORD doc comments on public procedures; no global mutable state. It also keeps the layers
+of docs/architecture.md apart: a src/ module never uses one of a higher layer (LAYERS below).
+The compiler enforces none of these, so this script does (it runs in .ci/run). `--list-rules`
 lists the rules and the exceptions allowed, `--self-test` proves that each rule can fail.
 
 It reads free-form source as the compiler does: comments (a `!` outside strings), continuation
@@ -23,6 +24,27 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DIRS = ('src', 'app', 'test')
 SUFFIXES = ('.f90', '.F90', '.f95', '.f03', '.f08')
+
+# The architecture (docs/architecture.md): every folder src/<layer>/ is a layer, and this table,
+# lowest tier first, is the one place that orders them. The layers of one tier are siblings.
+# A src/ file may use the modules of its own layer and of every lower tier; using a module of
+# a higher tier, or of a sibling unless SIBLING_USES allows the pair, is a `layering`
+# violation. test/ and app/ stand above every tier and may use anything. A new src/ folder
+# must be added here: its files are reported until it is.
+LAYERS = [
+    ('core',),                         # kinds, errors, strings, clock, file-name conventions
+    ('linalg', 'elements'),            # CSR matrix, LAPACK/BLAS interfaces | element kernels and
+                                       # the element catalog
+    ('model',),                        # the model's plain data (its groups hold catalog answers)
+    ('materials',),                    # constitutive models, built from the model's material specs
+    ('input', 'assembly', 'solvers'),  # deck reader | DOFs, stiffness, loads | linear solvers
+    ('analysis',),                     # the staged incremental driver and its state
+    ('post',),                         # stress recovery, analytical joint models
+    ('output',),                       # HDF5 results, XDMF, principal stresses
+    ('program',),                      # what the `feps` command does
+]
+SIBLING_USES = set()                   # (layer, sibling it may use) pairs: none, siblings are independent
+TIER = {layer: rank for rank, tier in enumerate(LAYERS) for layer in tier}
 
 RULES = [
     ('one-module', "one module per file, the file named after it (src/ and test/; a file whose "
@@ -48,6 +70,10 @@ RULES = [
     ('global-state', "no module variable, save or data statement in src/ modules (every "
                      "module-level declaration is a parameter); `protected` does not help: the "
                      "owning module still writes it"),
+    ('layering', "a src/ module uses only modules of its own layer (its folder under src/) and of "
+                 "lower ones, as the LAYERS table at the top of this script orders them; a sibling "
+                 "layer (same tier) only where SIBLING_USES allows it; a src/ folder missing from "
+                 "the table is reported; test/ and app/ may use anything"),
 ]
 RULE_NAMES = [name for name, _ in RULES]
 
@@ -367,9 +393,10 @@ def documented(lines, stmt, trailing_docs=()):
             or any(n in trailing_docs for n in range(stmt.first, stmt.last + 1)))
 
 
-def check_source(path, text, index=None):
+def check_source(path, text, index=None, layers=None):
     """Violations (line, rule, message) of one file; path is relative to the package root,
-    index (see type_index) knows the types of the other files, for inherited bindings."""
+    index (see type_index) knows the types of the other files, for inherited bindings, and
+    layers (see module_layers) the layer of every module, for the layering rule."""
     path = path.replace(os.sep, '/')
     area = path.split('/', 1)[0]
     in_src = area == 'src'
@@ -438,7 +465,58 @@ def check_source(path, text, index=None):
         for module in modules:
             check_module_state(module, report)
             check_docs(module, lines, root.trailing_docs, report, dict(index or {}, **type_index(root)))
+        check_layering(path, root, dict(layers or {}, **module_layers(path, root)), report)
     return sorted(found)
+
+
+USE = re.compile(r'^use\b\s*(?:,\s*(intrinsic|non_intrinsic)\s*)?(?:::)?\s*([a-z_]\w*)')
+
+
+def path_layer(path):
+    """The layer of a file: its folder under src/ ('' for a file directly in src/), else
+    the top folder (test, app)."""
+    parts = path.replace(os.sep, '/').split('/')
+    if parts[0] == 'src':
+        return parts[1] if len(parts) > 2 else ''
+    return parts[0]
+
+
+def layer_rank(layer):
+    """The tier of a layer in LAYERS; test/ and app/ above them all; None if unknown."""
+    return len(LAYERS) if layer in ('test', 'app') else TIER.get(layer)
+
+
+def module_layers(path, root):
+    """{module name: layer} of the modules a file defines."""
+    return {unit.name: path_layer(path) for unit in root.children if unit.kind == 'module'}
+
+
+def check_layering(path, root, layers, report):
+    """The src/ file at path uses no module of a higher or a forbidden sibling layer (LAYERS)."""
+    layer = path_layer(path)
+    if layer not in TIER:
+        report(1, 'layering', '%s is in no layer: add its folder to the LAYERS table of '
+               'scripts/check_style.py (or move it into a layer)' % path)
+        return
+    for unit in root.children:
+        for scope in walk(unit):
+            for stmt in scope.statements:
+                m = USE.match(stmt.code)
+                if not m or m.group(1) == 'intrinsic':
+                    continue
+                used = m.group(2)
+                other = layers.get(used)
+                if other is None or other == layer or layer_rank(other) is None:
+                    continue           # not a module of this package (hdf5), the same layer,
+                                       # or one in an unknown folder (reported there)
+                if layer_rank(other) > TIER[layer]:
+                    why = 'which is above it'
+                elif layer_rank(other) == TIER[layer] and (layer, other) not in SIBLING_USES:
+                    why = 'a sibling layer that the LAYERS table does not let it use'
+                else:
+                    continue
+                report(stmt.first, 'layering', '%s %s (layer %s) uses %s (layer %s), %s'
+                       % (unit.kind, unit.name, layer, used, other, why))
 
 
 def check_intents(proc, report):
@@ -623,20 +701,24 @@ def fortran_files(paths):
 
 def check_files(paths):
     files = fortran_files(paths)
-    sources, index = {}, {}
+    sources, index, layers = {}, {}, {}
     for path in files:
         full = path if os.path.isabs(path) else os.path.join(ROOT, path)
         with open(full, encoding='utf-8') as f:
             sources[os.path.relpath(full, ROOT)] = f.read()
-    for path in fortran_files([]) if paths else []:   # the ancestors of a checked file's types
-        if path not in sources:
+    for path in fortran_files([]) if paths else []:   # the ancestors of a checked file's types,
+        if path not in sources:                       # the layers of the modules it uses
             with open(os.path.join(ROOT, path), encoding='utf-8') as f:
-                index.update(type_index(parse(f.read())[0]))
-    for text in sources.values():
-        index.update(type_index(parse(text)[0]))
+                root = parse(f.read())[0]
+            index.update(type_index(root))
+            layers.update(module_layers(path, root))
+    for rel, text in sources.items():
+        root = parse(text)[0]
+        index.update(type_index(root))
+        layers.update(module_layers(rel, root))
     count = 0
     for rel, text in sources.items():
-        for line, rule, message in check_source(rel, text, index):
+        for line, rule, message in check_source(rel, text, index, layers):
             print('%s:%d: %s: %s' % (rel, line, rule, message))
             count += 1
     if count:
@@ -812,22 +894,56 @@ BAD = [
      'module state\n  implicit none\n  private\n  integer, save :: calls = 0\nend module state\n'),
     ('global-state', 'src/bad/protect.f90',
      'module protect\n  implicit none\n  private\n  real, protected, public :: tol\nend module protect\n'),
+    ('layering', 'src/core/uses_high.f90',     # a core module that uses an output one
+     'module uses_high\n  use high_mod, only: h\n  implicit none\n  private\nend module uses_high\n'),
+    ('layering', 'src/assembly/uses_sibling.f90',   # assembly uses solvers, in a procedure
+     'module uses_sibling\n  implicit none\n  private\ncontains\n  subroutine s()\n'
+     '    use, non_intrinsic :: solver_mod\n  end subroutine s\nend module uses_sibling\n'),
+    ('layering', 'src/nowhere/lost.f90',       # a folder that the LAYERS table does not name
+     'module lost\n  implicit none\n  private\nend module lost\n'),
+]
+
+# The modules that the layering snippets use, each in the layer of its folder.
+LAYER_MODULES = {
+    'src/core/low_mod.f90': 'module low_mod\n  implicit none\n  private\nend module low_mod\n',
+    'src/assembly/asm_mod.f90': 'module asm_mod\n  implicit none\n  private\nend module asm_mod\n',
+    'src/solvers/solver_mod.f90': 'module solver_mod\n  implicit none\n  private\nend module solver_mod\n',
+    'src/output/high_mod.f90': 'module high_mod\n  implicit none\n  private\nend module high_mod\n',
+}
+
+# (path, source): allowed uses, of which none may be reported: a lower layer, the same layer,
+# intrinsic and outside modules; test/ and app/ using the highest layers.
+LAYER_GOOD = [
+    ('src/assembly/uses_lower.f90',
+     'module uses_lower\n  use, intrinsic :: iso_fortran_env, only: int64\n  use hdf5, only: hid_t\n'
+     '  use low_mod\n  use :: asm_mod\n  implicit none\n  private\nend module uses_lower\n'),
+    ('test/test_high.f90',
+     'module test_high\n  use high_mod\n  use solver_mod\n  implicit none\n  private\nend module test_high\n'),
+    ('app/main_high.f90', 'program main_high\n  use high_mod\n  implicit none\nend program main_high\n'),
 ]
 
 
 def self_test():
     failures = 0
-    good = check_source('src/good/good_mod.f90', GOOD)
+    layers = {}
+    for path, source in LAYER_MODULES.items():
+        layers.update(module_layers(path, parse(source)[0]))
+    good = check_source('src/core/good_mod.f90', GOOD, layers=layers)
     if good:
         failures += 1
         print('self-test FAIL: the good module reports %s' % good)
+    for path, source in LAYER_GOOD:
+        good = check_source(path, source, layers=layers)
+        if good:
+            failures += 1
+            print('self-test FAIL: the allowed uses of %s report %s' % (path, good))
     for rule, path, source in BAD:
-        got = check_source(path, source)
+        got = check_source(path, source, layers=layers)
         if not any(r == rule for _, r, _ in got):
             failures += 1
             print('self-test FAIL: %s not reported for %s: %s' % (rule, path, got))
     # Without its doc comments, the good module's 7 public procedures are reported.
-    undocumented = check_source('src/good/good_mod.f90', re.sub(r'!(!|>)', '! ', GOOD))
+    undocumented = check_source('src/core/good_mod.f90', re.sub(r'!(!|>)', '! ', GOOD), layers=layers)
     if [r for _, r, _ in undocumented] != ['doc-comment'] * 7:
         failures += 1
         print('self-test FAIL: the good module without doc comments reports %s' % undocumented)
@@ -838,7 +954,8 @@ def self_test():
     if failures:
         print('check_style self-test: %d failure%s' % (failures, '' if failures == 1 else 's'))
         return 1
-    print('check_style self-test: %d bad snippets caught, the good module passes' % len(BAD))
+    print('check_style self-test: %d bad snippets caught, the good module and %d allowed uses pass'
+          % (len(BAD), len(LAYER_GOOD)))
     return 0
 
 

@@ -7,7 +7,7 @@ module feps_deck
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, err_input, str
   use feps_records, only: record_t, read_records, keyword, nfields, field_text, field_line
-  use feps_xdmf, only: is_xdmf_name
+  use feps_paths, only: is_xdmf_name
   use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check, max_mesh_nodes
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &

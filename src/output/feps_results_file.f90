@@ -16,7 +16,8 @@ module feps_results_file
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_error, only: error_t, fatal_error, err_io, err_internal, err_solver, str
   use feps_element_catalog, only: element_info_t, element_info, family_name, point_coordinates
-  use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_path, count_words, is_xdmf_name, word
+  use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_path, count_words, word
+  use feps_paths, only: is_xdmf_name
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &

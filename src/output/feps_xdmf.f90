@@ -9,11 +9,10 @@
 module feps_xdmf
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_io, str
-  use feps_strings, only: to_lower
   implicit none
   private
 
-  public :: write_xdmf, xdmf_topology_path, count_words, word, is_xdmf_name
+  public :: write_xdmf, xdmf_topology_path, count_words, word
 
   !> An element group as the XDMF file needs it.
   type, public :: xdmf_group_t
@@ -44,17 +43,6 @@ module feps_xdmf
   end type xdmf_step_t
 
 contains
-
-  !> True when a results file name ends in '.xmf' (any letter case): the XDMF file written beside
-  !! the results is named `<name without extension>.xmf` and would replace them (or, on a
-  !! case-insensitive file system, be the same file).
-  pure logical function is_xdmf_name(path)
-    character(len=*), intent(in) :: path
-    integer :: n
-    n = len_trim(path)
-    is_xdmf_name = .false.
-    if (n >= 4) is_xdmf_name = to_lower(path(n - 3:n)) == '.xmf'
-  end function is_xdmf_name
 
   !> HDF5 path of the 0-based connectivity copy of a group.
   pure function xdmf_topology_path(group) result(path)

@@ -1,0 +1,23 @@
+!> File-name conventions that the input checks and the output follows, so that neither layer
+!! has to ask the other.
+module feps_paths
+  use feps_strings, only: to_lower
+  implicit none
+  private
+
+  public :: is_xdmf_name
+
+contains
+
+  !> True when a results file name ends in '.xmf' (any letter case): the XDMF file written beside
+  !! the results is named `<name without extension>.xmf` and would replace them (or, on a
+  !! case-insensitive file system, be the same file).
+  pure logical function is_xdmf_name(path)
+    character(len=*), intent(in) :: path
+    integer :: n
+    n = len_trim(path)
+    is_xdmf_name = .false.
+    if (n >= 4) is_xdmf_name = to_lower(path(n - 3:n)) == '.xmf'
+  end function is_xdmf_name
+
+end module feps_paths

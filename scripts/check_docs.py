@@ -540,7 +540,7 @@ def check_shape(f, name, ds, shape, content):
     nnode = f["mesh/coordinates"].shape[0]
     dims = [s.strip() for s in shape.split(" x ")]
     rows, cols = ds.shape
-    group = name.split("/")[-2] if name.endswith(("connectivity", "topology")) else name.split("/")[-1]
+    group = name.split("/")[-2] if name.endswith(("connectivity", "topology", "points")) else name.split("/")[-1]
     conn = f[f"mesh/groups/{group}/connectivity"] if f"mesh/groups/{group}/connectivity" in f else None
     if dims[0] == "nnode":
         assert rows == nnode, f"{name}: {rows} rows, nnode = {nnode}"

@@ -7,11 +7,10 @@
         xg = fr.gauss_points(f, "pipe")                    # (npoints, 3), same rows as stress/pipe
         s1 = f[f"steps/{step}/principal/pipe"][:, 0]
 
-Integration-point positions are not stored in the file; they follow here from the mesh and the
-rules feps uses (src/elements): hex8 2x2x2 and hex20 3x3x3 (hex20r 2x2x2) Gauss, the first
-natural coordinate fastest; interface elements by their own rules on the LOWER layer (the first
-half of the nodes), listed as feps lists them (quad: first natural direction fastest; '-nodal':
-at the nodes of one layer, quad8-nodal adds the centre).
+Integration-point positions are read from the file (`/mesh/groups/<group>/points`, written by
+feps from its element catalog). The natural coordinates and shape functions below serve the
+Gauss-to-corner extrapolations of the plotting scripts and the check of the table in
+docs/output-format.md against feps's own points.
 """
 import math
 import os
@@ -268,16 +267,17 @@ def integration_shapes(etype, points_per_element=None):
 
 def gauss_points(f, group, dataset=None):
     """Global coordinates (nelem * npts, 3) of the integration points of a group, in the row order of
-    its Gauss-point datasets. `dataset` (an h5py dataset of that group) checks the point count."""
-    etype = element_type(f, group)
-    conn = connectivity(f, group)
-    ppe = int(dataset.attrs["points_per_element"]) if dataset is not None else None
-    shapes, nodes_used = integration_shapes(etype, ppe)
-    if ppe is not None and ppe != shapes.shape[0]:
-        raise ValueError(f"group {group} ({etype}): {ppe} points per element in the file, "
-                         f"{shapes.shape[0]} in the rule assumed here")
-    x = coordinates(f)[conn[:, :nodes_used]]            # (nelem, nodes, 3)
-    return np.einsum("gn,enk->egk", shapes, x).reshape(-1, 3)
+    its Gauss-point datasets: `/mesh/groups/<group>/points`, which feps writes from its own element
+    catalog. `dataset` (an h5py dataset of that group) checks the point count."""
+    path = f"mesh/groups/{group}/points"
+    if path not in f:
+        raise ValueError(f"{f.filename}: no {path} (a result of a feps older than the element catalog: "
+                         f"run the deck again)")
+    x = f[path][...]
+    if dataset is not None and dataset.shape[0] != x.shape[0]:
+        raise ValueError(f"group {group} ({element_type(f, group)}): {dataset.shape[0]} points in "
+                         f"{dataset.name}, {x.shape[0]} in {path}")
+    return x
 
 
 def element_of_point(f, group, dataset):

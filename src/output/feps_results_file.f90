@@ -174,7 +174,7 @@ contains
     character(len=*), intent(in), optional :: material   !! its material's name (attribute `material`)
     real(dp), intent(in), optional :: coordinates(:, :)  !! (3, nnode) the mesh: with it a catalog type's
                                                          !! integration points go to `points`
-    integer(hid_t) :: group_id
+    integer(hid_t) :: group_id, dataset_id
     integer :: hdferr, cell_nodes
     type(xdmf_group_t), allocatable :: grown(:)
     type(element_info_t) :: info
@@ -213,8 +213,11 @@ contains
       if (allocated(error)) return
       if (present(coordinates)) then
         call point_coordinates(element_type, coordinates, connectivity, xg, error)
-        if (.not. allocated(error)) call write_real_dataset(self, '/mesh/groups/' // name // '/points', xg, 'x y z', &
-                                                            error)
+        if (allocated(error)) return
+        call write_real_dataset(self, '/mesh/groups/' // name // '/points', xg, 'x y z', error, dataset_id)
+        if (allocated(error)) return
+        call write_int_attribute(dataset_id, 'points_per_element', info%npoints, error)
+        call h5dclose_f(dataset_id, hdferr)
         if (allocated(error)) return
       end if
     end if

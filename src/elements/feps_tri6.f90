@@ -76,13 +76,15 @@ contains
     tri6_nfaces = 3
   end function tri6_nfaces
 
-  pure integer function tri6_nface_nodes(self)
+  pure integer function tri6_nface_nodes(self, face)
     class(tri6_t), intent(in) :: self
+    integer, intent(in) :: face
     tri6_nface_nodes = 3
   end function tri6_nface_nodes
 
-  pure integer function tri6_nface_gauss(self)
+  pure integer function tri6_nface_gauss(self, face)
     class(tri6_t), intent(in) :: self
+    integer, intent(in) :: face
     tri6_nface_gauss = 3
   end function tri6_nface_gauss
 
@@ -155,8 +157,9 @@ contains
   end function tri6_face_nodes
 
   !> Quadratic line on s1 in [-1, 1]: ends at -1 and +1, mid-side node at 0; dn(2, :) = 0.
-  pure subroutine tri6_face_shape(self, s, n, dn)
+  pure subroutine tri6_face_shape(self, face, s, n, dn)
     class(tri6_t), intent(in) :: self
+    integer, intent(in) :: face
     real(dp), intent(in) :: s(2)
     real(dp), intent(out) :: n(:), dn(:, :)
     n(1:3) = [0.5_dp * s(1) * (s(1) - 1.0_dp), 0.5_dp * s(1) * (s(1) + 1.0_dp), 1.0_dp - s(1)**2]
@@ -165,8 +168,9 @@ contains
   end subroutine tri6_face_shape
 
   !> 3-point Gauss-Legendre along the edge: `s(1, :)` the points, `s(2, :)` = 0.
-  pure subroutine tri6_face_gauss_rule(self, s, w)
+  pure subroutine tri6_face_gauss_rule(self, face, s, w)
     class(tri6_t), intent(in) :: self
+    integer, intent(in) :: face
     real(dp), intent(out) :: s(:, :), w(:)
     s = 0.0_dp
     call gauss_legendre(3, s(1, :), w)
@@ -270,9 +274,9 @@ contains
     real(dp) :: s(2, size(wda)), w(size(wda)), dnf(2, size(nf, 1)), xf(3, size(nf, 1)), t(3), dl
     integer :: g
     xf = xe(:, tri6_edges(:, face))
-    call self%face_gauss_rule(s, w)
+    call self%face_gauss_rule(face, s, w)
     do g = 1, size(w)
-      call self%face_shape(s(:, g), nf(:, g), dnf)
+      call self%face_shape(face, s(:, g), nf(:, g), dnf)
       xg(:, g) = matmul(xf, nf(:, g))
       t = matmul(xf, dnf(1, :))
       dl = hypot(t(1), t(2))

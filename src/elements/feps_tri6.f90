@@ -8,13 +8,14 @@
 !! Nodes: corners 1, 2, 3 counter-clockwise seen from +z, then the mid-side nodes 4 (1-2),
 !! 5 (2-3), 6 (3-1). Natural coordinates (s1, s2) = (L2, L3), L1 = 1 - s1 - s2; xi(3) is
 !! ignored on input and zero on output.
-!! Rules: 3-point (degree 2, the default) or 6-point (degree 4, `six_point = .true.`).
+!! Rules (triangle_rule of feps_gauss): 3-point (degree 2, the default) or 6-point (degree 4,
+!! `six_point = .true.`).
 !! "Faces" are the edges 1: (1 2 4), 2: (2 3 5), 3: (3 1 6) (corner, corner, mid-side), each a
 !! 3-node quadratic line with face coordinate s1 in [-1, 1] (s2 ignored) and 3-point Gauss;
 !! the normal is the outward in-plane one of a counter-clockwise element.
 module feps_tri6
   use feps_kinds, only: dp
-  use feps_gauss, only: gauss_legendre
+  use feps_gauss, only: gauss_legendre, triangle_rule
   use feps_element, only: element_t
   implicit none
   private
@@ -26,13 +27,6 @@ module feps_tri6
 
   !> Nodes of each edge (columns): start corner, end corner (counter-clockwise), mid-side node.
   integer, parameter :: tri6_edges(3, 3) = reshape([1, 2, 4,  2, 3, 5,  3, 1, 6], [3, 3])
-
-  ! Symmetric 6-point rule of degree 4 (Dunavant 1985): points (a, a), (1 - 2a, a), (a, 1 - 2a)
-  ! for two orbits; weights are for a triangle of unit area (multiplied by 1/2 below).
-  real(dp), parameter :: orbit1_a = 0.445948490915964886318329253883_dp
-  real(dp), parameter :: orbit1_w = 0.223381589678011465944827736195_dp
-  real(dp), parameter :: orbit2_a = 0.091576213509770743459571463402_dp
-  real(dp), parameter :: orbit2_w = 0.109951743655321867388505597138_dp
 
   !> Plane-strain 6-node triangle; `six_point` selects the 6-point rule instead of 3 points.
   type, extends(element_t), public :: tri6_t
@@ -122,25 +116,7 @@ contains
     class(tri6_t), intent(in) :: self
     real(dp), intent(out) :: xi(:, :), w(:)
     xi = 0.0_dp
-    if (self%six_point) then
-      call orbit(orbit1_a, 0, xi)
-      call orbit(orbit2_a, 3, xi)
-      w(1:3) = 0.5_dp * orbit1_w
-      w(4:6) = 0.5_dp * orbit2_w
-    else
-      ! degree 2: the interior points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3)
-      call orbit(1.0_dp / 6.0_dp, 0, xi)
-      w(1:3) = 1.0_dp / 6.0_dp
-    end if
-  contains
-    pure subroutine orbit(a, offset, pts)
-      real(dp), intent(in) :: a
-      integer, intent(in) :: offset
-      real(dp), intent(inout) :: pts(:, :)
-      pts(1:2, offset + 1) = [a, a]
-      pts(1:2, offset + 2) = [1.0_dp - 2.0_dp * a, a]
-      pts(1:2, offset + 3) = [a, 1.0_dp - 2.0_dp * a]
-    end subroutine orbit
+    call triangle_rule(merge(6, 3, self%six_point), xi(1:2, :), w)
   end subroutine tri6_gauss_rule
 
   pure subroutine tri6_natural_coordinates(self, xi)

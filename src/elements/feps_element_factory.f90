@@ -8,6 +8,8 @@ module feps_element_factory
   use feps_hex20, only: hex20_t
   use feps_tri6, only: tri6_t
   use feps_hex8_bbar, only: hex8_bbar_t
+  use feps_tet4, only: tet4_t
+  use feps_tet10, only: tet10_t
   implicit none
   private
 
@@ -17,7 +19,8 @@ contains
 
   !> Allocate `element` for `type_name` (case-insensitive, surrounding blanks ignored):
   !! 'hex8' (2x2x2 Gauss), 'hex20' (3x3x3), 'hex20r' (hex20 with 2x2x2 reduced integration),
-  !! 'tri6' (plane-strain 6-node triangle, 3-point rule), 'tri6-6' (tri6 with the 6-point rule).
+  !! 'tri6' (plane-strain 6-node triangle, 3-point rule), 'tri6-6' (tri6 with the 6-point rule),
+  !! 'tet4' (1 point), 'tet10' (4 points).
   !! An unknown name returns an err_input error naming it and the known names.
   subroutine new_element(type_name, element, error)
     character(len=*), intent(in) :: type_name
@@ -36,9 +39,13 @@ contains
       allocate (element, source=tri6_t(six_point=.false.))
     case ('tri6-6')
       allocate (element, source=tri6_t(six_point=.true.))
+    case ('tet4')
+      allocate (tet4_t :: element)
+    case ('tet10')
+      allocate (tet10_t :: element)
     case default
       call fatal_error(error, err_input, "unknown element type '" // trim(adjustl(type_name)) // &
-                       "' (known: hex8, hex8b, hex20, hex20r, tri6, tri6-6)")
+                       "' (known: hex8, hex8b, hex20, hex20r, tri6, tri6-6, tet4, tet10)")
     end select
   end subroutine new_element
 

@@ -10,6 +10,8 @@ module feps_element_factory
   use feps_hex8_bbar, only: hex8_bbar_t
   use feps_tet4, only: tet4_t
   use feps_tet10, only: tet10_t
+  use feps_wedge6, only: wedge6_t
+  use feps_wedge15, only: wedge15_t
   implicit none
   private
 
@@ -20,7 +22,7 @@ contains
   !> Allocate `element` for `type_name` (case-insensitive, surrounding blanks ignored):
   !! 'hex8' (2x2x2 Gauss), 'hex20' (3x3x3), 'hex20r' (hex20 with 2x2x2 reduced integration),
   !! 'tri6' (plane-strain 6-node triangle, 3-point rule), 'tri6-6' (tri6 with the 6-point rule),
-  !! 'tet4' (1 point), 'tet10' (4 points).
+  !! 'tet4' (1 point), 'tet10' (4 points), 'wedge6' (6 points), 'wedge15' (18 points).
   !! An unknown name returns an err_input error naming it and the known names.
   subroutine new_element(type_name, element, error)
     character(len=*), intent(in) :: type_name
@@ -43,9 +45,13 @@ contains
       allocate (tet4_t :: element)
     case ('tet10')
       allocate (tet10_t :: element)
+    case ('wedge6')
+      allocate (wedge6_t :: element)
+    case ('wedge15')
+      allocate (wedge15_t :: element)
     case default
       call fatal_error(error, err_input, "unknown element type '" // trim(adjustl(type_name)) // &
-                       "' (known: hex8, hex8b, hex20, hex20r, tri6, tri6-6, tet4, tet10)")
+                       "' (known: hex8, hex8b, hex20, hex20r, tri6, tri6-6, tet4, tet10, wedge6, wedge15)")
     end select
   end subroutine new_element
 

@@ -25,6 +25,7 @@ program tester
   use test_solution_methods, only: collect_solution_methods
   use test_stress_recovery, only: collect_stress_recovery
   use test_lined_hole, only: collect_lined_hole
+  use test_solid_elements, only: collect_solid_elements
   implicit none
 
   interface
@@ -64,7 +65,8 @@ program tester
     new_testsuite('principal', collect_principal), &
     new_testsuite('solution_methods', collect_solution_methods), &
     new_testsuite('stress_recovery', collect_stress_recovery), &
-    new_testsuite('lined_hole', collect_lined_hole) &
+    new_testsuite('lined_hole', collect_lined_hole), &
+    new_testsuite('solid_elements', collect_solid_elements) &
     ]
   nfail = run_testsuites(suites, only)
   if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran

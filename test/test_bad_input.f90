@@ -706,7 +706,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/element_type_unknown.dat', err_input, &
                         [character(len=60) :: 'element_type_unknown.dat:8: field 3:', 'unknown element type "hex9"', &
-                         '(solids: hex8, hex8b, hex20, hex20r, tri6, tri6-6', &
+                         '(solids: hex8, hex8b, hex20, hex20r, tet4, tet10, wedge6, wedge15, tri6, tri6-6', &
                          'interfaces: interface-quad4, interface-quad4-nodal,', 'interface-line3-nodal;', &
                          'bars: bar2, bar3, bar4, bar5;'], error)
   end subroutine test_element_type_unknown

@@ -254,14 +254,14 @@ contains
       if (allocated(error)) return
       call check(error, element%nfaces(), 6, 'nfaces of ' // trim(names(k)))
       if (allocated(error)) return
-      call check(error, element%nface_gauss(), nfg(k), 'nface_gauss of ' // trim(names(k)))
+      call check(error, element%nface_gauss(3), nfg(k), 'nface_gauss of ' // trim(names(k)))
       if (allocated(error)) return
-      call check(error, element%nface_nodes(), nfn(k), 'nface_nodes of ' // trim(names(k)))
+      call check(error, element%nface_nodes(3), nfn(k), 'nface_nodes of ' // trim(names(k)))
       if (allocated(error)) return
       call check(error, size(element%face_nodes(3)), nfn(k), 'size of face_nodes of ' // trim(names(k)))
       if (allocated(error)) return
     end do
-    call new_element('tet4', element, refused)
+    call new_element('hex27', element, refused)
     call check(error, allocated(refused), 'unknown element type must be refused')
     if (allocated(error)) return
   end subroutine test_factory
@@ -391,10 +391,10 @@ contains
       else
         allocate (hex20_t :: element)
       end if
-      nfn = element%nface_nodes()
+      nfn = element%nface_nodes(1)   ! a hexahedron's faces are alike: face 1 stands for all
       allocate (n(nfn), dn(2, nfn), np(nfn), nm(nfn), dummy(2, nfn), nodes(3, element%nnodes()))
       do b = 1, nfn
-        call element%face_shape(snodes(:, b), n, dn)
+        call element%face_shape(1, snodes(:, b), n, dn)
         do a = 1, nfn
           call check(error, n(a), merge(1.0_dp, 0.0_dp, a == b), element%element_type() // ': face N_' // str(a) // &
                      ' at face node ' // str(b), abs=1.0e-15_dp)
@@ -402,14 +402,14 @@ contains
         end do
       end do
       s = [0.37_dp, -0.61_dp]
-      call element%face_shape(s, n, dn)
+      call element%face_shape(1, s, n, dn)
       call check(error, sum(n), 1.0_dp, element%element_type() // ': face sum of N', abs=1.0e-14_dp)
       if (allocated(error)) return
       do i = 1, 2
         step = 0.0_dp
         step(i) = h
-        call element%face_shape(s + step, np, dummy)
-        call element%face_shape(s - step, nm, dummy)
+        call element%face_shape(1, s + step, np, dummy)
+        call element%face_shape(1, s - step, nm, dummy)
         call check(error, maxval(abs((np - nm) / (2.0_dp * h) - dn(i, :))), 0.0_dp, &
                    element%element_type() // ': face dN/ds_' // str(i) // ' vs finite differences', abs=1.0e-9_dp)
         if (allocated(error)) return
@@ -794,8 +794,9 @@ contains
     integer :: k, face, g
     do k = 1, 2
       call test_element(k, element, xe, label)
-      allocate (xg(3, element%nface_gauss()), normal(3, element%nface_gauss()), wda(element%nface_gauss()), &
-                nf(element%nface_nodes(), element%nface_gauss()))
+      ! hexahedra: every face has the size of face 1
+      allocate (xg(3, element%nface_gauss(1)), normal(3, element%nface_gauss(1)), wda(element%nface_gauss(1)), &
+                nf(element%nface_nodes(1), element%nface_gauss(1)))
       flux_n = 0.0_dp
       flux_x = 0.0_dp
       scale = 0.0_dp
@@ -843,9 +844,10 @@ contains
     do k = 1, n_test_elements
       call test_element(k, element, xe, label)
       if (k == 3) xe = straight_hex20(affine_hex8())
-      allocate (ke(3 * size(xe, 2), 3 * size(xe, 2)), f(3 * size(xe, 2)), xg(3, element%nface_gauss()), &
-                normal(3, element%nface_gauss()), wda(element%nface_gauss()), &
-                nf(element%nface_nodes(), element%nface_gauss()))
+      ! hexahedra: every face has the size of face 1
+      allocate (ke(3 * size(xe, 2), 3 * size(xe, 2)), f(3 * size(xe, 2)), xg(3, element%nface_gauss(1)), &
+                normal(3, element%nface_gauss(1)), wda(element%nface_gauss(1)), &
+                nf(element%nface_nodes(1), element%nface_gauss(1)))
       call element%stiffness(xe, d_at_points(isotropic_d(30000.0_dp, 0.2_dp), element%ngauss()), ke, min_detj)
       u = linear_field(xe, h, [0.0_dp, 0.0_dp, 0.0_dp])
       f = 0.0_dp
@@ -1073,8 +1075,9 @@ contains
         xe = cylindrical_hex20()
         label = 'cylindrical hex20'
       end select
-      allocate (xg(3, element%nface_gauss()), normal(3, element%nface_gauss()), wda(element%nface_gauss()), &
-                nf(element%nface_nodes(), element%nface_gauss()))
+      ! hexahedra: every face has the size of face 1
+      allocate (xg(3, element%nface_gauss(1)), normal(3, element%nface_gauss(1)), wda(element%nface_gauss(1)), &
+                nf(element%nface_nodes(1), element%nface_gauss(1)))
       do face = 1, 6
         fn = element%face_nodes(face)
         call element%face_integration(xe, face, xg, normal, wda, nf)

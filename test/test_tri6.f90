@@ -125,10 +125,10 @@ contains
       if (allocated(error)) return
       call check(error, element%ngauss(), ng(k), trim(names(k)) // ' ngauss')
       if (allocated(error)) return
-      call check(error, element%nnodes() * 100 + element%nfaces() * 10 + element%nface_nodes(), 633, &
+      call check(error, element%nnodes() * 100 + element%nfaces() * 10 + element%nface_nodes(2), 633, &
                  trim(names(k)) // ' nnodes, nfaces, nface_nodes')
       if (allocated(error)) return
-      call check(error, element%nface_gauss(), 3, trim(names(k)) // ' nface_gauss')
+      call check(error, element%nface_gauss(2), 3, trim(names(k)) // ' nface_gauss')
       if (allocated(error)) return
       call check(error, all(element%face_nodes(2) == [2, 3, 5]), trim(names(k)) // ' face_nodes(2)')
       if (allocated(error)) return
@@ -237,23 +237,23 @@ contains
     real(dp) :: n(3), dn(2, 3), np(3), nm(3), dummy(2, 3), s(2, 3), w(3)
     integer :: a, b
     do b = 1, 3
-      call tri%face_shape([s_nodes(b), 0.7_dp], n, dn)
+      call tri%face_shape(1, [s_nodes(b), 0.7_dp], n, dn)
       do a = 1, 3
         call check(error, n(a), merge(1.0_dp, 0.0_dp, a == b), 'edge N' // str(a) // ' at node ' // str(b), &
                    abs=1.0e-15_dp)
         if (allocated(error)) return
       end do
     end do
-    call tri%face_shape([0.3_dp, 0.0_dp], n, dn)
+    call tri%face_shape(1, [0.3_dp, 0.0_dp], n, dn)
     call check(error, sum(n), 1.0_dp, 'edge sum N', abs=1.0e-15_dp)
     if (allocated(error)) return
-    call tri%face_shape([0.3_dp + h, 0.0_dp], np, dummy)
-    call tri%face_shape([0.3_dp - h, 0.0_dp], nm, dummy)
+    call tri%face_shape(1, [0.3_dp + h, 0.0_dp], np, dummy)
+    call tri%face_shape(1, [0.3_dp - h, 0.0_dp], nm, dummy)
     call check(error, maxval(abs((np - nm) / (2.0_dp * h) - dn(1, :))), 0.0_dp, 'edge dN/ds', abs=1.0e-8_dp)
     if (allocated(error)) return
     call check(error, maxval(abs(dn(2, :))), 0.0_dp, 'edge dN/ds2 = 0', abs=0.0_dp)
     if (allocated(error)) return
-    call tri%face_gauss_rule(s, w)
+    call tri%face_gauss_rule(1, s, w)
     call check(error, sum(w * (s(1, :) + 1.0_dp)**5), 64.0_dp / 6.0_dp, 'edge rule: integral of (s + 1)^5', &
                rel=1.0e-14_dp)
     if (allocated(error)) return

@@ -98,9 +98,9 @@ contains
     total = 0.0_dp
     associate (fs => model%face_sets(l%face_set))
       g = fs%group
-      call face_work_arrays(kernels(g), xg, nrm, wda, nf)
       do k = 1, size(fs%element)
         e = fs%element(k)
+        call face_work_arrays(kernels(g), fs%face(k), xg, nrm, wda, nf)
         call kernels(g)%element%face_integration(model%coords(:, model%groups(g)%connectivity(:, e)), fs%face(k), &
                                                  xg, nrm, wda, nf)
         do q = 1, size(wda)
@@ -145,7 +145,6 @@ contains
       end if
       associate (l => model%face_loads(i), fs => model%face_sets(model%face_loads(i)%face_set))
         g = fs%group
-        call face_work_arrays(kernels(g), xg, nrm, wda, nf)
         dir = l%components
         if (l%kind == load_pressure) then
           peak = l%value
@@ -168,6 +167,7 @@ contains
         do k = 1, size(fs%element)
           e = fs%element(k)
           fn = kernels(g)%element%face_nodes(fs%face(k))
+          call face_work_arrays(kernels(g), fs%face(k), xg, nrm, wda, nf)
           call kernels(g)%element%face_integration(model%coords(:, model%groups(g)%connectivity(:, e)), fs%face(k), &
                                                    xg, nrm, wda, nf)
           do q = 1, size(wda)
@@ -213,14 +213,19 @@ contains
                      dofs(at(1)) // ' is not finite (' // str(f(at(1), at(2))) // '): ' // why)
   end subroutine check_finite_forces
 
-  !> Face-integration arrays sized for the group's element.
-  subroutine face_work_arrays(kernel, xg, nrm, wda, nf)
+  !> Face-integration arrays sized for face `face` of the group's element, kept when they have
+  !! that size already (the faces of one element may differ: a wedge's triangles and quadrilaterals).
+  subroutine face_work_arrays(kernel, face, xg, nrm, wda, nf)
     type(group_kernel_t), intent(in) :: kernel
+    integer, intent(in) :: face
     real(dp), allocatable, intent(inout) :: xg(:, :), nrm(:, :), wda(:), nf(:, :)
     integer :: ng, nn
-    ng = kernel%element%nface_gauss()
-    nn = kernel%element%nface_nodes()
-    if (allocated(xg)) deallocate (xg, nrm, wda, nf)
+    ng = kernel%element%nface_gauss(face)
+    nn = kernel%element%nface_nodes(face)
+    if (allocated(xg)) then
+      if (size(wda) == ng .and. size(nf, 1) == nn) return
+      deallocate (xg, nrm, wda, nf)
+    end if
     allocate (xg(3, ng), nrm(3, ng), wda(ng), nf(nn, ng))
   end subroutine face_work_arrays
 

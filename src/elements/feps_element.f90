@@ -7,8 +7,11 @@
 !!   stress tension positive.
 !! - Element DOF order u1x, u1y, u1z, u2x, ...; `xe(3, nen)` holds the node coordinates.
 !! - Faces: `face_nodes(face)` lists the face's nodes counter-clockwise seen from outside, so that
-!!   with the face-local coordinates (s1 from face node 1 towards 2, s2 from 1 towards 4) the
-!!   normal dx/ds1 x dx/ds2 points out of the element.
+!!   with the face-local coordinates the normal dx/ds1 x dx/ds2 points out of the element. A
+!!   quadrilateral face has s1 from face node 1 towards 2 and s2 from 1 towards 4, both in
+!!   [-1, 1]; a triangular face has the area coordinates (s1, s2) = (L2, L3), s1 from face node 1
+!!   towards 2 and s2 from 1 towards 3. Faces of one element may differ (a wedge has triangles
+!!   and quadrilaterals), so the face counts, shape functions and rules take the face number.
 module feps_element
   use feps_kinds, only: dp
   implicit none
@@ -27,11 +30,11 @@ module feps_element
     procedure(rule_interface), deferred :: gauss_rule       !! volume Gauss points and weights
     procedure(nodes_xi_interface), deferred :: natural_coordinates  !! xi of every node
     procedure(count_interface), deferred :: nfaces          !! faces of the element
-    procedure(count_interface), deferred :: nface_nodes     !! nodes per face
+    procedure(face_count_interface), deferred :: nface_nodes  !! nodes of a face
     procedure(face_nodes_interface), deferred :: face_nodes !! local node numbers of a face (outward order)
-    procedure(face_shape_interface), deferred :: face_shape !! face shape functions N(s), dN/ds
-    procedure(count_interface), deferred :: nface_gauss     !! Gauss points of the face rule
-    procedure(face_rule_interface), deferred :: face_gauss_rule  !! face Gauss points and weights
+    procedure(face_shape_interface), deferred :: face_shape !! a face's shape functions N(s), dN/ds
+    procedure(face_count_interface), deferred :: nface_gauss  !! Gauss points of a face's rule
+    procedure(face_rule_interface), deferred :: face_gauss_rule  !! a face's Gauss points and weights
     procedure(name_interface), deferred :: element_type     !! 'hex8', 'hex20', ...
     ! common to every solid element
     procedure :: shape_gradients
@@ -50,6 +53,13 @@ module feps_element
       import :: element_t
       class(element_t), intent(in) :: self
     end function count_interface
+
+    !> A count (nodes, Gauss points) of face `face`.
+    pure integer function face_count_interface(self, face)
+      import :: element_t
+      class(element_t), intent(in) :: self
+      integer, intent(in) :: face
+    end function face_count_interface
 
     !> Shape functions `n(nen)` and their derivatives `dn(3, nen)` (d/dxi_i) at `xi`.
     pure subroutine shape_interface(self, xi, n, dn)
@@ -81,18 +91,21 @@ module feps_element
       integer, allocatable :: nodes(:)
     end function face_nodes_interface
 
-    !> Face shape functions `n(nface_nodes)` and derivatives `dn(2, nface_nodes)` at face point `s`.
-    pure subroutine face_shape_interface(self, s, n, dn)
+    !> Shape functions `n(nface_nodes(face))` of face `face` and their derivatives
+    !! `dn(2, nface_nodes(face))` at face point `s`.
+    pure subroutine face_shape_interface(self, face, s, n, dn)
       import :: element_t, dp
       class(element_t), intent(in) :: self
+      integer, intent(in) :: face
       real(dp), intent(in) :: s(2)
       real(dp), intent(out) :: n(:), dn(:, :)
     end subroutine face_shape_interface
 
-    !> Face rule: points `s(2, nface_gauss)` and weights `w(nface_gauss)`.
-    pure subroutine face_rule_interface(self, s, w)
+    !> Rule of face `face`: points `s(2, nface_gauss(face))` and weights `w(nface_gauss(face))`.
+    pure subroutine face_rule_interface(self, face, s, w)
       import :: element_t, dp
       class(element_t), intent(in) :: self
+      integer, intent(in) :: face
       real(dp), intent(out) :: s(:, :), w(:)
     end subroutine face_rule_interface
 
@@ -316,23 +329,23 @@ contains
 
   !> For every Gauss point of face `face`: global position `xg(3, :)`, unit outward normal
   !! `normal(3, :)`, weight times surface Jacobian `wda(:)` and face shape functions
-  !! `nf(nface_nodes, :)` (in the order of `face_nodes(face)`). Consistent nodal forces of a
+  !! `nf(nface_nodes(face), :)` (in the order of `face_nodes(face)`). Consistent nodal forces of a
   !! traction t(x) are then f_a = sum_g nf(a, g) t(xg(:, g)) wda(g).
   pure subroutine face_integration(self, xe, face, xg, normal, wda, nf)
     class(element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)       !! (3, nen)
     integer, intent(in) :: face
-    real(dp), intent(out) :: xg(:, :)      !! (3, nface_gauss)
-    real(dp), intent(out) :: normal(:, :)  !! (3, nface_gauss)
-    real(dp), intent(out) :: wda(:)        !! (nface_gauss)
-    real(dp), intent(out) :: nf(:, :)      !! (nface_nodes, nface_gauss)
+    real(dp), intent(out) :: xg(:, :)      !! (3, nface_gauss(face))
+    real(dp), intent(out) :: normal(:, :)  !! (3, nface_gauss(face))
+    real(dp), intent(out) :: wda(:)        !! (nface_gauss(face))
+    real(dp), intent(out) :: nf(:, :)      !! (nface_nodes(face), nface_gauss(face))
     real(dp) :: s(2, size(wda)), w(size(wda)), dnf(2, size(nf, 1)), xf(3, size(nf, 1))
     real(dp) :: t1(3), t2(3), c(3), da
     integer :: g, a
     xf = xe(:, self%face_nodes(face))
-    call self%face_gauss_rule(s, w)
+    call self%face_gauss_rule(face, s, w)
     do g = 1, size(w)
-      call self%face_shape(s(:, g), nf(:, g), dnf)
+      call self%face_shape(face, s(:, g), nf(:, g), dnf)
       xg(:, g) = 0.0_dp
       t1 = 0.0_dp
       t2 = 0.0_dp

@@ -16,6 +16,10 @@ module feps_element_catalog
   use feps_hex8_bbar, only: hex8_bbar_t
   use feps_hex20, only: hex20_t
   use feps_tri6, only: tri6_t
+  use feps_tet4, only: tet4_t
+  use feps_tet10, only: tet10_t
+  use feps_wedge6, only: wedge6_t
+  use feps_wedge15, only: wedge15_t
   use feps_interface_element, only: interface_element_t, new_interface_element
   use feps_bar_element, only: bar_element_t, new_bar_element
   implicit none
@@ -42,6 +46,10 @@ module feps_element_catalog
     catalog_row_t('hex8b', family_solid, 3, 'Hexahedron'), &
     catalog_row_t('hex20', family_solid, 3, 'Hexahedron_20'), &
     catalog_row_t('hex20r', family_solid, 3, 'Hexahedron_20'), &
+    catalog_row_t('tet4', family_solid, 3, 'Tetrahedron'), &
+    catalog_row_t('tet10', family_solid, 3, 'Tetrahedron_10'), &
+    catalog_row_t('wedge6', family_solid, 3, 'Wedge'), &
+    catalog_row_t('wedge15', family_solid, 3, 'Wedge_15'), &
     catalog_row_t('tri6', family_solid, 2, 'Triangle_6'), &
     catalog_row_t('tri6-6', family_solid, 2, 'Triangle_6'), &
     catalog_row_t('interface-quad4', family_interface, 3, 'Quadrilateral'), &
@@ -177,7 +185,8 @@ contains
 
   !> Allocate the solid element object of `type_name` (case-insensitive, surrounding blanks
   !! ignored): 'hex8' (2x2x2 Gauss), 'hex8b' (B-bar), 'hex20' (3x3x3), 'hex20r' (2x2x2
-  !! reduced), 'tri6' (plane strain, 3 points), 'tri6-6' (6 points). Any other name, an
+  !! reduced), 'tet4' (1 point), 'tet10' (4 points), 'wedge6' (3 x 2 points), 'wedge15'
+  !! (6 x 3 points), 'tri6' (plane strain, 3 points), 'tri6-6' (6 points). Any other name, an
   !! interface or a bar included, returns an err_input error.
   subroutine new_solid_element(type_name, element, error)
     character(len=*), intent(in) :: type_name
@@ -192,6 +201,14 @@ contains
       allocate (element, source=hex20_t(reduced=.false.))
     case ('hex20r')
       allocate (element, source=hex20_t(reduced=.true.))
+    case ('tet4')
+      allocate (tet4_t :: element)
+    case ('tet10')
+      allocate (tet10_t :: element)
+    case ('wedge6')
+      allocate (wedge6_t :: element)
+    case ('wedge15')
+      allocate (wedge15_t :: element)
     case ('tri6')
       allocate (element, source=tri6_t(six_point=.false.))
     case ('tri6-6')

@@ -1,6 +1,9 @@
 !> Gauss-Legendre quadrature on [-1, 1] with 1 to 5 points, and its tensor products on the
 !! square [-1, 1]^2 and the cube [-1, 1]^3. An n-point rule integrates polynomials of degree
-!! 2n - 1 exactly in each coordinate.
+!! 2n - 1 exactly in each coordinate. Also the symmetric rules of the reference triangle
+!! (s1, s2 >= 0, s1 + s2 <= 1) and tetrahedron (xi_i >= 0, xi_1 + xi_2 + xi_3 <= 1), in the area
+!! or volume coordinates (L2, L3[, L4]) of the simplex elements, and their product with
+!! Gauss-Legendre on the wedge (triangle times [-1, 1]).
 module feps_gauss
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_internal, str
@@ -9,7 +12,14 @@ module feps_gauss
 
   integer, parameter, public :: max_gauss_points = 5  !! largest 1D rule available
 
-  public :: gauss_legendre, square_rule, cube_rule
+  public :: gauss_legendre, square_rule, cube_rule, triangle_rule, tetrahedron_rule, wedge_rule
+
+  ! Symmetric 6-point triangle rule of degree 4 (Dunavant 1985): points (a, a), (1 - 2a, a),
+  ! (a, 1 - 2a) for two orbits; weights are for a triangle of unit area (multiplied by 1/2 below).
+  real(dp), parameter :: orbit1_a = 0.445948490915964886318329253883_dp
+  real(dp), parameter :: orbit1_w = 0.223381589678011465944827736195_dp
+  real(dp), parameter :: orbit2_a = 0.091576213509770743459571463402_dp
+  real(dp), parameter :: orbit2_w = 0.109951743655321867388505597138_dp
 
 contains
 
@@ -109,5 +119,111 @@ contains
       end do
     end do
   end subroutine cube_rule
+
+  !> Symmetric rule on the reference triangle with `n` = 1 (degree 1: the centroid), 3 (degree 2:
+  !! the interior points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3)) or 6 points (degree 4, Dunavant 1985):
+  !! points `s(2, n)` in the area coordinates (L2, L3) and weights `w(n)` summing to 1/2, the
+  !! reference area. Another `n` gives zero arrays and `error` (if present) says so.
+  pure subroutine triangle_rule(n, s, w, error)
+    integer, intent(in) :: n
+    real(dp), intent(out) :: s(:, :), w(:)
+    type(error_t), allocatable, intent(out), optional :: error
+    s = 0.0_dp
+    w = 0.0_dp
+    if (all(n /= [1, 3, 6]) .or. size(s, 1) < 2 .or. size(s, 2) < n .or. size(w) < n) then
+      if (present(error)) call fatal_error(error, err_internal, 'triangle rule with ' // str(n) // &
+                                           ' points is not available (1, 3 or 6), or the arrays are too small')
+      return
+    end if
+    select case (n)
+    case (1)
+      s(1:2, 1) = 1.0_dp / 3.0_dp
+      w(1) = 0.5_dp
+    case (3)
+      call triangle_orbit(1.0_dp / 6.0_dp, 0, s)
+      w(1:3) = 1.0_dp / 6.0_dp
+    case (6)
+      call triangle_orbit(orbit1_a, 0, s)
+      call triangle_orbit(orbit2_a, 3, s)
+      w(1:3) = 0.5_dp * orbit1_w
+      w(4:6) = 0.5_dp * orbit2_w
+    end select
+  end subroutine triangle_rule
+
+  !> The three points (a, a), (1 - 2a, a), (a, 1 - 2a) of a symmetric orbit into
+  !! `pts(1:2, offset + 1:offset + 3)`.
+  pure subroutine triangle_orbit(a, offset, pts)
+    real(dp), intent(in) :: a
+    integer, intent(in) :: offset
+    real(dp), intent(inout) :: pts(:, :)
+    pts(1:2, offset + 1) = [a, a]
+    pts(1:2, offset + 2) = [1.0_dp - 2.0_dp * a, a]
+    pts(1:2, offset + 3) = [a, 1.0_dp - 2.0_dp * a]
+  end subroutine triangle_orbit
+
+  !> Symmetric rule on the reference tetrahedron with `n` = 1 (degree 1: the centroid) or 4 points
+  !! (degree 2: L_k = (5 + 3 sqrt 5)/20 at point k, the other three (5 - sqrt 5)/20): points
+  !! `xi(3, n)` in the volume coordinates (L2, L3, L4) and weights `w(n)` summing to 1/6, the
+  !! reference volume. Another `n` gives zero arrays and `error` (if present) says so.
+  pure subroutine tetrahedron_rule(n, xi, w, error)
+    integer, intent(in) :: n
+    real(dp), intent(out) :: xi(:, :), w(:)
+    type(error_t), allocatable, intent(out), optional :: error
+    real(dp) :: a, b
+    integer :: k
+    xi = 0.0_dp
+    w = 0.0_dp
+    if (all(n /= [1, 4]) .or. size(xi, 1) < 3 .or. size(xi, 2) < n .or. size(w) < n) then
+      if (present(error)) call fatal_error(error, err_internal, 'tetrahedron rule with ' // str(n) // &
+                                           ' points is not available (1 or 4), or the arrays are too small')
+      return
+    end if
+    select case (n)
+    case (1)
+      xi(1:3, 1) = 0.25_dp
+      w(1) = 1.0_dp / 6.0_dp
+    case (4)
+      a = (5.0_dp - sqrt(5.0_dp)) / 20.0_dp
+      b = (5.0_dp + 3.0_dp * sqrt(5.0_dp)) / 20.0_dp
+      ! point 1 near corner 1 (L1 = b), point k near corner k (L_k = b)
+      xi(1:3, 1:4) = a
+      do k = 2, 4
+        xi(k - 1, k) = b
+      end do
+      w(1:4) = 1.0_dp / 24.0_dp
+    end select
+  end subroutine tetrahedron_rule
+
+  !> Product rule on the reference wedge (triangle times zeta in [-1, 1]): the `ntri`-point
+  !! triangle rule times the `nz`-point Gauss-Legendre rule; point k = i + ntri (j - 1) is
+  !! (s_i, zeta_j), the triangle point varying fastest. `xi` is (3, ntri nz), `w` (ntri nz),
+  !! the weights summing to 1, the reference volume. A rule not available gives zero arrays and
+  !! `error` (if present) says so.
+  pure subroutine wedge_rule(ntri, nz, xi, w, error)
+    integer, intent(in) :: ntri, nz
+    real(dp), intent(out) :: xi(:, :), w(:)
+    type(error_t), allocatable, intent(out), optional :: error
+    real(dp) :: s(2, 6), ws(6), z(max_gauss_points), wz(max_gauss_points)
+    type(error_t), allocatable :: rule_error
+    integer :: i, j, k
+    xi = 0.0_dp
+    w = 0.0_dp
+    call triangle_rule(ntri, s, ws, rule_error)
+    if (.not. allocated(rule_error)) call gauss_legendre(nz, z, wz, rule_error)
+    if (.not. allocated(rule_error) .and. (size(xi, 1) < 3 .or. size(xi, 2) < ntri * nz .or. size(w) < ntri * nz)) &
+      call fatal_error(rule_error, err_internal, 'wedge_rule: arrays too small for ' // str(ntri * nz) // ' points')
+    if (allocated(rule_error)) then
+      if (present(error)) call move_alloc(rule_error, error)
+      return
+    end if
+    k = 0
+    do j = 1, nz
+      do i = 1, ntri
+        k = k + 1
+        xi(1:3, k) = [s(1, i), s(2, i), z(j)]
+        w(k) = ws(i) * wz(j)
+      end do
+    end do
+  end subroutine wedge_rule
 
 end module feps_gauss

@@ -76,13 +76,15 @@ contains
     hex20_nfaces = 6
   end function hex20_nfaces
 
-  pure integer function hex20_nface_nodes(self)
+  pure integer function hex20_nface_nodes(self, face)
     class(hex20_t), intent(in) :: self
+    integer, intent(in) :: face
     hex20_nface_nodes = 8
   end function hex20_nface_nodes
 
-  pure integer function hex20_nface_gauss(self)
+  pure integer function hex20_nface_gauss(self, face)
     class(hex20_t), intent(in) :: self
+    integer, intent(in) :: face
     hex20_nface_gauss = 9
   end function hex20_nface_gauss
 
@@ -144,8 +146,9 @@ contains
 
   !> 8-node serendipity quadrilateral: corners N = (1 + s s_a)(1 + t t_a)(s s_a + t t_a - 1) / 4,
   !! mid-edge nodes N = (1 - s_k^2)(1 + s_l s_a,l) / 2.
-  pure subroutine hex20_face_shape(self, s, n, dn)
+  pure subroutine hex20_face_shape(self, face, s, n, dn)
     class(hex20_t), intent(in) :: self
+    integer, intent(in) :: face
     real(dp), intent(in) :: s(2)
     real(dp), intent(out) :: n(:), dn(:, :)
     real(dp) :: f(2), g
@@ -166,8 +169,9 @@ contains
     end do
   end subroutine hex20_face_shape
 
-  pure subroutine hex20_face_gauss_rule(self, s, w)
+  pure subroutine hex20_face_gauss_rule(self, face, s, w)
     class(hex20_t), intent(in) :: self
+    integer, intent(in) :: face
     real(dp), intent(out) :: s(:, :), w(:)
     call square_rule(3, s, w)
   end subroutine hex20_face_gauss_rule

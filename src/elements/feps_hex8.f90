@@ -59,13 +59,15 @@ contains
     hex8_nfaces = 6
   end function hex8_nfaces
 
-  pure integer function hex8_nface_nodes(self)
+  pure integer function hex8_nface_nodes(self, face)
     class(hex8_t), intent(in) :: self
+    integer, intent(in) :: face
     hex8_nface_nodes = 4
   end function hex8_nface_nodes
 
-  pure integer function hex8_nface_gauss(self)
+  pure integer function hex8_nface_gauss(self, face)
     class(hex8_t), intent(in) :: self
+    integer, intent(in) :: face
     hex8_nface_gauss = 4
   end function hex8_nface_gauss
 
@@ -111,8 +113,9 @@ contains
   end function hex8_face_nodes
 
   !> Bilinear quadrilateral: N_a = (1 + s s_a)(1 + t t_a) / 4.
-  pure subroutine hex8_face_shape(self, s, n, dn)
+  pure subroutine hex8_face_shape(self, face, s, n, dn)
     class(hex8_t), intent(in) :: self
+    integer, intent(in) :: face
     real(dp), intent(in) :: s(2)
     real(dp), intent(out) :: n(:), dn(:, :)
     real(dp) :: f(2)
@@ -125,8 +128,9 @@ contains
     end do
   end subroutine hex8_face_shape
 
-  pure subroutine hex8_face_gauss_rule(self, s, w)
+  pure subroutine hex8_face_gauss_rule(self, face, s, w)
     class(hex8_t), intent(in) :: self
+    integer, intent(in) :: face
     real(dp), intent(out) :: s(:, :), w(:)
     call square_rule(2, s, w)
   end subroutine hex8_face_gauss_rule

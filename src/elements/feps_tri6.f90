@@ -8,13 +8,14 @@
 !! Nodes: corners 1, 2, 3 counter-clockwise seen from +z, then the mid-side nodes 4 (1-2),
 !! 5 (2-3), 6 (3-1). Natural coordinates (s1, s2) = (L2, L3), L1 = 1 - s1 - s2; xi(3) is
 !! ignored on input and zero on output.
-!! Rules: 3-point (degree 2, the default) or 6-point (degree 4, `six_point = .true.`).
+!! Rules (triangle_rule of feps_gauss): 3-point (degree 2, the default) or 6-point (degree 4,
+!! `six_point = .true.`).
 !! "Faces" are the edges 1: (1 2 4), 2: (2 3 5), 3: (3 1 6) (corner, corner, mid-side), each a
 !! 3-node quadratic line with face coordinate s1 in [-1, 1] (s2 ignored) and 3-point Gauss;
 !! the normal is the outward in-plane one of a counter-clockwise element.
 module feps_tri6
   use feps_kinds, only: dp
-  use feps_gauss, only: gauss_legendre
+  use feps_gauss, only: gauss_legendre, triangle_rule
   use feps_element, only: element_t
   implicit none
   private
@@ -26,13 +27,6 @@ module feps_tri6
 
   !> Nodes of each edge (columns): start corner, end corner (counter-clockwise), mid-side node.
   integer, parameter :: tri6_edges(3, 3) = reshape([1, 2, 4,  2, 3, 5,  3, 1, 6], [3, 3])
-
-  ! Symmetric 6-point rule of degree 4 (Dunavant 1985): points (a, a), (1 - 2a, a), (a, 1 - 2a)
-  ! for two orbits; weights are for a triangle of unit area (multiplied by 1/2 below).
-  real(dp), parameter :: orbit1_a = 0.445948490915964886318329253883_dp
-  real(dp), parameter :: orbit1_w = 0.223381589678011465944827736195_dp
-  real(dp), parameter :: orbit2_a = 0.091576213509770743459571463402_dp
-  real(dp), parameter :: orbit2_w = 0.109951743655321867388505597138_dp
 
   !> Plane-strain 6-node triangle; `six_point` selects the 6-point rule instead of 3 points.
   type, extends(element_t), public :: tri6_t
@@ -76,13 +70,15 @@ contains
     tri6_nfaces = 3
   end function tri6_nfaces
 
-  pure integer function tri6_nface_nodes(self)
+  pure integer function tri6_nface_nodes(self, face)
     class(tri6_t), intent(in) :: self
+    integer, intent(in) :: face
     tri6_nface_nodes = 3
   end function tri6_nface_nodes
 
-  pure integer function tri6_nface_gauss(self)
+  pure integer function tri6_nface_gauss(self, face)
     class(tri6_t), intent(in) :: self
+    integer, intent(in) :: face
     tri6_nface_gauss = 3
   end function tri6_nface_gauss
 
@@ -120,25 +116,7 @@ contains
     class(tri6_t), intent(in) :: self
     real(dp), intent(out) :: xi(:, :), w(:)
     xi = 0.0_dp
-    if (self%six_point) then
-      call orbit(orbit1_a, 0, xi)
-      call orbit(orbit2_a, 3, xi)
-      w(1:3) = 0.5_dp * orbit1_w
-      w(4:6) = 0.5_dp * orbit2_w
-    else
-      ! degree 2: the interior points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3)
-      call orbit(1.0_dp / 6.0_dp, 0, xi)
-      w(1:3) = 1.0_dp / 6.0_dp
-    end if
-  contains
-    pure subroutine orbit(a, offset, pts)
-      real(dp), intent(in) :: a
-      integer, intent(in) :: offset
-      real(dp), intent(inout) :: pts(:, :)
-      pts(1:2, offset + 1) = [a, a]
-      pts(1:2, offset + 2) = [1.0_dp - 2.0_dp * a, a]
-      pts(1:2, offset + 3) = [a, 1.0_dp - 2.0_dp * a]
-    end subroutine orbit
+    call triangle_rule(merge(6, 3, self%six_point), xi(1:2, :), w)
   end subroutine tri6_gauss_rule
 
   pure subroutine tri6_natural_coordinates(self, xi)
@@ -155,8 +133,9 @@ contains
   end function tri6_face_nodes
 
   !> Quadratic line on s1 in [-1, 1]: ends at -1 and +1, mid-side node at 0; dn(2, :) = 0.
-  pure subroutine tri6_face_shape(self, s, n, dn)
+  pure subroutine tri6_face_shape(self, face, s, n, dn)
     class(tri6_t), intent(in) :: self
+    integer, intent(in) :: face
     real(dp), intent(in) :: s(2)
     real(dp), intent(out) :: n(:), dn(:, :)
     n(1:3) = [0.5_dp * s(1) * (s(1) - 1.0_dp), 0.5_dp * s(1) * (s(1) + 1.0_dp), 1.0_dp - s(1)**2]
@@ -165,8 +144,9 @@ contains
   end subroutine tri6_face_shape
 
   !> 3-point Gauss-Legendre along the edge: `s(1, :)` the points, `s(2, :)` = 0.
-  pure subroutine tri6_face_gauss_rule(self, s, w)
+  pure subroutine tri6_face_gauss_rule(self, face, s, w)
     class(tri6_t), intent(in) :: self
+    integer, intent(in) :: face
     real(dp), intent(out) :: s(:, :), w(:)
     s = 0.0_dp
     call gauss_legendre(3, s(1, :), w)
@@ -270,9 +250,9 @@ contains
     real(dp) :: s(2, size(wda)), w(size(wda)), dnf(2, size(nf, 1)), xf(3, size(nf, 1)), t(3), dl
     integer :: g
     xf = xe(:, tri6_edges(:, face))
-    call self%face_gauss_rule(s, w)
+    call self%face_gauss_rule(face, s, w)
     do g = 1, size(w)
-      call self%face_shape(s(:, g), nf(:, g), dnf)
+      call self%face_shape(face, s(:, g), nf(:, g), dnf)
       xg(:, g) = matmul(xf, nf(:, g))
       t = matmul(xf, dnf(1, :))
       dl = hypot(t(1), t(2))

@@ -985,6 +985,13 @@ expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapt
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).
 tester=${FEPS_TESTER:-$(fpm test --runner echo 2>/dev/null | tail -n 1)}
 expect_line "fpm test -- nosuchsuite" 2 'no test suite "nosuchsuite" (the suites: datain' "$tester" nosuchsuite
+# The tetrahedra and wedges of the element catalog through the command: the Lame decks run, and
+# their XDMF files (Tetrahedron(_10), Wedge(_15) cells) are read back below with the others.
+for t in tet4 tet10 wedge6 wedge15; do
+  "$feps" "test/data/lame_$t.dat" --quiet --output "$tmp/lame_$t.h5" >"$tmp/out" 2>&1 \
+    && ok "lame_$t.dat runs (XDMF cell $(python3 -c 'import sys, h5py; print(h5py.File(sys.argv[1])["mesh/groups/wall"].attrs["xdmf_topology"].decode())' "$tmp/lame_$t.h5"))" \
+    || bad "lame_$t.dat: $(cat "$tmp/out")"
+done
 # The XDMF files of this run's results, read with VTK's XDMF reader (ParaView's "XDMF Reader";
 # setup.sh installs vtk) and compared with their HDF5 files: every step, block, cell, point,
 # array and load factor (scripts/check_xdmf_vtk.py).

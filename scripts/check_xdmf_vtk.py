@@ -14,7 +14,7 @@ and the layout of docs/output-format.md, not through the XDMF file:
 - one block per element group with an XDMF cell, named after the group (vtkXdmfReader makes
   grid names unique over the file: the k-th step after the first names them '<group>[k]');
 - points: every mesh node, at /mesh/coordinates;
-- cells: one per element, of the VTK type of the group's element_type (the XDMF table), whose
+- cells: one per element, of the VTK type of the group's xdmf_topology (its catalog attribute), whose
   point ids are the element's connectivity - 1 (the lower layer, its first half, for interface
   elements);
 - point data: each nodal dataset of the step on every block, and /steps/<NNNN>/<field>/<group>
@@ -41,26 +41,22 @@ import tempfile
 
 RTOL = 1e-12
 
-# feps element type (without '-nodal') -> VTK cell type name and number
+# XDMF TopologyType (the group attribute `xdmf_topology` that feps writes from its element
+# catalog) -> the VTK cell type name and number vtkXdmfReader makes of it: the reader's contract,
+# not a table of feps's element types.
 VTK_CELL = {
-    "hex8": ("VTK_HEXAHEDRON", 12),
-    "hex8b": ("VTK_HEXAHEDRON", 12),
-    "hex20": ("VTK_QUADRATIC_HEXAHEDRON", 25),
-    "hex20r": ("VTK_QUADRATIC_HEXAHEDRON", 25),
-    "tri3": ("VTK_TRIANGLE", 5),
-    "tri6": ("VTK_QUADRATIC_TRIANGLE", 22),
-    "tri6-6": ("VTK_QUADRATIC_TRIANGLE", 22),
-    "quad4": ("VTK_QUAD", 9),
-    "interface-quad4": ("VTK_QUAD", 9),
-    "interface-quad8": ("VTK_QUADRATIC_QUAD", 23),
-    "interface-tri3": ("VTK_TRIANGLE", 5),
-    "interface-tri6": ("VTK_QUADRATIC_TRIANGLE", 22),
-    "interface-line2": ("VTK_POLY_LINE", 4),
-    "interface-line3": ("VTK_QUADRATIC_EDGE", 21),
-    "bar2": ("VTK_POLY_LINE", 4),
-    "bar3": ("VTK_POLY_LINE", 4),
-    "bar4": ("VTK_POLY_LINE", 4),
-    "bar5": ("VTK_POLY_LINE", 4),
+    "Hexahedron": ("VTK_HEXAHEDRON", 12),
+    "Hexahedron_20": ("VTK_QUADRATIC_HEXAHEDRON", 25),
+    "Tetrahedron": ("VTK_TETRA", 10),
+    "Tetrahedron_10": ("VTK_QUADRATIC_TETRA", 24),
+    "Wedge": ("VTK_WEDGE", 13),
+    "Wedge_15": ("VTK_QUADRATIC_WEDGE", 26),
+    "Triangle": ("VTK_TRIANGLE", 5),
+    "Triangle_6": ("VTK_QUADRATIC_TRIANGLE", 22),
+    "Quadrilateral": ("VTK_QUAD", 9),
+    "Quadrilateral_8": ("VTK_QUADRATIC_QUAD", 23),
+    "Polyline": ("VTK_POLY_LINE", 4),
+    "Edge_3": ("VTK_QUADRATIC_EDGE", 21),
 }
 
 
@@ -212,17 +208,17 @@ class Checker:
                         want[row].tolist() if want.ndim else want))
 
     def expected_groups(self, f):
-        """name -> (element_type, 0-based cell connectivity) for groups with an XDMF cell."""
+        """name -> ((XDMF topology, family, dimension), 0-based cell connectivity) for groups with
+        an XDMF cell, from the element catalog's attributes feps writes on each group."""
         groups = {}
         for name, group in f["mesh/groups"].items():
-            etype = text_attr(group, "element_type")
-            base = etype[:-len("-nodal")] if etype.endswith("-nodal") else etype
-            if base not in VTK_CELL:
+            if "xdmf_topology" not in group.attrs:
                 continue   # no XDMF cell (a mesh-only 'nodes<k>' block)
+            cell = (text_attr(group, "xdmf_topology"), text_attr(group, "family"), int(group.attrs["dimension"]))
             conn = self.np.asarray(group["connectivity"][...], dtype=self.np.int64) - 1
-            if base.startswith("interface-"):
+            if cell[1] == "interface":
                 conn = conn[:, :conn.shape[1] // 2]
-            groups[name] = (base, conn)
+            groups[name] = (cell, conn)
         return groups
 
     def expected_arrays(self, f, step, group, nnode, nelem):
@@ -295,7 +291,7 @@ class Checker:
         if block.GetNumberOfCells() != nelem:
             self.bad(where, "%d cells, HDF5 %d elements" % (block.GetNumberOfCells(), nelem))
         else:
-            type_name, type_id = VTK_CELL[etype]
+            type_name, type_id = VTK_CELL[etype[0]]
             types = np.array([block.GetCellType(i) for i in range(nelem)])
             if np.any(types != type_id):
                 self.bad(where, "cell types %s, %s (%d) expected for %s"
@@ -348,7 +344,7 @@ class Checker:
         if block.GetNumberOfCells() == 0:
             return
         x = coords[ids]                           # (cells, nodes, 3)
-        if etype.startswith(("hex",)):
+        if etype[1] == "solid" and etype[2] == 3:
             from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter
             size = vtkCellSizeFilter()
             size.SetInputData(block)
@@ -361,7 +357,7 @@ class Checker:
                 e = int(np.nonzero(volume <= 0)[0][0])
                 self.bad(where, "%d cells of non-positive volume in VTK, first element %d (%.6g)"
                          % (int(np.sum(volume <= 0)), e + 1, volume[e]))
-        if VTK_CELL[etype][1] == 4:               # polyline: consecutive segments go on
+        if VTK_CELL[etype[0]][1] == 4:               # polyline: consecutive segments go on
             seg = np.diff(x, axis=1)
             if seg.shape[1] > 1:
                 dots = np.sum(seg[:, 1:] * seg[:, :-1], axis=2)
@@ -373,7 +369,7 @@ class Checker:
         edges = []                                # (end, end, middle) local indices
         cell = block.GetCell(0)
         cell_ids = [cell.GetPointId(i) for i in range(cell.GetNumberOfPoints())]
-        if VTK_CELL[etype][1] == 21:
+        if VTK_CELL[etype[0]][1] == 21:
             edges = [(0, 1, 2)]
         else:
             for k in range(cell.GetNumberOfEdges()):

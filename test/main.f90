@@ -25,6 +25,7 @@ program tester
   use test_solution_methods, only: collect_solution_methods
   use test_stress_recovery, only: collect_stress_recovery
   use test_lined_hole, only: collect_lined_hole
+  use test_lame_solids, only: collect_lame_solids
   use test_solid_elements, only: collect_solid_elements
   implicit none
 
@@ -66,6 +67,7 @@ program tester
     new_testsuite('solution_methods', collect_solution_methods), &
     new_testsuite('stress_recovery', collect_stress_recovery), &
     new_testsuite('lined_hole', collect_lined_hole), &
+    new_testsuite('lame_solids', collect_lame_solids), &
     new_testsuite('solid_elements', collect_solid_elements) &
     ]
   nfail = run_testsuites(suites, only)

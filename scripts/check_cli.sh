@@ -524,6 +524,26 @@ for m in "1 hex20" "2 hex8"; do
     && ok "model B FE1 --refine $1 --element $2: $((14 * 55 * 49)) nodes, --check passes" \
     || bad "model B FE1 --refine $1 --element $2: $(grep -E '^nodes|error' "$tmp/out")"
 done
+# Model B SE1 meshed with wedges (make_model_b.py --element wedge15: every hex20 cut in two along
+# its (r, theta) diagonal, on the same nodes) against hex20: the deflection angle at z = 2500 and
+# the largest displacement agree to 1e-3 (measured 2.7e-4 and 3.3e-4; docs/verification.md,
+# "Tetrahedra and wedges"), and FE1's wedge deck, with its interfaces on the wedges' quadrilateral
+# faces, passes --check.
+python3 scripts/make_model_b.py --outdir "$tmp/mb_wedge" --cases SE1 --element wedge15 >/dev/null \
+  && python3 scripts/make_model_b.py --outdir "$tmp/mb_wedge" --cases SE1 --element hex20 >/dev/null \
+  && python3 scripts/make_model_b.py --outdir "$tmp/mb_wedge" --cases FE1 --element wedge15 >/dev/null \
+  && "$feps" "$tmp/mb_wedge/FE1_wedge15_r1.dat" --check >/dev/null 2>&1 \
+  && "$feps" "$tmp/mb_wedge/SE1_wedge15_r1.dat" --quiet --output "$tmp/mb_wedge/w.h5" >/dev/null 2>&1 \
+  && "$feps" "$tmp/mb_wedge/SE1_hex20_r1.dat" --quiet --output "$tmp/mb_wedge/h.h5" >/dev/null 2>&1 \
+  && python3 -c 'import sys, numpy as np; sys.path.insert(0, "scripts"); import feps_results as fr
+w, h = fr.open_result(sys.argv[1]), fr.open_result(sys.argv[2])
+angle = [fr.summary(f)["rotation_deflection_deg"] for f in (w, h)]
+umax = [np.abs(f["steps/" + fr.last_step(f) + "/displacement"][...]).max() for f in (w, h)]
+assert fr.element_type(w, "pipe") == "wedge15" and fr.element_type(h, "pipe") == "hex20"
+sys.exit(not (abs(angle[0] / angle[1] - 1) < 1e-3 and abs(umax[0] / umax[1] - 1) < 1e-3))' \
+  "$tmp/mb_wedge/w.h5" "$tmp/mb_wedge/h.h5" \
+  && ok "model B SE1 in wedge15 against hex20: deflection angle and largest displacement within 1e-3" \
+  || bad "model B SE1 in wedge15 against hex20: deflection angle and largest displacement within 1e-3"
 # The study reads its quantities from a run: on the decks' own mesh the peak nodal tension is at
 # its point A (r 600, theta 110, z 0), so the two columns must agree. Both ends carry the same
 # load, so the mirror point at z = 2500 has the same peak to rounding and may come out first.

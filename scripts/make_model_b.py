@@ -140,7 +140,7 @@ def check_parameters(es, phi, psi):
         raise ValueError(f"psi = {psi:g}: the dilation angle must lie in [0, phi] deg")
 
 
-ELEMENTS = ("hex8", "hex20")
+ELEMENTS = ("hex8", "hex20", "wedge6", "wedge15")
 
 
 def mesh_suffix(refine, element):
@@ -151,13 +151,16 @@ def mesh_suffix(refine, element):
 def deck(case, r_soil=2000.0, refine=1, element="hex8"):
     """The deck of `case`. `refine` splits every element of the decks' mesh into refine^3 and
     `element` = 'hex20' uses 20-node hexahedra and 8-pair interfaces on that mesh (the mesh
-    convergence study, docs/verification.md); the defaults give the thesis decks."""
+    convergence study, docs/verification.md); 'wedge6' and 'wedge15' cut each hexahedron into two
+    wedges along its (r, theta) diagonal, so the faces at r = const (the interfaces) stay
+    quadrilaterals and the pipe's ends become triangles; the defaults give the thesis decks."""
     kind, load, number, es, ks, kn, phi, psi = parse_case(case)
     if element not in ELEMENTS or refine < 1:
-        raise ValueError(f"element {element!r}, refine {refine}: hex8 or hex20, refine >= 1")
+        raise ValueError(f"element {element!r}, refine {refine}: one of {', '.join(ELEMENTS)}, refine >= 1")
     name = SOILS[number][0] if number else f"E_s = {es:g} MPa"
     interfaces = kind == "F"
-    quadratic = element == "hex20"
+    quadratic = element in ("hex20", "wedge15")
+    wedges = element.startswith("wedge")
     m = refine * (2 if quadratic else 1)        # lattice intervals per interval of the decks' mesh
     step = 2 if quadratic else 1                # lattice intervals per element
     nr = 2 * m + 1 + 4 * m + (1 if interfaces else 0)   # nodes along r
@@ -226,17 +229,38 @@ def deck(case, r_soil=2000.0, refine=1, element="hex8"):
             nodes += [node(i, j, 1, base) for i, j, _ in corners]
         return nodes
 
+    def wedge_pair(base):
+        """The first cell's two wedges (C3D6 / C3D15 order), cut along the cell's (r, theta)
+        diagonal: each base triangle counter-clockwise seen from above as hex8's bottom face,
+        then its top; wedge15's mid-edges bottom 1-2, 2-3, 3-1, top, then the verticals."""
+        s = step
+        pair = []
+        for tri in ([(0, 0), (s, 0), (s, s)], [(0, 0), (s, s), (0, s)]):
+            nodes = [node(i, j, 0, base) for i, j in tri] + [node(i, j, s, base) for i, j in tri]
+            if quadratic:
+                mids = [((tri[a][0] + tri[b][0]) // 2, (tri[a][1] + tri[b][1]) // 2) for a, b in ((0, 1), (1, 2), (2, 0))]
+                nodes += [node(i, j, 0, base) for i, j in mids] + [node(i, j, 2, base) for i, j in mids]
+                nodes += [node(i, j, 1, base) for i, j in tri]
+            pair.append(nodes)
+        return pair
+
     def element_block(nodes, copies):
         first = ", ".join(str(n) for n in nodes)
         k = len(nodes)
         return [f"A, {k}, {first},"] + [f"%, {n}, *, {k}, {inc}," for n, inc in copies] + ["E,"]
 
-    solid_type = "hex20" if quadratic else "hex8"
+    def solid_blocks(base, through):
+        copies = [(through, step)] + around
+        if not wedges:
+            return element_block(solid(base), copies)
+        return [line for nodes in wedge_pair(base) for line in element_block(nodes, copies)]
+
+    solid_type = element
     around = [(27 * refine, step * nr), (24 * refine, step * layer)]
     out += ["", f"GROUP, pipe, TYPE={solid_type}, MATERIAL=concrete"]
-    out += element_block(solid(1), [(2 * refine, step)] + around)
+    out += solid_blocks(1, 2 * refine)
     out += ["", f"GROUP, soil, TYPE={solid_type}, MATERIAL=soil"]
-    out += element_block(solid(first_soil), [(4 * refine, step)] + around)
+    out += solid_blocks(first_soil, 4 * refine)
     if interfaces:
         # lower layer: the pipe's outer face (theta then z: normal +r, towards the soil)
         o = 2 * m + 1
@@ -340,7 +364,8 @@ def main():
     ap.add_argument("--refine", type=int, default=1,
                     help="split every element into refine^3 (mesh convergence study; default 1)")
     ap.add_argument("--element", choices=ELEMENTS, default="hex8",
-                    help="hex8 (the decks) or hex20 with 8-pair interfaces (default hex8)")
+                    help="hex8 (the decks), hex20 with 8-pair interfaces, or each hexahedron cut into "
+                         "two wedge6 or wedge15 (default hex8)")
     grid = ap.add_argument_group("parametric grid (every combination)")
     grid.add_argument("--kinds", default="F", help="soil models: S elastic, F interfaces, P Matsuoka (default F)")
     grid.add_argument("--loads", default="E", help="E edge, D diagonal (default E)")

@@ -40,6 +40,8 @@ contains
       new_unittest('non-positive Jacobian names the element', test_negative_jacobian), &
       new_unittest('undefined material', test_undefined_material), &
       new_unittest('unknown element type: the message lists every type', test_element_type_unknown), &
+      new_unittest('FIELDS CSYS= naming a Cartesian system', test_fields_csys_cartesian), &
+      new_unittest('FIELDS with an option other than CSYS=', test_fields_option_unknown), &
       new_unittest('nu = 0.5 rejected', test_nu_half), &
       new_unittest('nu = -1 rejected', test_nu_minus_one), &
       new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
@@ -710,6 +712,20 @@ contains
                          'interfaces: interface-quad4, interface-quad4-nodal,', 'interface-line3-nodal;', &
                          'bars: bar2, bar3, bar4, bar5;'], error)
   end subroutine test_element_type_unknown
+
+  subroutine test_fields_csys_cartesian(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fields_csys_cartesian.dat', err_input, &
+                        [character(len=60) :: 'fields_csys_cartesian.dat:24: field 4:', &
+                         'CSYS=2 is not a cylindrical system'], error)
+  end subroutine test_fields_csys_cartesian
+
+  subroutine test_fields_option_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fields_option_unknown.dat', err_input, &
+                        [character(len=60) :: 'fields_option_unknown.dat:24: field 3:', &
+                         'unknown FIELDS option "AXIS=3"'], error)
+  end subroutine test_fields_option_unknown
 
   subroutine test_nu_half(error)
     type(error_t), allocatable, intent(out) :: error

@@ -5,6 +5,8 @@ module feps_step_report
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_solver, str
+  use feps_result_schema, only: result_fields
+  use feps_element_catalog, only: family_solid, family_interface, family_bar
   use feps_model, only: model_t, stage_t, output_fields_t, method_initial_stiffness, method_full_newton_raphson, &
                         method_newton_raphson
   use feps_assembly, only: group_kernel_t, element_strains
@@ -271,17 +273,21 @@ contains
                      'precision); no results are written')
   end subroutine check_finite_results
 
-  !> Does any requested field need the point results of a group of this kernel's kind?
+  !> Does any requested field need the point results of a group of this kernel's kind? Every
+  !! field of the result schema that belongs to the group's element family does (the nodal
+  !! averages are made from the points).
   pure logical function group_output_wanted(fields, kernel)
     type(output_fields_t), intent(in) :: fields
     type(group_kernel_t), intent(in) :: kernel
+    integer :: family
     if (kernel%is_bar) then
-      group_output_wanted = fields%bar
+      family = family_bar
     else if (kernel%is_interface) then
-      group_output_wanted = fields%interface .or. fields%interface_strain .or. fields%nodal_interface
+      family = family_interface
     else
-      group_output_wanted = fields%stress .or. fields%principal .or. fields%nodal_stress .or. fields%nodal_principal
+      family = family_solid
     end if
+    group_output_wanted = any(fields%on .and. result_fields%family == family)
   end function group_output_wanted
 
   !> Strains and stresses of a linear group from the total displacements (sigma = D eps).

@@ -9,7 +9,8 @@ module feps_deck
   use feps_records, only: record_t, read_records, keyword, nfields, field_text, field_line
   use feps_paths, only: is_xdmf_name
   use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check, max_mesh_nodes
-  use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian
+  use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian, &
+                                    csys_cylindrical
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, known_fields, line_search_refusal
@@ -656,14 +657,17 @@ contains
                        model%output_file // '" must not end in .xmf (the XDMF file beside it takes that name)', 2)
   end subroutine read_output
 
-  !> FIELDS, name [, name ...]: write only the named result fields (several records add up).
+  !> FIELDS, name [, name ...] [, CSYS=n]: write only the named result fields (several records
+  !! add up); CSYS names the cylindrical system of stress_cyl (default 3, about the global z).
   subroutine read_fields(rec, model, st, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
     type(deck_state_t), intent(inout) :: st
     type(error_t), allocatable, intent(out) :: error
     integer :: i
-    logical :: known
+    logical :: known, csys_given
+    character(len=:), allocatable :: key, value
+    csys_given = .false.
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     if (.not. st%fields_given) then
@@ -671,6 +675,27 @@ contains
       st%fields_given = .true.
     end if
     do i = 2, nfields(rec)
+      if (index(field_text(rec, i), '=') > 0) then    ! CSYS=n: the frame of stress_cyl
+        call key_value(rec, i, 'CSYS=n', key, value, error)
+        if (allocated(error)) return
+        if (key /= 'CSYS') then
+          call input_error(error, rec%file, rec%line, 'unknown FIELDS option "' // field_text(rec, i) // &
+                           '" (FIELDS takes field names, and CSYS=n for stress_cyl)', i)
+          return
+        else if (csys_given) then
+          call input_error(error, rec%file, rec%line, 'CSYS is given twice', i)
+          return
+        end if
+        csys_given = .true.
+        call get_csys_option(rec, model, 'CSYS', 3, model%fields%csys, error)
+        if (allocated(error)) return
+        if (model%systems(model%fields%csys)%kind /= csys_cylindrical) then
+          call input_error(error, rec%file, rec%line, 'CSYS=' // str(model%fields%csys) // ' is not a ' // &
+                           'cylindrical system (stress_cyl takes the radial, hoop and axial directions of one)', i)
+          return
+        end if
+        cycle
+      end if
       call model%fields%select(to_lower(field_text(rec, i)), known)
       if (.not. known) then
         call input_error(error, rec%file, rec%line, 'unknown field "' // field_text(rec, i) // '" (' // &

@@ -5,6 +5,7 @@ module feps_model
   use feps_kinds, only: dp
   use feps_coordinate_system, only: coordinate_system_t
   use feps_element_catalog, only: element_info_t, family_interface
+  use feps_result_schema, only: result_fields, field_index, known_field_names
   implicit none
   private
 
@@ -208,30 +209,18 @@ module feps_model
     integer :: line = 0
   end type report_t
 
-  !> Which result fields a run writes (deck keyword FIELDS; default: all but the nodal
-  !! averages, which are written only when named). A field not asked for is not computed either
-  !! where that saves work (stress recovery of elastic groups, principal stresses).
+  !> Which result fields a run writes (deck keyword FIELDS; default: the schema's `by_default`
+  !! fields: all but the nodal averages and the optional point fields, which are written only
+  !! when named). A field not asked for is not computed either where that saves work (stress
+  !! recovery of elastic groups, principal stresses).
   type, public :: output_fields_t
-    logical :: displacement = .true.      !! /steps/N/displacement
-    logical :: reaction = .true.          !! /steps/N/reaction (and reaction_nodal)
-    logical :: stress = .true.            !! /steps/N/stress/<solid group>
-    logical :: principal = .true.         !! /steps/N/principal/<solid group>
-    logical :: interface = .true.         !! /steps/N/interface/<group> (tractions and state)
-    logical :: interface_strain = .true.  !! /steps/N/interface_strain/<group>
-    logical :: bar = .true.               !! /steps/N/bar/<group>
-    logical :: nodal_stress = .false.     !! /steps/N/nodal_stress/<solid group> (averaged at the nodes)
-    logical :: nodal_principal = .false.  !! /steps/N/nodal_principal/<solid group>
-    logical :: nodal_interface = .false.  !! /steps/N/nodal_interface/<interface group> (tractions at the nodes)
+    logical :: on(size(result_fields)) = result_fields%by_default  !! by the schema's field ids
+    integer :: csys = 3                   !! the cylindrical system of stress_cyl (FIELDS CSYS=)
   contains
     procedure :: select => fields_select
     procedure :: names => fields_names
     procedure :: clear => fields_clear
   end type output_fields_t
-
-  !> The names FIELDS accepts, in output order.
-  character(len=*), parameter, public :: field_names(*) = [character(len=16) :: 'displacement', 'reaction', &
-    'stress', 'principal', 'interface', 'interface_strain', 'bar', 'nodal_stress', 'nodal_principal', &
-    'nodal_interface']
 
   type, public :: model_t
     character(len=:), allocatable :: title
@@ -269,85 +258,45 @@ module feps_model
 
 contains
 
-  !> Turn on the field called `name` (one of `field_names`); `known` false if there is none.
+  !> Turn on the field called `name` (a name of the result schema, or `all` for its default
+  !! fields); `known` false if there is none.
   pure subroutine fields_select(self, name, known)
     class(output_fields_t), intent(inout) :: self
     character(len=*), intent(in) :: name
     logical, intent(out) :: known
+    integer :: k
     known = .true.
-    select case (name)
-    case ('displacement')
-      self%displacement = .true.
-    case ('reaction')
-      self%reaction = .true.
-    case ('stress')
-      self%stress = .true.
-    case ('principal')
-      self%principal = .true.
-    case ('interface')
-      self%interface = .true.
-    case ('interface_strain')
-      self%interface_strain = .true.
-    case ('bar')
-      self%bar = .true.
-    case ('nodal_stress')
-      self%nodal_stress = .true.
-    case ('nodal_principal')
-      self%nodal_principal = .true.
-    case ('nodal_interface')
-      self%nodal_interface = .true.
-    case ('all')      ! the default fields, to which FIELDS can add the nodal averages
-      self%displacement = .true.
-      self%reaction = .true.
-      self%stress = .true.
-      self%principal = .true.
-      self%interface = .true.
-      self%interface_strain = .true.
-      self%bar = .true.
-    case default
-      known = .false.
-    end select
+    if (name == 'all') then     ! the default fields, to which FIELDS can add the others
+      self%on = self%on .or. result_fields%by_default
+      return
+    end if
+    k = field_index(name)
+    known = k > 0
+    if (known) self%on(k) = .true.
   end subroutine fields_select
 
   !> No field selected (the start of a FIELDS record or of --fields).
   pure subroutine fields_clear(self)
     class(output_fields_t), intent(inout) :: self
-    self%displacement = .false.
-    self%reaction = .false.
-    self%stress = .false.
-    self%principal = .false.
-    self%interface = .false.
-    self%interface_strain = .false.
-    self%bar = .false.
-    self%nodal_stress = .false.
-    self%nodal_principal = .false.
-    self%nodal_interface = .false.
+    self%on = .false.
   end subroutine fields_clear
 
   !> The names FIELDS and --fields accept, comma-separated, for error messages.
   pure function known_fields() result(list)
     character(len=:), allocatable :: list
-    integer :: k
-    list = trim(field_names(1))
-    do k = 2, size(field_names)
-      list = list // ', ' // trim(field_names(k))
-    end do
-    list = list // ', all'
+    list = known_field_names()
   end function known_fields
 
   !> The selected fields as one space-separated list (for the results file's summary).
   pure function fields_names(self) result(list)
     class(output_fields_t), intent(in) :: self
     character(len=:), allocatable :: list
-    logical :: on(size(field_names))
     integer :: i
-    on = [self%displacement, self%reaction, self%stress, self%principal, self%interface, &
-          self%interface_strain, self%bar, self%nodal_stress, self%nodal_principal, self%nodal_interface]
     list = ''
-    do i = 1, size(field_names)
-      if (.not. on(i)) cycle
+    do i = 1, size(result_fields)
+      if (.not. self%on(i)) cycle
       if (len(list) > 0) list = list // ' '
-      list = list // trim(field_names(i))
+      list = list // trim(result_fields(i)%name)
     end do
   end function fields_names
 

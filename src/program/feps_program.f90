@@ -17,7 +17,11 @@ module feps_program
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
   use feps_element, only: element_t
-  use feps_element_catalog, only: new_solid_element, family_solid
+  use feps_element_catalog, only: new_solid_element, family_solid, point_coordinates
+  use feps_result_schema, only: field_displacement, field_reaction, field_stress, field_principal, field_interface, &
+                                field_interface_strain, field_nodal_stress, field_nodal_principal, &
+                                field_nodal_interface, field_point_state, field_stress_cyl, field_nodal_stress_cyl
+  use feps_stress_frames, only: stress_in_basis, stresses_in_system
   use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average, fill_outside
   use feps_interface_element, only: interface_element_t, new_interface_element
   implicit none
@@ -592,11 +596,11 @@ contains
     self%steps_written = self%steps_written + 1
     associate (f => self%model%fields)
       call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
-      if (f%displacement .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', &
+      if (f%on(field_displacement) .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', &
         res%displacement, 'ux uy uz', error)
-      if (f%reaction .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', res%reaction, &
-        'fx fy fz', error)
-      if (f%reaction .and. res%has_nodal_systems .and. .not. allocated(error)) call self%h5%write_nodal(res%step, &
+      if (f%on(field_reaction) .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', &
+        res%reaction, 'fx fy fz', error)
+      if (f%on(field_reaction) .and. res%has_nodal_systems .and. .not. allocated(error)) call self%h5%write_nodal(res%step, &
         'reaction_nodal', res%reaction_nodal, 'f1 f2 f3', error)
       do g = 1, size(res%groups)
         if (allocated(error)) return
@@ -607,7 +611,7 @@ contains
                                      gr%points_per_element, error)
           else if (gr%is_interface) then
             nc = size(gr%stress, 1)
-            if (f%interface) then
+            if (f%on(field_interface)) then
               allocate (extra(nc + 1, size(gr%state)))
               extra(1:nc, :) = gr%stress
               extra(nc + 1, :) = real(gr%state, dp)
@@ -615,15 +619,15 @@ contains
                                        element%component_names // ' state', gr%points_per_element, error)
               deallocate (extra)
             end if
-            if (f%interface_strain .and. .not. allocated(error)) call self%h5%write_gauss(res%step, &
+            if (f%on(field_interface_strain) .and. .not. allocated(error)) call self%h5%write_gauss(res%step, &
               'interface_strain', name, gr%strain, trim(merge('gamma1 gamma2 eps_n', 'gamma eps_n        ', nc == 3)), &
               gr%points_per_element, error)
-            if (f%nodal_interface .and. .not. allocated(error)) &
+            if (f%on(field_nodal_interface) .and. .not. allocated(error)) &
               call write_nodal_tractions(self%h5, self%model, res%step, g, gr%stress, error)
           else
-            if (f%stress) call self%h5%write_gauss(res%step, element%result_field, name, gr%stress, &
+            if (f%on(field_stress)) call self%h5%write_gauss(res%step, element%result_field, name, gr%stress, &
                                                    element%component_names, gr%points_per_element, error)
-            if (f%principal .and. .not. allocated(error)) then
+            if (f%on(field_principal) .and. .not. allocated(error)) then
               allocate (extra(2, size(gr%stress, 2)))
               do q = 1, size(gr%stress, 2)
                 p = principal_values(gr%stress(:, q))
@@ -633,13 +637,35 @@ contains
                                        gr%points_per_element, error)
               deallocate (extra)
             end if
-            if ((f%nodal_stress .or. f%nodal_principal) .and. .not. allocated(error)) &
-              call write_nodal_stresses(self%h5, self%model, res%step, g, gr%stress, error)
+            if (f%on(field_point_state) .and. .not. allocated(error)) &
+              call self%h5%write_gauss(res%step, 'point_state', name, reshape(real(gr%state, dp), &
+                                       [1, size(gr%state)]), 'state', gr%points_per_element, error)
+            if (f%on(field_stress_cyl) .and. .not. allocated(error)) &
+              call write_point_stress_cyl(self%h5, self%model, res%step, g, gr%stress, gr%points_per_element, error)
+            if ((f%on(field_nodal_stress) .or. f%on(field_nodal_principal) .or. f%on(field_nodal_stress_cyl)) .and. &
+                .not. allocated(error)) call write_nodal_stresses(self%h5, self%model, res%step, g, gr%stress, error)
           end if
         end associate
       end do
     end associate
   end subroutine observer_write_step
+
+  !> The field stress_cyl of solid group `g`: its Gauss-point stresses in the frame (radial,
+  !! hoop, axial) of the cylindrical system that FIELDS CSYS= names, at each point's position.
+  subroutine write_point_stress_cyl(h5, model, step, g, stress, points_per_element, error)
+    type(results_file_t), intent(inout) :: h5
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: step, g, points_per_element
+    real(dp), intent(in) :: stress(:, :)       !! (6, points) element-major
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: xg(:, :)
+    associate (group => model%groups(g))
+      call point_coordinates(group%element_type, model%coords, group%connectivity, xg, error)
+      if (allocated(error)) return
+      call h5%write_gauss(step, 'stress_cyl', group%name, stresses_in_system(stress, xg, model%systems(model%fields%csys)), &
+                          'srr stt szz stz srz srt', points_per_element, error)
+    end associate
+  end subroutine write_point_stress_cyl
 
   !> The stresses of solid group `g` extrapolated from its Gauss points to its nodes and
   !! averaged there (feps_stress_recovery), and their principal values: the fields
@@ -652,7 +678,7 @@ contains
     real(dp), intent(in) :: stress(:, :)       !! (6, points) element-major
     type(error_t), allocatable, intent(out) :: error
     class(element_t), allocatable :: element
-    real(dp), allocatable :: e(:, :), nodal(:, :), principal(:, :)
+    real(dp), allocatable :: e(:, :), nodal(:, :), principal(:, :), cylindrical(:, :)
     integer, allocatable :: count(:)
     real(dp) :: p(3)
     integer :: node
@@ -668,7 +694,7 @@ contains
       end if
       allocate (nodal(size(stress, 1), model%nnode), count(model%nnode))
       call nodal_average(e, group%connectivity, stress, model%nnode, nodal, count)
-      if (model%fields%nodal_principal) then     ! of the averaged tensors, before the filling
+      if (model%fields%on(field_nodal_principal)) then     ! of the averaged tensors, before the filling
         allocate (principal(2, model%nnode))
         principal = 0.0_dp
         do node = 1, model%nnode
@@ -678,10 +704,22 @@ contains
         end do
         call fill_outside(principal, count)
       end if
+      if (model%fields%on(field_nodal_stress_cyl)) then   ! of the averaged tensors, before the filling
+        allocate (cylindrical(6, model%nnode))
+        cylindrical = 0.0_dp
+        do node = 1, model%nnode
+          if (count(node) == 0) cycle
+          cylindrical(:, node) = stress_in_basis(nodal(:, node), &
+                                                 model%systems(model%fields%csys)%local_basis(model%coords(:, node)))
+        end do
+        call fill_outside(cylindrical, count)
+        call h5%write_nodal(step, 'nodal_stress_cyl', cylindrical, 'srr stt szz stz srz srt', error, group=group%name)
+        if (allocated(error)) return
+      end if
       call fill_outside(nodal, count)
-      if (model%fields%nodal_stress) call h5%write_nodal(step, 'nodal_stress', nodal, 'sxx syy szz syz sxz sxy', &
-                                                         error, group=group%name)
-      if (allocated(error) .or. .not. model%fields%nodal_principal) return
+      if (model%fields%on(field_nodal_stress)) call h5%write_nodal(step, 'nodal_stress', nodal, &
+                                                                   'sxx syy szz syz sxz sxy', error, group=group%name)
+      if (allocated(error) .or. .not. model%fields%on(field_nodal_principal)) return
       call h5%write_nodal(step, 'nodal_principal', principal, 'most_tensile most_compressive', error, &
                           group=group%name)
     end associate

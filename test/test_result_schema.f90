@@ -1,0 +1,153 @@
+!> The result schema (src/model/feps_result_schema.f90) against the manual, and its two fields
+!! added through it: stress_cyl (and nodal_stress_cyl) and point_state.
+module test_result_schema
+  use feps_kinds, only: dp
+  use feps_testing, only: error_t, unittest_t, new_unittest, check
+  use feps_result_schema, only: result_fields
+  use feps_h5_testing, only: run_and_open, close_and_delete, read_real, read_int, file_text, string_attribute
+  use hdf5, only: hid_t
+  implicit none
+  private
+
+  public :: collect_result_schema
+
+  real(dp), parameter :: a = 600.0_dp, b = 715.0_dp, p = 10.0_dp, nu = 0.2_dp
+
+contains
+
+  !> Collect the suite.
+  subroutine collect_result_schema(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest('docs/output-format.md has a row for every field, with its components', test_manual), &
+      new_unittest('stress_cyl of the hex20 Lame cylinder against the closed form', test_stress_cyl), &
+      new_unittest('nodal_stress_cyl at the bore of the hex20 Lame cylinder', test_nodal_stress_cyl), &
+      new_unittest('point_state of a concrete cantilever past its tensile strength', test_point_state)]
+  end subroutine collect_result_schema
+
+  !> Every field of the schema has its row `/steps/<NNNN>/<name>...` in the manual's table of
+  !! datasets, and a field with fixed components names them there.
+  subroutine test_manual(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text, row
+    integer :: k, at, eol
+    text = file_text('docs/output-format.md')
+    do k = 1, size(result_fields)
+      associate (field => result_fields(k))
+        at = index(text, '| `/steps/<NNNN>/' // trim(field%name) // '/')
+        if (at == 0) at = index(text, '| `/steps/<NNNN>/' // trim(field%name) // '`')
+        call check(error, at > 0, 'docs/output-format.md has a row for field ' // trim(field%name))
+        if (allocated(error)) return
+        eol = index(text(at:), new_line('a'))
+        row = text(at:at + eol - 1)
+        if (len_trim(field%components) > 0) then
+          call check(error, index(row, '`' // trim(field%components) // '`') > 0, 'its row names the components `' // &
+                     trim(field%components) // '` of ' // trim(field%name))
+          if (allocated(error)) return
+        end if
+      end associate
+    end do
+  end subroutine test_manual
+
+  !> test/data/lame_hex20.dat with stress_cyl (about system 3, the global z axis): at every
+  !! Gauss point srr and stt follow Lame's s_r = A - B / r^2 and s_t = A + B / r^2 within the
+  !! hex20 discretisation error (5e-3 p and 1e-3 p; measured 2.4e-3 p, steepest at the bore,
+  !! and 6.1e-4 p), szz = nu (srr + stt) (plane strain, to round-off), the shear components
+  !! vanish (1e-4 p; measured 2.5e-5 p), and the trace equals that of the Cartesian stresses
+  !! (1e-12: the rotation keeps invariants).
+  subroutine test_stress_cyl(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: file_id
+    real(dp), allocatable :: cyl(:, :), cart(:, :), xg(:, :)
+    real(dp) :: ca, cb, r
+    integer :: q
+    call run_and_open('test/data/lame_hex20.dat', 'schema_cyl', file_id, error, fields='stress,stress_cyl')
+    if (allocated(error)) return
+    call read_real(file_id, '/steps/0001/stress_cyl/wall', cyl, error)
+    if (.not. allocated(error)) call read_real(file_id, '/steps/0001/stress/wall', cart, error)
+    if (.not. allocated(error)) call read_real(file_id, '/mesh/groups/wall/points', xg, error)
+    if (.not. allocated(error)) call check(error, string_attribute(file_id, '/steps/0001/stress_cyl/wall', &
+                                                                     'components') == 'srr stt szz stz srz srt', &
+                                           'stress_cyl components')
+    call close_and_delete(file_id, 'schema_cyl')
+    if (allocated(error)) return
+    ca = p * a**2 / (b**2 - a**2)
+    cb = p * a**2 * b**2 / (b**2 - a**2)
+    do q = 1, size(cyl, 2)
+      r = hypot(xg(1, q), xg(2, q))
+      call check(error, cyl(1, q), ca - cb / r**2, 'srr at a Gauss point', abs=5.0e-3_dp * p)
+      if (allocated(error)) return
+      call check(error, cyl(2, q), ca + cb / r**2, 'stt at a Gauss point', abs=1.0e-3_dp * p)
+      if (allocated(error)) return
+      call check(error, cyl(3, q), nu * (cyl(1, q) + cyl(2, q)), 'szz = nu (srr + stt)', abs=1.0e-12_dp * p)
+      if (allocated(error)) return
+      call check(error, maxval(abs(cyl(4:6, q))), 0.0_dp, 'shear stresses stz srz srt', abs=1.0e-4_dp * p)
+      if (allocated(error)) return
+      call check(error, sum(cyl(1:3, q)), sum(cart(1:3, q)), 'trace kept', abs=1.0e-12_dp * p)
+      if (allocated(error)) return
+    end do
+  end subroutine test_stress_cyl
+
+  !> nodal_stress_cyl of the hex20 Lame cylinder: stt at the bore nodes against s_t(a) within
+  !! 5e-4 (as test_stress_recovery's hoop stress rotated by hand: measured 2.2e-4).
+  subroutine test_nodal_stress_cyl(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: file_id
+    real(dp), allocatable :: cyl(:, :), x(:, :)
+    integer, allocatable :: connectivity(:, :)
+    real(dp) :: ca, cb
+    integer :: n, checked
+    call run_and_open('test/data/lame_hex20.dat', 'schema_nodal_cyl', file_id, error, fields='nodal_stress_cyl')
+    if (allocated(error)) return
+    call read_real(file_id, '/steps/0001/nodal_stress_cyl/wall', cyl, error)
+    if (.not. allocated(error)) call read_real(file_id, '/mesh/coordinates', x, error)
+    if (.not. allocated(error)) call read_int(file_id, '/mesh/groups/wall/connectivity', connectivity, error)
+    call close_and_delete(file_id, 'schema_nodal_cyl')
+    if (allocated(error)) return
+    ca = p * a**2 / (b**2 - a**2)
+    cb = p * a**2 * b**2 / (b**2 - a**2)
+    checked = 0
+    do n = 1, size(x, 2)
+      ! the lattice's face-centre nodes belong to no hex20 (filled with the column's minimum)
+      if (abs(hypot(x(1, n), x(2, n)) - a) > 1.0e-6_dp .or. .not. any(connectivity == n)) cycle
+      call check(error, cyl(2, n), ca + cb / a**2, 'nodal stt at the bore', rel=5.0e-4_dp)
+      if (allocated(error)) return
+      checked = checked + 1
+    end do
+    call check(error, checked, 43, 'bore nodes of the hex20 mesh')
+  end subroutine test_nodal_stress_cyl
+
+  !> test/data/beam_point_state.dat (beam_tension_cap.dat writing every step: a concrete
+  !! cantilever, tip pushed down 1 mm in 5 steps;
+  !! beam theory puts the first yield, ft = 5 MPa at the clamp's top fibre, at a tip
+  !! displacement of 0.21 mm): after step 1 (0.2 mm) every Gauss point is elastic (state 0);
+  !! at the end the points next to the clamp have left the elastic state (the tension cap, 1
+  !! or 3) and those of the last 20 mm, where the beam-theory stress of the end step stays
+  !! below ft / 2, are elastic.
+  subroutine test_point_state(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: file_id
+    real(dp), allocatable :: first(:, :), last(:, :), xg(:, :)
+    integer, allocatable :: state(:)
+    call run_and_open('test/data/beam_point_state.dat', 'schema_state', file_id, error)
+    if (allocated(error)) return
+    call read_real(file_id, '/steps/0001/point_state/beam', first, error)
+    if (.not. allocated(error)) call read_real(file_id, '/steps/0005/point_state/beam', last, error)
+    if (.not. allocated(error)) call read_real(file_id, '/mesh/groups/beam/points', xg, error)
+    call close_and_delete(file_id, 'schema_state')
+    if (allocated(error)) return
+    call check(error, size(first, 1), 1, 'one component (state)')
+    if (allocated(error)) return
+    call check(error, all(nint(first) == 0), 'step 1, below the first yield: every point elastic')
+    if (allocated(error)) return
+    state = nint(last(1, :))
+    call check(error, any(state /= 0 .and. xg(1, :) < 20.0_dp .and. xg(2, :) > 15.0_dp), &
+               'step 5: points of the top fibre next to the clamp are not elastic')
+    if (allocated(error)) return
+    call check(error, all(state == 0 .or. xg(1, :) < 180.0_dp), 'step 5: the last 20 mm stay elastic')
+    if (allocated(error)) return
+    call check(error, all(state == 0 .or. state == 1 .or. state == 3), &
+               'states are 0 (elastic), 1 (yielding) or 3 (tension cut-off)')
+  end subroutine test_point_state
+
+end module test_result_schema

@@ -5,6 +5,7 @@ module test_analysis
   use feps_error, only: str
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_model, only: model_t, node_set_t, constraint_t
+  use feps_result_schema, only: field_stress, field_principal
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
   use feps_observer, only: step_result_t
@@ -136,8 +137,8 @@ contains
     integer :: g, np
     call read_deck('test/data/cube.dat', model, error)
     if (allocated(error)) return
-    model%fields%stress = .false.
-    model%fields%principal = .false.
+    model%fields%on(field_stress) = .false.
+    model%fields%on(field_principal) = .false.
     call solve(model, 'cholmod', res, error)
     if (allocated(error)) return
     call check(error, .not. allocated(res%groups(1)%stress), 'no stresses recovered')
@@ -147,8 +148,8 @@ contains
 
     call read_deck('test/data/block_contact.dat', model, error)
     if (allocated(error)) return
-    model%fields%stress = .false.
-    model%fields%principal = .false.
+    model%fields%on(field_stress) = .false.
+    model%fields%on(field_principal) = .false.
     call run_analysis(model, 'cholmod', obs, summary, error)
     if (allocated(error)) return
     res = obs%steps(size(obs%steps))

@@ -442,7 +442,7 @@ class Checker:
                         assert nodes.group(1) in want or row[2].startswith("all"), \
                             f"{name}: NodesPerElement {nodes.group(1)}, the table says {row[2]}"
                     seen += 1
-        assert seen >= 14, f"only {seen} element types of the table met in the results ({sorted(cells)})"
+        assert seen >= 18, f"only {seen} element types of the table met in the results ({sorted(cells)})"
         return f"{seen} element types against the XDMF files feps wrote ({', '.join(sorted(cells))})"
 
     def check_gauss_table(self, ex):
@@ -509,6 +509,11 @@ LAYOUT_DECKS = ["test/data/prestress_block.dat", "test/data/block_shear.dat", "t
                 "test/data/contact_2d.dat|TYPE=tri6,|TYPE=tri6-6,",
                 "test/data/friction_pull.dat",   # LINESEARCH=energy: /summary line_searches
                 "test/data/bending_hex20.dat",   # FIELDS, all, nodal_stress, nodal_principal
+                "test/data/beam_point_state.dat",   # FIELDS, point_state
+                # tet10, with the cylindrical stresses at the points and the nodes
+                "test/data/lame_tet10.dat|PRESSURE, bore, VALUE=10.|PRESSURE, bore, VALUE=10.\n"
+                "FIELDS, all, stress_cyl, nodal_stress_cyl",
+                "test/data/lame_tet4.dat", "test/data/lame_wedge6.dat", "test/data/lame_wedge15.dat",
                 "test/data/block_contact_nodal.dat"]   # FIELDS, interface, nodal_interface
 
 

@@ -1002,6 +1002,10 @@ expect_line "lined_hole.py on a missing results file" 2 "no such results file" \
   python3 scripts/lined_hole.py "$tmp/no_such_lined.h5"
 expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapter 9 results" \
   python3 scripts/orderings_model_a_ch9.py "$tmp/empty"
+expect_line "bench_compare.sh with a missing deck" 2 "no deck $tmp/no_such.dat" \
+  bash scripts/bench_compare.sh "$feps" "$feps" --repeat 1 "$tmp/no_such.dat"
+expect_line "bench_compare.sh with a build that is not there" 2 "is not an executable" \
+  bash scripts/bench_compare.sh "$tmp/no_feps" "$feps" test/data/cube.dat
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).
 tester=${FEPS_TESTER:-$(fpm test --runner echo 2>/dev/null | tail -n 1)}
 expect_line "fpm test -- nosuchsuite" 2 'no test suite "nosuchsuite" (the suites: datain' "$tester" nosuchsuite

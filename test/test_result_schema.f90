@@ -20,6 +20,8 @@ contains
     type(unittest_t), allocatable, intent(out) :: tests(:)
     tests = [ &
       new_unittest('docs/output-format.md has a row for every field, with its components', test_manual), &
+      new_unittest('applied_force of the Lame cylinder: the bore pressure, balanced by the reactions', &
+                   test_applied_force), &
       new_unittest('stress_cyl of the hex20 Lame cylinder against the closed form', test_stress_cyl), &
       new_unittest('nodal_stress_cyl at the bore of the hex20 Lame cylinder', test_nodal_stress_cyl), &
       new_unittest('point_state of a concrete cantilever past its tensile strength', test_point_state)]
@@ -48,6 +50,31 @@ contains
       end associate
     end do
   end subroutine test_manual
+
+  !> test/data/lame_hex20.dat with the default fields: applied_force sums to the bore pressure's
+  !! resultant p a h (1, 1, 0) (exact for the isoparametric bore, test_analysis: 1e-12) and the
+  !! reactions balance it (1e-9 of p a h).
+  subroutine test_applied_force(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: file_id
+    real(dp), allocatable :: applied(:, :), reaction(:, :), x(:, :)
+    real(dp) :: h, total(3)
+    call run_and_open('test/data/lame_hex20.dat', 'schema_applied', file_id, error)
+    if (allocated(error)) return
+    call read_real(file_id, '/steps/0001/applied_force', applied, error)
+    if (.not. allocated(error)) call read_real(file_id, '/steps/0001/reaction', reaction, error)
+    if (.not. allocated(error)) call read_real(file_id, '/mesh/coordinates', x, error)
+    if (.not. allocated(error)) call check(error, string_attribute(file_id, '/steps/0001/applied_force', &
+                                                                     'components') == 'fx fy fz', 'its components')
+    call close_and_delete(file_id, 'schema_applied')
+    if (allocated(error)) return
+    h = maxval(x(3, :)) - minval(x(3, :))
+    total = sum(applied, dim=2)
+    call check(error, norm2(total - p * a * h * [1.0_dp, 1.0_dp, 0.0_dp]), 0.0_dp, 'resultant p a h (1, 1, 0)', &
+               abs=1.0e-12_dp * p * a * h)
+    if (allocated(error)) return
+    call check(error, norm2(total + sum(reaction, dim=2)), 0.0_dp, 'the reactions balance it', abs=1.0e-9_dp * p * a * h)
+  end subroutine test_applied_force
 
   !> test/data/lame_hex20.dat with stress_cyl (about system 3, the global z axis): at every
   !! Gauss point srr and stt follow Lame's s_r = A - B / r^2 and s_t = A + B / r^2 within the

@@ -26,15 +26,17 @@ module feps_result_schema
     character(len=40) :: components
   end type result_field_t
 
-  integer, parameter, public :: field_displacement = 1, field_reaction = 2, field_stress = 3, field_principal = 4, &
-                                field_interface = 5, field_interface_strain = 6, field_bar = 7, &
-                                field_nodal_stress = 8, field_nodal_principal = 9, field_nodal_interface = 10, &
-                                field_point_state = 11, field_stress_cyl = 12, field_nodal_stress_cyl = 13
+  integer, parameter, public :: field_displacement = 1, field_reaction = 2, field_applied_force = 3, &
+                                field_stress = 4, field_principal = 5, field_interface = 6, &
+                                field_interface_strain = 7, field_bar = 8, field_nodal_stress = 9, &
+                                field_nodal_principal = 10, field_nodal_interface = 11, field_point_state = 12, &
+                                field_stress_cyl = 13, field_nodal_stress_cyl = 14
 
   !> The fields, in the order of their ids (and of the summary's list).
   type(result_field_t), parameter, public :: result_fields(*) = [ &
     result_field_t('displacement', at_nodes, 0, .true., 'ux uy uz'), &
     result_field_t('reaction', at_nodes, 0, .true., 'fx fy fz'), &
+    result_field_t('applied_force', at_nodes, 0, .true., 'fx fy fz'), &
     result_field_t('stress', at_points, family_solid, .true., ''), &
     result_field_t('principal', at_points, family_solid, .true., 'most_tensile most_compressive'), &
     result_field_t('interface', at_points, family_interface, .true., ''), &

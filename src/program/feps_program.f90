@@ -18,9 +18,10 @@ module feps_program
   use feps_principal, only: principal_values
   use feps_element, only: element_t
   use feps_element_catalog, only: new_solid_element, family_solid, point_coordinates
-  use feps_result_schema, only: field_displacement, field_reaction, field_stress, field_principal, field_interface, &
-                                field_interface_strain, field_nodal_stress, field_nodal_principal, &
-                                field_nodal_interface, field_point_state, field_stress_cyl, field_nodal_stress_cyl
+  use feps_result_schema, only: field_displacement, field_reaction, field_applied_force, field_stress, &
+                                field_principal, field_interface, field_interface_strain, field_nodal_stress, &
+                                field_nodal_principal, field_nodal_interface, field_point_state, field_stress_cyl, &
+                                field_nodal_stress_cyl
   use feps_stress_frames, only: stress_in_basis, stresses_in_system
   use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average, fill_outside
   use feps_interface_element, only: interface_element_t, new_interface_element
@@ -312,7 +313,7 @@ contains
   end subroutine override_method
 
   !> --fields LIST: the result fields to write, as a FIELDS record would name them (comma-
-  !! separated; `all` for the default seven), in place of the deck's FIELDS.
+  !! separated; `all` for the schema's default fields), in place of the deck's FIELDS.
   subroutine override_fields(model, list, error)
     type(model_t), intent(inout) :: model
     character(len=*), intent(in) :: list
@@ -600,6 +601,8 @@ contains
         res%displacement, 'ux uy uz', error)
       if (f%on(field_reaction) .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', &
         res%reaction, 'fx fy fz', error)
+      if (f%on(field_applied_force) .and. .not. allocated(error)) call self%h5%write_nodal(res%step, &
+        'applied_force', res%applied_force, 'fx fy fz', error)
       if (f%on(field_reaction) .and. res%has_nodal_systems .and. .not. allocated(error)) call self%h5%write_nodal(res%step, &
         'reaction_nodal', res%reaction_nodal, 'f1 f2 f3', error)
       do g = 1, size(res%groups)

@@ -3,32 +3,34 @@
 !! on error) and return a summary for the program to print.
 module feps_program
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use feps_kinds, only: dp, i8, rad2deg
+  use feps_kinds, only: dp, i8
   use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, err_internal, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, line_search_refusal, known_fields
   use feps_deck, only: read_deck
   use feps_strings, only: to_lower
   use feps_records, only: real_from_text
-  use feps_assembly, only: group_kernel_t, build_kernels, check_jacobians
   use feps_clock, only: wall_clock
   use feps_incremental_analysis, only: analysis_summary_t, run_analysis, check_analysis
   use feps_observer, only: observer_t, step_result_t
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
   use feps_element, only: element_t
-  use feps_element_catalog, only: new_solid_element, family_solid, point_coordinates
+  use feps_element_catalog, only: new_solid_element, point_coordinates
   use feps_result_schema, only: field_displacement, field_reaction, field_applied_force, field_stress, &
                                 field_principal, field_interface, field_interface_strain, field_nodal_stress, &
                                 field_nodal_principal, field_nodal_interface, field_point_state, field_stress_cyl, &
                                 field_nodal_stress_cyl
   use feps_stress_frames, only: stress_in_basis, stresses_in_system
+  use feps_reports, only: section_rotation, axis_tilt
+  use feps_version, only: feps_release
+  use feps_mesh_only, only: mesh_jacobians, write_mesh_only, write_mesh
   use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average, fill_outside
   use feps_interface_element, only: interface_element_t, new_interface_element
   implicit none
   private
 
-  character(len=*), parameter, public :: feps_version = '0.1.0'
+  character(len=*), parameter, public :: feps_version = feps_release   !! re-exported for app/
 
   !> Options from the command line; empty strings mean "as the deck says".
   type, public :: run_options_t
@@ -122,7 +124,6 @@ contains
     procedure(line_sink), optional :: sink
     type(model_t), target :: model
     type(analysis_summary_t) :: an
-    type(group_kernel_t), allocatable :: kernels(:)
     type(results_observer_t) :: obs
     character(len=:), allocatable :: solver, output
     real(dp) :: t0
@@ -457,125 +458,6 @@ contains
     end do
   end subroutine reaction_resultant
 
-  !> Rotation (degrees) of the section z = r%z from the axial displacements w of the group's
-  !! nodes on r = R (thesis 7.3): (w(x1) - w(x0)) / (x1 - x0), with w interpolated linearly in x
-  !! between those nodes, over FROM=x0 .. TO=x1 (the loaded region for the edge load: the slope
-  !! the Australian model's linear compression has) or between the extreme nodes.
-  subroutine section_rotation(model, r, u, angle, error)
-    type(model_t), intent(in) :: model
-    type(report_t), intent(in) :: r
-    real(dp), intent(in) :: u(:, :)
-    real(dp), intent(out) :: angle
-    type(error_t), allocatable, intent(out) :: error
-    logical, allocatable :: on_ring(:)
-    integer, allocatable :: ring(:), order(:)
-    real(dp), allocatable :: xs(:), ws(:)
-    real(dp) :: tol, x0, x1
-    integer :: n, i, j, t
-    allocate (on_ring(model%nnode))
-    on_ring = .false.
-    on_ring(pack(model%groups(r%group)%connectivity, .true.)) = .true.
-    tol = 1.0e-6_dp * max(1.0_dp, r%r)
-    do n = 1, model%nnode
-      if (.not. on_ring(n)) cycle
-      on_ring(n) = abs(hypot(model%coords(1, n), model%coords(2, n)) - r%r) <= tol .and. &
-                   abs(model%coords(3, n) - r%z) <= tol
-    end do
-    ring = pack([(n, n = 1, model%nnode)], on_ring)
-    if (size(ring) < 2) then
-      call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': group ' // model%groups(r%group)%name // &
-                       ' has no two nodes on r = ' // str(r%r) // ', z = ' // str(r%z))
-      return
-    end if
-    ! nodes sorted by x (insertion sort: a ring has tens of nodes)
-    order = [(i, i = 1, size(ring))]
-    do i = 2, size(order)
-      t = order(i)
-      j = i - 1
-      do while (j >= 1)
-        if (model%coords(1, ring(order(j))) <= model%coords(1, ring(t))) exit
-        order(j + 1) = order(j)
-        j = j - 1
-      end do
-      order(j + 1) = t
-    end do
-    xs = model%coords(1, ring(order))
-    ws = u(3, ring(order))
-    x0 = xs(1)
-    x1 = xs(size(xs))
-    if (.not. r%has_span .and. x1 - x0 <= tol) then
-      call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': the nodes of group ' // &
-                       model%groups(r%group)%name // ' on r = ' // str(r%r) // ', z = ' // str(r%z) // &
-                       ' all lie at x = ' // str(x0) // ': no slope to measure')
-      return
-    end if
-    if (r%has_span) then
-      x0 = r%x_from
-      x1 = r%x_to
-      if (min(x0, x1) < xs(1) - tol .or. max(x0, x1) > xs(size(xs)) + tol) then
-        call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': FROM/TO lie outside the ring of nodes')
-        return
-      end if
-    end if
-    angle = atan((interpolate(x1) - interpolate(x0)) / (x1 - x0)) * rad2deg
-    if (angle == 0.0_dp) angle = 0.0_dp   ! a zero slope over x1 < x0 is -0: printed as 0, not -0
-  contains
-    real(dp) function interpolate(x)
-      real(dp), intent(in) :: x
-      integer :: k
-      k = 1
-      do while (k < size(xs) - 1)
-        if (xs(k + 1) >= x) exit
-        k = k + 1
-      end do
-      interpolate = ws(k) + (ws(k + 1) - ws(k)) * (x - xs(k)) / max(xs(k + 1) - xs(k), tiny(1.0_dp))
-    end function interpolate
-  end subroutine section_rotation
-
-  !> Tilt (degrees) of a group's axis between the sections z = FROM and z = TO: the mean ux of
-  !! the group's nodes on each section, -atan(d ux / d z), so that a rigid rotation of the
-  !! group gives the same angle as REPORT, ROTATION does from the slope of w (thesis 7.3: the
-  !! rigid-body rotation of the pipe in the soil).
-  subroutine axis_tilt(model, r, u, angle, error)
-    type(model_t), intent(in) :: model
-    type(report_t), intent(in) :: r
-    real(dp), intent(in) :: u(:, :)
-    real(dp), intent(out) :: angle
-    type(error_t), allocatable, intent(out) :: error
-    real(dp) :: ux0, ux1
-    logical, allocatable :: in_group(:)
-    allocate (in_group(model%nnode))
-    in_group = .false.
-    in_group(pack(model%groups(r%group)%connectivity, .true.)) = .true.
-    call section_mean_ux(r%x_from, ux0)
-    if (allocated(error)) return
-    call section_mean_ux(r%x_to, ux1)
-    if (allocated(error)) return
-    angle = -atan((ux1 - ux0) / (r%x_to - r%x_from)) * rad2deg
-    if (angle == 0.0_dp) angle = 0.0_dp   ! -atan(0) is -0: printed and written as 0, not -0
-  contains
-    subroutine section_mean_ux(z, ux)
-      real(dp), intent(in) :: z
-      real(dp), intent(out) :: ux
-      real(dp) :: tol
-      integer :: n, count
-      tol = 1.0e-6_dp * max(1.0_dp, abs(z))
-      ux = 0.0_dp
-      count = 0
-      do n = 1, model%nnode
-        if (.not. in_group(n) .or. abs(model%coords(3, n) - z) > tol) cycle
-        ux = ux + u(1, n)
-        count = count + 1
-      end do
-      if (count == 0) then
-        call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': group ' // &
-                         model%groups(r%group)%name // ' has no node on the section z = ' // str(z))
-        return
-      end if
-      ux = ux / count
-    end subroutine section_mean_ux
-  end subroutine axis_tilt
-
   subroutine observer_progress(self, line)
     class(results_observer_t), intent(inout) :: self
     character(len=*), intent(in) :: line
@@ -881,54 +763,5 @@ contains
       path = deck(slash + 1:) // '.h5'
     end if
   end function default_output
-
-  !> The smallest Jacobian of a bare DATAIN mesh, over its typed blocks (element_catalog's
-  !! bare_mesh_type: hex8, hex20): a block of another node count (typed nodes<k>) has no
-  !! element to evaluate and is only counted and
-  !! written (it used to stop the run as an unsupported element type).
-  subroutine mesh_jacobians(model, min_detj, error)
-    type(model_t), intent(in) :: model
-    real(dp), intent(out) :: min_detj
-    type(error_t), allocatable, intent(out) :: error
-    type(model_t) :: solids
-    type(group_kernel_t), allocatable :: kernels(:)
-    integer :: g
-    solids%coords = model%coords
-    allocate (solids%groups(0))
-    do g = 1, size(model%groups)
-      if (model%groups(g)%element%family == family_solid) solids%groups = [solids%groups, model%groups(g)]
-    end do
-    call build_kernels(solids, kernels, error)
-    if (allocated(error)) return
-    call check_jacobians(solids, kernels, min_detj, error)
-  end subroutine mesh_jacobians
-
-  subroutine write_mesh_only(path, model, error)
-    character(len=*), intent(in) :: path
-    type(model_t), intent(in) :: model
-    type(error_t), allocatable, intent(out) :: error
-    type(results_file_t) :: h5
-    call h5%create(path, error)
-    if (allocated(error)) return
-    call write_mesh(h5, model, error)
-    if (.not. allocated(error)) call h5%write_summary_string('program', 'feps ' // feps_version, error)
-    if (.not. allocated(error)) call h5%write_summary_string('input_file', model%deck_file, error)
-    if (.not. allocated(error)) call h5%close(error)
-    if (allocated(error)) call h5%discard()
-  end subroutine write_mesh_only
-
-  subroutine write_mesh(h5, model, error)
-    type(results_file_t), intent(inout) :: h5
-    type(model_t), intent(in) :: model
-    type(error_t), allocatable, intent(out) :: error
-    integer :: g
-    call h5%write_mesh(model%coords, error)
-    if (allocated(error)) return
-    do g = 1, size(model%groups)
-      call h5%write_group(model%groups(g)%name, model%groups(g)%element_type, model%groups(g)%connectivity, error, &
-                          material=model%groups(g)%material_name, coordinates=model%coords)
-      if (allocated(error)) return
-    end do
-  end subroutine write_mesh
 
 end module feps_program

@@ -1,7 +1,8 @@
 !> Direct solver for non-symmetric sparse matrices (UMFPACK, unsymmetric multifrontal LU),
-!! for the full-Newton tangent where a material's tangent is non-symmetric (psi /= phi). It
-!! takes the full matrix, both triangles, in compressed rows (`full_pattern` of
-!! feps_sparse_matrix), not the lower triangle the symmetric solvers take.
+!! for the full-Newton tangent where a material's tangent is non-symmetric (psi /= phi), behind
+!! the same `linear_solver_t` contract as the symmetric solvers. It takes the full matrix, both
+!! triangles, in compressed rows (`full_pattern` of feps_sparse_matrix), not the lower triangle
+!! the symmetric solvers take, so it is not one of `--solver`'s choices.
 !!
 !! The UMFPACK state lives behind a C handle that the finalizer frees; do not copy a
 !! umfpack_solver_t after a factorization (the copy would share, and later free, the handle).
@@ -10,6 +11,7 @@ module feps_umfpack_solver
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_solver, err_model, str
   use feps_sparse_matrix, only: csr_matrix_t
+  use feps_linear_solver, only: linear_solver_t
   use feps_umfpack_bindings, only: feps_umf_create, feps_umf_free, feps_umf_factorize, feps_umf_solve, &
                                    feps_umf_status, feps_umf_flops, feps_umf_rcond, umf_ok, umf_singular
   implicit none
@@ -21,20 +23,36 @@ module feps_umfpack_solver
   !! an exactly zero pivot, and the solve of such a factor is rounding noise amplified 1e14 times.
   real(dp), parameter, public :: lu_singular_rcond = 1.0e-12_dp
 
-  type, public :: umfpack_solver_t
+  !> UMFPACK's LU; `factorizations` counts the successful ones and `flops` is the last one's.
+  type, extends(linear_solver_t), public :: umfpack_solver_t
     type(c_ptr) :: handle = c_null_ptr
     logical :: factorized = .false.    !! a valid factorization is held
-    integer :: factorizations = 0      !! successful factorizations so far
-    real(dp) :: flops = 0.0_dp         !! of the last factorization
     real(dp) :: rcond = 0.0_dp         !! UMFPACK's reciprocal condition estimate of the last factorization
     real(dp) :: min_rcond = huge(1.0_dp)   !! the smallest rcond of the factorizations kept
   contains
+    procedure :: analyze => umfpack_analyze
     procedure :: factorize => umfpack_factorize
     procedure :: solve => umfpack_solve
+    procedure :: name => umfpack_name
     final :: umfpack_finalize
   end type umfpack_solver_t
 
 contains
+
+  !> Nothing to do ahead: UMFPACK orders and analyses the pattern in each factorization (the
+  !! non-symmetric tangents are rare and their pattern is the full one of the stiffness).
+  subroutine umfpack_analyze(self, a, error)
+    class(umfpack_solver_t), intent(inout) :: self
+    type(csr_matrix_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+  end subroutine umfpack_analyze
+
+  !> 'umfpack'.
+  pure function umfpack_name(self) result(name)
+    class(umfpack_solver_t), intent(in) :: self
+    character(len=:), allocatable :: name
+    name = 'umfpack'
+  end function umfpack_name
 
   !> LU factorization of the full matrix `a`; a singular matrix (a zero pivot, or a reciprocal
   !! condition estimate below lu_singular_rcond) fails with err_model.

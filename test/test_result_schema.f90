@@ -6,6 +6,8 @@ module test_result_schema
   use feps_result_schema, only: result_fields
   use feps_h5_testing, only: run_and_open, close_and_delete, read_real, read_int, file_text, string_attribute
   use hdf5, only: hid_t
+  use feps_element, only: element_t
+  use feps_element_catalog, only: new_solid_element
   implicit none
   private
 
@@ -24,7 +26,8 @@ contains
                    test_applied_force), &
       new_unittest('stress_cyl of the hex20 Lame cylinder against the closed form', test_stress_cyl), &
       new_unittest('nodal_stress_cyl at the bore of the hex20 Lame cylinder', test_nodal_stress_cyl), &
-      new_unittest('point_state of a concrete cantilever past its tensile strength', test_point_state)]
+      new_unittest('point_state of a concrete cantilever past its tensile strength', test_point_state), &
+      new_unittest('model B SE1: the resolved node and face sets', test_sets)]
   end subroutine collect_result_schema
 
   !> Every field of the schema has its row `/steps/<NNNN>/<name>...` in the manual's table of
@@ -176,5 +179,52 @@ contains
     call check(error, all(state == 0 .or. state == 1 .or. state == 3), &
                'states are 0 (elastic), 1 (yielding) or 3 (tension cut-off)')
   end subroutine test_point_state
+
+  !> input/modelB/SE1.dat: /sets/nodes/anchor is the one soil node at r = 2000, theta = 0,
+  !! z = 1250; /sets/faces/end_low holds the 54 pipe faces (2 through the wall x 27 around) whose
+  !! nodes (by the element catalog's face lists) all lie at z = 0, and end_high those at z = 2500.
+  subroutine test_sets(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: file_id
+    real(dp), allocatable :: x(:, :)
+    integer, allocatable :: anchor(:, :), low(:, :), high(:, :), connectivity(:, :)
+    class(element_t), allocatable :: hex8
+    call run_and_open('input/modelB/SE1.dat', 'schema_sets', file_id, error)
+    if (allocated(error)) return
+    call read_real(file_id, '/mesh/coordinates', x, error)
+    if (.not. allocated(error)) call read_int(file_id, '/sets/nodes/anchor', anchor, error)
+    if (.not. allocated(error)) call read_int(file_id, '/sets/faces/end_low', low, error)
+    if (.not. allocated(error)) call read_int(file_id, '/sets/faces/end_high', high, error)
+    if (.not. allocated(error)) call read_int(file_id, '/mesh/groups/pipe/connectivity', connectivity, error)
+    if (.not. allocated(error)) call check(error, string_attribute(file_id, '/sets/faces/end_low', 'group') == 'pipe', &
+                                           'the face set names its group')
+    call close_and_delete(file_id, 'schema_sets')
+    if (allocated(error)) return
+    call check(error, size(anchor), 1, 'one anchor node')
+    if (allocated(error)) return
+    call check(error, norm2(x(:, anchor(1, 1)) - [2000.0_dp, 0.0_dp, 1250.0_dp]), 0.0_dp, 'the anchor node''s position', &
+               abs=1.0e-9_dp)
+    if (allocated(error)) return
+    call new_solid_element('hex8', hex8, error)
+    if (allocated(error)) return
+    call check_faces(low, 0.0_dp)
+    if (allocated(error)) return
+    call check_faces(high, 2500.0_dp)
+  contains
+    subroutine check_faces(faces, z)
+      integer, intent(in) :: faces(:, :)
+      real(dp), intent(in) :: z
+      integer :: k
+      call check(error, size(faces, 2), 54, 'faces at z = end')
+      if (allocated(error)) return
+      call check(error, size(faces, 1), 2, 'element and face per row')
+      if (allocated(error)) return
+      do k = 1, size(faces, 2)
+        call check(error, maxval(abs(x(3, connectivity(hex8%face_nodes(faces(2, k)), faces(1, k))) - z)), 0.0_dp, &
+                   'the face''s nodes lie on the end', abs=1.0e-9_dp)
+        if (allocated(error)) return
+      end do
+    end subroutine check_faces
+  end subroutine test_sets
 
 end module test_result_schema

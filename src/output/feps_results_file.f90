@@ -21,7 +21,7 @@ module feps_results_file
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
-                  h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, h5aclose_f, &
+                  h5dcreate_f, h5dopen_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, h5aclose_f, &
                   h5aexists_f, h5adelete_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
                   H5T_FORTRAN_S1, H5T_STR_NULLPAD_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
                   H5T_STD_I64LE, h5kind_to_type, H5_INTEGER_KIND, &
@@ -56,6 +56,7 @@ module feps_results_file
     procedure :: write_group_int
     procedure :: write_group_real
     procedure :: write_material
+    procedure :: write_set
     procedure :: close => close_file
     procedure :: discard
   end type results_file_t
@@ -483,6 +484,37 @@ contains
     call h5gclose_f(group_id, hdferr)
     if (allocated(error)) error%message = 'cannot write attribute /mesh/groups/' // name // '/' // key
   end subroutine write_group_real
+
+  !> A resolved selection of the deck: `/sets/<kind>/<name>` holding `members(k, n)` (1-based:
+  !! the node numbers of a node set, k = 1; the element of the group and its face of a face
+  !! set, k = 2), with the attribute `components` (`node`, or `element face`) and, for a face
+  !! set, `group`.
+  subroutine write_set(self, kind, name, members, error, group)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: kind, name
+    integer, intent(in) :: members(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: group
+    integer(hid_t) :: id
+    integer :: hdferr
+    character(len=:), allocatable :: path
+    call require_open(self, error)
+    if (allocated(error)) return
+    call check_name(name, kind // ' set', error)
+    if (allocated(error)) return
+    path = '/sets/' // kind // '/' // name
+    call write_int_dataset(self, path, members, error)
+    if (allocated(error)) return
+    call h5dopen_f(self%file_id, path, id, hdferr)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot open dataset ' // path // ' in ' // self%part_path)
+      return
+    end if
+    call write_string_attribute(id, 'components', trim(merge('node        ', 'element face', size(members, 1) == 1)), &
+                                error)
+    if (present(group) .and. .not. allocated(error)) call write_string_attribute(id, 'group', group, error)
+    call h5dclose_f(id, hdferr)
+  end subroutine write_set
 
   !> Open `/mesh/groups/<name>` of the open file (the caller closes it).
   subroutine open_mesh_group(self, name, group_id, error)

@@ -235,6 +235,11 @@ contains
       call obs%h5%discard()
       return
     end if
+    call write_sets(obs%h5, model, error)
+    if (allocated(error)) then
+      call obs%h5%discard()
+      return
+    end if
     summary%wall_time = wall_clock() - t0
     call write_summary(obs%h5, model, summary, error)
     if (.not. allocated(error)) call obs%h5%close(error)
@@ -643,6 +648,35 @@ contains
                           group=group%name)
     end associate
   end subroutine write_nodal_tractions
+
+  !> The deck's selections as the run resolved them, `/sets/nodes/<name>` and
+  !! `/sets/faces/<name>` (the nodes and faces that supports, loads and REPORTs act on), so that
+  !! a script or an exporter needs no second reading of the deck.
+  subroutine write_sets(h5, model, error)
+    type(results_file_t), intent(inout) :: h5
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: members(:, :)
+    integer :: k
+    do k = 1, size(model%node_sets)
+      associate (set => model%node_sets(k))
+        members = reshape(set%nodes, [1, size(set%nodes)])
+        call h5%write_set('nodes', set%name, members, error)
+      end associate
+      if (allocated(error)) return
+    end do
+    do k = 1, size(model%face_sets)
+      associate (set => model%face_sets(k))
+        if (.not. allocated(set%element)) cycle
+        if (allocated(members)) deallocate (members)
+        allocate (members(2, size(set%face)))
+        members(1, :) = set%element
+        members(2, :) = set%face
+        call h5%write_set('faces', set%name, members, error, group=model%groups(set%group)%name)
+      end associate
+      if (allocated(error)) return
+    end do
+  end subroutine write_sets
 
   subroutine write_summary(h5, model, summary, error)
     type(results_file_t), intent(inout) :: h5

@@ -76,10 +76,6 @@ X_REGION = 250.0      # beta_bar from the deformation in x > 250 mm (thesis 7.4.
 EDGE_THETA = 6.0      # sigma_max from the elements with theta < 6 deg (thesis 7.4.3)
 PACKING_A = 15.0      # mm: the packing thickness the analytical models take (SPEC section 8)
 TOL = 1e-3
-GAUSS = 1.0 / math.sqrt(3.0)
-# 2x2 Gauss points, first natural coordinate fastest (feps square_rule), and the quad4 corners
-GAUSS_POINTS = [(-GAUSS, -GAUSS), (GAUSS, -GAUSS), (-GAUSS, GAUSS), (GAUSS, GAUSS)]
-CORNERS = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
 
 
 def last_step(f):
@@ -212,20 +208,9 @@ def beta_bar(coords, conn_top, conn_joint, u, traction):
     return _slope_deg(x, d), variants, x, d
 
 
-def gauss_points(coords, conn_joint):
-    """Global positions (nelem*4, 3) of the interface Gauss points on the lower layer, element-major."""
-    out = np.zeros((len(conn_joint) * 4, 3))
-    for e, elem in enumerate(conn_joint - 1):
-        xe = coords[elem[:4]]
-        for g, (s1, s2) in enumerate(GAUSS_POINTS):
-            n = np.array([0.25 * (1 + s1 * a) * (1 + s2 * b) for a, b in CORNERS])
-            out[4 * e + g] = n @ xe
-    return out
-
-
-def contact_width(coords, conn_joint, traction):
-    """Z (mm, thesis 7.4.3) and the per-line zero positions / kinds."""
-    xg = gauss_points(coords, conn_joint)
+def contact_width(coords, conn_joint, traction, xg):
+    """Z (mm, thesis 7.4.3) and the per-line zero positions / kinds; `xg` (nelem*4, 3) are the
+    interface's Gauss points on its lower layer, as feps wrote them (/mesh/groups/joint/points)."""
     sn = traction[:, 2]
     state = traction[:, 3]
     theta = np.degrees(np.arctan2(xg[:, 1], xg[:, 0]))
@@ -313,10 +298,10 @@ def edge_stress_packing(coords, conn_packing, cell_stress):
     return _edge_line(coords, conn_packing, 8, cell_stress[:, 2])
 
 
-def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells):
+def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells, xg):
     bstar, delta, delta_b, bstar_x0, _ = beta_star(coords, conn_top, u)
     bbar, variants, _, _ = beta_bar(coords, conn_top, conn_joint, u, traction)
-    z, _, zeros = contact_width(coords, conn_joint, traction)
+    z, _, zeros = contact_width(coords, conn_joint, traction, xg)
     z_centres = contact_width_centres(coords, conn_joint, traction)
     smax_interface, _ = edge_stress(coords, conn_joint, traction)
     smax, nedge = edge_stress_packing(coords, conn_packing, packing_cells)
@@ -367,15 +352,16 @@ def postprocess(h5path, verbose=True):
                 raise Error(f"{h5path}: no /steps/{names[-1]}/{path} (the quantities are read from the displacements, "
                             "the interface's stresses and the packing's element stresses: do not leave them out "
                             "with FIELDS)")
+        xg = fr.gauss_points(f, "joint", step["interface/joint"])
         res = _quantities(coords, conn_top, conn_joint, step["displacement"][...], step["interface/joint"][...],
-                          conn_packing, step["cell/stress/packing"][...])
+                          conn_packing, step["cell/stress/packing"][...], xg)
         res["load_factor"] = float(step.attrs["load_factor"])
         res["residual"] = float(step.attrs["residual"])
         s2 = [n for n in names[:-1] if abs(float(f["steps"][n].attrs["load_factor"]) - 2.0) < 1e-9]
         if s2:
             st2 = f["steps"][s2[-1]]
             q2 = _quantities(coords, conn_top, conn_joint, st2["displacement"][...], st2["interface/joint"][...],
-                             conn_packing, st2["cell/stress/packing"][...])
+                             conn_packing, st2["cell/stress/packing"][...], xg)
             for k in ("beta_star", "beta_bar", "Z", "sigma_max", "beta_bar_raw"):
                 res["s2_" + k] = q2[k]
             res["s2_residual"] = float(st2.attrs["residual"])

@@ -19,6 +19,8 @@ module feps_deck
                               check_result_name, resolve_path, material_family
   use feps_element_catalog, only: element_info, known_element_types, family_name, family_solid, family_interface, &
                                   family_bar, bare_mesh_type
+  use feps_material, only: material_t
+  use feps_material_factory, only: new_material
   use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
   use feps_deck_stages, only: read_stage, read_controls_record, read_report
   implicit none
@@ -716,7 +718,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     logical, allocatable :: defined(:)
     type(error_t), allocatable :: unknown
-    integer :: nnode, i, g, b, nel, k, first
+    class(material_t), allocatable :: material
+    integer :: nnode, i, g, b, nel, k, first, m
 
     ! Nodes: DATAIN blocks first, explicit NODE records at their numbers.
     nnode = st%mesh%nnode
@@ -829,6 +832,12 @@ contains
                            '): interface elements take INTERFACE materials, bars BAR, solids ELASTIC or MATSUOKA')
           return
         end if
+      end do
+      ! Every material's parameters are checked as its object is built, now, before anything
+      ! is written (the analysis builds its own from the same records).
+      do m = 1, size(model%materials)
+        call new_material(model%materials(m), material, error)
+        if (allocated(error)) return
       end do
       do g = 1, size(model%groups)
         do k = 1, size(model%groups(g)%connectivity, 2)

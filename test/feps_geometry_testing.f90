@@ -7,7 +7,7 @@ module feps_geometry_testing
   implicit none
   private
 
-  public :: cross, add_edge_integrals
+  public :: cross, add_edge_integrals, linear_field, voigt_strain
 
 contains
 
@@ -34,5 +34,22 @@ contains
       loop = loop + 0.5_dp * ws(g) * dot_product(x, x) * dx
     end do
   end subroutine add_edge_integrals
+
+  !> Displacement vector of the field u = h x + c at the nodes `xe`.
+  pure function linear_field(xe, h, c) result(u)
+    real(dp), intent(in) :: xe(:, :), h(3, 3), c(3)
+    real(dp) :: u(3 * size(xe, 2))
+    integer :: a
+    do a = 1, size(xe, 2)
+      u(3 * a - 2:3 * a) = matmul(h, xe(:, a)) + c
+    end do
+  end function linear_field
+
+  !> Engineering Voigt strain of the displacement gradient h.
+  pure function voigt_strain(h) result(eps)
+    real(dp), intent(in) :: h(3, 3)
+    real(dp) :: eps(6)
+    eps = [h(1, 1), h(2, 2), h(3, 3), h(2, 3) + h(3, 2), h(1, 3) + h(3, 1), h(1, 2) + h(2, 1)]
+  end function voigt_strain
 
 end module feps_geometry_testing

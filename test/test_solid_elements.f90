@@ -8,7 +8,7 @@
 module test_solid_elements
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check
-  use feps_geometry_testing, only: cross
+  use feps_geometry_testing, only: cross, linear_field, voigt_strain
   use feps_elasticity_testing, only: isotropic_d, d_at_points
   use feps_error, only: str
   use feps_lapack, only: dsyev
@@ -219,23 +219,6 @@ contains
       end do
     end do
   end subroutine independent_rule
-
-  !> Displacement vector of the field u = h x + c at the nodes `xe`.
-  pure function linear_field(xe, h, c) result(u)
-    real(dp), intent(in) :: xe(:, :), h(3, 3), c(3)
-    real(dp) :: u(3 * size(xe, 2))
-    integer :: a
-    do a = 1, size(xe, 2)
-      u(3 * a - 2:3 * a) = matmul(h, xe(:, a)) + c
-    end do
-  end function linear_field
-
-  !> Engineering Voigt strain of the displacement gradient h.
-  pure function voigt_strain(h) result(eps)
-    real(dp), intent(in) :: h(3, 3)
-    real(dp) :: eps(6)
-    eps = [h(1, 1), h(2, 2), h(3, 3), h(2, 3) + h(3, 2), h(1, 3) + h(3, 1), h(1, 2) + h(2, 1)]
-  end function voigt_strain
 
   !> n! for small n.
   pure real(dp) function factorial(n)

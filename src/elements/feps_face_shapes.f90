@@ -2,7 +2,9 @@
 !! (s1, s2) = (L2, L3) and the 4- and 8-node quadrilaterals on [-1, 1]^2, with the node orders
 !! of element_t's face contract (triangles: corners 1, 2, 3, then mid-edges 4 (1-2), 5 (2-3),
 !! 6 (3-1); quadrilaterals: corners (-1,-1), (1,-1), (1,1), (-1,1), then mid-edges 5 (1-2),
-!! 6 (2-3), 7 (3-4), 8 (4-1)). The tetrahedra and wedges share them; hex8 and hex20 keep their own.
+!! 6 (2-3), 7 (3-4), 8 (4-1)). Every solid's faces take them, tri6 its plane triangle, and the
+!! interface elements their quad4, tri3 and tri6 layers (interface-quad8 keeps its own
+!! arrangement of the serendipity functions: the same functions, other rounding).
 module feps_face_shapes
   use feps_kinds, only: dp
   implicit none

@@ -10,6 +10,7 @@ module feps_hex20
   use feps_kinds, only: dp
   use feps_gauss, only: cube_rule, square_rule
   use feps_element, only: element_t
+  use feps_face_shapes, only: quad8_face_shape
   implicit none
   private
 
@@ -31,16 +32,8 @@ module feps_hex20
     3, 4, 8, 7, 11, 20, 15, 19, &
     1, 5, 8, 4, 17, 16, 20, 12], [8, 6])
 
-  !> Face-local coordinates of the 8 face nodes.
-  real(dp), parameter :: quad8_s(2, 8) = reshape([ &
-    -1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, &
-    0.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, -1.0_dp, 0.0_dp], [2, 8])
-
   !> Direction (1: xi, 2: eta, 3: zeta) of the edge that holds each mid-edge node 9-20.
   integer, parameter :: edge_direction(9:20) = [1, 2, 1, 2, 1, 2, 1, 2, 3, 3, 3, 3]
-
-  !> Face-local direction (1: s1, 2: s2) of the edge that holds each face mid-edge node 5-8.
-  integer, parameter :: face_edge_direction(5:8) = [1, 2, 1, 2]
 
   type, extends(element_t), public :: hex20_t
     logical :: reduced = .false.   !! .true.: 2x2x2 reduced integration instead of 3x3x3
@@ -144,29 +137,13 @@ contains
     nodes = hex20_faces(:, face)
   end function hex20_face_nodes
 
-  !> 8-node serendipity quadrilateral: corners N = (1 + s s_a)(1 + t t_a)(s s_a + t t_a - 1) / 4,
-  !! mid-edge nodes N = (1 - s_k^2)(1 + s_l s_a,l) / 2.
+  !> 8-node serendipity quadrilateral (feps_face_shapes).
   pure subroutine hex20_face_shape(self, face, s, n, dn)
     class(hex20_t), intent(in) :: self
     integer, intent(in) :: face
     real(dp), intent(in) :: s(2)
     real(dp), intent(out) :: n(:), dn(:, :)
-    real(dp) :: f(2), g
-    integer :: a, k, l
-    do a = 1, 4
-      f = 1.0_dp + s * quad8_s(:, a)
-      g = dot_product(s, quad8_s(:, a)) - 1.0_dp
-      n(a) = 0.25_dp * f(1) * f(2) * g
-      dn(1, a) = 0.25_dp * quad8_s(1, a) * f(2) * (g + f(1))
-      dn(2, a) = 0.25_dp * quad8_s(2, a) * f(1) * (g + f(2))
-    end do
-    do a = 5, 8
-      k = face_edge_direction(a)
-      l = 3 - k
-      n(a) = 0.5_dp * (1.0_dp - s(k)**2) * (1.0_dp + s(l) * quad8_s(l, a))
-      dn(k, a) = -s(k) * (1.0_dp + s(l) * quad8_s(l, a))
-      dn(l, a) = 0.5_dp * (1.0_dp - s(k)**2) * quad8_s(l, a)
-    end do
+    call quad8_face_shape(s, n, dn)
   end subroutine hex20_face_shape
 
   pure subroutine hex20_face_gauss_rule(self, face, s, w)

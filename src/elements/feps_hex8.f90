@@ -10,6 +10,7 @@ module feps_hex8
   use feps_kinds, only: dp
   use feps_gauss, only: cube_rule, square_rule
   use feps_element, only: element_t
+  use feps_face_shapes, only: quad4_face_shape
   implicit none
   private
 
@@ -22,9 +23,6 @@ module feps_hex8
   integer, parameter :: hex8_faces(4, 6) = reshape([ &
     1, 4, 3, 2,  5, 6, 7, 8,  1, 2, 6, 5,  2, 3, 7, 6,  3, 4, 8, 7,  1, 5, 8, 4], [4, 6])
 
-  !> Face-local coordinates of the 4 face nodes.
-  real(dp), parameter :: quad4_s(2, 4) = reshape([ &
-    -1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp], [2, 4])
 
   type, extends(element_t), public :: hex8_t
   contains
@@ -112,20 +110,13 @@ contains
     nodes = hex8_faces(:, face)
   end function hex8_face_nodes
 
-  !> Bilinear quadrilateral: N_a = (1 + s s_a)(1 + t t_a) / 4.
+  !> Bilinear quadrilateral (feps_face_shapes).
   pure subroutine hex8_face_shape(self, face, s, n, dn)
     class(hex8_t), intent(in) :: self
     integer, intent(in) :: face
     real(dp), intent(in) :: s(2)
     real(dp), intent(out) :: n(:), dn(:, :)
-    real(dp) :: f(2)
-    integer :: a
-    do a = 1, 4
-      f = 1.0_dp + s * quad4_s(:, a)
-      n(a) = 0.25_dp * f(1) * f(2)
-      dn(1, a) = 0.25_dp * quad4_s(1, a) * f(2)
-      dn(2, a) = 0.25_dp * quad4_s(2, a) * f(1)
-    end do
+    call quad4_face_shape(s, n, dn)
   end subroutine hex8_face_shape
 
   pure subroutine hex8_face_gauss_rule(self, face, s, w)

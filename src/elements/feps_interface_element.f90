@@ -44,6 +44,7 @@ module feps_interface_element
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_input
   use feps_gauss, only: gauss_legendre, square_rule
+  use feps_face_shapes, only: quad4_face_shape, tri3_face_shape, tri6_face_shape
   implicit none
   private
 
@@ -210,16 +211,11 @@ contains
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: s(2)
     real(dp), intent(out) :: n(:), dn(:, :)
-    real(dp) :: f(2), l1, l2, l3, x, y
+    real(dp) :: f(2), x, y
     integer :: a
     select case (self%shape_kind)
     case (interface_quad4)
-      do a = 1, 4
-        f = 1.0_dp + s * quad_s(:, a)
-        n(a) = 0.25_dp * f(1) * f(2)
-        dn(1, a) = 0.25_dp * quad_s(1, a) * f(2)
-        dn(2, a) = 0.25_dp * quad_s(2, a) * f(1)
-      end do
+      call quad4_face_shape(s, n, dn)
     case (interface_quad8)
       x = s(1)
       y = s(2)
@@ -241,20 +237,9 @@ contains
         dn(2, a) = -y * (1.0_dp + x * quad_s(1, a))
       end do
     case (interface_tri3)
-      n(1:3) = [1.0_dp - s(1) - s(2), s(1), s(2)]
-      dn(1, 1:3) = [-1.0_dp, 1.0_dp, 0.0_dp]
-      dn(2, 1:3) = [-1.0_dp, 0.0_dp, 1.0_dp]
+      call tri3_face_shape(s, n, dn)
     case (interface_tri6)
-      l1 = 1.0_dp - s(1) - s(2)
-      l2 = s(1)
-      l3 = s(2)
-      n(1:6) = [l1 * (2.0_dp * l1 - 1.0_dp), l2 * (2.0_dp * l2 - 1.0_dp), l3 * (2.0_dp * l3 - 1.0_dp), &
-                4.0_dp * l1 * l2, 4.0_dp * l2 * l3, 4.0_dp * l3 * l1]
-      ! d/ds1 = d/dL2 - d/dL1, d/ds2 = d/dL3 - d/dL1
-      dn(1, 1:6) = [1.0_dp - 4.0_dp * l1, 4.0_dp * l2 - 1.0_dp, 0.0_dp, &
-                    4.0_dp * (l1 - l2), 4.0_dp * l3, -4.0_dp * l3]
-      dn(2, 1:6) = [1.0_dp - 4.0_dp * l1, 0.0_dp, 4.0_dp * l3 - 1.0_dp, &
-                    -4.0_dp * l2, 4.0_dp * l2, 4.0_dp * (l1 - l3)]
+      call tri6_face_shape(s, n, dn)
     case (interface_line2)
       n(1:2) = [0.5_dp * (1.0_dp - s(1)), 0.5_dp * (1.0_dp + s(1))]
       dn(1, 1:2) = [-0.5_dp, 0.5_dp]

@@ -17,6 +17,7 @@ module feps_tri6
   use feps_kinds, only: dp
   use feps_gauss, only: gauss_legendre, triangle_rule
   use feps_element, only: element_t
+  use feps_face_shapes, only: quadratic_triangle => tri6_face_shape
   implicit none
   private
 
@@ -92,22 +93,12 @@ contains
     end if
   end function tri6_element_type
 
-  !> Quadratic triangle: corners N = L (2L - 1), mid-sides N = 4 L_i L_j; dn(3, :) = 0.
+  !> Quadratic triangle (feps_face_shapes' 6-node triangle in the plane); dn(3, :) = 0.
   pure subroutine tri6_shape(self, xi, n, dn)
     class(tri6_t), intent(in) :: self
     real(dp), intent(in) :: xi(3)
     real(dp), intent(out) :: n(:), dn(:, :)
-    real(dp) :: l1, l2, l3
-    l2 = xi(1)
-    l3 = xi(2)
-    l1 = 1.0_dp - l2 - l3
-    n(1:6) = [l1 * (2.0_dp * l1 - 1.0_dp), l2 * (2.0_dp * l2 - 1.0_dp), l3 * (2.0_dp * l3 - 1.0_dp), &
-              4.0_dp * l1 * l2, 4.0_dp * l2 * l3, 4.0_dp * l3 * l1]
-    ! d/ds1 = d/dL2 - d/dL1, d/ds2 = d/dL3 - d/dL1
-    dn(1, 1:6) = [1.0_dp - 4.0_dp * l1, 4.0_dp * l2 - 1.0_dp, 0.0_dp, &
-                  4.0_dp * (l1 - l2), 4.0_dp * l3, -4.0_dp * l3]
-    dn(2, 1:6) = [1.0_dp - 4.0_dp * l1, 0.0_dp, 4.0_dp * l3 - 1.0_dp, &
-                  -4.0_dp * l2, 4.0_dp * l2, 4.0_dp * (l1 - l3)]
+    call quadratic_triangle(xi(1:2), n, dn(1:2, :))
     dn(3, 1:6) = 0.0_dp
   end subroutine tri6_shape
 

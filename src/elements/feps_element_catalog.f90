@@ -1,12 +1,14 @@
 !> The element catalog: the one place that maps an element type name (the `TYPE=` of a deck's
 !! GROUP) to its element object and to everything the rest of feps asks of a type: family,
-!! dimension, nodes, integration points, result field and component names, XDMF cell. The deck
+!! dimension, nodes, integration points, the component names of its point results, XDMF cell
+!! (which result field a family's points fill is the result schema's, src/model). The deck
 !! reader, model, assembly, results and XDMF writers and stress recovery ask it; no other
 !! module spells an element type name. The results file carries the answers as attributes of
 !! each `/mesh/groups/<name>`, so the Python scripts read them from there.
 !!
 !! Adding an element type: its module in src/elements/, a row in `catalog` below and, for a
-!! solid, its constructor `case` in `new_solid_element` (test_element_catalog builds every row).
+!! solid, its constructor `case` in `new_solid_element` (test_result_schema's catalog test
+!! builds every row).
 module feps_element_catalog
   use feps_kinds, only: dp
   use feps_strings, only: to_lower
@@ -77,8 +79,8 @@ module feps_element_catalog
     integer :: nnodes = 0                             !! nodes per element (both layers of an interface)
     integer :: npoints = 0                            !! integration points per element
     integer :: ncomp = 0                              !! result components per point
-    character(len=:), allocatable :: result_field     !! 'stress', 'interface' or 'bar'
-    character(len=:), allocatable :: component_names  !! blank-separated, as written to the results
+    character(len=:), allocatable :: component_names  !! of its point results, blank-separated
+    character(len=:), allocatable :: strain_component_names  !! of its point strains ('' if none written)
     character(len=:), allocatable :: xdmf_topology    !! the XDMF TopologyType of its cell
     integer :: xdmf_cell_nodes = 0                    !! nodes of that cell (an interface: its lower layer)
   end type element_info_t
@@ -111,8 +113,8 @@ contains
       info%nnodes = solid%nnodes()
       info%npoints = solid%ngauss()
       info%ncomp = 6
-      info%result_field = 'stress'
       info%component_names = 'sxx syy szz syz sxz sxy'
+      info%strain_component_names = ''
       info%xdmf_cell_nodes = info%nnodes
     case (family_interface)
       call new_interface_element(info%name, iface, error)
@@ -120,8 +122,8 @@ contains
       info%nnodes = iface%nnodes()
       info%npoints = iface%ngauss()
       info%ncomp = iface%ncomp()
-      info%result_field = 'interface'
       info%component_names = trim(merge('tau1 tau2 sigma_n', 'tau sigma_n      ', info%ncomp == 3))
+      info%strain_component_names = trim(merge('gamma1 gamma2 eps_n', 'gamma eps_n        ', info%ncomp == 3))
       info%xdmf_cell_nodes = info%nnodes / 2
     case (family_bar)
       call new_bar_element(info%name, bar, error)
@@ -129,8 +131,8 @@ contains
       info%nnodes = bar%nnodes()
       info%npoints = bar%ngauss()
       info%ncomp = 1
-      info%result_field = 'bar'
       info%component_names = 'axial_force'
+      info%strain_component_names = ''
       info%xdmf_cell_nodes = info%nnodes
     end select
   end subroutine element_info
@@ -219,15 +221,20 @@ contains
     end select
   end subroutine new_solid_element
 
-  !> The catalog's names, comma-separated: all of them, or those of one family.
-  pure function known_element_types(family) result(names)
+  !> The catalog's names, comma-separated: all of them, or those of one family and/or one
+  !! dimension (2: the plane-strain types).
+  pure function known_element_types(family, dimension) result(names)
     integer, intent(in), optional :: family
+    integer, intent(in), optional :: dimension
     character(len=:), allocatable :: names
     integer :: row
     names = ''
     do row = 1, size(catalog)
       if (present(family)) then
         if (catalog(row)%family /= family) cycle
+      end if
+      if (present(dimension)) then
+        if (catalog(row)%dimension /= dimension) cycle
       end if
       if (len(names) > 0) names = names // ', '
       names = names // trim(catalog(row)%name)

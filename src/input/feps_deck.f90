@@ -17,7 +17,7 @@ module feps_deck
   use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
                               parse_range_int, key_value, check_option_keys, option_text, get_csys_option, dof_index, dof_names, &
                               check_result_name, resolve_path, material_family
-  use feps_element_catalog, only: element_info, known_element_types, family_name, family_solid, family_interface, &
+  use feps_element_catalog, only: element_info, known_element_types, family_solid, family_interface, &
                                   family_bar, bare_mesh_type
   use feps_material, only: material_t
   use feps_material_factory, only: new_material
@@ -497,7 +497,7 @@ contains
       call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (solids: ' // &
                        known_element_types(family_solid) // '; interfaces: ' // &
                        known_element_types(family_interface) // '; bars: ' // known_element_types(family_bar) // &
-                       '; 2D plane strain: tri6, tri6-6 and the line interfaces)', ifield)
+                       '; of them 2D (plane strain): ' // known_element_types(dimension=2) // ')', ifield)
       return
     end if
     g%element_type = g%element%name
@@ -824,8 +824,7 @@ contains
                            model%groups(g)%material_name // '"', model%groups(g)%material_field)
           return
         end if
-        if (material_family(model%materials(model%groups(g)%material)%kind) /= &
-            family_name(model%groups(g)%element%family)) then
+        if (material_family(model%materials(model%groups(g)%material)%kind) /= model%groups(g)%element%family) then
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
                            ' (' // model%groups(g)%element_type // ') cannot use material ' // &
                            model%groups(g)%material_name // ' (' // model%materials(model%groups(g)%material)%kind // &

@@ -8,6 +8,7 @@ module feps_deck_fields
   use feps_records, only: record_t, keyword, nfields, field_text, is_integer_text, real_from_text
   use feps_coordinate_system, only: csys_cylindrical
   use feps_model, only: model_t
+  use feps_element_catalog, only: family_solid, family_interface, family_bar
   implicit none
   private
 
@@ -326,15 +327,16 @@ contains
     full = base(:slash) // path
   end function resolve_path
 
-  !> 'interface', 'bar' or 'solid' for a material kind.
-  pure function material_family(kind) result(family)
+  !> The element family (the element catalog's code) whose groups take a material of `kind`.
+  pure integer function material_family(kind) result(family)
     character(len=*), intent(in) :: kind
-    character(len=:), allocatable :: family
     select case (kind)
-    case ('interface', 'bar')
-      family = kind
+    case ('interface')
+      family = family_interface
+    case ('bar')
+      family = family_bar
     case default
-      family = 'solid'
+      family = family_solid
     end select
   end function material_family
 

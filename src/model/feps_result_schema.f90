@@ -8,7 +8,7 @@ module feps_result_schema
   implicit none
   private
 
-  public :: field_index, known_field_names
+  public :: field_index, known_field_names, field_name, field_components, family_field
 
   !> Where a field's rows are.
   integer, parameter, public :: at_nodes = 1        !! one row per mesh node
@@ -17,7 +17,7 @@ module feps_result_schema
 
   !> One field: its name, where its rows are, which groups have it (0: the whole mesh), whether
   !! a run writes it without FIELDS, and its components ('': the element catalog's names for the
-  !! group's type, as the result_field of its family).
+  !! group's type: its point results, or for interface_strain its point strains).
   type, public :: result_field_t
     character(len=16) :: name
     integer :: location
@@ -40,16 +40,46 @@ module feps_result_schema
     result_field_t('stress', at_points, family_solid, .true., ''), &
     result_field_t('principal', at_points, family_solid, .true., 'most_tensile most_compressive'), &
     result_field_t('interface', at_points, family_interface, .true., ''), &
-    result_field_t('interface_strain', at_points, family_interface, .true., 'gamma1 gamma2 eps_n'), &
+    result_field_t('interface_strain', at_points, family_interface, .true., ''), &
     result_field_t('bar', at_points, family_bar, .true., ''), &
     result_field_t('nodal_stress', at_group_nodes, family_solid, .false., 'sxx syy szz syz sxz sxy'), &
     result_field_t('nodal_principal', at_group_nodes, family_solid, .false., 'most_tensile most_compressive'), &
-    result_field_t('nodal_interface', at_group_nodes, family_interface, .false., 'tau1 tau2 sigma_n'), &
+    result_field_t('nodal_interface', at_group_nodes, family_interface, .false., ''), &
     result_field_t('point_state', at_points, family_solid, .false., 'state'), &
     result_field_t('stress_cyl', at_points, family_solid, .false., 'srr stt szz stz srz srt'), &
     result_field_t('nodal_stress_cyl', at_group_nodes, family_solid, .false., 'srr stt szz stz srz srt')]
 
 contains
+
+  !> The name of field `id`, as FIELDS takes it and the results file's datasets are called.
+  pure function field_name(id) result(name)
+    integer, intent(in) :: id
+    character(len=:), allocatable :: name
+    name = trim(result_fields(id)%name)
+  end function field_name
+
+  !> The fixed components of field `id` ('': the element catalog's, by the group's type).
+  pure function field_components(id) result(components)
+    integer, intent(in) :: id
+    character(len=:), allocatable :: components
+    components = trim(result_fields(id)%components)
+  end function field_components
+
+  !> The field of an element family's own point results (stress, interface or bar; 0 for
+  !! another code), whose components are the element catalog's names for the group's type.
+  pure integer function family_field(family)
+    integer, intent(in) :: family
+    select case (family)
+    case (family_solid)
+      family_field = field_stress
+    case (family_interface)
+      family_field = field_interface
+    case (family_bar)
+      family_field = field_bar
+    case default
+      family_field = 0
+    end select
+  end function family_field
 
   !> The id of the field called `name` (lower case), 0 if there is none.
   pure integer function field_index(name)

@@ -16,6 +16,7 @@ module feps_results_file
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_error, only: error_t, fatal_error, err_io, err_internal, err_solver, str
   use feps_element_catalog, only: element_info_t, element_info, family_name, point_coordinates
+  use feps_result_schema, only: field_name, family_field
   use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_path, count_words, word
   use feps_paths, only: is_xdmf_name
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
@@ -241,7 +242,8 @@ contains
     call write_string_attribute(group_id, 'family', family_name(info%family), error)
     if (.not. allocated(error)) call write_int_attribute(group_id, 'dimension', info%dimension, error)
     if (.not. allocated(error)) call write_int_attribute(group_id, 'points_per_element', info%npoints, error)
-    if (.not. allocated(error)) call write_string_attribute(group_id, 'result_field', info%result_field, error)
+    if (.not. allocated(error)) call write_string_attribute(group_id, 'result_field', &
+                                                            field_name(family_field(info%family)), error)
     if (.not. allocated(error)) call write_string_attribute(group_id, 'components', info%component_names, error)
     if (.not. allocated(error)) call write_string_attribute(group_id, 'xdmf_topology', info%xdmf_topology, error)
   end subroutine write_catalog_attributes

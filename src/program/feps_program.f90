@@ -17,10 +17,10 @@ module feps_program
   use feps_principal, only: principal_values
   use feps_element, only: element_t
   use feps_element_catalog, only: new_solid_element, point_coordinates
-  use feps_result_schema, only: field_displacement, field_reaction, field_applied_force, field_stress, &
-                                field_principal, field_interface, field_interface_strain, field_nodal_stress, &
-                                field_nodal_principal, field_nodal_interface, field_point_state, field_stress_cyl, &
-                                field_nodal_stress_cyl
+  use feps_result_schema, only: field_name, field_components, field_displacement, field_reaction, &
+                                field_applied_force, field_stress, field_principal, field_interface, field_bar, &
+                                field_interface_strain, field_nodal_stress, field_nodal_principal, &
+                                field_nodal_interface, field_point_state, field_stress_cyl, field_nodal_stress_cyl
   use feps_stress_frames, only: stress_in_basis, stresses_in_system
   use feps_reports, only: section_rotation, axis_tilt
   use feps_version, only: feps_release
@@ -100,6 +100,11 @@ module feps_program
   end interface
   public :: line_sink
 
+  !> Positions of a group's integration points (stress_cyl's frame), computed on first use.
+  type :: group_points_t
+    real(dp), allocatable :: xg(:, :)   !! (3, points) element-major
+  end type group_points_t
+
   !> Writes the steps of a run to the results file and forwards progress lines.
   type, extends(observer_t) :: results_observer_t
     type(results_file_t) :: h5
@@ -108,6 +113,7 @@ module feps_program
     real(dp), allocatable :: last_displacement(:, :)
     real(dp), allocatable :: last_reaction(:, :)          !! (3, nnode) global, of the last step written
     type(model_t), pointer :: model => null()
+    type(group_points_t), allocatable :: points(:)        !! per group, for stress_cyl
     procedure(line_sink), pointer, nopass :: sink => null()
   contains
     procedure :: progress => observer_progress
@@ -484,12 +490,9 @@ contains
     self%steps_written = self%steps_written + 1
     associate (f => self%model%fields)
       call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
-      if (f%on(field_displacement) .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'displacement', &
-        res%displacement, 'ux uy uz', error)
-      if (f%on(field_reaction) .and. .not. allocated(error)) call self%h5%write_nodal(res%step, 'reaction', &
-        res%reaction, 'fx fy fz', error)
-      if (f%on(field_applied_force) .and. .not. allocated(error)) call self%h5%write_nodal(res%step, &
-        'applied_force', res%applied_force, 'fx fy fz', error)
+      if (f%on(field_displacement) .and. .not. allocated(error)) call write_field(field_displacement, res%displacement)
+      if (f%on(field_reaction) .and. .not. allocated(error)) call write_field(field_reaction, res%reaction)
+      if (f%on(field_applied_force) .and. .not. allocated(error)) call write_field(field_applied_force, res%applied_force)
       if (f%on(field_reaction) .and. res%has_nodal_systems .and. .not. allocated(error)) call self%h5%write_nodal(res%step, &
         'reaction_nodal', res%reaction_nodal, 'f1 f2 f3', error)
       do g = 1, size(res%groups)
@@ -497,7 +500,7 @@ contains
         associate (gr => res%groups(g), name => self%model%groups(g)%name, element => self%model%groups(g)%element)
           if (.not. allocated(gr%stress)) cycle      ! no field of this group was asked for
           if (gr%is_bar) then
-            call self%h5%write_gauss(res%step, element%result_field, name, gr%stress, element%component_names, &
+            call self%h5%write_gauss(res%step, field_name(field_bar), name, gr%stress, element%component_names, &
                                      gr%points_per_element, error)
           else if (gr%is_interface) then
             nc = size(gr%stress, 1)
@@ -505,17 +508,17 @@ contains
               allocate (extra(nc + 1, size(gr%state)))
               extra(1:nc, :) = gr%stress
               extra(nc + 1, :) = real(gr%state, dp)
-              call self%h5%write_gauss(res%step, element%result_field, name, extra, &
+              call self%h5%write_gauss(res%step, field_name(field_interface), name, extra, &
                                        element%component_names // ' state', gr%points_per_element, error)
               deallocate (extra)
             end if
             if (f%on(field_interface_strain) .and. .not. allocated(error)) call self%h5%write_gauss(res%step, &
-              'interface_strain', name, gr%strain, trim(merge('gamma1 gamma2 eps_n', 'gamma eps_n        ', nc == 3)), &
+              field_name(field_interface_strain), name, gr%strain, element%strain_component_names, &
               gr%points_per_element, error)
             if (f%on(field_nodal_interface) .and. .not. allocated(error)) &
               call write_nodal_tractions(self%h5, self%model, res%step, g, gr%stress, error)
           else
-            if (f%on(field_stress)) call self%h5%write_gauss(res%step, element%result_field, name, gr%stress, &
+            if (f%on(field_stress)) call self%h5%write_gauss(res%step, field_name(field_stress), name, gr%stress, &
                                                    element%component_names, gr%points_per_element, error)
             if (f%on(field_principal) .and. .not. allocated(error)) then
               allocate (extra(2, size(gr%stress, 2)))
@@ -523,37 +526,49 @@ contains
                 p = principal_values(gr%stress(:, q))
                 extra(:, q) = [p(1), p(3)]
               end do
-              call self%h5%write_gauss(res%step, 'principal', name, extra, 'most_tensile most_compressive', &
-                                       gr%points_per_element, error)
+              call self%h5%write_gauss(res%step, field_name(field_principal), name, extra, &
+                                       field_components(field_principal), gr%points_per_element, error)
               deallocate (extra)
             end if
             if (f%on(field_point_state) .and. .not. allocated(error)) &
-              call self%h5%write_gauss(res%step, 'point_state', name, reshape(real(gr%state, dp), &
-                                       [1, size(gr%state)]), 'state', gr%points_per_element, error)
-            if (f%on(field_stress_cyl) .and. .not. allocated(error)) &
-              call write_point_stress_cyl(self%h5, self%model, res%step, g, gr%stress, gr%points_per_element, error)
+              call self%h5%write_gauss(res%step, field_name(field_point_state), name, reshape(real(gr%state, dp), &
+                                       [1, size(gr%state)]), field_components(field_point_state), &
+                                       gr%points_per_element, error)
+            if (f%on(field_stress_cyl) .and. .not. allocated(error)) then
+              if (.not. allocated(self%points)) allocate (self%points(size(res%groups)))
+              if (.not. allocated(self%points(g)%xg)) call point_coordinates(self%model%groups(g)%element_type, &
+                self%model%coords, self%model%groups(g)%connectivity, self%points(g)%xg, error)
+              if (.not. allocated(error)) call write_point_stress_cyl(self%h5, self%model, res%step, g, gr%stress, &
+                                                                      self%points(g)%xg, gr%points_per_element, error)
+            end if
             if ((f%on(field_nodal_stress) .or. f%on(field_nodal_principal) .or. f%on(field_nodal_stress_cyl)) .and. &
                 .not. allocated(error)) call write_nodal_stresses(self%h5, self%model, res%step, g, gr%stress, error)
           end if
         end associate
       end do
     end associate
+  contains
+    !> A nodal field of the whole mesh, named and labelled by the result schema.
+    subroutine write_field(id, values)
+      integer, intent(in) :: id
+      real(dp), intent(in) :: values(:, :)
+      call self%h5%write_nodal(res%step, field_name(id), values, field_components(id), error)
+    end subroutine write_field
   end subroutine observer_write_step
 
   !> The field stress_cyl of solid group `g`: its Gauss-point stresses in the frame (radial,
-  !! hoop, axial) of the cylindrical system that FIELDS CSYS= names, at each point's position.
-  subroutine write_point_stress_cyl(h5, model, step, g, stress, points_per_element, error)
+  !! hoop, axial) of the cylindrical system that FIELDS CSYS= names, at the points `xg`.
+  subroutine write_point_stress_cyl(h5, model, step, g, stress, xg, points_per_element, error)
     type(results_file_t), intent(inout) :: h5
     type(model_t), intent(in) :: model
     integer, intent(in) :: step, g, points_per_element
     real(dp), intent(in) :: stress(:, :)       !! (6, points) element-major
+    real(dp), intent(in) :: xg(:, :)           !! (3, points) their positions
     type(error_t), allocatable, intent(out) :: error
-    real(dp), allocatable :: xg(:, :)
     associate (group => model%groups(g))
-      call point_coordinates(group%element_type, model%coords, group%connectivity, xg, error)
-      if (allocated(error)) return
-      call h5%write_gauss(step, 'stress_cyl', group%name, stresses_in_system(stress, xg, model%systems(model%fields%csys)), &
-                          'srr stt szz stz srz srt', points_per_element, error)
+      call h5%write_gauss(step, field_name(field_stress_cyl), group%name, &
+                          stresses_in_system(stress, xg, model%systems(model%fields%csys)), &
+                          field_components(field_stress_cyl), points_per_element, error)
     end associate
   end subroutine write_point_stress_cyl
 
@@ -603,15 +618,17 @@ contains
                                                  model%systems(model%fields%csys)%local_basis(model%coords(:, node)))
         end do
         call fill_outside(cylindrical, count)
-        call h5%write_nodal(step, 'nodal_stress_cyl', cylindrical, 'srr stt szz stz srz srt', error, group=group%name)
+        call h5%write_nodal(step, field_name(field_nodal_stress_cyl), cylindrical, &
+                            field_components(field_nodal_stress_cyl), error, group=group%name)
         if (allocated(error)) return
       end if
       call fill_outside(nodal, count)
-      if (model%fields%on(field_nodal_stress)) call h5%write_nodal(step, 'nodal_stress', nodal, &
-                                                                   'sxx syy szz syz sxz sxy', error, group=group%name)
+      if (model%fields%on(field_nodal_stress)) call h5%write_nodal(step, field_name(field_nodal_stress), nodal, &
+                                                                   field_components(field_nodal_stress), error, &
+                                                                   group=group%name)
       if (allocated(error) .or. .not. model%fields%on(field_nodal_principal)) return
-      call h5%write_nodal(step, 'nodal_principal', principal, 'most_tensile most_compressive', error, &
-                          group=group%name)
+      call h5%write_nodal(step, field_name(field_nodal_principal), principal, field_components(field_nodal_principal), &
+                          error, group=group%name)
     end associate
   end subroutine write_nodal_stresses
 
@@ -643,8 +660,7 @@ contains
       allocate (nodal(size(traction, 1), model%nnode), count(model%nnode))
       call nodal_average(e, group%connectivity(1:element%npairs(), :), traction, model%nnode, nodal, count)
       call fill_outside(nodal, count)
-      call h5%write_nodal(step, 'nodal_interface', nodal, &
-                          trim(merge('tau1 tau2 sigma_n', 'tau sigma_n      ', size(traction, 1) == 3)), error, &
+      call h5%write_nodal(step, field_name(field_nodal_interface), nodal, group%element%component_names, error, &
                           group=group%name)
     end associate
   end subroutine write_nodal_tractions

@@ -7,7 +7,7 @@ module feps_geometry_testing
   implicit none
   private
 
-  public :: cross, add_edge_integrals, linear_field, voigt_strain
+  public :: cross, add_edge_integrals, linear_field, voigt_strain, rigid_mode
 
 contains
 
@@ -51,5 +51,27 @@ contains
     real(dp) :: eps(6)
     eps = [h(1, 1), h(2, 2), h(3, 3), h(2, 3) + h(3, 2), h(1, 3) + h(3, 1), h(1, 2) + h(2, 1)]
   end function voigt_strain
+
+  !> Rigid-body mode `mode` (1-3: translation along x, y, z; 4-6: rotation about x, y, z) as the
+  !! displacement field u = h x + c.
+  pure subroutine rigid_mode(mode, h, c)
+    integer, intent(in) :: mode
+    real(dp), intent(out) :: h(3, 3), c(3)
+    h = 0.0_dp
+    c = 0.0_dp
+    select case (mode)
+    case (1:3)
+      c(mode) = 1.0_dp
+    case (4)   ! rotation about x
+      h(2, 3) = -1.0_dp
+      h(3, 2) = 1.0_dp
+    case (5)   ! about y
+      h(1, 3) = 1.0_dp
+      h(3, 1) = -1.0_dp
+    case (6)   ! about z
+      h(1, 2) = -1.0_dp
+      h(2, 1) = 1.0_dp
+    end select
+  end subroutine rigid_mode
 
 end module feps_geometry_testing

@@ -3,7 +3,7 @@
 module test_elements
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
-  use feps_geometry_testing, only: cross, add_edge_integrals, linear_field, voigt_strain
+  use feps_geometry_testing, only: cross, add_edge_integrals, linear_field, voigt_strain, rigid_mode
   use feps_elasticity_testing, only: isotropic_d, d_at_points
   use feps_error, only: str
   use feps_gauss, only: gauss_legendre, square_rule, cube_rule
@@ -473,21 +473,7 @@ contains
       call check(error, maxval(abs(ke - transpose(ke))), 0.0_dp, label // ': ke symmetric', abs=1.0e-13_dp * kn)
       if (allocated(error)) return
       do mode = 1, 6
-        h = 0.0_dp
-        c = 0.0_dp
-        select case (mode)
-        case (1:3)
-          c(mode) = 1.0_dp
-        case (4)   ! rotation about x
-          h(2, 3) = -1.0_dp
-          h(3, 2) = 1.0_dp
-        case (5)   ! about y
-          h(1, 3) = 1.0_dp
-          h(3, 1) = -1.0_dp
-        case (6)   ! about z
-          h(1, 2) = -1.0_dp
-          h(2, 1) = 1.0_dp
-        end select
+        call rigid_mode(mode, h, c)
         u = linear_field(xe, h, c)
         call check(error, norm2(matmul(ke, u)), 0.0_dp, label // ': ke times rigid mode ' // str(mode), &
                    abs=1.0e-10_dp * kn * norm2(u))

@@ -7,7 +7,8 @@ module test_analysis_state
   use feps_material, only: state_plastic
   use feps_model, only: model_t
   use feps_deck, only: read_deck
-  use feps_analysis_state, only: analysis_t, analysis_summary_t, set_up, init_states, update_points, &
+  use feps_analysis_summary, only: analysis_summary_t
+  use feps_analysis_state, only: analysis_t, set_up, init_states, update_points, &
                                  factorize_tangent, support_reaction
   implicit none
   private

@@ -23,45 +23,9 @@ module feps_analysis_state
   use feps_linear_solver, only: linear_solver_t
   use feps_solver_factory, only: new_linear_solver
   use feps_observer, only: observer_t
+  use feps_analysis_summary, only: analysis_summary_t, condition_warning
   implicit none
   private
-
-  !> Totals of a run, for the summary.
-  type, public :: analysis_summary_t
-    logical :: linear = .false.
-    integer :: neq = 0
-    integer :: unused_nodes = 0
-    integer :: steps = 0
-    integer :: iterations = 0
-    integer :: factorizations = 0
-    integer :: lu_factorizations = 0        !! LU factorizations of exact non-symmetric tangents (full Newton)
-    real(dp) :: lu_min_rcond = 0.0_dp        !! the smallest reciprocal condition estimate of those LU factors
-    integer :: cutbacks = 0
-    integer :: unconverged_steps = 0         !! steps accepted with |R| / |P| above delta1 (carried on)
-    logical :: line_search = .false.         !! some stage ran with LINESEARCH=energy
-    integer :: line_searches = 0             !! iterations whose correction was searched (scaled)
-    integer :: line_search_evaluations = 0   !! residual evaluations the searches added to the iterations'
-    integer(i8) :: matrix_nnz = 0
-    integer(i8) :: factor_nnz = 0
-    real(dp) :: flops = 0.0_dp
-    real(dp) :: min_pivot_ratio = 0.0_dp
-    real(dp) :: max_pivot_ratio = 0.0_dp
-    real(dp) :: min_detj = 0.0_dp
-    real(dp) :: time_assembly = 0.0_dp
-    real(dp) :: time_factorization = 0.0_dp
-    real(dp) :: time_solve = 0.0_dp
-    real(dp) :: time_update = 0.0_dp
-    real(dp) :: max_displacement = 0.0_dp
-    integer :: max_displacement_node = 0
-    real(dp) :: applied_force(3) = 0.0_dp
-    real(dp) :: reaction_force(3) = 0.0_dp
-    character(len=:), allocatable :: solver
-    logical :: condition_warning = .false.   !! max/min pivot ratio passed condition_warning
-    integer(i8), allocatable :: state_bytes(:)  !! per group: bytes of point state (0: elastic, none kept)
-  end type analysis_summary_t
-
-  !> Above this max/min pivot ratio the results may have lost digits: say so.
-  real(dp), parameter, public :: condition_warning = 1.0e12_dp
 
   !> Point states of one group: committed (end of the last step) and trial.
   type, public :: group_state_t
@@ -139,13 +103,13 @@ contains
     if (allocated(error)) return
     call build_materials(model, an%materials, error)
     if (allocated(error)) return
-    call check_jacobians(model, an%kernels, summary%min_detj, error)
+    call check_jacobians(model, an%kernels, summary%min_jacobian, error)
     if (allocated(error)) return
     call resolve_face_sets(model, an%kernels, error)
     if (allocated(error)) return
     call build_dof_map(model, an%map, error)
     if (allocated(error)) return
-    summary%neq = an%map%neq
+    summary%dofs = an%map%neq
     summary%unused_nodes = an%map%unused_nodes
     if (an%map%neq == 0) then
       call fatal_error(error, err_model, model%deck_file // ': the model has no free degree of freedom')
@@ -222,7 +186,7 @@ contains
       end do
     end do
     an%map = new
-    summary%neq = an%map%neq
+    summary%dofs = an%map%neq
     call build_pattern(model, an%map, an%a)
     if (allocated(an%a_full%row_ptr)) deallocate (an%a_full%row_ptr, an%a_full%col, an%a_full%val)
     summary%matrix_nnz = an%a%nnz()

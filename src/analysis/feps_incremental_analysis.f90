@@ -20,7 +20,8 @@ module feps_incremental_analysis
                         method_full_newton_raphson
   use feps_loads, only: nodal_load_vector
   use feps_observer, only: observer_t
-  use feps_analysis_state, only: analysis_summary_t, condition_warning, analysis_t, is_linear_model, set_up, &
+  use feps_analysis_summary, only: analysis_summary_t, condition_warning
+  use feps_analysis_state, only: analysis_t, is_linear_model, set_up, &
                                  init_states, state_bytes, change_supports, activate_groups, check_born_nodes, &
                                  stage_increments, set_trial, add_free, update_points, residual, &
                                  committed_residual, commit, restore, factorize_tangent, support_reaction

@@ -44,50 +44,22 @@ module feps_program
     logical :: check_only = .false.             !! check the deck and the model, solve nothing, write nothing
   end type run_options_t
 
-  !> What the program reports after a run.
-  type, public :: run_summary_t
+  !> What the program reports after a run: the analysis's totals (the parent type, filled by
+  !! the analysis itself) and what the program knows of the run.
+  type, public, extends(analysis_summary_t) :: run_summary_t
     character(len=:), allocatable :: title
     character(len=:), allocatable :: output
-    character(len=:), allocatable :: solver
     logical :: mesh_only = .false.
     logical :: checked_only = .false.               !! --check: nothing solved, no file written
     integer :: stages = 0
     integer :: nodes = 0
     integer :: elements = 0
-    integer :: dofs = 0
-    integer :: unused_nodes = 0
-    integer(i8) :: factor_nnz = 0
-    real(dp) :: flops = 0.0_dp
     real(dp) :: wall_time = 0.0_dp
-    real(dp) :: time_assembly = 0.0_dp
-    real(dp) :: time_factorization = 0.0_dp
-    real(dp) :: time_solve = 0.0_dp
-    integer(i8) :: matrix_nnz = 0
-    logical :: linear = .false.
-    integer :: steps = 0
-    integer :: iterations = 0
-    integer :: factorizations = 0
-    integer :: lu_factorizations = 0       !! of them, LU factorizations of exact non-symmetric tangents
-    real(dp) :: lu_min_rcond = 0.0_dp      !! the smallest reciprocal condition estimate of those LU factors
-    integer :: cutbacks = 0
-    integer :: unconverged_steps = 0
-    logical :: line_search = .false.       !! some stage ran with LINESEARCH=energy
-    integer :: line_searches = 0           !! iterations whose correction the line search scaled
-    integer :: line_search_evaluations = 0 !! residual evaluations those searches added
-    real(dp) :: max_displacement = 0.0_dp
-    integer :: max_displacement_node = 0
     real(dp) :: bbox(3, 2) = 0.0_dp
-    real(dp) :: min_jacobian = 0.0_dp
-    real(dp) :: min_pivot_ratio = 0.0_dp
-    real(dp) :: max_pivot_ratio = 0.0_dp
-    logical :: condition_warning = .false.
-    real(dp) :: applied_force(3) = 0.0_dp
-    real(dp) :: reaction_force(3) = 0.0_dp
     character(len=200), allocatable :: reports(:)   !! post-processing lines (REPORT records)
     character(len=:), allocatable :: fields         !! result fields written (FIELDS)
     character(len=32), allocatable :: group_names(:)
     integer, allocatable :: group_elements(:)
-    integer(i8), allocatable :: state_bytes(:)      !! per group: bytes of point state kept
   end type run_summary_t
 
   public :: run_feps
@@ -129,7 +101,6 @@ contains
     type(error_t), allocatable, intent(out) :: error
     procedure(line_sink), optional :: sink
     type(model_t), target :: model
-    type(analysis_summary_t) :: an
     type(results_observer_t) :: obs
     character(len=:), allocatable :: solver, output
     real(dp) :: t0
@@ -193,7 +164,7 @@ contains
     if (allocated(error)) return
     obs%writing = .true.
     call write_mesh(obs%h5, model, error)
-    if (.not. allocated(error)) call run_analysis(model, solver, obs, an, error)
+    if (.not. allocated(error)) call run_analysis(model, solver, obs, summary%analysis_summary_t, error)
     if (allocated(error)) then
       ! A deck refused before its first step (exit status 2: what --check finds too) leaves the
       ! results of an earlier run alone; a run that failed removes them (they would pass for its).
@@ -201,36 +172,7 @@ contains
                           any(error%code == [err_input, err_input_file, err_model]))
       return
     end if
-    summary%solver = an%solver
-    summary%linear = an%linear
-    summary%steps = an%steps
-    summary%iterations = an%iterations
-    summary%factorizations = an%factorizations
-    summary%lu_factorizations = an%lu_factorizations
-    summary%lu_min_rcond = an%lu_min_rcond
-    summary%cutbacks = an%cutbacks
-    summary%unconverged_steps = an%unconverged_steps
-    summary%line_search = an%line_search
-    summary%line_searches = an%line_searches
-    summary%line_search_evaluations = an%line_search_evaluations
-    summary%dofs = an%neq
-    summary%unused_nodes = an%unused_nodes
-    summary%factor_nnz = an%factor_nnz
-    summary%matrix_nnz = an%matrix_nnz
-    summary%flops = an%flops
-    summary%min_pivot_ratio = an%min_pivot_ratio
-    summary%max_pivot_ratio = an%max_pivot_ratio
-    summary%min_jacobian = an%min_detj
-    summary%condition_warning = an%condition_warning
-    summary%applied_force = an%applied_force
-    summary%reaction_force = an%reaction_force
-    summary%max_displacement = an%max_displacement
-    summary%max_displacement_node = an%max_displacement_node
-    summary%time_assembly = an%time_assembly
-    summary%time_factorization = an%time_factorization
-    summary%time_solve = an%time_solve
     summary%fields = model%fields%names()
-    summary%state_bytes = an%state_bytes
     allocate (summary%group_names(size(model%groups)), summary%group_elements(size(model%groups)))
     do g = 1, size(model%groups)
       summary%group_names(g) = model%groups(g)%name
@@ -260,31 +202,15 @@ contains
     type(results_observer_t), intent(inout) :: obs     !! forwards the stage lines (writes nothing)
     type(run_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
-    type(analysis_summary_t) :: an
     if (associated(obs%sink)) then
-      call check_analysis(model, solver, an, error, obs)
+      call check_analysis(model, solver, summary%analysis_summary_t, error, obs)
     else
-      call check_analysis(model, solver, an, error)
+      call check_analysis(model, solver, summary%analysis_summary_t, error)
     end if
     if (allocated(error)) return
     summary%checked_only = .true.
     summary%output = ''
-    summary%solver = an%solver
-    summary%linear = an%linear
-    summary%dofs = an%neq
-    summary%unused_nodes = an%unused_nodes
-    summary%matrix_nnz = an%matrix_nnz
-    summary%factor_nnz = an%factor_nnz
-    summary%flops = an%flops
-    summary%min_jacobian = an%min_detj
-    summary%steps = an%steps
     summary%stages = size(model%stages)
-    summary%applied_force = an%applied_force
-    summary%time_assembly = an%time_assembly
-    summary%time_factorization = an%time_factorization
-    summary%min_pivot_ratio = an%min_pivot_ratio
-    summary%max_pivot_ratio = an%max_pivot_ratio
-    summary%condition_warning = an%condition_warning
   end subroutine check_only
 
   !> Every stage solved by one method (its preset iteration limits as in the deck reader).

@@ -1,0 +1,46 @@
+!> The totals of an analysis that the program reports and writes to `/summary`: one type,
+!! filled where each total arises (the analysis, its solver) and extended by the program with
+!! what it knows of the run (title, output, mesh), never copied field by field.
+module feps_analysis_summary
+  use feps_kinds, only: dp, i8
+  implicit none
+  private
+
+  !> Totals of an analysis, for the summary.
+  type, public :: analysis_summary_t
+    logical :: linear = .false.
+    integer :: dofs = 0                       !! free equations
+    integer :: unused_nodes = 0
+    integer :: steps = 0
+    integer :: iterations = 0
+    integer :: factorizations = 0
+    integer :: lu_factorizations = 0        !! LU factorizations of exact non-symmetric tangents (full Newton)
+    real(dp) :: lu_min_rcond = 0.0_dp        !! the smallest reciprocal condition estimate of those LU factors
+    integer :: cutbacks = 0
+    integer :: unconverged_steps = 0         !! steps accepted with |R| / |P| above delta1 (carried on)
+    logical :: line_search = .false.         !! some stage ran with LINESEARCH=energy
+    integer :: line_searches = 0             !! iterations whose correction was searched (scaled)
+    integer :: line_search_evaluations = 0   !! residual evaluations the searches added to the iterations'
+    integer(i8) :: matrix_nnz = 0
+    integer(i8) :: factor_nnz = 0
+    real(dp) :: flops = 0.0_dp
+    real(dp) :: min_pivot_ratio = 0.0_dp
+    real(dp) :: max_pivot_ratio = 0.0_dp
+    real(dp) :: min_jacobian = 0.0_dp        !! the smallest Jacobian determinant of the mesh
+    real(dp) :: time_assembly = 0.0_dp
+    real(dp) :: time_factorization = 0.0_dp
+    real(dp) :: time_solve = 0.0_dp
+    real(dp) :: time_update = 0.0_dp
+    real(dp) :: max_displacement = 0.0_dp
+    integer :: max_displacement_node = 0
+    real(dp) :: applied_force(3) = 0.0_dp
+    real(dp) :: reaction_force(3) = 0.0_dp
+    character(len=:), allocatable :: solver
+    logical :: condition_warning = .false.   !! max/min pivot ratio passed condition_warning
+    integer(i8), allocatable :: state_bytes(:)  !! per group: bytes of point state (0: elastic, none kept)
+  end type analysis_summary_t
+
+  !> Above this max/min pivot ratio the results may have lost digits: say so.
+  real(dp), parameter, public :: condition_warning = 1.0e12_dp
+
+end module feps_analysis_summary

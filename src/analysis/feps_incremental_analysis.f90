@@ -15,9 +15,7 @@ module feps_incremental_analysis
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_solver, str
   use feps_clock, only: wall_clock
-  use feps_model, only: model_t, controls_t, method_names, method_euler, method_modified_euler, &
-                        method_newton_raphson, method_modified_newton_raphson, method_initial_stiffness, &
-                        method_full_newton_raphson
+  use feps_model, only: model_t, controls_t, method_names
   use feps_loads, only: nodal_load_vector
   use feps_observer, only: observer_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
@@ -25,6 +23,9 @@ module feps_incremental_analysis
                                  init_states, state_bytes, change_supports, activate_groups, check_born_nodes, &
                                  stage_increments, set_trial, add_free, update_points, residual, &
                                  committed_residual, commit, restore, factorize_tangent, support_reaction
+  use feps_solution_method, only: solution_method_t, factor_state_t
+  use feps_solution_methods, only: new_solution_method
+  use feps_bfgs, only: bfgs_t
   use feps_line_search, only: line_search_t, line_search_begin, line_search_next, line_search_eta, &
                               line_search_s_min, line_search_max_evaluations
   use feps_step_report, only: progress_line, report_step, report_open_interfaces, writes_step, name_step, &
@@ -310,31 +311,28 @@ contains
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: df(:, :), duc(:, :), dps(:), r(:)
-    real(dp) :: h, done, rnorm, pnorm, rel_prev, abs_prev
+    real(dp) :: h, done, rnorm, pnorm
     integer :: s, k, step, iters, cut, nfact0, iters_step, opened
     character(len=:), allocatable :: step_notes, run_notes
-    logical :: ok, need_factor, have_factor, step_unconverged, born, changed
-    logical :: factor_elastic    !! the factor held is of the elastic stiffness (not a tangent)
-    logical :: elastic_retry     !! the next factorization is the elastic stiffness (a cut-back under modified NR)
+    logical :: ok, step_unconverged, born, changed
+    type(factor_state_t) :: f              !! the factor held, carried from stage to stage
+    class(solution_method_t), allocatable :: method
     logical, allocatable :: fully_open(:)
 
     allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%map%neq), &
               fully_open(size(model%groups)))
     fully_open = .false.
     step = 0
-    have_factor = .false.
-    factor_elastic = .false.
-    elastic_retry = .false.
-    rel_prev = 0.0_dp
-    abs_prev = 0.0_dp
     do s = 1, size(model%stages)
       associate (st => model%stages(s), c => model%stages(s)%controls)
+        call new_solution_method(c%method, method, error)
+        if (allocated(error)) return
         call change_supports(model, an, s, changed, summary, error, observer)
         if (allocated(error)) return
         if (changed) then
           deallocate (r)
           allocate (r(an%map%neq))
-          have_factor = .false.     ! a new set of equations: factorize again, whatever the method
+          f%have_factor = .false.     ! a new set of equations: factorize again, whatever the method
         end if
         call activate_groups(model, an, s, born)
         if (s == 1 .or. born .or. changed) then
@@ -342,8 +340,8 @@ contains
           if (allocated(error)) return
           ! New elements change the stiffness: refactorize (the tangent, or the initial
           ! stiffness for that method) before the stage's first step.
-          if (s > 1 .and. c%method == method_initial_stiffness) have_factor = .false.
-          if (s > 1) rel_prev = huge(1.0_dp)
+          if (s > 1 .and. method%refactors_for_new_elements()) f%have_factor = .false.
+          if (s > 1) f%rel_prev = huge(1.0_dp)
         end if
         call stage_increments(model, an, s, df, duc, dps, error)
         if (allocated(error)) return
@@ -362,38 +360,28 @@ contains
           do while (done < 1.0_dp - 1.0e-12_dp)
             h = min(h, 1.0_dp - done)
             ! Which stiffness: the method decides (thesis 2.6.3).
-            select case (c%method)
-            case (method_initial_stiffness)
-              ! the factor a stage of another method left is a tangent, not the initial stiffness
-              need_factor = .not. (have_factor .and. factor_elastic)
-            case (method_modified_newton_raphson)
-              need_factor = .not. have_factor .or. rel_prev > c%delta3 .or. abs_prev > c%delta4
-            case default
-              need_factor = .true.
-            end select
-            if (need_factor) then
+            if (method%needs_factor(f, c)) then
               ! The tangent of the committed state (the elastic stiffness before the first step),
-              ! also when new supports renumber the equations: only the initial-stiffness
-              ! method and modified Newton-Raphson's retry after a cut-back take the elastic one.
-              factor_elastic = c%method == method_initial_stiffness .or. elastic_retry
-              call factorize_tangent(model, an, factor_elastic, summary, error, &
-                                     exact=c%method == method_full_newton_raphson)
+              ! also when new supports renumber the equations, unless the method asks for the
+              ! elastic one (initial stiffness; modified Newton-Raphson's retry after a cut-back).
+              f%factor_elastic = method%factorizes_elastic(f)
+              call factorize_tangent(model, an, f%factor_elastic, summary, error, exact=method%exact_tangent())
               if (allocated(error)) then
                 call name_step(error, st, k, s - 1 + (k - 1 + done) / st%steps)
                 return
               end if
-              have_factor = .true.
-              elastic_retry = .false.
+              f%have_factor = .true.
+              f%elastic_retry = .false.
             end if
-            call substep(model, an, c, df * (h / st%steps), duc * (h / st%steps), dps * (h / st%steps), r, &
-                         rnorm, pnorm, iters, ok, summary, error, step_notes)
+            call substep(model, an, method, c, df * (h / st%steps), duc * (h / st%steps), dps * (h / st%steps), &
+                         r, rnorm, pnorm, iters, ok, summary, error, step_notes)
             if (allocated(error)) return
             iters_step = iters_step + iters
             if (ok) then
               done = done + h
-              rel_prev = rnorm / pnorm
-              abs_prev = rnorm
-              if (.not. (rel_prev < c%delta1 .or. rnorm < c%delta2)) step_unconverged = .true.
+              f%rel_prev = rnorm / pnorm
+              f%abs_prev = rnorm
+              if (.not. (f%rel_prev < c%delta1 .or. rnorm < c%delta2)) step_unconverged = .true.
               call commit(an)
               call collect_point_notes(model, an, .false., run_notes)
               an%f_applied = an%f_applied + df * (h / st%steps)
@@ -409,16 +397,9 @@ contains
                 return
               end if
               h = h / 2.0_dp
-              ! After a cut-back, start again from a new factorization: the tangent of the
-              ! committed state, except under modified Newton-Raphson, which keeps its factor
-              ! for the whole step. There the committed tangent may be what failed: points at
-              ! the yield surface or in the tension zone that unload have their elastic
-              ! stiffness, far stiffer than their tangent, and a fixed tangent softer than the
-              ! response overshoots by the same ratio at every iteration whatever the step size
-              ! (chapter 9's PR with a 6 MPa band: the same residual after all ten cut-backs).
-              ! The elastic stiffness, the thesis's initial one, is never softer.
-              if (c%method /= method_initial_stiffness) rel_prev = huge(1.0_dp)
-              elastic_retry = c%method == method_modified_newton_raphson
+              ! After a cut-back, start again from a new factorization, of the stiffness the
+              ! method says (modified Newton-Raphson: the elastic one).
+              call method%after_cutback(f)
               call observer%progress('  step ' // str(k) // ' diverged: cut back to ' // str(h) // ' of a step')
             end if
           end do
@@ -426,13 +407,13 @@ contains
           summary%iterations = summary%iterations + iters_step
           if (step_unconverged) summary%unconverged_steps = summary%unconverged_steps + 1
           call observer%progress(progress_line(s, k, st%steps, s - 1 + real(k, dp) / st%steps, iters_step, &
-                                               rel_prev, summary%factorizations, summary%factorizations - nfact0) &
+                                               f%rel_prev, summary%factorizations, summary%factorizations - nfact0) &
                                  // trim(merge('  (not converged: carried) ', '                           ', &
                                                 step_unconverged)))
           call report_open_interfaces(model, an, observer, fully_open)
           if (writes_step(st, k)) then
             call report_step(model, an, observer, step, s, k, s - 1 + real(k, dp) / st%steps, iters_step, &
-                             rel_prev, error)
+                             f%rel_prev, error)
             if (allocated(error)) return
           end if
         end do
@@ -456,9 +437,10 @@ contains
   !> One (sub)step: move the constrained DOFs by duc, apply df, iterate on the residual.
   !! ok is false when the step diverges (non-finite or growing residual, or iterations run out
   !! far from convergence).
-  subroutine substep(model, an, c, df, duc, dps, r, rnorm, pnorm, iters, ok, summary, error, notes)
+  subroutine substep(model, an, method, c, df, duc, dps, r, rnorm, pnorm, iters, ok, summary, error, notes)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
+    class(solution_method_t), intent(in) :: method
     type(controls_t), intent(in) :: c
     real(dp), intent(in) :: df(:, :), duc(:, :)
     real(dp), intent(in) :: dps(:)          !! prestress force added to each group's bars
@@ -472,13 +454,13 @@ contains
     character(len=:), allocatable, intent(inout) :: notes
     real(dp), allocatable :: r_carry(:)
     real(dp) :: t0, r_first, rel, r_scale
-    integer :: m, npairs
+    integer :: m
     logical :: use_bfgs
-    real(dp), allocatable :: s_hist(:, :), y_hist(:, :), rho(:), r_old(:)
+    type(bfgs_t) :: bfgs
     real(dp), allocatable :: du(:), r0(:), u_base(:, :)   !! line search: correction, R and u before it
     real(dp) :: g0
 
-    if (c%method == method_euler) then
+    if (.not. method%carries_residual()) then
       ! Euler drops the unbalanced force of the previous step (eq. 2.6.4 not applied).
       allocate (r_carry(size(r)))
       call committed_residual(model, an, r_carry)
@@ -494,20 +476,14 @@ contains
     ok = .true.
     r_first = -1.0_dp
     iters = 0
-    ! Full Newton refactorizes every iteration: quasi-Newton pairs built on an earlier factor
-    ! would not describe the new one, so ACCELERATION=bfgs does not apply to it.
-    use_bfgs = c%bfgs .and. c%max_iterations > 1 .and. c%method /= method_full_newton_raphson
-    if (use_bfgs) then
-      allocate (s_hist(size(r), c%max_iterations), y_hist(size(r), c%max_iterations), rho(c%max_iterations), &
-                r_old(size(r)))
-      npairs = 0
-    end if
+    use_bfgs = method%takes_bfgs(c)
+    if (use_bfgs) call bfgs%start(size(r), c%max_iterations)
     if (c%line_search) then
       allocate (du(size(r)), r0(size(r)), u_base(3, size(an%u_t, 2)))
       summary%line_search = .true.
     end if
     do m = 1, c%max_iterations
-      if (c%method == method_full_newton_raphson .and. m > 1) then
+      if (method%exact_tangent() .and. m > 1) then
         ! Full Newton: the consistent tangent of the current iterate, refactorized every iteration
         ! (factorize_tangent times its assembly and factorization itself).
         call factorize_tangent(model, an, .false., summary, error, trial=.true., exact=.true.)
@@ -516,8 +492,7 @@ contains
       t0 = wall_clock()
       if (c%line_search) r0 = r
       if (use_bfgs) then
-        r_old = r
-        call bfgs_direction(an, s_hist(:, 1:npairs), y_hist(:, 1:npairs), rho(1:npairs), r, error)
+        call bfgs%direction(an%solver, r, error)
       else if (an%use_lu) then
         call an%lu%solve(r, error)
       else
@@ -531,13 +506,13 @@ contains
         u_base = an%u_t
       end if
       call add_free(an, r, an%u_t)
-      if (use_bfgs) s_hist(:, npairs + 1) = r
+      if (use_bfgs) call bfgs%record_correction(r)
       t0 = wall_clock()
       call update_points(model, an, dps)
       call collect_point_notes(model, an, .true., notes)
       summary%time_update = summary%time_update + wall_clock() - t0
       call residual(an, r, rnorm, pnorm)
-      if (use_bfgs) call bfgs_add_pair(s_hist, y_hist, rho, npairs, r_old, r)
+      if (use_bfgs) call bfgs%add_pair(r)
       ! The step's initial out-of-balance force is the scale only when load and reactions
       ! vanish (a block lifted off: no load, no reaction, no stress).
       if (pnorm <= 1.0e-8_dp * r_scale) pnorm = r_scale
@@ -567,17 +542,7 @@ contains
     rel = rnorm / pnorm
     ! Newton-Raphson must converge; the other methods may end a step unconverged and carry the
     ! unbalanced force (thesis 2.6.3), unless it exceeds the divergence limit.
-    ! The one-iteration Euler methods leave transitions (a gap opening, yield) unbalanced by
-    ! design and correct them in the next step: for them only an unbalanced force larger than
-    ! the load itself is divergence.
-    select case (c%method)
-    case (method_newton_raphson, method_full_newton_raphson)
-      ok = rel < c%delta1 .or. rnorm < c%delta2
-    case (method_euler, method_modified_euler)
-      ok = rel < max(1.0_dp, c%divergence)
-    case default
-      ok = rel < max(c%divergence, c%delta1) .or. rnorm < c%delta2
-    end select
+    ok = method%step_accepted(rel, rnorm, c)
   end subroutine substep
 
   !> LINESEARCH=energy after an iteration whose full correction du (from u_base) left the
@@ -615,48 +580,5 @@ contains
       if (ls%done) exit
     end do
   end subroutine search_line
-
-  !> Quasi-Newton direction d = H r by the two-loop recursion of the BFGS inverse update
-  !! (Matthies and Strang 1979) with the factorized stiffness K as H0 = K^-1; r is overwritten by
-  !! d. Pairs of the step's earlier iterations: s (displacement change), y (change of the
-  !! internal forces, = -change of the residual), rho = 1 / (s . y) > 0. With no pair this is
-  !! the plain solve.
-  subroutine bfgs_direction(an, s_hist, y_hist, rho, r, error)
-    type(analysis_t), intent(inout) :: an
-    real(dp), intent(in) :: s_hist(:, :), y_hist(:, :), rho(:)
-    real(dp), intent(inout) :: r(:)
-    type(error_t), allocatable, intent(out) :: error
-    real(dp) :: alpha(size(rho)), beta
-    integer :: i
-    do i = size(rho), 1, -1
-      alpha(i) = rho(i) * dot_product(s_hist(:, i), r)
-      r = r - alpha(i) * y_hist(:, i)
-    end do
-    call an%solver%solve(r, error)
-    if (allocated(error)) return
-    do i = 1, size(rho)
-      beta = rho(i) * dot_product(y_hist(:, i), r)
-      r = r + (alpha(i) - beta) * s_hist(:, i)
-    end do
-  end subroutine bfgs_direction
-
-  !> Keep the secant pair of the iteration just done (s already in column npairs + 1) when it
-  !! has positive curvature. When the residual grew (a gap opened or a point started to slide:
-  !! the pairs describe a response that no longer holds) drop every pair and start again from
-  !! the factorized stiffness.
-  pure subroutine bfgs_add_pair(s_hist, y_hist, rho, npairs, r_old, r)
-    real(dp), intent(inout) :: s_hist(:, :), y_hist(:, :), rho(:)
-    integer, intent(inout) :: npairs
-    real(dp), intent(in) :: r_old(:), r(:)
-    real(dp) :: sy
-    y_hist(:, npairs + 1) = r_old - r
-    sy = dot_product(s_hist(:, npairs + 1), y_hist(:, npairs + 1))
-    if (norm2(r) > norm2(r_old)) then
-      npairs = 0
-    else if (sy > 1.0e-10_dp * norm2(s_hist(:, npairs + 1)) * norm2(y_hist(:, npairs + 1))) then
-      npairs = npairs + 1
-      rho(npairs) = 1.0_dp / sy
-    end if
-  end subroutine bfgs_add_pair
 
 end module feps_incremental_analysis

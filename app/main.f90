@@ -4,7 +4,7 @@ program feps_main
   use, intrinsic :: iso_c_binding, only: c_int
   use feps_kinds, only: dp, i8
   use feps_error, only: error_t, err_input, err_input_file, err_model, str
-  use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version
+  use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version, unbalanced_text
   use feps_strings, only: sci
   use feps_paths, only: is_xdmf_name
   implicit none
@@ -80,6 +80,8 @@ contains
         options%quiet = .true.
       case ('--check')
         options%check_only = .true.
+      case ('--strict')
+        options%strict = .true.
       case ('-o', '--output', '--solver', '--method', '--maxit', '--fields')
         if (i == n) then
           write (error_unit, '(a)') 'feps: error: ' // arg // ' needs a value (see feps --help)'
@@ -165,7 +167,7 @@ contains
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
       'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N]', &
-      '                 [--fields LIST] [--check] [--quiet]', &
+      '                 [--fields LIST] [--check] [--strict] [--quiet]', &
       '       feps --help | --version', &
       '', &
       '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
@@ -184,6 +186,8 @@ contains
       '                       first step, every stage''s loads, and one factorization of the', &
       '                       elastic stiffness per stage (missing supports); take no step,', &
       '                       write no file', &
+      '      --strict         a run whose last step of some stage ends out of balance (relative', &
+      '                       residual above DELTA1) fails: exit 1, no results file', &
       '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &
@@ -250,6 +254,7 @@ contains
       end if
     end if
     if (allocated(s%state_bytes)) call print_state_memory(s)
+    if (.not. s%mesh_only .and. .not. s%converged) write (output_unit, '(a)') 'warning: ' // unbalanced_text(s)
     if (.not. s%mesh_only) write (output_unit, '(a,3(f0.3,a))') 'times            assembly ', s%time_assembly, &
       ' s, factorization ', s%time_factorization, ' s, solve ', s%time_solve, ' s'
     write (output_unit, '(a,f0.3,a)') 'wall time        ', s%wall_time, ' s'

@@ -700,7 +700,8 @@ contains
       ieq = error%item   ! fatal_error reallocates error: keep the item first
       if (ieq > 0 .and. ieq <= an%map%neq) then
         call fatal_error(error, err_model, model%deck_file // ': the stiffness matrix is singular at ' // &
-                         an%map%dof_name(ieq) // ': that DOF is not held (an unconstrained rigid-body mode ' // &
+                         an%map%dof_name(ieq) // ' ' // node_position(model, an%map%eq_node(ieq)) // &
+                         ': that DOF is not held (an unconstrained rigid-body mode ' // &
                          'or a missing support), or held only through a stiffness contrast beyond double ' // &
                          'precision (pivot below 1e-11 of its diagonal)', item=ieq)
       end if
@@ -714,6 +715,15 @@ contains
       end if
     end if
   end subroutine factorize_tangent
+
+  !> '(x, y, z)' of node n, for messages that name a node.
+  function node_position(model, n) result(text)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: n
+    character(len=:), allocatable :: text
+    text = '(x, y, z = ' // str(model%coords(1, n)) // ', ' // str(model%coords(2, n)) // ', ' // &
+           str(model%coords(3, n)) // ')'
+  end function node_position
 
   !> A point tangent that differs from its transpose beyond rounding.
   pure logical function is_nonsymmetric(d)

@@ -18,6 +18,13 @@ module feps_analysis_summary
     real(dp) :: lu_min_rcond = 0.0_dp        !! the smallest reciprocal condition estimate of those LU factors
     integer :: cutbacks = 0
     integer :: unconverged_steps = 0         !! steps accepted with |R| / |P| above delta1 (carried on)
+    logical :: converged = .true.            !! every stage's last step ended within its tolerance
+    real(dp) :: unbalanced = 0.0_dp          !! the largest |R| / |P| a stage ended with, above its tolerance
+    real(dp) :: unbalanced_tolerance = 0.0_dp  !! that stage's DELTA1
+    character(len=:), allocatable :: unbalanced_stage  !! that stage's name
+    integer :: unbalanced_step = 0                     !! its last step
+    real(dp) :: unbalanced_load_factor = 0.0_dp        !! and the load factor there
+    character(len=:), allocatable :: unbalanced_at     !! the node and DOF of its largest unbalanced force
     logical :: line_search = .false.         !! some stage ran with LINESEARCH=energy
     integer :: line_searches = 0             !! iterations whose correction was searched (scaled)
     integer :: line_search_evaluations = 0   !! residual evaluations the searches added to the iterations'

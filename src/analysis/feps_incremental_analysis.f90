@@ -13,9 +13,9 @@
 module feps_incremental_analysis
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp
-  use feps_error, only: error_t, fatal_error, err_solver, str
+  use feps_error, only: error_t, fatal_error, err_solver, err_model, str
   use feps_clock, only: wall_clock
-  use feps_model, only: model_t, controls_t, method_names
+  use feps_model, only: model_t, stage_t, controls_t, method_names
   use feps_loads, only: nodal_load_vector
   use feps_observer, only: observer_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
@@ -312,7 +312,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: df(:, :), duc(:, :), dps(:), r(:)
     real(dp) :: h, done, rnorm, pnorm
-    integer :: s, k, step, iters, cut, nfact0, iters_step, opened
+    integer :: s, k, step, iters, cut, nfact0, iters_step, opened, mechanism
     character(len=:), allocatable :: step_notes, run_notes
     logical :: ok, step_unconverged, born, changed
     type(factor_state_t) :: f              !! the factor held, carried from stage to stage
@@ -367,7 +367,9 @@ contains
               f%factor_elastic = method%factorizes_elastic(f)
               call factorize_tangent(model, an, f%factor_elastic, summary, error, exact=method%exact_tangent())
               if (allocated(error)) then
-                call name_step(error, st, k, s - 1 + (k - 1 + done) / st%steps)
+                call explain_failed_factorization(model, an, st, k, s - 1 + (k - 1 + done) / st%steps, &
+                                                  s - 1 + (k - 1 + done + h) / st%steps, last_state(f, c), &
+                                                  summary, error)
                 return
               end if
               f%have_factor = .true.
@@ -375,7 +377,13 @@ contains
             end if
             call substep(model, an, method, c, df * (h / st%steps), duc * (h / st%steps), dps * (h / st%steps), &
                          r, rnorm, pnorm, iters, ok, summary, error, step_notes)
-            if (allocated(error)) return
+            if (allocated(error)) then
+              ! full Newton-Raphson refactorizes within the step
+              call explain_failed_factorization(model, an, st, k, s - 1 + (k - 1 + done) / st%steps, &
+                                                s - 1 + (k - 1 + done + h) / st%steps, last_state(f, c), summary, &
+                                                error)
+              return
+            end if
             iters_step = iters_step + iters
             if (ok) then
               done = done + h
@@ -390,12 +398,17 @@ contains
               cut = cut + 1
               summary%cutbacks = summary%cutbacks + 1
               opened = newly_open_points(an)
-              call restore(an)
               if (cut > c%max_cutbacks) then
-                call stop_error(model, an, r, st, k, s - 1 + (k - 1 + done + h) / st%steps, rnorm / pnorm, &
-                                cut > c%max_cutbacks, opened, step_notes, error)
+                ! Where the last try's tangent is singular (its elastic counterpart is not), the
+                ! load has formed a mechanism: the stop is a collapse.
+                if (rnorm <= huge(rnorm)) call find_mechanism(model, an, .true., summary, mechanism)
+                call restore(an)
+                call stop_error(model, an, r, st, k, s - 1 + (k - 1 + done + h) / st%steps, &
+                                s - 1 + (k - 1 + done) / st%steps, last_state(f, c), rnorm / pnorm, &
+                                cut > c%max_cutbacks, opened, step_notes, error, mechanism)
                 return
               end if
+              call restore(an)
               h = h / 2.0_dp
               ! After a cut-back, start again from a new factorization, of the stiffness the
               ! method says (modified Newton-Raphson: the elastic one).
@@ -406,6 +419,9 @@ contains
           summary%steps = step
           summary%iterations = summary%iterations + iters_step
           if (step_unconverged) summary%unconverged_steps = summary%unconverged_steps + 1
+          ! A stage that ends out of balance: the run says so (and --strict refuses it).
+          if (k == st%steps .and. .not. (f%rel_prev < c%delta1 .or. f%abs_prev < c%delta2)) &
+            call note_unbalanced(an, st, real(s, dp), r, f%rel_prev, summary)
           call observer%progress(progress_line(s, k, st%steps, s - 1 + real(k, dp) / st%steps, iters_step, &
                                                f%rel_prev, summary%factorizations, summary%factorizations - nfact0) &
                                  // trim(merge('  (not converged: carried) ', '                           ', &
@@ -433,6 +449,101 @@ contains
                                                'the nearest symmetric positive semi-definite matrix was ' // &
                                                'factorized and the exact residual iterated on')
   end subroutine run_nonlinear_stages
+
+  !> Record that stage `st` ended with the unbalanced force r (|R| / |P| = rel) above its
+  !! tolerance: the run is not converged, and the largest such residual is kept with where.
+  subroutine note_unbalanced(an, st, lf, r, rel, summary)
+    type(analysis_t), intent(in) :: an
+    type(stage_t), intent(in) :: st
+    real(dp), intent(in) :: lf             !! the load factor at the stage's end
+    real(dp), intent(in) :: r(:)
+    real(dp), intent(in) :: rel
+    type(analysis_summary_t), intent(inout) :: summary
+    integer :: imax
+    if (.not. summary%converged .and. .not. (rel > summary%unbalanced)) return
+    summary%converged = .false.
+    summary%unbalanced = rel
+    imax = maxloc(abs(r), dim=1, mask=r == r)
+    summary%unbalanced_stage = st%name
+    summary%unbalanced_step = st%steps
+    summary%unbalanced_load_factor = lf
+    summary%unbalanced_at = ''
+    if (imax >= 1) summary%unbalanced_at = an%map%dof_name(imax)
+    summary%unbalanced_tolerance = st%controls%delta1
+  end subroutine note_unbalanced
+
+  !> What the last accepted state was, for a stop's message: in equilibrium (within the
+  !! stage's tolerance), or accepted out of balance (the unbalanced force carried).
+  function last_state(f, c) result(text)
+    type(factor_state_t), intent(in) :: f
+    type(controls_t), intent(in) :: c
+    character(len=:), allocatable :: text
+    if (f%rel_prev < c%delta1 .or. f%abs_prev < c%delta2) then
+      text = 'the last state in equilibrium'
+    else
+      text = 'the last state accepted, out of balance by a relative residual of ' // str(f%rel_prev) // &
+             ' (carried)'
+    end if
+  end function last_state
+
+  !> A factorization that failed during the steps. A singular stiffness whose elastic
+  !! counterpart (the same supports and elements, every point elastic) factorizes is a
+  !! mechanism that the load has formed, not a missing support: collapse (a run failure, exit
+  !! status 1), naming the stage, the step, the last load factor in equilibrium and the node
+  !! and DOF where the mechanism runs, whatever the method. Where the elastic stiffness is
+  !! singular too, the model lacks a support (the model error as the first factorization gives
+  !! it); any other failure is named with the step and passed on.
+  subroutine explain_failed_factorization(model, an, st, k, lf_equilibrium, lf_try, last, summary, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    type(stage_t), intent(in) :: st
+    integer, intent(in) :: k
+    real(dp), intent(in) :: lf_equilibrium   !! the load factor of the last state in equilibrium
+    real(dp), intent(in) :: lf_try           !! the load factor the (sub)step was going to
+    character(len=*), intent(in) :: last     !! what the last accepted state was (last_state)
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(inout) :: error
+    type(error_t), allocatable :: elastic_error
+    character(len=:), allocatable :: mechanism
+    integer :: ieq
+    ieq = error%item
+    if (error%code /= err_model .or. ieq < 1 .or. ieq > an%map%neq) then
+      call name_step(error, st, k, lf_try)
+      return
+    end if
+    mechanism = an%map%dof_name(ieq)
+    call factorize_tangent(model, an, .true., summary, elastic_error)
+    if (allocated(elastic_error)) then
+      call name_step(error, st, k, lf_try)
+      return
+    end if
+    call fatal_error(error, err_solver, model%deck_file // ': collapse in stage ' // st%name // ', step ' // &
+                     str(k) // ': no equilibrium found beyond load factor ' // str(lf_equilibrium) // ' (' // &
+                     last // '; the step went to ' // str(lf_try) // '): the tangent stiffness ' // &
+                     'there is singular at ' // mechanism // ' while the elastic stiffness of the same model is ' // &
+                     'not: the load has formed a mechanism or reached a limit point (the structure or its ' // &
+                     'interfaces have no more capacity), no support is missing', item=ieq)
+  end subroutine explain_failed_factorization
+
+  !> The equation where the tangent of the current trial state (`trial`) or of the committed
+  !! one is singular while the elastic stiffness of the same model is not: where a mechanism
+  !! runs (0 where none is found). Replaces the factor held.
+  subroutine find_mechanism(model, an, trial, summary, ieq)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    logical, intent(in) :: trial
+    type(analysis_summary_t), intent(inout) :: summary
+    integer, intent(out) :: ieq
+    type(error_t), allocatable :: probe_error
+    ieq = 0
+    call factorize_tangent(model, an, .false., summary, probe_error, trial=trial, exact=.true.)
+    if (.not. allocated(probe_error)) return
+    if (probe_error%code /= err_model .or. probe_error%item < 1 .or. probe_error%item > an%map%neq) return
+    ieq = probe_error%item
+    deallocate (probe_error)
+    call factorize_tangent(model, an, .true., summary, probe_error)
+    if (allocated(probe_error)) ieq = 0
+  end subroutine find_mechanism
 
   !> One (sub)step: move the constrained DOFs by duc, apply df, iterate on the residual.
   !! ok is false when the step diverges (non-finite or growing residual, or iterations run out

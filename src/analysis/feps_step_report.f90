@@ -103,19 +103,26 @@ contains
     end do
   end subroutine collect_point_notes
 
-  !> The clear stop: step, load factor, residual and the DOF where it is largest; when interface
-  !! points opened in the last try, a hint that the load may have passed a limit point.
-  subroutine stop_error(model, an, r, st, k, lf, rel, cutbacks_exhausted, opened, notes, error)
+  !> The clear stop: step, load factor, residual and the DOF where it is largest, and the last
+  !! load factor in equilibrium; when interface points opened in the last try, a hint that the
+  !! load may have passed a limit point.
+  subroutine stop_error(model, an, r, st, k, lf, lf_equilibrium, last, rel, cutbacks_exhausted, opened, notes, &
+                        error, mechanism)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: an
     real(dp), intent(in) :: r(:)
     type(stage_t), intent(in) :: st
     integer, intent(in) :: k
     real(dp), intent(in) :: lf, rel
+    real(dp), intent(in) :: lf_equilibrium   !! the load factor of the last state accepted
+    character(len=*), intent(in) :: last     !! what that state was: in equilibrium, or out of balance (carried)
     logical, intent(in) :: cutbacks_exhausted
     integer, intent(in) :: opened   !! interface points that opened in the last try
     character(len=*), intent(in) :: notes   !! materials' notes about the states the step's iterates reached
     type(error_t), allocatable, intent(out) :: error
+    !> the equation where the last try's tangent is singular while the elastic stiffness is
+    !! not (0: none found): a mechanism, and the stop a collapse
+    integer, intent(in) :: mechanism
     integer :: imax
     character(len=:), allocatable :: why, hint
     imax = maxloc(abs(r), dim=1, mask=r == r)
@@ -164,9 +171,21 @@ contains
         'loading and unloading): try STAGE ..., LINESEARCH=energy'
     end if
     if (len(notes) > 0 .and. cutbacks_exhausted) hint = hint // '; ' // notes
+    if (mechanism > 0) then
+      call fatal_error(error, err_solver, model%deck_file // ': collapse in stage ' // st%name // ', step ' // &
+                       str(k) // ': no equilibrium found beyond load factor ' // str(lf_equilibrium) // ' (' // &
+                       last // '; the last try went to ' // str(lf) // ', relative residual ' // &
+                       str(rel) // ' after ' // str(st%controls%max_cutbacks) // ' cut-backs): the tangent ' // &
+                       'stiffness of the last try is singular at ' // an%map%dof_name(mechanism) // ' while the ' // &
+                       'elastic stiffness of the same model is not: the load has formed a mechanism or reached a ' // &
+                       'limit point (the structure or its interfaces have no more capacity), no support is ' // &
+                       'missing', item=mechanism)
+      return
+    end if
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
                      ', load factor ' // str(lf) // ': ' // why // ' (relative residual ' // str(rel) // &
-                     ', largest at ' // an%map%dof_name(imax) // ')' // hint)
+                     ', largest at ' // an%map%dof_name(imax) // '); ' // last // ': load factor ' // &
+                     str(lf_equilibrium) // hint)
   end subroutine stop_error
 
   !> The progress line of a step: stage, step, load factor, iterations, relative residual and

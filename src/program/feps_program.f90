@@ -4,7 +4,8 @@
 module feps_program
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, err_internal, str
+  use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, err_internal, &
+                        err_solver, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, line_search_refusal, known_fields
   use feps_deck, only: read_deck
@@ -42,6 +43,7 @@ module feps_program
     character(len=:), allocatable :: fields     !! overrides the deck's FIELDS when not empty: names, comma-separated
     logical :: quiet = .false.
     logical :: check_only = .false.             !! check the deck and the model, solve nothing, write nothing
+    logical :: strict = .false.                 !! a run that ends out of balance fails (exit 1, no results)
   end type run_options_t
 
   !> What the program reports after a run: the analysis's totals (the parent type, filled by
@@ -62,7 +64,7 @@ module feps_program
     integer, allocatable :: group_elements(:)
   end type run_summary_t
 
-  public :: run_feps
+  public :: run_feps, unbalanced_text
 
   !> Where progress lines go (the program prints them; tests pass nothing).
   abstract interface
@@ -165,6 +167,9 @@ contains
     obs%writing = .true.
     call write_mesh(obs%h5, model, error)
     if (.not. allocated(error)) call run_analysis(model, solver, obs, summary%analysis_summary_t, error)
+    if (.not. allocated(error) .and. options%strict .and. .not. summary%converged) &
+      call fatal_error(error, err_solver, options%deck // ': ' // unbalanced_text(summary) // &
+                       ' (--strict: a run that ends out of balance fails)')
     if (allocated(error)) then
       ! A deck refused before its first step (exit status 2: what --check finds too) leaves the
       ! results of an earlier run alone; a run that failed removes them (they would pass for its).
@@ -193,6 +198,19 @@ contains
     if (.not. allocated(error)) call obs%h5%close(error)
     if (allocated(error)) call obs%h5%discard()
   end subroutine run_feps
+
+  !> What a run that ends out of balance says: the largest relative residual a stage ended
+  !! with, where, and what to do.
+  function unbalanced_text(summary) result(text)
+    class(run_summary_t), intent(in) :: summary
+    character(len=:), allocatable :: text
+    text = 'the run ends out of balance: stage ' // summary%unbalanced_stage // ', step ' // &
+           str(summary%unbalanced_step) // ', load factor ' // str(summary%unbalanced_load_factor) // &
+           ' ended with a relative residual of ' // str(summary%unbalanced) // ' (DELTA1 = ' // &
+           str(summary%unbalanced_tolerance) // &
+           '), largest at ' // summary%unbalanced_at // ': its results are not in equilibrium; give the stage ' // &
+           'more steps or iterations (STEPS=, MAXIT=), or METHOD=full-newton-raphson'
+  end function unbalanced_text
 
   !> `feps --check`: every check a run makes before its first step (check_analysis), one
   !! elastic factorization per stage whose elements change, and no result file.
@@ -649,6 +667,9 @@ contains
     if (.not. allocated(error)) call h5%write_summary_int('cutbacks', int(summary%cutbacks, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('unconverged_steps', int(summary%unconverged_steps, i8), &
                                                           error)
+    if (.not. allocated(error)) call h5%write_summary_int('converged', merge(1_i8, 0_i8, summary%converged), error)
+    if (.not. allocated(error) .and. .not. summary%converged) &
+      call h5%write_summary_real('unbalanced', summary%unbalanced, error)
     if (.not. allocated(error) .and. summary%line_search) call h5%write_summary_int('line_searches', &
       int(summary%line_searches, i8), error)
     if (.not. allocated(error) .and. summary%line_search) call h5%write_summary_int('line_search_evaluations', &

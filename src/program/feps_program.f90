@@ -668,8 +668,7 @@ contains
     if (.not. allocated(error)) call h5%write_summary_int('unconverged_steps', int(summary%unconverged_steps, i8), &
                                                           error)
     if (.not. allocated(error)) call h5%write_summary_int('converged', merge(1_i8, 0_i8, summary%converged), error)
-    if (.not. allocated(error) .and. .not. summary%converged) &
-      call h5%write_summary_real('unbalanced', summary%unbalanced, error)
+    if (.not. allocated(error)) call h5%write_summary_real('unbalanced', summary%unbalanced, error)
     if (.not. allocated(error) .and. summary%line_search) call h5%write_summary_int('line_searches', &
       int(summary%line_searches, i8), error)
     if (.not. allocated(error) .and. summary%line_search) call h5%write_summary_int('line_search_evaluations', &

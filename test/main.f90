@@ -29,6 +29,7 @@ program tester
   use test_result_schema, only: collect_result_schema
   use test_solid_elements, only: collect_solid_elements
   use test_collapse, only: collect_collapse
+  use test_interface_orientation, only: collect_interface_orientation
   implicit none
 
   interface
@@ -72,7 +73,8 @@ program tester
     new_testsuite('lame_solids', collect_lame_solids), &
     new_testsuite('result_schema', collect_result_schema), &
     new_testsuite('solid_elements', collect_solid_elements), &
-    new_testsuite('collapse', collect_collapse) &
+    new_testsuite('collapse', collect_collapse), &
+    new_testsuite('interface_orientation', collect_interface_orientation) &
     ]
   nfail = run_testsuites(suites, only)
   if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran

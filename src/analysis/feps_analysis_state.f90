@@ -17,6 +17,7 @@ module feps_analysis_state
   use feps_assembly, only: group_kernel_t, build_kernels, build_materials, build_pattern, check_jacobians, &
                            element_dofs, element_stiffness, element_strains, element_internal_force, &
                            scatter_element_matrix, rotate_matrix
+  use feps_interface_orientation, only: check_interface_orientation
   use feps_loads, only: resolve_face_sets, nodal_load_vector, to_equations
   use feps_material, only: material_slot_t
   use feps_tangent_symmetry, only: nearest_symmetric_psd
@@ -104,6 +105,8 @@ contains
     call build_materials(model, an%materials, error)
     if (allocated(error)) return
     call check_jacobians(model, an%kernels, summary%min_jacobian, error)
+    if (allocated(error)) return
+    call check_interface_orientation(model, an%kernels, error)
     if (allocated(error)) return
     call resolve_face_sets(model, an%kernels, error)
     if (allocated(error)) return

@@ -30,6 +30,7 @@ program tester
   use test_solid_elements, only: collect_solid_elements
   use test_collapse, only: collect_collapse
   use test_interface_orientation, only: collect_interface_orientation
+  use test_progress, only: collect_progress
   implicit none
 
   interface
@@ -74,7 +75,8 @@ program tester
     new_testsuite('result_schema', collect_result_schema), &
     new_testsuite('solid_elements', collect_solid_elements), &
     new_testsuite('collapse', collect_collapse), &
-    new_testsuite('interface_orientation', collect_interface_orientation) &
+    new_testsuite('interface_orientation', collect_interface_orientation), &
+    new_testsuite('progress', collect_progress) &
     ]
   nfail = run_testsuites(suites, only)
   if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran

@@ -28,7 +28,7 @@ module feps_incremental_analysis
   use feps_bfgs, only: bfgs_t
   use feps_line_search, only: line_search_t, line_search_begin, line_search_next, line_search_eta, &
                               line_search_s_min, line_search_max_evaluations
-  use feps_step_report, only: progress_line, report_step, report_open_interfaces, writes_step, name_step, &
+  use feps_step_report, only: progress_line, time_text, report_step, report_open_interfaces, writes_step, name_step, &
                               newly_open_points, collect_point_notes, stop_error
   implicit none
   private
@@ -311,8 +311,8 @@ contains
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: df(:, :), duc(:, :), dps(:), r(:)
-    real(dp) :: h, done, rnorm, pnorm
-    integer :: s, k, step, iters, cut, nfact0, iters_step, opened, mechanism
+    real(dp) :: h, done, rnorm, pnorm, t_start
+    integer :: s, k, step, iters, cut, nfact0, iters_step, opened, mechanism, total_steps
     character(len=:), allocatable :: step_notes, run_notes
     logical :: ok, step_unconverged, born, changed
     type(factor_state_t) :: f              !! the factor held, carried from stage to stage
@@ -323,6 +323,8 @@ contains
               fully_open(size(model%groups)))
     fully_open = .false.
     step = 0
+    total_steps = sum(model%stages%steps)
+    t_start = wall_clock()
     do s = 1, size(model%stages)
       associate (st => model%stages(s), c => model%stages(s)%controls)
         call new_solution_method(c%method, method, error)
@@ -425,7 +427,8 @@ contains
           call observer%progress(progress_line(s, k, st%steps, s - 1 + real(k, dp) / st%steps, iters_step, &
                                                f%rel_prev, summary%factorizations, summary%factorizations - nfact0) &
                                  // trim(merge('  (not converged: carried) ', '                           ', &
-                                                step_unconverged)))
+                                                step_unconverged)) // &
+                                 time_text(wall_clock() - t_start, step, total_steps))
           call report_open_interfaces(model, an, observer, fully_open)
           if (writes_step(st, k)) then
             call report_step(model, an, observer, step, s, k, s - 1 + real(k, dp) / st%steps, iters_step, &

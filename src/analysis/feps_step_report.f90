@@ -16,7 +16,7 @@ module feps_step_report
   implicit none
   private
 
-  public :: progress_line, report_step, report_open_interfaces, writes_step
+  public :: progress_line, time_text, report_step, report_open_interfaces, writes_step
   public :: name_step, newly_open_points, collect_point_notes, stop_error
 
 contains
@@ -199,6 +199,22 @@ contains
       '  load ', lf, '  iterations ', iters, '  residual ', rel, '  refactorizations ', nfact, ' (+', nfact_step, ')'
     line = trim(buf)
   end function progress_line
+
+  !> The time a run has taken after `done` of its `total` steps, and an estimate of the time
+  !! left at the mean rate so far: '  elapsed 12.3 s, about 45 s left'.
+  function time_text(elapsed, done, total) result(text)
+    real(dp), intent(in) :: elapsed        !! seconds since the first step began
+    integer, intent(in) :: done, total
+    character(len=:), allocatable :: text
+    character(len=32) :: buf
+    write (buf, '(f0.1)') elapsed
+    buf = adjustl(buf)
+    if (buf(1:1) == '.') buf = '0' // buf      ! f0.1 writes 0.3 as .3
+    text = '  elapsed ' // trim(buf) // ' s'
+    if (done < 1 .or. done >= total) return
+    write (buf, '(i0)') nint(elapsed / done * (total - done))
+    text = text // ', about ' // trim(buf) // ' s left'
+  end function time_text
 
   !> Hand the step's results to the observer.
   subroutine report_step(model, an, observer, step, s, k, lf, iters, rel, error)

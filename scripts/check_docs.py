@@ -47,7 +47,7 @@ records or code that the example needs but does not show. KINDs:
   xdmf-table the XDMF cell table right after the marker, against the XDMF files feps writes.
   gauss-table the table of integration points right after the marker (docs/output-format.md):
             each row's point count and its points, in the order the table gives, against
-            scripts/feps_results.py's integration_points (which scripts/check_cli.sh holds to
+            scripts/feps_results.py's integration_points (which test/cli/check_cli.sh holds to
             feps's own rows) and the points_per_element feps writes for the types run here.
   count     glob=GLOB n=N: so many files of the repository match GLOB (a folder's size that
             the text gives).

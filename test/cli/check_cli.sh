@@ -2,11 +2,11 @@
 # Command-line checks of the feps program: exit statuses, help and version, a mesh-only
 # input, the main job's outputs, and that bad input leaves no result file behind.
 # FEPS and FEPS_TESTER name other builds of the program and the test runner to check (as
-# scripts/check_runtime.sh does with its sanitized build); by default, fpm's default build.
+# test/cli/check_runtime.sh does with its sanitized build); by default, fpm's default build.
 # FEPS_FUZZ_MEMORY_GB, FEPS_FUZZ_TIMEOUT: the fuzzer's address-space limit (default 4 GB;
 # AddressSanitizer's shadow memory needs more than 16 TB) and time (default 60 s) per case.
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 fpm build >/dev/null 2>&1 || { echo "check_cli: build failed" >&2; exit 1; }
 feps=${FEPS:-$(fpm run --runner echo 2>/dev/null | tail -n 1)}
 feps=${feps#"$PWD/"}    # relative when inside the package (the relative-FEPS campaign check below)
@@ -184,18 +184,18 @@ expect_status "solution beyond double precision" 1 "$feps" test/data/overflow_so
   || bad "the overflow names the stage and leaves no result file: $(head -c 300 "$tmp/err")"
 
 # Mutated decks (fixed seeds): a clear answer every time, never a crash, a hang or a runaway
-# allocation (scripts/fuzz_input.py; longer campaigns in docs/verification.md).
-python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+# allocation (test/cli/fuzz_input.py; longer campaigns in docs/verification.md).
+python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --check: $(tail -n 1 "$tmp/out")" || bad "fuzz --check: $(grep FAIL "$tmp/out" | head -3)"
-python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --run: $(tail -n 1 "$tmp/out")" || bad "fuzz --run: $(grep FAIL "$tmp/out" | head -3)"
 # ... and the fuzzer does fail on a program that crashes (exit 134) or hangs
 printf '#!/bin/sh\necho "Program received signal SIGSEGV" >&2\nexit 134\n' >"$tmp/crash" && chmod +x "$tmp/crash"
 printf '#!/bin/sh\nsleep 30\n' >"$tmp/hang" && chmod +x "$tmp/hang"
-python3 scripts/fuzz_input.py --feps "$tmp/crash" --cases 2 --out "$tmp/fuzzc" >"$tmp/out" 2>&1; got=$?
+python3 test/cli/fuzz_input.py --feps "$tmp/crash" --cases 2 --out "$tmp/fuzzc" >"$tmp/out" 2>&1; got=$?
 [ "$got" -eq 1 ] && grep -q "exit 134" "$tmp/out" && [ "$(ls "$tmp/fuzzc" | wc -l)" -eq 2 ] \
   && ok "fuzz flags a crash and keeps the mutants" || bad "fuzz flags a crash: exit $got, $(head -c 300 "$tmp/out")"
-python3 scripts/fuzz_input.py --feps "$tmp/hang" --cases 1 --timeout 1 --out "$tmp/fuzzh" >"$tmp/out" 2>&1; got=$?
+python3 test/cli/fuzz_input.py --feps "$tmp/hang" --cases 1 --timeout 1 --out "$tmp/fuzzh" >"$tmp/out" 2>&1; got=$?
 [ "$got" -eq 1 ] && grep -q "no answer within 1 s" "$tmp/out" && ok "fuzz flags a hang" || bad "fuzz flags a hang: exit $got, $(head -c 300 "$tmp/out")"
 # With --run, a run past --timeout that keeps writing progress lines is slow, not hung (it gets up
 # to 3 x --timeout); one that stops writing them for 15 s is a hang.
@@ -206,10 +206,10 @@ printf '#!/bin/sh
 echo "stage 1  step 1/4"
 sleep 60
 ' >"$tmp/stall" && chmod +x "$tmp/stall"
-python3 scripts/fuzz_input.py --feps "$tmp/slow" --cases 1 --timeout 2 --run --out "$tmp/fuzzs" >"$tmp/out" 2>&1 \
+python3 test/cli/fuzz_input.py --feps "$tmp/slow" --cases 1 --timeout 2 --run --out "$tmp/fuzzs" >"$tmp/out" 2>&1 \
   && ok "fuzz --run: a slow run still stepping past --timeout is not a hang" \
   || bad "fuzz --run: a slow run still stepping past --timeout: $(head -c 300 "$tmp/out")"
-python3 scripts/fuzz_input.py --feps "$tmp/stall" --cases 1 --timeout 1 --run --out "$tmp/fuzzst" >"$tmp/out" 2>&1; got=$?
+python3 test/cli/fuzz_input.py --feps "$tmp/stall" --cases 1 --timeout 1 --run --out "$tmp/fuzzst" >"$tmp/out" 2>&1; got=$?
 [ "$got" -eq 1 ] && grep -q "no new progress line for 15 s" "$tmp/out" && ok "fuzz --run flags a run that stalls after a step" \
   || bad "fuzz --run flags a run that stalls: exit $got, $(head -c 300 "$tmp/out")"
 
@@ -849,11 +849,11 @@ print(f"{r['beta_bar']:.10f} = {r['beta_bar_whole_jump']:.10f} deg, nothing take
 sys.exit(0 if abs(r["beta_bar"] - r["beta_bar_whole_jump"]) <= 1e-12 and
          abs(r["beta_bar"] - r["beta_bar_raw"]) > 1e-4 else 1)
 PY
-# Equilibrium of the written fields (scripts/check_equilibrium.py: nodal forces assembled with its
+# Equilibrium of the written fields (test/reference/check_equilibrium.py: nodal forces assembled with its
 # own shape functions from the stresses, tractions and reactions): the main job (FE1: hex8 and
 # interfaces, residual carried), SE1 (linear) and the coarse model C (packing, interface, soil).
 for h5 in main.h5 b_cholmod.h5 mc_small/C_G300_nu0.1_b0.09.h5; do
-  python3 scripts/check_equilibrium.py "$tmp/$h5" >"$tmp/out" 2>&1 \
+  python3 test/reference/check_equilibrium.py "$tmp/$h5" >"$tmp/out" 2>&1 \
     && ok "check_equilibrium.py $h5: $(grep -c ': PASS' "$tmp/out") checks pass" \
     || bad "check_equilibrium.py $h5: $(grep -v ': PASS' "$tmp/out" | head -c 400)"
 done
@@ -976,19 +976,19 @@ expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" 
 # (equilibrium and compatibility by finite differences, which the Fortran test does not repeat),
 # the test's eight decks written again byte for byte, and one run compared with the closed form by
 # the script (its own numpy solution, independent of the test's Fortran one).
-python3 scripts/lined_hole.py --check >"$tmp/out" 2>&1 && grep -q "^all checks pass" "$tmp/out" \
+python3 test/reference/lined_hole.py --check >"$tmp/out" 2>&1 && grep -q "^all checks pass" "$tmp/out" \
   && ok "lined_hole.py --check: the closed form's self-checks" || bad "lined_hole.py --check: $(grep FAIL "$tmp/out" | head -c 300)"
 lh_ok=1
 for c in bonded_2 slip_2 bonded_3 slip_3; do
-  python3 scripts/lined_hole.py --decks "$tmp/lh" --bond "${c%_*}" --dim "${c#*_}" --level 2 --name "lined_${c}d.dat" \
+  python3 test/reference/lined_hole.py --decks "$tmp/lh" --bond "${c%_*}" --dim "${c#*_}" --level 2 --name "lined_${c}d.dat" \
     >/dev/null && cmp -s "$tmp/lh/lined_${c}d.dat" "test/data/lined_${c}d.dat" || lh_ok=0
 done
 for c in "bonded:" "slip:--nodal" "friction:--nodal --phi 15"; do
-  python3 scripts/lined_hole.py --decks "$tmp/lh" --bond "${c%%:*}" ${c#*:} --level 1 --far uniform --rout 40 \
+  python3 test/reference/lined_hole.py --decks "$tmp/lh" --bond "${c%%:*}" ${c#*:} --level 1 --far uniform --rout 40 \
     --name "lined_far_${c%%:*}.dat" >/dev/null && cmp -s "$tmp/lh/lined_far_${c%%:*}.dat" "test/data/lined_far_${c%%:*}.dat" \
     || lh_ok=0
 done
-python3 scripts/lined_hole.py --decks "$tmp/lh" --bond bilateral --dim 2 --level 2 --K -0.5 \
+python3 test/reference/lined_hole.py --decks "$tmp/lh" --bond bilateral --dim 2 --level 2 --K -0.5 \
   --name lined_bilateral_2d.dat >/dev/null && cmp -s "$tmp/lh/lined_bilateral_2d.dat" test/data/lined_bilateral_2d.dat \
   || lh_ok=0
 [ "$lh_ok" -eq 1 ] && ok "lined_hole.py writes test/data/lined_*.dat" || bad "lined_hole.py writes test/data/lined_*.dat"
@@ -999,7 +999,7 @@ sys.exit(not (e["s_tt bore"][0] < 1.3e-2 and e["u_r bore"][0] < 4.5e-4 and e["in
   "$tmp/lined_slip.h5" && ok "lined_hole.py: the tri6 full-slip run against the closed form" \
   || bad "lined_hole.py: the tri6 full-slip run against the closed form"
 expect_line "lined_hole.py on a missing results file" 2 "no such results file" \
-  python3 scripts/lined_hole.py "$tmp/no_such_lined.h5"
+  python3 test/reference/lined_hole.py "$tmp/no_such_lined.h5"
 expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapter 9 results" \
   python3 scripts/orderings_model_a_ch9.py "$tmp/empty"
 expect_line "bench_compare.sh with a missing deck" 2 "no deck $tmp/no_such.dat" \
@@ -1018,9 +1018,9 @@ for t in tet4 tet10 wedge6 wedge15; do
 done
 # The XDMF files of this run's results, read with VTK's XDMF reader (ParaView's "XDMF Reader";
 # setup.sh installs vtk) and compared with their HDF5 files: every step, block, cell, point,
-# array and load factor (scripts/check_xdmf_vtk.py).
+# array and load factor (test/reference/check_xdmf_vtk.py).
 xmfs=("$tmp"/*.xmf "$tmp"/mc_small/*.xmf)
-python3 scripts/check_xdmf_vtk.py "${xmfs[@]}" >"$tmp/out" 2>&1 \
+python3 test/reference/check_xdmf_vtk.py "${xmfs[@]}" >"$tmp/out" 2>&1 \
   && ok "check_xdmf_vtk.py: the ${#xmfs[@]} XDMF files of these checks read back as their HDF5 files hold them" \
   || bad "check_xdmf_vtk.py: $(grep -v ': ok with' "$tmp/out" | head -c 400)"
 

@@ -458,14 +458,20 @@ PY
   && grep -q "post-tension tendons 1.000E+01 N (bonded next stage)" "$tmp/out" && grep -q "stage more: .*born: tendons" "$tmp/out" \
   && ok "--check names the post-tension and the bonding stage" || bad "--check names the post-tension: $(cat "$tmp/out")"
 
-# The CalculiX exporter takes a thesis deck (its PARAMETERS are labels) and refuses, with the
-# deck's line, what it cannot write (a second load variation).
+# The CalculiX exporter takes a thesis deck (its PARAMETERS are labels), writes any load feps
+# applied (the results file's applied_force: a bilinear pressure too) and refuses, with the
+# deck's line, what it cannot write (prescribed displacements).
 python3 scripts/export_inp.py "$tmp/b_cholmod.h5" input/modelB/SE1.dat -o "$tmp/se1.inp" >"$tmp/out" 2>&1 \
   && grep -q "^\*STEP" "$tmp/se1.inp" && ok "export_inp.py writes model B SE1" || bad "export_inp.py writes model B SE1: $(cat "$tmp/out")"
 "$feps" test/data/bilinear_load.dat --output "$tmp/bl.h5" --quiet >/dev/null 2>&1
-python3 scripts/export_inp.py "$tmp/bl.h5" test/data/bilinear_load.dat -o "$tmp/bl.inp" >"$tmp/out" 2>&1; got=$?
-[ "$got" -ne 0 ] && grep -q "bilinear_load.dat:21: unknown PRESSURE options" "$tmp/out" && [ ! -e "$tmp/bl.inp" ] \
-  && ok "export_inp.py refuses VARY2 naming the line" || bad "export_inp.py refuses VARY2 naming the line: $(cat "$tmp/out")"
+python3 scripts/export_inp.py "$tmp/bl.h5" test/data/bilinear_load.dat -o "$tmp/bl.inp" >"$tmp/out" 2>&1 \
+  && grep -q "resultant 0 0 -900 N" "$tmp/out" && grep -q "^14, 3, -" "$tmp/bl.inp" \
+  && ok "export_inp.py writes the bilinear pressure's forces" || bad "export_inp.py writes the bilinear pressure: $(cat "$tmp/out")"
+"$feps" test/data/cube.dat --output "$tmp/cube_x.h5" --quiet >/dev/null 2>&1
+printf 'DISPLACE, top, Z=-0.1\n' >"$tmp/displace.dat"
+python3 scripts/export_inp.py "$tmp/cube_x.h5" "$tmp/displace.dat" -o "$tmp/d.inp" >"$tmp/out" 2>&1; got=$?
+[ "$got" -eq 1 ] && grep -q "displace.dat:1: DISPLACE (prescribed displacements) is not exported" "$tmp/out" && [ ! -e "$tmp/d.inp" ] \
+  && ok "export_inp.py refuses DISPLACE naming the line" || bad "export_inp.py refuses DISPLACE naming the line: $(cat "$tmp/out")"
 
 # A campaign with a bad deck stops before running anything (feps --check on every deck first).
 camp="check_cli_$$"

@@ -323,7 +323,9 @@ python3 - "$tmp" <<'PY' && ok "gauss_points: hex8b, tri6, tri6-6, interface-line
 import math, sys
 import numpy as np
 sys.path.insert(0, "scripts")
+sys.path.insert(0, "test/reference")
 import feps_results as fr
+import element_rules as er
 tmp = sys.argv[1]
 seen = set()
 
@@ -356,7 +358,7 @@ def check_solid(f, group, dn, dims):
     gives the (nodes, dims) shape-function derivatives; hex8b takes the mean dilatation."""
     stored, ppe = rows(f, "stress", group)
     etype = fr.element_type(f, group)
-    xi, _ = fr.integration_points(etype, ppe)
+    xi, _ = er.integration_points(etype, ppe)
     conn = fr.connectivity(f, group)
     x = fr.coordinates(f)[conn][:, :, :dims]
     u = f[f"steps/{fr.last_step(f)}/displacement"][...][conn][:, :, :dims]
@@ -380,7 +382,7 @@ def check_solid(f, group, dn, dims):
 
 
 def hex8_dn(xi):
-    c = fr._HEX8_XI
+    c = er.HEX8_XI
     f = 1.0 + c * xi
     return np.column_stack([c[:, k] * np.prod(np.delete(f, k, axis=1), axis=1) for k in range(3)]) / 8.0
 
@@ -399,7 +401,7 @@ for name in ("gp_line3", "gp_line3n", "gp_line2", "gp_line2n"):
             check_solid(f, group, tri6_dn, 2)
         stored, ppe = rows(f, "interface_strain", "joint")
         etype = fr.element_type(f, "joint")
-        shapes, nodes = fr.integration_shapes(etype, ppe)
+        shapes, nodes = er.integration_shapes(etype, ppe)
         conn = fr.connectivity(f, "joint")
         u = f[f"steps/{fr.last_step(f)}/displacement"][...]
         du = np.einsum("gn,enk->egk", shapes, u[conn[:, nodes:]] - u[conn[:, :nodes]]).reshape(-1, 3)
@@ -840,7 +842,7 @@ want = pmc.postprocess(sys.argv[1], verbose=False)["beta_bar"]
 sys.exit(0 if abs(printed - want) <= 5e-6 else 1)
 PY
 # beta_bar takes the interface's elastic closure sigma_n / Kn out of w at A-A, with sigma_n
-# extrapolated from each interface element's Gauss points to its nodes. Where the joint is
+# feps's nodal_interface (extrapolated from each interface element's Gauss points to its nodes). Where the joint is
 # elastic and closed (every point of the coarse case on r = 715, x >= 250: beta = 0.09) that is
 # the nodal jump itself, so the reading equals the one that takes out the whole relative
 # displacement; at sliding points they differ by the dilatant opening (docs/verification.md).
@@ -880,15 +882,15 @@ sys.exit(0 if abs(fx - H) <= 1e-9 * abs(H) and abs(H) > 0 else 1)
 PY
 expect_line "plot_joint_deformation.py --joint-total on a model B result" 2 "not a model C result" \
   python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/main.h5" --out "$tmp/m.png"
-# beta_bar reads the interface's normal stress as well as the displacements: a result written
-# without it (FIELDS) is named, not a traceback.
+# beta_bar reads the interface's normal stress at the nodes (feps's nodal_interface) as well as
+# the displacements: a result written without it (FIELDS) is named, not a traceback.
 cp "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" "$tmp/mc_no_joint.h5" && python3 - "$tmp/mc_no_joint.h5" <<'PY'
 import sys, h5py
 with h5py.File(sys.argv[1], "a") as f:
-    del f["steps"][sorted(f["steps"], key=int)[-1]]["interface/joint"]
+    del f["steps"][sorted(f["steps"], key=int)[-1]]["nodal_interface/joint"]
 PY
-expect_line "plot_joint_deformation.py --joint-total on a model C result without the interface's stresses" 2 \
-  "no /steps/[0-9]*/interface/joint" \
+expect_line "plot_joint_deformation.py --joint-total on a model C result without the interface's nodal stresses" 2 \
+  "no /steps/[0-9]*/nodal_interface/joint" \
   python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/mc_no_joint.h5" --out "$tmp/m.png"
 # The maps' q: a model B or C result's own (4.21, 10 MPa), any other file must be given --norm
 # (it used to be 4.21 for every file: model A, C and chapter 9 maps silently divided by model B's).
@@ -910,14 +912,15 @@ cp test/data/lame_hex8.dat "$tmp/lame_hex8_nodal.dat" && echo "FIELDS, all, noda
   && "$feps" "$tmp/bending_hex20r.dat" --quiet --output "$tmp/n_hex20r.h5" \
   && "$feps" "$tmp/lame_hex8_nodal.dat" --quiet --output "$tmp/n_hex8.h5" \
   && python3 - "$tmp/n_hex20.h5" "$tmp/n_hex20r.h5" "$tmp/n_hex8.h5" <<'PY' >"$tmp/out" 2>&1 \
-  && ok "nodal_stress of hex20, hex20r and hex8 = plot_stress_maps.py's own extrapolation ($(cat "$tmp/out"))" \
-  || bad "nodal_stress against plot_stress_maps.py's extrapolation: $(head -c 300 "$tmp/out")"
+  && ok "nodal_stress of hex20, hex20r and hex8 = test/reference/element_rules.py's own extrapolation ($(cat "$tmp/out"))" \
+  || bad "nodal_stress against element_rules.py's extrapolation: $(head -c 300 "$tmp/out")"
 import sys
 import h5py
 import numpy as np
 sys.path.insert(0, "scripts")
 import feps_results as fr
-import plot_stress_maps as psm
+sys.path.insert(0, "test/reference")
+import element_rules as er
 worst = 0.0
 for path in sys.argv[1:]:
     with h5py.File(path) as f:
@@ -925,7 +928,7 @@ for path in sys.argv[1:]:
         for g in f[f"steps/{step}/nodal_stress"]:
             ds = f[f"steps/{step}/stress/{g}"]
             ppe = int(ds.attrs["points_per_element"])
-            ext = psm.extrapolation_matrix(fr.element_type(f, g), ppe)
+            ext = er.extrapolation_matrix(fr.element_type(f, g), ppe)
             conn = fr.connectivity(f, g)
             nodal = np.einsum("ng,egc->enc", ext, ds[...].reshape(-1, ppe, 6))
             sums = np.zeros((f["mesh/coordinates"].shape[0], 6))
@@ -999,7 +1002,7 @@ python3 test/reference/lined_hole.py --decks "$tmp/lh" --bond bilateral --dim 2 
   || lh_ok=0
 [ "$lh_ok" -eq 1 ] && ok "lined_hole.py writes test/data/lined_*.dat" || bad "lined_hole.py writes test/data/lined_*.dat"
 "$feps" test/data/lined_slip_2d.dat --output "$tmp/lined_slip.h5" --quiet >/dev/null 2>&1 \
-  && python3 -c 'import sys; sys.path.insert(0, "scripts"); import lined_hole as l
+  && python3 -c 'import sys; sys.path.insert(0, "test/reference"); import lined_hole as l
 e = l.compare(sys.argv[1], quiet=True)
 sys.exit(not (e["s_tt bore"][0] < 1.3e-2 and e["u_r bore"][0] < 4.5e-4 and e["interface tau (/ p)"][0] < 1e-12))' \
   "$tmp/lined_slip.h5" && ok "lined_hole.py: the tri6 full-slip run against the closed form" \

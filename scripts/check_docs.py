@@ -47,7 +47,7 @@ records or code that the example needs but does not show. KINDs:
   xdmf-table the XDMF cell table right after the marker, against the XDMF files feps writes.
   gauss-table the table of integration points right after the marker (docs/output-format.md):
             each row's point count and its points, in the order the table gives, against
-            scripts/feps_results.py's integration_points (which scripts/check_cli.sh holds to
+            test/reference/element_rules.py's integration_points (which test/cli/check_cli.sh holds to
             feps's own rows) and the points_per_element feps writes for the types run here.
   count     glob=GLOB n=N: so many files of the repository match GLOB (a folder's size that
             the text gives).
@@ -448,8 +448,8 @@ class Checker:
     def check_gauss_table(self, ex):
         import h5py
         import numpy as np
-        sys.path.insert(0, os.path.join(ROOT, "scripts"))
-        import feps_results as fr
+        sys.path.insert(0, os.path.join(ROOT, "test", "reference"))
+        import element_rules as er
         ppe_run = {}                                       # points_per_element feps wrote
         for deck in LAYOUT_DECKS:
             with h5py.File(self.result(deck)) as f:
@@ -472,9 +472,9 @@ class Checker:
                 want = gauss_order(order, rule, name, nodes_of[name], points_of)
                 points_of[name] = want
                 p = int(re.search(r"(\d+)$", rule).group(1)) if not name.startswith("bar") else int(name[3:]) - 1
-                got, _ = fr.integration_points(name)
-                assert len(got) == p == len(want), f"{name}: {len(got)} points in the reader, the table says {p}"
-                assert np.allclose(got, want, atol=1e-12), f"{name}: the reader's points {got.tolist()}, the table's {want.tolist()}"
+                got, _ = er.integration_points(name)
+                assert len(got) == p == len(want), f"{name}: {len(got)} points in the reference, the table says {p}"
+                assert np.allclose(got, want, atol=1e-12), f"{name}: the reference's points {got.tolist()}, the table's {want.tolist()}"
                 if name in ppe_run:
                     assert ppe_run[name] == p, f"{name}: feps writes {ppe_run[name]} points per element, the table says {p}"
                 checked.append(name)

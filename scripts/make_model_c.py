@@ -379,6 +379,8 @@ def deck(G, nu, beta, r_soil=2000.0, steps=None, theta_step=THETA_STEP, soil_E=S
     out += ["! the force the imposed top-end displacement needs (fx: H = P e / L, the moment of the joint's",
             "! eccentric contact resultant; postprocess_model_c.py --statics drives beam theory with it)",
             "REPORT, REACTION, NAME=top_end, NSET=top_end_nodes"]
+    out += ["! postprocess_model_c.py reads the interface's normal stress at the nodes, feps's nodal_interface",
+            "FIELDS, all, nodal_interface"]
     out += ["", "SOLVER, cholmod", f"OUTPUT, {name}.h5", ""]
     return "\n".join(out)
 

@@ -31,14 +31,14 @@ from feps_cli import Error, guard, positive, positive_int  # noqa: E402
 from plot_stress_maps import mark_peak, norm_of, step_arg, step_label  # noqa: E402
 
 STATE_NAMES = ["stuck", "sliding", "open"]
+INTERFACE_3D = lambda f, group: fr.family(f, group) == "interface" and fr.group_attr(f, group, "dimension") == 3  # noqa: E731
 
 
 def interface_points(f, group, step):
     """(x (n, 3), data (n, 4): tau1 tau2 sigma_n state) of an interface group at a step."""
     ds = f[f"steps/{step}/interface/{group}"]
-    etype = fr.element_type(f, group)
-    if not etype.startswith("interface-") or "line" in etype:
-        raise ValueError(f"group {group} is '{etype}', not a 3D interface group")
+    if not INTERFACE_3D(f, group):
+        raise ValueError(f"group {group} is '{fr.element_type(f, group)}', not a 3D interface group")
     return fr.gauss_points(f, group, ds), ds[...]
 
 
@@ -140,7 +140,7 @@ def main(argv=None):
         with fr.open_result(args.h5) as f:
             args.norm = norm_of(f, args.norm)
             step = fr.pick_step(f, args.step)
-            fr.require_group(f, args.group, lambda t: t.startswith("interface-") and "line" not in t,
+            fr.require_group(f, args.group, INTERFACE_3D,
                              "3D interface group")
             fr.require(f, f"steps/{step}/interface/{args.group}", " (left out of the run's FIELDS?)")
             x, data = interface_points(f, args.group, step)

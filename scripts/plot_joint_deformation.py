@@ -107,15 +107,16 @@ def joint_total(ax, args, markers):
             coords = f["mesh/coordinates"][...]
             conn_top = f["mesh/groups/top_pipe/connectivity"][...]
             conn_joint = f["mesh/groups/joint/connectivity"][...]
-            for field in ("displacement", "interface/joint"):
+            for field in ("displacement", "nodal_interface/joint"):
                 if f"steps/{step}/{field}" not in f:
                     raise Error(f"{path}: no /steps/{step}/{field} (the total joint deformation is read from "
-                                "the displacements and the interface's normal stress: do not leave them out with "
-                                "FIELDS)", 2)
+                                "the displacements and the interface's normal stress at the nodes: make_model_c.py's "
+                                "decks ask for them with FIELDS, all, nodal_interface)", 2)
             u = f[f"steps/{step}/displacement"][...]
-            traction = f[f"steps/{step}/interface/joint"][...]
+            nodal = f[f"steps/{step}/nodal_interface/joint"]
+            sigma_n = nodal[:, fr.components(nodal).index("sigma_n")]
             case = fr.case_name(f)
-        bbar, _, x, d = pmc.beta_bar(coords, conn_top, conn_joint, u, traction)
+        bbar, _, x, d = pmc.beta_bar(coords, conn_top, conn_joint, u, sigma_n)
         label = args.labels[k] if args.labels else case
         line, = ax.plot(x, d, marker=markers[k % len(markers)], ms=3.5, lw=1.4,
                         label=f"{label} (beta_bar = {bbar:.4f} deg)")

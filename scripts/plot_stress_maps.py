@@ -9,10 +9,10 @@
 axis), or a given radius. Values come from the Gauss points of the elements that reach the
 surface, the layer of points nearest to it in each element (--source gauss, default), from the
 element averages of those elements at their centroids (--source cell), or at the surface nodes
-(--source nodes: each element's Gauss-point stress tensors extrapolated to its nodes by the
-polynomial through them, averaged over the elements sharing the node; the principal value of that
-tensor, as feps's nodal_principal field; reaches the pipe ends, and smooths the jumps between
-elements). Points that coincide in
+(--source nodes: feps's nodal_principal field, which a run writes when its FIELDS or --fields
+name it, e.g. `feps DECK --fields all,nodal_principal`: the principal values of the Gauss-point
+stress tensors extrapolated to the nodes and averaged over the elements sharing each node; it
+reaches the pipe ends, and smooths the jumps between elements). Points that coincide in
 (theta, z) (an r = VALUE between two element layers) are averaged. The map covers the points'
 extent: Gauss points sit inside the elements, so it stops short of the pipe ends by the distance
 of the first point from the end (about 0.21 of the end element's length for 2x2x2 Gauss).
@@ -57,7 +57,7 @@ def step_arg(text):
     return value
 
 
-SOLID = lambda etype: not etype.startswith("interface-") and not etype.startswith("bar")   # noqa: E731
+SOLID = fr.is_family("solid")
 
 
 def surface_radius(f, group, surface):
@@ -126,79 +126,18 @@ def surface_values(f, group, step, column, radius, source="gauss", tol=None, kin
     return merge_coincident(theta, z, values, radius)
 
 
-HEX8_CORNERS = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
-                         [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float)
-HEX20_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
-
-
-def lagrange_1d(points, x):
-    """(len(x), len(points)) values at x of the 1D Lagrange polynomials through the points."""
-    out = np.ones((len(x), len(points)))
-    for i, pi in enumerate(points):
-        for j, pj in enumerate(points):
-            if j != i:
-                out[:, i] *= (x - pj) / (pi - pj)
-    return out
-
-
-def extrapolation_matrix(etype, ppe):
-    """(nodes, points) matrix taking Gauss-point values of one element to its nodes, as feps's
-    nodal_stress does (written here independently): hex8 (and hex20 with 2x2x2 points at its
-    corners) the trilinear interpolant of the 8 points, which is the inverse of the hex8 shape
-    functions at the points; hex20 with 27 points the triquadratic Lagrange interpolant through
-    them, evaluated at the 20 nodes; hex20 with 2x2x2 points: each mid-edge node is the mean of
-    its edge's corners (the trilinear interpolant there)."""
-    shapes, nodes = fr.integration_shapes(etype, ppe)
-    if etype in ("hex8", "hex8b"):
-        return np.linalg.inv(shapes)
-    if nodes == 20 and ppe == 27:
-        g = np.sqrt(0.6) * np.array([-1.0, 0.0, 1.0])
-        xn = np.vstack([HEX8_CORNERS] + [0.5 * (HEX8_CORNERS[a] + HEX8_CORNERS[b])[None, :] for a, b in HEX20_EDGES])
-        lx, ly, lz = (lagrange_1d(g, xn[:, d]) for d in range(3))
-        # point k = i + 3 j + 9 l has coordinates (g_i, g_j, g_l)
-        return np.einsum("ni,nj,nl->nlji", lx, ly, lz).reshape(len(xn), 27)
-    if nodes == 20 and ppe == 8:
-        corners = np.linalg.inv(fr.integration_shapes("hex8")[0])
-        return np.vstack([corners] + [0.5 * (corners[a] + corners[b])[None, :] for a, b in HEX20_EDGES])
-    raise ValueError(f"--source nodes: no extrapolation for {etype} with {ppe} points")
-
-
-def principal_values(stress, column):
-    """Most tensile (column 0) or most compressive (1) principal stress of rows sxx syy szz syz sxz sxy."""
-    t = np.zeros((len(stress), 3, 3))
-    t[:, 0, 0], t[:, 1, 1], t[:, 2, 2] = stress[:, 0], stress[:, 1], stress[:, 2]
-    t[:, 1, 2] = t[:, 2, 1] = stress[:, 3]
-    t[:, 0, 2] = t[:, 2, 0] = stress[:, 4]
-    t[:, 0, 1] = t[:, 1, 0] = stress[:, 5]
-    eig = np.linalg.eigvalsh(t)
-    return eig[:, 2] if column == 0 else eig[:, 0]
-
-
 def nodal_principal(f, group, step, column, radius, tol):
-    """(theta, z, principal stress) at the group's nodes on r = radius: each element's Gauss-point stress
-    tensors extrapolated to its nodes, averaged over the elements sharing a node, then the principal
-    value of the averaged tensor."""
-    ds = f[f"steps/{step}/stress/{group}"]
-    ppe = int(ds.attrs["points_per_element"])
-    conn = fr.connectivity(f, group)
-    ext = extrapolation_matrix(fr.element_type(f, group), ppe)
-    conn = conn[:, :ext.shape[0]]
+    """(theta, z, principal stress) at the group's nodes on r = radius: feps's nodal_principal
+    field (the principal values of the Gauss-point stresses extrapolated to the nodes and averaged
+    over the group's elements sharing each node)."""
     x = fr.coordinates(f)
     r, theta, z = fr.cylindrical(x)
-    on = np.abs(r - radius) <= tol
-    touching = on[conn].any(axis=1)
-    if not touching.any():
+    nodes = fr.group_nodes(f, group)
+    nodes = nodes[np.abs(r[nodes] - radius) <= tol]
+    if not len(nodes):
         raise ValueError(f"group {group}: no node on r = {radius:g} (--source nodes needs a node layer there)")
-    gauss = ds[...].reshape(-1, ppe, 6)[touching]
-    nodal = np.einsum("ng,egc->enc", ext, gauss)           # (elements, nodes, 6)
-    ids = conn[touching].ravel()
-    sums = np.zeros((x.shape[0], 6))
-    np.add.at(sums, ids, nodal.reshape(-1, 6))
-    counts = np.bincount(ids, minlength=x.shape[0])
-    nodes = np.flatnonzero(on & (counts > 0))
-    values = principal_values(sums[nodes] / counts[nodes, None], column)
+    values = f[f"steps/{step}/nodal_principal/{group}"][...][nodes, column]
     return theta[nodes], z[nodes], values
-
 
 def unfolded_contour(ax, theta, z, values, radius, levels=12, cmap="turbo", zero_line=False):
     """Filled contours on (theta, z) triangulated in true proportions (arc length, z)."""
@@ -282,8 +221,10 @@ def main(argv=None):
             args.norm = norm_of(f, args.norm)
             step = fr.pick_step(f, args.step)
             fr.require_group(f, args.group, SOLID, "solid group")
-            kind = "stress" if args.source == "nodes" else ("cell/principal" if args.source == "cell" else "principal")
-            fr.require(f, f"steps/{step}/{kind}/{args.group}", " (left out of the run's FIELDS?)")
+            kind = {"nodes": "nodal_principal", "cell": "cell/principal"}.get(args.source, "principal")
+            fr.require(f, f"steps/{step}/{kind}/{args.group}", " (left out of the run's FIELDS?" +
+                       (" --source nodes reads feps's nodal_principal: run feps DECK --fields all,nodal_principal)"
+                        if args.source == "nodes" else ")"))
             radius = surface_radius(f, args.group, args.surface)
             theta, z, values = surface_values(f, args.group, step, column, radius, args.source)
             values = values / args.norm

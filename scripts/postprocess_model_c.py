@@ -14,8 +14,8 @@ From the last step of a model C run (decks by scripts/make_model_c.py):
 - beta_bar (7.4.2): the total joint deformation along r = 715 is the axial displacement w of the
   top pipe's mid-length section A-A (z = 2515; w = 0 on the symmetry plane z = 0 of the bottom
   pipe) less the deformation of the interface, taken as its elastic closure sigma_n / Kn (the
-  interface's normal stress extrapolated from each element's Gauss points to the node and
-  averaged, as feps's nodal_interface field; Kn = 800):
+  interface's normal stress at the node: feps's nodal_interface field, extrapolated from each
+  element's Gauss points to the node and averaged; Kn = 800):
   D(x) = -(w_AA - sigma_n / Kn), positive in compression. tan(beta_bar) is the least-squares slope
   dD/dx over the nodes with x >= 250 mm. Not the interface's whole normal relative displacement
   (the nodal jump uz(packing) - uz(bottom pipe) at z = 1250), which also holds the dilatant
@@ -133,26 +133,11 @@ TAKE_OUT = ("elastic", "whole", "none")
 KN_INTERFACE = 800.0   # MPa/mm, the model C interface's normal stiffness (thesis 6.2, SPEC section 8)
 
 
-def interface_normal_stress_nodal(conn_joint, traction, nnode):
-    """sigma_n of the interface (MPa) at every node (nan off its lower layer): each element's
-    bilinear field through its 2x2 Gauss points extrapolated to its corners, averaged over the
-    elements that share the node (as feps's nodal_interface field). Exact for a bilinear sigma_n,
-    so at a node whose elements are all elastic and in contact, sigma_n / Kn is the nodal jump."""
-    # the bilinear interpolant of the 4 point values at the corners: the inverse of the corner
-    # shape functions at the points (feps_results has feps's rule and point order)
-    extrap = np.linalg.inv(fr.integration_shapes("interface-quad4")[0])
-    corners = traction[:, 2].reshape(len(conn_joint), 4) @ extrap.T
-    ids = (conn_joint[:, :4] - 1).ravel()
-    count = np.bincount(ids, minlength=nnode)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.bincount(ids, weights=corners.ravel(), minlength=nnode) / count
-
-
 def joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n=None, take_out="elastic"):
     """x and the total joint deformation D = -(w_AA - jump) (mm, compression positive) along r = radius,
     where jump is what is taken out of w_AA as the interface's deformation:
     'elastic': its elastic closure sigma_n / Kn (the tabulated beta_bar; sigma_n: the nodal
-    normal stress of interface_normal_stress_nodal),
+    normal stress at the nodes, feps's nodal_interface),
     'whole': its whole normal relative displacement uz(packing) - uz(bottom pipe) at the node
     pairs, which also holds the dilatant opening of sliding points,
     'none': nothing (D = -w_AA)."""
@@ -185,11 +170,11 @@ def _slope_deg(x, d):
     return math.degrees(math.atan(_lsq_line(x[sel], d[sel])[1]))
 
 
-def beta_bar(coords, conn_top, conn_joint, u, traction):
+def beta_bar(coords, conn_top, conn_joint, u, sigma_n):
     """beta_bar (deg): least-squares slope over x >= 250 on r = 715 of D, w_AA less the interface's
-    elastic closure; with the variants (a dict: secant, wall-averaged, nothing taken out, the
-    whole relative displacement taken out) and the curve (x, D)."""
-    sigma_n = interface_normal_stress_nodal(conn_joint, traction, len(coords))
+    elastic closure (sigma_n: the interface's normal stress at the nodes, feps's nodal_interface);
+    with the variants (a dict: secant, wall-averaged, nothing taken out, the whole relative
+    displacement taken out) and the curve (x, D)."""
     x, d = joint_deformation(coords, conn_top, conn_joint, u, R_OUT, sigma_n)
     secant = (np.interp(R_OUT, x, d) - np.interp(X_REGION, x, d)) / (R_OUT - X_REGION)
     # every node radius of the wall (600, 657.5, 715 with the decks' 2 elements through it):
@@ -298,9 +283,9 @@ def edge_stress_packing(coords, conn_packing, cell_stress):
     return _edge_line(coords, conn_packing, 8, cell_stress[:, 2])
 
 
-def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells, xg):
+def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells, xg, sigma_n):
     bstar, delta, delta_b, bstar_x0, _ = beta_star(coords, conn_top, u)
-    bbar, variants, _, _ = beta_bar(coords, conn_top, conn_joint, u, traction)
+    bbar, variants, _, _ = beta_bar(coords, conn_top, conn_joint, u, sigma_n)
     z, _, zeros = contact_width(coords, conn_joint, traction, xg)
     z_centres = contact_width_centres(coords, conn_joint, traction)
     smax_interface, _ = edge_stress(coords, conn_joint, traction)
@@ -347,21 +332,25 @@ def postprocess(h5path, verbose=True):
         conn_packing = f["mesh/groups/packing/connectivity"][...]
         names = sorted(f["steps"], key=int)
         step = f["steps"][names[-1]]
-        for path in ("displacement", "interface/joint", "cell/stress/packing"):
+        for path in ("displacement", "interface/joint", "nodal_interface/joint", "cell/stress/packing"):
             if path not in step:
                 raise Error(f"{h5path}: no /steps/{names[-1]}/{path} (the quantities are read from the displacements, "
-                            "the interface's stresses and the packing's element stresses: do not leave them out "
-                            "with FIELDS)")
+                            "the interface's stresses at its points and nodes and the packing's element stresses: "
+                            "make_model_c.py's decks ask for them with FIELDS, all, nodal_interface)")
         xg = fr.gauss_points(f, "joint", step["interface/joint"])
-        res = _quantities(coords, conn_top, conn_joint, step["displacement"][...], step["interface/joint"][...],
-                          conn_packing, step["cell/stress/packing"][...], xg)
+        normal = fr.components(step["nodal_interface/joint"]).index("sigma_n")
+
+        def quantities(st):
+            return _quantities(coords, conn_top, conn_joint, st["displacement"][...], st["interface/joint"][...],
+                               conn_packing, st["cell/stress/packing"][...], xg,
+                               st["nodal_interface/joint"][:, normal])
+        res = quantities(step)
         res["load_factor"] = float(step.attrs["load_factor"])
         res["residual"] = float(step.attrs["residual"])
         s2 = [n for n in names[:-1] if abs(float(f["steps"][n].attrs["load_factor"]) - 2.0) < 1e-9]
         if s2:
             st2 = f["steps"][s2[-1]]
-            q2 = _quantities(coords, conn_top, conn_joint, st2["displacement"][...], st2["interface/joint"][...],
-                             conn_packing, st2["cell/stress/packing"][...], xg)
+            q2 = quantities(st2)
             for k in ("beta_star", "beta_bar", "Z", "sigma_max", "beta_bar_raw"):
                 res["s2_" + k] = q2[k]
             res["s2_residual"] = float(st2.attrs["residual"])

@@ -2,7 +2,7 @@
 # Idempotent set-up of everything feps needs on a fresh Debian bookworm machine (run as root).
 # Debian: compiler, BLAS/LAPACK, SuiteSparse (CHOLMOD), METIS, HDF5 with Fortran bindings.
 # PyPI: fpm (the Fortran package manager), numpy, h5py, matplotlib, and vtk (only for
-# scripts/check_xdmf_vtk.py: the XDMF files read as ParaView reads them).
+# test/reference/check_xdmf_vtk.py: the XDMF files read as ParaView reads them).
 set -euo pipefail
 
 debs=(gfortran libopenblas-dev liblapack-dev libsuitesparse-dev libmetis-dev

@@ -30,7 +30,6 @@ prints which hold. With --plot it draws the lower interface's normal and shear s
 (the thesis's Figs. 3.2/3.3 and 3.6/3.7) and the most tensile principal stress around the joint.
 """
 import argparse
-import math
 import os
 import sys
 
@@ -39,6 +38,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from make_joint_2d import all_cases, case_name  # noqa: E402
+import feps_results as fr  # noqa: E402
 
 CONCRETE = ("pipe_low", "pipe_up")
 INTERFACES = ("if_low", "if_up")
@@ -48,31 +48,9 @@ EDGE = 10.0         # mm: s1_core leaves out the concrete this close to the free
 
 
 def gauss_xy(f, group):
-    """Coordinates (npoints x 2) of the Gauss points of a tri6 or interface-line3 group, in the
-    order feps writes them (element-major)."""
-    xyz = f["mesh/coordinates"][...]
-    conn = f[f"mesh/groups/{group}/connectivity"][...] - 1
-    kind = f[f"mesh/groups/{group}"].attrs["element_type"]
-    kind = kind.decode() if isinstance(kind, bytes) else str(kind)
-    if kind.startswith("tri6"):
-        if kind != "tri6":
-            raise SystemExit(f"{group}: only the 3-point tri6 rule is handled, got {kind}")
-        pts = [(1 / 6, 1 / 6), (2 / 3, 1 / 6), (1 / 6, 2 / 3)]     # (L2, L3), feps_tri6
-        shapes = []
-        for l2, l3 in pts:
-            l1 = 1 - l2 - l3
-            shapes.append([l1 * (2 * l1 - 1), l2 * (2 * l2 - 1), l3 * (2 * l3 - 1),
-                           4 * l1 * l2, 4 * l2 * l3, 4 * l3 * l1])
-        nodes = conn[:, :6]
-    elif kind == "interface-line3":
-        a = math.sqrt(0.6)                                          # 3-point Gauss, ascending
-        shapes = [[0.5 * s * (s - 1), 0.5 * s * (s + 1), 1 - s * s] for s in (-a, 0.0, a)]
-        nodes = conn[:, :3]                                         # the lower layer
-    else:
-        raise SystemExit(f"{group}: element type {kind} not handled")
-    n = np.array(shapes)                                            # (ngauss, nnodes)
-    pts = np.einsum("gk,ekd->egd", n, xyz[nodes][:, :, :2])
-    return pts.reshape(-1, 2)
+    """Coordinates (npoints x 2) of the Gauss points of a group, in the order feps writes them
+    (element-major): /mesh/groups/<group>/points (interfaces: on their lower layer)."""
+    return fr.gauss_points(f, group)[:, :2]
 
 
 def inplane_s1(stress):

@@ -24,7 +24,7 @@ module feps_testing
     procedure(test_procedure), pointer, nopass :: run => null()
     !> The test makes non-finite numbers on purpose (an overflow, a NaN input that a guard must
     !! refuse): it runs with floating-point halting off, so that a build with -ffpe-trap
-    !! (scripts/check_runtime.sh) runs it to its checks instead of stopping at the trap.
+    !! (test/cli/check_runtime.sh) runs it to its checks instead of stopping at the trap.
     logical :: nonfinite = .false.
   end type unittest_t
 

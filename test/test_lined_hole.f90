@@ -1,6 +1,6 @@
 !> A pipe in elastic ground: an elastic ring a <= r <= b in an infinite elastic medium under the
 !! far field s_yy = -p, s_xx = -K p (plane strain), bonded to it or in full slip, against the
-!! exact solution (Airy stress functions, computed here independently of scripts/lined_hole.py,
+!! exact solution (Airy stress functions, computed here independently of test/reference/lined_hole.py,
 !! which wrote the decks). feps runs the quarter model with tri6 (plane strain) and with a hex20
 !! slice (uz held), the slip case through interface-line3 / interface-quad8 with phi = c = 0; the
 !! outer boundary r = 10 b carries the exact solution's tractions, so the only error is the
@@ -41,7 +41,7 @@ contains
     tests = [ &
       new_unittest('the exact solution: boundary and contact conditions, far field, Kirsch and Lame limits', &
                    test_reference), &
-      new_unittest('the exact solution: values of scripts/lined_hole.py (an independent implementation)', &
+      new_unittest('the exact solution: values of test/reference/lined_hole.py (an independent implementation)', &
                    test_reference_values), &
       new_unittest('plane strain tri6, bonded: hoop stress, contact tractions, bore displacement', test_bonded_2d), &
       new_unittest('plane strain tri6, full slip (interface-line3, phi = c = 0)', test_slip_2d), &
@@ -279,7 +279,7 @@ contains
     call check(error, s1(1), -q, 'K = 1: contact pressure of the composite Lame cylinder', abs=1.0e-14_dp)
   end subroutine test_reference
 
-  !> scripts/lined_hole.py's values (numpy, written separately): s_tt at the bore and at r = b-,
+  !> test/reference/lined_hole.py's values (numpy, written separately): s_tt at the bore and at r = b-,
   !! s_rr at r = b and u_r at the bore, at theta = 0 and 90 degrees.
   subroutine test_reference_values(error)
     type(error_t), allocatable, intent(out) :: error

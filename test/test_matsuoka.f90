@@ -812,7 +812,7 @@ contains
 
   !> Eight trials (generic, psi = 0, nu = -0.9 and 0.45, the closest-point rule beyond sigma_1 =
   !! M, near the apex, huge, the proportional tension zone) against an independent numpy
-  !! implementation, scripts/matsuoka_reference.py (principal stresses, the thesis's cubic f and
+  !! implementation, test/reference/matsuoka_reference.py (principal stresses, the thesis's cubic f and
   !! potential g with M* from g = 0, backward Euler by Newton from several starts; not feps's
   !! Lode-angle reduction); its printed values are pasted here. Tolerance 1e-10 of
   !! max|sigma_tr| + M (the two agree to 7e-16 on the audit's machine).

@@ -610,7 +610,7 @@ contains
   !> test/data/cube_parameters.dat: PARAMETERS, kind=F, E_s=144, tag=S1. write_parameters
   !! tested the number of a value that was no number (kind=F) before knowing it was one: a read
   !! of an uninitialised real, which a build with -finit-real=snan -ffpe-trap=invalid stopped
-  !! on (scripts/check_runtime.sh runs this test under such a build).
+  !! on (test/cli/check_runtime.sh runs this test under such a build).
   subroutine test_summary_parameters(error)
     type(error_t), allocatable, intent(out) :: error
     character(len=:), allocatable :: kind, tag

@@ -1,6 +1,6 @@
 !> The solution methods of thesis 2.6 against an independent re-implementation of what
 !! docs/input-format.md (CONTROLS) says they do, on a problem with one effective DOF whose exact
-!! path is known (test/data/slide_1dof*.dat; scripts/solution_methods_1dof.py prints the
+!! path is known (test/data/slide_1dof*.dat; test/reference/solution_methods_1dof.py prints the
 !! reference paths): every iterate-dependent number (displacement, iterations per step,
 !! factorizations, cut-backs) must agree. Also: a cut-back restores the state exactly, a change
 !! of supports or of method between stages keeps each method's stiffness, and the stages of a
@@ -101,7 +101,7 @@ contains
   !! reach 1e-6, the step is cut twice and its quarters take 148 in all; modified Newton-Raphson's
   !! step 5 ends above DIVERGENCE, is cut once and refactorized (elastic, then the sliding
   !! tangent); initial stiffness carries what 10 iterations at x 0.8 leave (cut back to reach
-  !! DIVERGENCE). Iterations, factorizations and cut-backs: scripts/solution_methods_1dof.py.
+  !! DIVERGENCE). Iterations, factorizations and cut-backs: test/reference/solution_methods_1dof.py.
   subroutine test_force_control(error)
     type(error_t), allocatable, intent(out) :: error
     type(all_steps_t) :: obs

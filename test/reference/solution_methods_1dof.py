@@ -2,7 +2,10 @@
 """The thesis 2.6 solution methods as feps documents them (docs/input-format.md, CONTROLS), written
 again from the documentation on a one-DOF problem: the reference for test/test_solution_methods.f90.
 
-    python3 scripts/solution_methods_1dof.py          # the paths of test/data/slide_1dof*.dat
+Kept in test/reference/ as a deliberately independent implementation: written from the
+documentation, not from src/analysis, so that the test holds the code to what the docs say.
+
+    python3 test/reference/solution_methods_1dof.py          # the paths of test/data/slide_1dof*.dat
 
 The problem (test/data/slide_1dof.dat): an elastic-perfectly plastic interface in shear (stiffness
 Ks A = 100 N/mm, yield force c A = 100 N, closest-point return from the committed force) in

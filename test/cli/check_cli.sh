@@ -2,11 +2,11 @@
 # Command-line checks of the feps program: exit statuses, help and version, a mesh-only
 # input, the main job's outputs, and that bad input leaves no result file behind.
 # FEPS and FEPS_TESTER name other builds of the program and the test runner to check (as
-# scripts/check_runtime.sh does with its sanitized build); by default, fpm's default build.
+# test/cli/check_runtime.sh does with its sanitized build); by default, fpm's default build.
 # FEPS_FUZZ_MEMORY_GB, FEPS_FUZZ_TIMEOUT: the fuzzer's address-space limit (default 4 GB;
 # AddressSanitizer's shadow memory needs more than 16 TB) and time (default 60 s) per case.
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 fpm build >/dev/null 2>&1 || { echo "check_cli: build failed" >&2; exit 1; }
 feps=${FEPS:-$(fpm run --runner echo 2>/dev/null | tail -n 1)}
 feps=${feps#"$PWD/"}    # relative when inside the package (the relative-FEPS campaign check below)
@@ -184,18 +184,18 @@ expect_status "solution beyond double precision" 1 "$feps" test/data/overflow_so
   || bad "the overflow names the stage and leaves no result file: $(head -c 300 "$tmp/err")"
 
 # Mutated decks (fixed seeds): a clear answer every time, never a crash, a hang or a runaway
-# allocation (scripts/fuzz_input.py; longer campaigns in docs/verification.md).
-python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+# allocation (test/cli/fuzz_input.py; longer campaigns in docs/verification.md).
+python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 150 --seed 1 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --check: $(tail -n 1 "$tmp/out")" || bad "fuzz --check: $(grep FAIL "$tmp/out" | head -3)"
-python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --run: $(tail -n 1 "$tmp/out")" || bad "fuzz --run: $(grep FAIL "$tmp/out" | head -3)"
 # ... and the fuzzer does fail on a program that crashes (exit 134) or hangs
 printf '#!/bin/sh\necho "Program received signal SIGSEGV" >&2\nexit 134\n' >"$tmp/crash" && chmod +x "$tmp/crash"
 printf '#!/bin/sh\nsleep 30\n' >"$tmp/hang" && chmod +x "$tmp/hang"
-python3 scripts/fuzz_input.py --feps "$tmp/crash" --cases 2 --out "$tmp/fuzzc" >"$tmp/out" 2>&1; got=$?
+python3 test/cli/fuzz_input.py --feps "$tmp/crash" --cases 2 --out "$tmp/fuzzc" >"$tmp/out" 2>&1; got=$?
 [ "$got" -eq 1 ] && grep -q "exit 134" "$tmp/out" && [ "$(ls "$tmp/fuzzc" | wc -l)" -eq 2 ] \
   && ok "fuzz flags a crash and keeps the mutants" || bad "fuzz flags a crash: exit $got, $(head -c 300 "$tmp/out")"
-python3 scripts/fuzz_input.py --feps "$tmp/hang" --cases 1 --timeout 1 --out "$tmp/fuzzh" >"$tmp/out" 2>&1; got=$?
+python3 test/cli/fuzz_input.py --feps "$tmp/hang" --cases 1 --timeout 1 --out "$tmp/fuzzh" >"$tmp/out" 2>&1; got=$?
 [ "$got" -eq 1 ] && grep -q "no answer within 1 s" "$tmp/out" && ok "fuzz flags a hang" || bad "fuzz flags a hang: exit $got, $(head -c 300 "$tmp/out")"
 # With --run, a run past --timeout that keeps writing progress lines is slow, not hung (it gets up
 # to 3 x --timeout); one that stops writing them for 15 s is a hang.
@@ -206,10 +206,10 @@ printf '#!/bin/sh
 echo "stage 1  step 1/4"
 sleep 60
 ' >"$tmp/stall" && chmod +x "$tmp/stall"
-python3 scripts/fuzz_input.py --feps "$tmp/slow" --cases 1 --timeout 2 --run --out "$tmp/fuzzs" >"$tmp/out" 2>&1 \
+python3 test/cli/fuzz_input.py --feps "$tmp/slow" --cases 1 --timeout 2 --run --out "$tmp/fuzzs" >"$tmp/out" 2>&1 \
   && ok "fuzz --run: a slow run still stepping past --timeout is not a hang" \
   || bad "fuzz --run: a slow run still stepping past --timeout: $(head -c 300 "$tmp/out")"
-python3 scripts/fuzz_input.py --feps "$tmp/stall" --cases 1 --timeout 1 --run --out "$tmp/fuzzst" >"$tmp/out" 2>&1; got=$?
+python3 test/cli/fuzz_input.py --feps "$tmp/stall" --cases 1 --timeout 1 --run --out "$tmp/fuzzst" >"$tmp/out" 2>&1; got=$?
 [ "$got" -eq 1 ] && grep -q "no new progress line for 15 s" "$tmp/out" && ok "fuzz --run flags a run that stalls after a step" \
   || bad "fuzz --run flags a run that stalls: exit $got, $(head -c 300 "$tmp/out")"
 
@@ -323,7 +323,9 @@ python3 - "$tmp" <<'PY' && ok "gauss_points: hex8b, tri6, tri6-6, interface-line
 import math, sys
 import numpy as np
 sys.path.insert(0, "scripts")
+sys.path.insert(0, "test/reference")
 import feps_results as fr
+import element_rules as er
 tmp = sys.argv[1]
 seen = set()
 
@@ -356,7 +358,7 @@ def check_solid(f, group, dn, dims):
     gives the (nodes, dims) shape-function derivatives; hex8b takes the mean dilatation."""
     stored, ppe = rows(f, "stress", group)
     etype = fr.element_type(f, group)
-    xi, _ = fr.integration_points(etype, ppe)
+    xi, _ = er.integration_points(etype, ppe)
     conn = fr.connectivity(f, group)
     x = fr.coordinates(f)[conn][:, :, :dims]
     u = f[f"steps/{fr.last_step(f)}/displacement"][...][conn][:, :, :dims]
@@ -380,7 +382,7 @@ def check_solid(f, group, dn, dims):
 
 
 def hex8_dn(xi):
-    c = fr._HEX8_XI
+    c = er.HEX8_XI
     f = 1.0 + c * xi
     return np.column_stack([c[:, k] * np.prod(np.delete(f, k, axis=1), axis=1) for k in range(3)]) / 8.0
 
@@ -399,7 +401,7 @@ for name in ("gp_line3", "gp_line3n", "gp_line2", "gp_line2n"):
             check_solid(f, group, tri6_dn, 2)
         stored, ppe = rows(f, "interface_strain", "joint")
         etype = fr.element_type(f, "joint")
-        shapes, nodes = fr.integration_shapes(etype, ppe)
+        shapes, nodes = er.integration_shapes(etype, ppe)
         conn = fr.connectivity(f, "joint")
         u = f[f"steps/{fr.last_step(f)}/displacement"][...]
         du = np.einsum("gn,enk->egk", shapes, u[conn[:, nodes:]] - u[conn[:, :nodes]]).reshape(-1, 3)
@@ -458,14 +460,20 @@ PY
   && grep -q "post-tension tendons 1.000E+01 N (bonded next stage)" "$tmp/out" && grep -q "stage more: .*born: tendons" "$tmp/out" \
   && ok "--check names the post-tension and the bonding stage" || bad "--check names the post-tension: $(cat "$tmp/out")"
 
-# The CalculiX exporter takes a thesis deck (its PARAMETERS are labels) and refuses, with the
-# deck's line, what it cannot write (a second load variation).
+# The CalculiX exporter takes a thesis deck (its PARAMETERS are labels), writes any load feps
+# applied (the results file's applied_force: a bilinear pressure too) and refuses, with the
+# deck's line, what it cannot write (prescribed displacements).
 python3 scripts/export_inp.py "$tmp/b_cholmod.h5" input/modelB/SE1.dat -o "$tmp/se1.inp" >"$tmp/out" 2>&1 \
   && grep -q "^\*STEP" "$tmp/se1.inp" && ok "export_inp.py writes model B SE1" || bad "export_inp.py writes model B SE1: $(cat "$tmp/out")"
 "$feps" test/data/bilinear_load.dat --output "$tmp/bl.h5" --quiet >/dev/null 2>&1
-python3 scripts/export_inp.py "$tmp/bl.h5" test/data/bilinear_load.dat -o "$tmp/bl.inp" >"$tmp/out" 2>&1; got=$?
-[ "$got" -ne 0 ] && grep -q "bilinear_load.dat:21: unknown PRESSURE options" "$tmp/out" && [ ! -e "$tmp/bl.inp" ] \
-  && ok "export_inp.py refuses VARY2 naming the line" || bad "export_inp.py refuses VARY2 naming the line: $(cat "$tmp/out")"
+python3 scripts/export_inp.py "$tmp/bl.h5" test/data/bilinear_load.dat -o "$tmp/bl.inp" >"$tmp/out" 2>&1 \
+  && grep -q "resultant 0 0 -900 N" "$tmp/out" && grep -q "^14, 3, -" "$tmp/bl.inp" \
+  && ok "export_inp.py writes the bilinear pressure's forces" || bad "export_inp.py writes the bilinear pressure: $(cat "$tmp/out")"
+"$feps" test/data/cube.dat --output "$tmp/cube_x.h5" --quiet >/dev/null 2>&1
+printf 'DISPLACE, top, Z=-0.1\n' >"$tmp/displace.dat"
+python3 scripts/export_inp.py "$tmp/cube_x.h5" "$tmp/displace.dat" -o "$tmp/d.inp" >"$tmp/out" 2>&1; got=$?
+[ "$got" -eq 1 ] && grep -q "displace.dat:1: DISPLACE (prescribed displacements) is not exported" "$tmp/out" && [ ! -e "$tmp/d.inp" ] \
+  && ok "export_inp.py refuses DISPLACE naming the line" || bad "export_inp.py refuses DISPLACE naming the line: $(cat "$tmp/out")"
 
 # A campaign with a bad deck stops before running anything (feps --check on every deck first).
 camp="check_cli_$$"
@@ -834,7 +842,7 @@ want = pmc.postprocess(sys.argv[1], verbose=False)["beta_bar"]
 sys.exit(0 if abs(printed - want) <= 5e-6 else 1)
 PY
 # beta_bar takes the interface's elastic closure sigma_n / Kn out of w at A-A, with sigma_n
-# extrapolated from each interface element's Gauss points to its nodes. Where the joint is
+# feps's nodal_interface (extrapolated from each interface element's Gauss points to its nodes). Where the joint is
 # elastic and closed (every point of the coarse case on r = 715, x >= 250: beta = 0.09) that is
 # the nodal jump itself, so the reading equals the one that takes out the whole relative
 # displacement; at sliding points they differ by the dilatant opening (docs/verification.md).
@@ -849,11 +857,11 @@ print(f"{r['beta_bar']:.10f} = {r['beta_bar_whole_jump']:.10f} deg, nothing take
 sys.exit(0 if abs(r["beta_bar"] - r["beta_bar_whole_jump"]) <= 1e-12 and
          abs(r["beta_bar"] - r["beta_bar_raw"]) > 1e-4 else 1)
 PY
-# Equilibrium of the written fields (scripts/check_equilibrium.py: nodal forces assembled with its
+# Equilibrium of the written fields (test/reference/check_equilibrium.py: nodal forces assembled with its
 # own shape functions from the stresses, tractions and reactions): the main job (FE1: hex8 and
 # interfaces, residual carried), SE1 (linear) and the coarse model C (packing, interface, soil).
 for h5 in main.h5 b_cholmod.h5 mc_small/C_G300_nu0.1_b0.09.h5; do
-  python3 scripts/check_equilibrium.py "$tmp/$h5" >"$tmp/out" 2>&1 \
+  python3 test/reference/check_equilibrium.py "$tmp/$h5" >"$tmp/out" 2>&1 \
     && ok "check_equilibrium.py $h5: $(grep -c ': PASS' "$tmp/out") checks pass" \
     || bad "check_equilibrium.py $h5: $(grep -v ': PASS' "$tmp/out" | head -c 400)"
 done
@@ -874,15 +882,15 @@ sys.exit(0 if abs(fx - H) <= 1e-9 * abs(H) and abs(H) > 0 else 1)
 PY
 expect_line "plot_joint_deformation.py --joint-total on a model B result" 2 "not a model C result" \
   python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/main.h5" --out "$tmp/m.png"
-# beta_bar reads the interface's normal stress as well as the displacements: a result written
-# without it (FIELDS) is named, not a traceback.
+# beta_bar reads the interface's normal stress at the nodes (feps's nodal_interface) as well as
+# the displacements: a result written without it (FIELDS) is named, not a traceback.
 cp "$tmp/mc_small/C_G300_nu0.1_b0.09.h5" "$tmp/mc_no_joint.h5" && python3 - "$tmp/mc_no_joint.h5" <<'PY'
 import sys, h5py
 with h5py.File(sys.argv[1], "a") as f:
-    del f["steps"][sorted(f["steps"], key=int)[-1]]["interface/joint"]
+    del f["steps"][sorted(f["steps"], key=int)[-1]]["nodal_interface/joint"]
 PY
-expect_line "plot_joint_deformation.py --joint-total on a model C result without the interface's stresses" 2 \
-  "no /steps/[0-9]*/interface/joint" \
+expect_line "plot_joint_deformation.py --joint-total on a model C result without the interface's nodal stresses" 2 \
+  "no /steps/[0-9]*/nodal_interface/joint" \
   python3 scripts/plot_joint_deformation.py --joint-total --h5 "$tmp/mc_no_joint.h5" --out "$tmp/m.png"
 # The maps' q: a model B or C result's own (4.21, 10 MPa), any other file must be given --norm
 # (it used to be 4.21 for every file: model A, C and chapter 9 maps silently divided by model B's).
@@ -904,14 +912,15 @@ cp test/data/lame_hex8.dat "$tmp/lame_hex8_nodal.dat" && echo "FIELDS, all, noda
   && "$feps" "$tmp/bending_hex20r.dat" --quiet --output "$tmp/n_hex20r.h5" \
   && "$feps" "$tmp/lame_hex8_nodal.dat" --quiet --output "$tmp/n_hex8.h5" \
   && python3 - "$tmp/n_hex20.h5" "$tmp/n_hex20r.h5" "$tmp/n_hex8.h5" <<'PY' >"$tmp/out" 2>&1 \
-  && ok "nodal_stress of hex20, hex20r and hex8 = plot_stress_maps.py's own extrapolation ($(cat "$tmp/out"))" \
-  || bad "nodal_stress against plot_stress_maps.py's extrapolation: $(head -c 300 "$tmp/out")"
+  && ok "nodal_stress of hex20, hex20r and hex8 = test/reference/element_rules.py's own extrapolation ($(cat "$tmp/out"))" \
+  || bad "nodal_stress against element_rules.py's extrapolation: $(head -c 300 "$tmp/out")"
 import sys
 import h5py
 import numpy as np
 sys.path.insert(0, "scripts")
 import feps_results as fr
-import plot_stress_maps as psm
+sys.path.insert(0, "test/reference")
+import element_rules as er
 worst = 0.0
 for path in sys.argv[1:]:
     with h5py.File(path) as f:
@@ -919,7 +928,7 @@ for path in sys.argv[1:]:
         for g in f[f"steps/{step}/nodal_stress"]:
             ds = f[f"steps/{step}/stress/{g}"]
             ppe = int(ds.attrs["points_per_element"])
-            ext = psm.extrapolation_matrix(fr.element_type(f, g), ppe)
+            ext = er.extrapolation_matrix(fr.element_type(f, g), ppe)
             conn = fr.connectivity(f, g)
             nodal = np.einsum("ng,egc->enc", ext, ds[...].reshape(-1, ppe, 6))
             sums = np.zeros((f["mesh/coordinates"].shape[0], 6))
@@ -976,30 +985,30 @@ expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" 
 # (equilibrium and compatibility by finite differences, which the Fortran test does not repeat),
 # the test's eight decks written again byte for byte, and one run compared with the closed form by
 # the script (its own numpy solution, independent of the test's Fortran one).
-python3 scripts/lined_hole.py --check >"$tmp/out" 2>&1 && grep -q "^all checks pass" "$tmp/out" \
+python3 test/reference/lined_hole.py --check >"$tmp/out" 2>&1 && grep -q "^all checks pass" "$tmp/out" \
   && ok "lined_hole.py --check: the closed form's self-checks" || bad "lined_hole.py --check: $(grep FAIL "$tmp/out" | head -c 300)"
 lh_ok=1
 for c in bonded_2 slip_2 bonded_3 slip_3; do
-  python3 scripts/lined_hole.py --decks "$tmp/lh" --bond "${c%_*}" --dim "${c#*_}" --level 2 --name "lined_${c}d.dat" \
+  python3 test/reference/lined_hole.py --decks "$tmp/lh" --bond "${c%_*}" --dim "${c#*_}" --level 2 --name "lined_${c}d.dat" \
     >/dev/null && cmp -s "$tmp/lh/lined_${c}d.dat" "test/data/lined_${c}d.dat" || lh_ok=0
 done
 for c in "bonded:" "slip:--nodal" "friction:--nodal --phi 15"; do
-  python3 scripts/lined_hole.py --decks "$tmp/lh" --bond "${c%%:*}" ${c#*:} --level 1 --far uniform --rout 40 \
+  python3 test/reference/lined_hole.py --decks "$tmp/lh" --bond "${c%%:*}" ${c#*:} --level 1 --far uniform --rout 40 \
     --name "lined_far_${c%%:*}.dat" >/dev/null && cmp -s "$tmp/lh/lined_far_${c%%:*}.dat" "test/data/lined_far_${c%%:*}.dat" \
     || lh_ok=0
 done
-python3 scripts/lined_hole.py --decks "$tmp/lh" --bond bilateral --dim 2 --level 2 --K -0.5 \
+python3 test/reference/lined_hole.py --decks "$tmp/lh" --bond bilateral --dim 2 --level 2 --K -0.5 \
   --name lined_bilateral_2d.dat >/dev/null && cmp -s "$tmp/lh/lined_bilateral_2d.dat" test/data/lined_bilateral_2d.dat \
   || lh_ok=0
 [ "$lh_ok" -eq 1 ] && ok "lined_hole.py writes test/data/lined_*.dat" || bad "lined_hole.py writes test/data/lined_*.dat"
 "$feps" test/data/lined_slip_2d.dat --output "$tmp/lined_slip.h5" --quiet >/dev/null 2>&1 \
-  && python3 -c 'import sys; sys.path.insert(0, "scripts"); import lined_hole as l
+  && python3 -c 'import sys; sys.path.insert(0, "test/reference"); import lined_hole as l
 e = l.compare(sys.argv[1], quiet=True)
 sys.exit(not (e["s_tt bore"][0] < 1.3e-2 and e["u_r bore"][0] < 4.5e-4 and e["interface tau (/ p)"][0] < 1e-12))' \
   "$tmp/lined_slip.h5" && ok "lined_hole.py: the tri6 full-slip run against the closed form" \
   || bad "lined_hole.py: the tri6 full-slip run against the closed form"
 expect_line "lined_hole.py on a missing results file" 2 "no such results file" \
-  python3 scripts/lined_hole.py "$tmp/no_such_lined.h5"
+  python3 test/reference/lined_hole.py "$tmp/no_such_lined.h5"
 expect_line "orderings_model_a_ch9.py on an empty folder" 1 "no model A or chapter 9 results" \
   python3 scripts/orderings_model_a_ch9.py "$tmp/empty"
 expect_line "bench_compare.sh with a missing deck" 2 "no deck $tmp/no_such.dat" \
@@ -1018,9 +1027,9 @@ for t in tet4 tet10 wedge6 wedge15; do
 done
 # The XDMF files of this run's results, read with VTK's XDMF reader (ParaView's "XDMF Reader";
 # setup.sh installs vtk) and compared with their HDF5 files: every step, block, cell, point,
-# array and load factor (scripts/check_xdmf_vtk.py).
+# array and load factor (test/reference/check_xdmf_vtk.py).
 xmfs=("$tmp"/*.xmf "$tmp"/mc_small/*.xmf)
-python3 scripts/check_xdmf_vtk.py "${xmfs[@]}" >"$tmp/out" 2>&1 \
+python3 test/reference/check_xdmf_vtk.py "${xmfs[@]}" >"$tmp/out" 2>&1 \
   && ok "check_xdmf_vtk.py: the ${#xmfs[@]} XDMF files of these checks read back as their HDF5 files hold them" \
   || bad "check_xdmf_vtk.py: $(grep -v ': ok with' "$tmp/out" | head -c 400)"
 

@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Open feps XDMF files with VTK's XDMF reader and compare what it reads with the HDF5 file.
 
-Usage: python3 scripts/check_xdmf_vtk.py RESULT.xmf [RESULT.xmf ...]
+Kept in test/reference/ as a deliberately independent check: the XDMF file is read by VTK (the
+reader ParaView uses), the HDF5 file by h5py, and the two compared; nothing of feps's XDMF writer.
+
+Usage: python3 test/reference/check_xdmf_vtk.py RESULT.xmf [RESULT.xmf ...]
 
 docs/output-format.md promises that the XDMF file beside each results file lets ParaView open
 the results. ParaView reads it with VTK, so this reads each file as ParaView would, with VTK's
@@ -446,7 +449,7 @@ class Checker:
 
 def main(argv):
     if len(argv) < 2 or argv[1] in ("-h", "--help"):
-        fail_usage("usage: python3 scripts/check_xdmf_vtk.py RESULT.xmf [RESULT.xmf ...]")
+        fail_usage("usage: python3 test/reference/check_xdmf_vtk.py RESULT.xmf [RESULT.xmf ...]")
     m = load_modules()
     reader_name = m["Reader"].__name__
     status = 0

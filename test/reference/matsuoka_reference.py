@@ -10,7 +10,10 @@ the surface (the solutions must agree), and for the proportional tension rule (m
 principal trial stress >= M) scales the trial onto the surface by bisection on the cubic.
 Prints the returned Voigt stresses of the test's trials as Fortran literals.
 
-    python3 scripts/matsuoka_reference.py
+Kept in test/reference/ as a deliberately independent implementation (principal stresses, no
+Lode-angle reduction): it must not share code with src/materials/feps_matsuoka_nakai.f90.
+
+    python3 test/reference/matsuoka_reference.py
 
 Needs numpy only. Written for the materials audit of 2026-11-23 (docs/verification.md).
 """

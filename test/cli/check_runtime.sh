@@ -2,7 +2,7 @@
 # Runtime-checked builds of feps: the test suites and a sweep of decks under gfortran's run-time
 # checks and floating-point traps, and (--sanitize) under AddressSanitizer/UBSan.
 #
-# usage: bash scripts/check_runtime.sh [--sanitize] [--valgrind] [--long]
+# usage: bash test/cli/check_runtime.sh [--sanitize] [--valgrind] [--long]
 #
 # Always, the trapping build (its own fpm build folder; -O0):
 #   -g -O0 -fcheck=all -fbacktrace -ffpe-trap=invalid,zero,overflow -finit-real=snan
@@ -19,7 +19,7 @@
 #   They must give the default build's answer or that SIGFPE; anything else fails.
 # --sanitize: the build with -fsanitize=address,undefined (Fortran and the C shims, leak check
 #   on, no traps): fpm test, the same sweep (where every deck, the overflowing ones included, must
-#   give the default build's answer) and scripts/check_cli.sh with FEPS/FEPS_TESTER set to it.
+#   give the default build's answer) and test/cli/check_cli.sh with FEPS/FEPS_TESTER set to it.
 # --valgrind: memcheck (uninitialised reads of allocated memory, which -finit-real does not
 #   cover, invalid accesses, definite leaks) on every deck of test/data/, test/data/bad/ and
 #   input/verification/ with a -g -O1 build: not the -fcheck one, whose bounds checks of a
@@ -32,7 +32,7 @@
 # Takes about 5 min (2 cores; --sanitize adds about 25 min, --valgrind 20, --long 30), too slow for
 # .ci/run. Exit status 0 when everything passed, 1 otherwise; the failures are listed at the end.
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 sanitize=0; valgrind=0; long=0
 for a in "$@"; do
@@ -146,12 +146,12 @@ if [ "$sanitize" -eq 1 ]; then
   fi
   echo "== decks under the sanitized build"
   ASAN_OPTIONS=detect_leaks=1 sweep sanitize "$san_feps" 0
-  echo "== scripts/check_cli.sh with the sanitized build"
+  echo "== test/cli/check_cli.sh with the sanitized build"
   # the fuzzer's 4 GB address-space limit leaves no room for ASan's shadow memory: lift it, and
   # let ASan refuse an allocation beyond 4 GB instead (ALLOCATE's stat then reports it); its 60 s
   # per case is too short at -O0 with ASan (band_birth_yielded.dat alone takes 60 s)
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1:max_allocation_size_mb=4096 \
-    FEPS_FUZZ_MEMORY_GB=100000 FEPS_FUZZ_TIMEOUT=600 FEPS="$PWD/$san_feps" FEPS_TESTER="$PWD/$san_test" nice bash scripts/check_cli.sh \
+    FEPS_FUZZ_MEMORY_GB=100000 FEPS_FUZZ_TIMEOUT=600 FEPS="$PWD/$san_feps" FEPS_TESTER="$PWD/$san_test" nice bash test/cli/check_cli.sh \
     >"$tmp/cli.log" 2>&1; rc=$?
   tail -n 1 "$tmp/cli.log"
   [ "$rc" -eq 0 ] || fail "check_cli.sh (sanitized build): $(grep FAIL "$tmp/cli.log" | head -n 5)"

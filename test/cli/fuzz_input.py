@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Fuzz feps's input handling: mutate valid decks at random and require a clear answer.
 
-    python3 scripts/fuzz_input.py [--feps PATH] [--decks GLOB ...] [--cases N] [--seed S]
+    python3 test/cli/fuzz_input.py [--feps PATH] [--decks GLOB ...] [--cases N] [--seed S]
                                   [--run] [--timeout S] [--memory-gb G] [--out DIR]
 
 Each case takes a deck (default: the small decks in test/data), changes one to three of its
@@ -37,10 +37,10 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from feps_build import feps_executable  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 JUNK = ['', 'abc', '-1', '0', '1e400', 'nan', 'inf', '-inf', '1e-400', '999999999999',
         '2147483648', '-0', '1.5', ',', '=', "'", '1d5', '*', '  ', 'E=', ',,,', '1e308',

@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
 """Independent equilibrium check of a feps result file (docs/output-format.md).
 
-    python3 scripts/check_equilibrium.py RESULT.h5 [--step NNNN] [--deck DECK] [--applied FX,FY,FZ]
+Kept in test/reference/ as a deliberately independent check: it assembles the nodal forces
+with shape functions, rules and frames of its own, so that an error in feps's element code cannot
+hide itself. Its readings of the deck (which nodes are loaded, the nodal systems) are part of that
+independence: they do not come from feps's resolution of the sets.
+
+    python3 test/reference/check_equilibrium.py RESULT.h5 [--step NNNN] [--deck DECK] [--applied FX,FY,FZ]
 
 From the mesh and the written Gauss-point fields of one step it assembles the nodal internal
 forces with its own shape functions, derivatives and integration weights (nothing of feps's
@@ -54,7 +59,7 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 import feps_results as fr  # noqa: E402  (reading only: open_result, steps, connectivity, ...)
 
 ROUNDING = 1e-9

@@ -2,6 +2,10 @@
 """A pipe in elastic ground: the lined-hole closed form (plane strain), its self-checks, the feps
 decks of the benchmark and the comparison of a feps result with it.
 
+Kept in test/reference/ as a deliberately independent check: the closed form (Airy stress
+functions, a 6 x 6 system) is written here in numpy, apart from test/test_lined_hole.f90's own and
+from feps's elements, so that the benchmark's reference does not share code with what it checks.
+
 An elastic ring a <= r <= b (the pipe) in an infinite elastic medium (the soil), far-field stress
 sigma_yy = -p, sigma_xx = -K p, the ring bonded to the soil or in full slip (zero shear traction at
 r = b, normal traction and radial displacement continuous). The far field is split into its mean
@@ -353,7 +357,7 @@ def write_deck(path, dim, bond, level, Es, nus, K, p, phi=None, rout_factor=10.0
     ring_sizes = [(b - a) / nr_ring] * nr_ring
     soil_sizes = graded(b, R, ns, (b - a) / nr_ring)
     dz = 50.0
-    L = ["! A pipe in elastic ground (scripts/lined_hole.py): ring a = 600 .. b = 715 mm in soil to "
+    L = ["! A pipe in elastic ground (test/reference/lined_hole.py): ring a = 600 .. b = 715 mm in soil to "
          f"R = {R:g} mm, quarter model,",
          f"! far field s_yy = -p, s_xx = -K p; {bond}; " + ("plane strain, tri6" if dim == 2 else
                                                             "a hex20 slice, uz held") + f"; mesh level {level}.",

@@ -832,11 +832,12 @@ contains
           return
         end if
       end do
-      ! Every material's parameters are checked as its object is built, now, before anything
-      ! is written (the analysis builds its own from the same records).
+      ! Every material's parameters are parsed into its typed record and checked as its object
+      ! is built, now, before anything is written; the record is kept for the analysis.
       do m = 1, size(model%materials)
         call new_material(model%materials(m), material, error)
         if (allocated(error)) return
+        call move_alloc(material, model%materials(m)%params)
       end do
       do g = 1, size(model%groups)
         do k = 1, size(model%groups(g)%connectivity, 2)

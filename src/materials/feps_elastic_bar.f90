@@ -35,13 +35,15 @@ contains
   end subroutine elastic_bar_tangent
 
   !> Axial force N = N0 + E A deps, state elastic, tangent E A.
-  pure subroutine elastic_bar_update(self, sig0, eps0, deps, state0, sig, state, dtan)
+  pure subroutine elastic_bar_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
     class(elastic_bar_t), intent(in) :: self
     real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
     integer, intent(in) :: state0
     real(dp), intent(out) :: sig(:)
     integer, intent(out) :: state
     real(dp), intent(out) :: dtan(:, :)
+    real(dp), intent(in), optional :: var0(:)   !! no internal variables (state_size 0)
+    real(dp), intent(out), optional :: var(:)
     call self%elastic_tangent(dtan)
     sig = sig0 + matmul(dtan, deps)
     state = state_elastic

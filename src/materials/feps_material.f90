@@ -27,6 +27,7 @@ module feps_material
     procedure :: symmetric_tangent => material_symmetric_tangent
     procedure :: state_note => material_state_note
     procedure :: state_size => material_state_size
+    procedure :: section_area => material_section_area
   end type material_t
 
   abstract interface
@@ -93,5 +94,12 @@ contains
     class(material_t), intent(in) :: self
     n = 0
   end function material_state_size
+
+  !> The cross-section area of a material whose stress is a force (bars: A, so that a
+  !! PRESTRESS given as STRESS= is the axial force STRESS A); 0 for a material without one.
+  pure real(dp) function material_section_area(self) result(area)
+    class(material_t), intent(in) :: self
+    area = 0.0_dp
+  end function material_section_area
 
 end module feps_material

@@ -108,7 +108,7 @@ contains
       e = moduli(i)
       call read_deck('test/data/cube.dat', model, error)
       if (allocated(error)) return
-      model%materials(1)%values(1) = e
+      call model%materials(1)%set('e', e)
       call run_analysis(model, 'cholmod', obs, summary, error)
       if (allocated(error)) return
       associate (u => obs%steps(size(obs%steps))%displacement)
@@ -806,7 +806,7 @@ contains
     end if
     if (allocated(error)) return
     model%groups(1)%element_type = element_type
-    model%materials(1)%values(2) = nu
+    call model%materials(1)%set('nu', nu)
     call solve(model, 'cholmod', res, error)
     if (allocated(error)) return
     u_exact = lame_bore_displacement(a, b, p, e, nu)

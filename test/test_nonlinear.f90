@@ -158,9 +158,9 @@ contains
     character(len=64) :: what
     call read_deck('test/data/block_contact.dat', model, error)
     if (allocated(error)) return
-    model%materials(1)%values(1) = e            ! block: E
-    model%materials(2)%values(1) = kn           ! contact: KN
-    model%materials(2)%values(2) = kn / 2.0_dp  ! contact: KS
+    call model%materials(1)%set('e', e)            ! block: E
+    call model%materials(2)%set('kn', kn)          ! contact: KN
+    call model%materials(2)%set('ks', kn / 2.0_dp) ! contact: KS
     if (linear) then
       ! pressure 0.5 at x = -10 rising to 1.5 at x = 20 ... as an intensity linear in x with
       ! zero at x = -10 and peak 1.5 at x = 20: p(x) = 1.5 (x + 10) / 30
@@ -364,11 +364,11 @@ contains
     if (allocated(error)) return
     model%materials = [model%materials, model%materials(1)]
     model%materials(3)%name = 'stiff'
-    model%materials(1)%values(1) = 1.44_dp       ! lower block
-    model%materials(3)%values(1) = 1.0e11_dp     ! upper block
+    call model%materials(1)%set('e', 1.44_dp)       ! lower block
+    call model%materials(3)%set('e', 1.0e11_dp)     ! upper block
     model%groups(2)%material = 3
-    model%materials(2)%values(1) = 8.0e5_dp
-    model%materials(2)%values(2) = 4.0e5_dp
+    call model%materials(2)%set('kn', 8.0e5_dp)
+    call model%materials(2)%set('ks', 4.0e5_dp)
     call run_analysis(model, 'cholmod', obs, summary, error)
     if (allocated(error)) then
       if (index(error%message, 'singular at node') > 0 .and. index(error%message, 'DOF') > 0 .and. &
@@ -643,7 +643,7 @@ contains
     ! The thesis's rule: the run ends, and says that points reached its discontinuous tension zone.
     call read_deck(deck, model, error)
     if (allocated(error)) return
-    where (model%materials(1)%keys == 'tension') model%materials(1)%texts = 'proportional'
+    call model%materials(1)%set('tension', 0.0_dp, text='proportional')
     deallocate (fine%lines)
     call run_analysis(model, 'cholmod', fine, summary, error)
     if (allocated(error)) return
@@ -654,7 +654,7 @@ contains
     ! ... and a run that stops after its cut-backs says so in its stop message.
     call read_deck(deck, model, error)
     if (allocated(error)) return
-    where (model%materials(1)%keys == 'tension') model%materials(1)%texts = 'proportional'
+    call model%materials(1)%set('tension', 0.0_dp, text='proportional')
     model%stages(1)%controls%max_iterations = 4
     model%stages(1)%controls%max_cutbacks = 1
     call expect_clear_stop(model, fine, 'proportional, 4 iterations, 1 cut-back: expected the clear stop', msg, error)

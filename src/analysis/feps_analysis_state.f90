@@ -20,6 +20,7 @@ module feps_analysis_state
   use feps_interface_orientation, only: check_interface_orientation
   use feps_loads, only: resolve_face_sets, nodal_load_vector, to_equations
   use feps_material, only: material_slot_t
+  use feps_point_state_store, only: point_state_store_t
   use feps_tangent_symmetry, only: nearest_symmetric_psd
   use feps_linear_solver, only: linear_solver_t
   use feps_solver_factory, only: new_linear_solver
@@ -28,13 +29,9 @@ module feps_analysis_state
   implicit none
   private
 
-  !> Point states of one group: committed (end of the last step) and trial.
-  type, public :: group_state_t
-    real(dp), allocatable :: sig(:, :), eps(:, :)
-    integer, allocatable :: state(:)
-    real(dp), allocatable :: sig_t(:, :), eps_t(:, :)
-    integer, allocatable :: state_t(:)
-    real(dp), allocatable :: dtan(:, :, :), dtan_t(:, :, :)   !! nonlinear groups only
+  !> Point states of one group, committed (end of the last step) and trial: the store, with
+  !! commit, restore and its size, allocated for the groups that carry point state.
+  type, extends(point_state_store_t), public :: group_state_t
     !> Carries point state: a nonlinear material, a group born in a later stage (whose
     !! strains count from its activation) or a prestressed one (whose force is not K u), so
     !! it cannot join the total-strain linear part.
@@ -226,20 +223,7 @@ contains
           an%lin%present = .true.
           cycle
         end if
-        allocate (s%sig(nc, np), s%eps(nc, np), s%state(np), s%sig_t(nc, np), s%eps_t(nc, np), s%state_t(np))
-        s%sig = 0.0_dp
-        s%eps = 0.0_dp
-        s%state = 0
-        s%sig_t = 0.0_dp
-        s%eps_t = 0.0_dp
-        s%state_t = 0
-        if (s%nonlinear) then
-          allocate (s%dtan(nc, nc, np), s%dtan_t(nc, nc, np))
-          do q = 1, np
-            call an%materials(model%groups(g)%material)%m%elastic_tangent(s%dtan(:, :, q))
-          end do
-          s%dtan_t = s%dtan
-        end if
+        call s%init(an%materials(model%groups(g)%material)%m, nc, np)
       end associate
     end do
     if (an%lin%present) then
@@ -273,20 +257,14 @@ contains
     an%release_force = 0.0_dp
   end subroutine init_states
 
-  !> Memory held per group for point states (stresses, strains, flags, tangents; committed
-  !! and trial), to show that elastic groups keep none.
+  !> Memory held per group for point states (stresses, strains, flags, internal variables,
+  !! tangents; committed and trial), to show that elastic groups keep none.
   pure function state_bytes(states) result(bytes)
     type(group_state_t), intent(in) :: states(:)
     integer(i8) :: bytes(size(states))
     integer :: g
-    bytes = 0
     do g = 1, size(states)
-      associate (s => states(g))
-        if (allocated(s%sig)) bytes(g) = bytes(g) + 2 * storage_size(s%sig, i8) / 8 * size(s%sig, kind=i8)
-        if (allocated(s%eps)) bytes(g) = bytes(g) + 2 * storage_size(s%eps, i8) / 8 * size(s%eps, kind=i8)
-        if (allocated(s%state)) bytes(g) = bytes(g) + 2 * storage_size(s%state, i8) / 8 * size(s%state, kind=i8)
-        if (allocated(s%dtan)) bytes(g) = bytes(g) + 2 * storage_size(s%dtan, i8) / 8 * size(s%dtan, kind=i8)
-      end associate
+      bytes(g) = states(g)%bytes()
     end do
   end function state_bytes
 
@@ -340,10 +318,7 @@ contains
       if (model%groups(g)%activate_stage /= s .or. s == 1) cycle
       an%active(g) = .true.
       any_born = .true.
-      if (tension(g) /= 0.0_dp) then
-        an%states(g)%sig = tension(g)
-        an%states(g)%sig_t = tension(g)
-      end if
+      if (tension(g) /= 0.0_dp) call an%states(g)%set_stress(tension(g))
     end do
     call add_bar_forces(model, an, merge(tension, 0.0_dp, model%groups(:)%activate_stage == s), 1.0_dp, &
                         an%f_applied)
@@ -542,14 +517,15 @@ contains
   end subroutine add_free
 
   !> Update every point from the committed state with the strain of u_t - u, and sum the
-  !! internal forces of the trial state. The bars of group g start from their committed force
-  !! plus the prestress increment dps(g).
+  !! internal forces of the trial state. The points of group g start from their committed
+  !! state plus the stress increment dps(g) imposed on every component (a prestress: the
+  !! bars' axial force).
   subroutine update_points(model, an, dps)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     real(dp), intent(in) :: dps(:)
     integer :: g, e, q, q0, np, nn, nc
-    real(dp), allocatable :: xe(:, :), due(:), deps(:, :), fe(:), dtan(:, :)
+    real(dp), allocatable :: xe(:, :), due(:), deps(:, :), fe(:)
     an%fint = 0.0_dp
     call add_linear_forces(an, an%u_t, an%fint)
     do g = 1, size(model%groups)
@@ -557,31 +533,23 @@ contains
       np = an%kernels(g)%npoints
       nn = an%kernels(g)%nnodes
       nc = an%kernels(g)%ncomp
-      allocate (xe(3, nn), due(3 * nn), deps(nc, np), fe(3 * nn), dtan(nc, nc))
+      allocate (xe(3, nn), due(3 * nn), deps(nc, np), fe(3 * nn))
       associate (s => an%states(g), mat => an%materials(model%groups(g)%material)%m, &
                  conn => model%groups(g)%connectivity)
+        call s%impose(spread(dps(g), 1, nc))
         do e = 1, size(conn, 2)
           xe = model%coords(:, conn(:, e))
           due = reshape(an%u_t(:, conn(:, e)) - an%u(:, conn(:, e)), [3 * nn])
           call element_strains(an%kernels(g), xe, due, deps)
           q0 = (e - 1) * np
           do q = 1, np
-            if (dps(g) == 0.0_dp) then
-              call mat%update(s%sig(:, q0 + q), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), &
-                              s%sig_t(:, q0 + q), s%state_t(q0 + q), dtan)
-            else
-              ! only bars are prestressed: one component, the axial force
-              call mat%update(s%sig(:, q0 + q) + dps(g), s%eps(:, q0 + q), deps(:, q), s%state(q0 + q), &
-                              s%sig_t(:, q0 + q), s%state_t(q0 + q), dtan)
-            end if
-            s%eps_t(:, q0 + q) = s%eps(:, q0 + q) + deps(:, q)
-            s%dtan_t(:, :, q0 + q) = dtan
+            call s%update(mat, q0 + q, deps(:, q))
           end do
           call element_internal_force(an%kernels(g), xe, s%sig_t(:, q0 + 1:q0 + np), fe)
           an%fint(:, conn(:, e)) = an%fint(:, conn(:, e)) + reshape(fe, [3, nn])
         end do
       end associate
-      deallocate (xe, due, deps, fe, dtan)
+      deallocate (xe, due, deps, fe)
     end do
   end subroutine update_points
 
@@ -619,13 +587,7 @@ contains
     integer :: g
     an%u = an%u_t
     do g = 1, size(an%states)
-      if (.not. an%states(g)%nonlinear) cycle
-      associate (s => an%states(g))
-        s%sig = s%sig_t
-        s%eps = s%eps_t
-        s%state = s%state_t
-        s%dtan = s%dtan_t
-      end associate
+      call an%states(g)%commit()
     end do
   end subroutine commit
 
@@ -635,13 +597,7 @@ contains
     integer :: g
     an%u_t = an%u
     do g = 1, size(an%states)
-      if (.not. an%states(g)%nonlinear) cycle
-      associate (s => an%states(g))
-        s%sig_t = s%sig
-        s%eps_t = s%eps
-        s%state_t = s%state
-        s%dtan_t = s%dtan
-      end associate
+      call an%states(g)%restore()
     end do
   end subroutine restore
 

@@ -11,7 +11,7 @@ module feps_assembly
   use feps_interface_element, only: interface_element_t, new_interface_element
   use feps_bar_element, only: bar_element_t, new_bar_element
   use feps_material, only: material_slot_t
-  use feps_material_factory, only: new_material
+  use feps_material_factory, only: material_of
   implicit none
   private
 
@@ -73,7 +73,7 @@ contains
     end do
   end subroutine build_kernels
 
-  !> One material object per material record.
+  !> One material object per material record: the typed record the deck reader checked.
   subroutine build_materials(model, materials, error)
     type(model_t), intent(in) :: model
     type(material_slot_t), allocatable, intent(out) :: materials(:)
@@ -81,7 +81,7 @@ contains
     integer :: m
     allocate (materials(size(model%materials)))
     do m = 1, size(model%materials)
-      call new_material(model%materials(m), materials(m)%m, error)
+      call material_of(model%materials(m), materials(m)%m, error)
       if (allocated(error)) return
     end do
   end subroutine build_materials

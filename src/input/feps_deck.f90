@@ -20,7 +20,7 @@ module feps_deck
   use feps_element_catalog, only: element_info, known_element_types, family_solid, family_interface, &
                                   family_bar, bare_mesh_type
   use feps_material, only: material_t
-  use feps_material_factory, only: new_material
+  use feps_material_factory, only: new_material, material_of
   use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
   use feps_deck_stages, only: read_stage, read_controls_record, read_report
   implicit none
@@ -832,11 +832,12 @@ contains
           return
         end if
       end do
-      ! Every material's parameters are checked as its object is built, now, before anything
-      ! is written (the analysis builds its own from the same records).
+      ! Every material's parameters are parsed into its typed record and checked as its object
+      ! is built, now, before anything is written; the record is kept for the analysis.
       do m = 1, size(model%materials)
         call new_material(model%materials(m), material, error)
         if (allocated(error)) return
+        call move_alloc(material, model%materials(m)%params)
       end do
       do g = 1, size(model%groups)
         do k = 1, size(model%groups(g)%connectivity, 2)
@@ -884,7 +885,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer :: i, s, born
     real(dp) :: area
-    logical :: found
+    class(material_t), allocatable :: material
     do i = 1, size(model%prestresses)
       if (.not. model%prestresses(i)%bond_after) cycle
       associate (p => model%prestresses(i), g => model%groups(model%prestresses(i)%group))
@@ -907,8 +908,11 @@ contains
     do i = 1, size(model%prestresses)
       associate (p => model%prestresses(i), g => model%groups(model%prestresses(i)%group))
         if (p%per_area) then
-          call model%materials(g%material)%get('a', area, found)
-          if (found) then   ! without A: an error when the materials are built
+          ! the area the bar material declares (its checked record: A is there, positive)
+          call material_of(model%materials(g%material), material, error)
+          if (allocated(error)) return
+          area = material%section_area()
+          if (area > 0.0_dp) then
             ! tested before the product, which would overflow (and trap under -ffpe-trap); an
             ! |A| below 1 cannot make it overflow, and huge / |A| would
             if (abs(p%force) > huge(1.0_dp) / max(1.0_dp, abs(area))) then

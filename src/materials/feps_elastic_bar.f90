@@ -22,6 +22,7 @@ module feps_elastic_bar
     procedure :: elastic_tangent => elastic_bar_tangent
     procedure :: update => elastic_bar_update
     procedure :: is_linear => elastic_bar_is_linear
+    procedure :: section_area => elastic_bar_section_area
   end type elastic_bar_t
 
 contains
@@ -35,13 +36,15 @@ contains
   end subroutine elastic_bar_tangent
 
   !> Axial force N = N0 + E A deps, state elastic, tangent E A.
-  pure subroutine elastic_bar_update(self, sig0, eps0, deps, state0, sig, state, dtan)
+  pure subroutine elastic_bar_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
     class(elastic_bar_t), intent(in) :: self
     real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
     integer, intent(in) :: state0
     real(dp), intent(out) :: sig(:)
     integer, intent(out) :: state
     real(dp), intent(out) :: dtan(:, :)
+    real(dp), intent(in), optional :: var0(:)   !! no internal variables (state_size 0)
+    real(dp), intent(out), optional :: var(:)
     call self%elastic_tangent(dtan)
     sig = sig0 + matmul(dtan, deps)
     state = state_elastic
@@ -51,6 +54,12 @@ contains
     class(elastic_bar_t), intent(in) :: self
     elastic_bar_is_linear = .true.
   end function elastic_bar_is_linear
+
+  !> The bar's cross-section area A: its point stress is the axial force, A times the stress.
+  pure real(dp) function elastic_bar_section_area(self) result(area)
+    class(elastic_bar_t), intent(in) :: self
+    area = self%a
+  end function elastic_bar_section_area
 
   !> An elastic bar from MATERIAL parameters E and A (both required, positive and finite);
   !! unknown keys are rejected. Errors name the record's file and line and the parameter (and

@@ -79,13 +79,15 @@ contains
   !! trial stress is that of eq. 2.3.22: sigma_n = kn eps_n (= t kn deps_n) and
   !! tau = t ks dgamma with t = eps_n / deps_n the fraction of the step in contact (t = 1 when
   !! eps_n was already <= 0 at the start); the tangent is then the exact derivative of this.
-  pure subroutine mc_update(self, sig0, eps0, deps, state0, sig, state, dtan)
+  pure subroutine mc_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
     class(interface_mohr_coulomb_t), intent(in) :: self
     real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
     integer, intent(in) :: state0
     real(dp), intent(out) :: sig(:)
     integer, intent(out) :: state
     real(dp), intent(out) :: dtan(:, :)
+    real(dp), intent(in), optional :: var0(:)   !! no internal variables (state_size 0)
+    real(dp), intent(out), optional :: var(:)
     real(dp) :: d(size(sig0), size(sig0)), jac(size(sig0), size(sig0)), amat(size(sig0), size(sig0))
     real(dp) :: sig_tr(size(sig0)), eps_n, t, dt_ddeps_n
     integer :: i, n, ns

@@ -23,13 +23,15 @@ contains
     d = elastic_matrix(self%e, self%nu)
   end subroutine linear_elastic_tangent
 
-  pure subroutine linear_elastic_update(self, sig0, eps0, deps, state0, sig, state, dtan)
+  pure subroutine linear_elastic_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
     class(linear_elastic_t), intent(in) :: self
     real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
     integer, intent(in) :: state0
     real(dp), intent(out) :: sig(:)
     integer, intent(out) :: state
     real(dp), intent(out) :: dtan(:, :)
+    real(dp), intent(in), optional :: var0(:)   !! no internal variables (state_size 0)
+    real(dp), intent(out), optional :: var(:)
     dtan = elastic_matrix(self%e, self%nu)
     sig = sig0 + matmul(dtan, deps)
     state = state_elastic

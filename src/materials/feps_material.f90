@@ -4,6 +4,7 @@
 !! on 3 [gamma1 gamma2 eps_n] (3D) or 2 [gamma eps_n] (2D) relative displacements.
 module feps_material
   use feps_kinds, only: dp
+  use feps_model, only: material_params_t
   implicit none
   private
 
@@ -13,7 +14,11 @@ module feps_material
   integer, parameter, public :: state_open = 2      !! interface gap: open
   integer, parameter, public :: state_tension = 3   !! tension zone (apex) of a solid material
 
-  type, abstract, public :: material_t
+  !> A material is its own typed parameter record (extending the model's material_params_t):
+  !! the deck reader builds and checks it once and keeps it with the MATERIAL record. What a
+  !! point carries is stress, total strain (size(sig0) components), a state flag and
+  !! `state_size()` internal variables, held by `point_state_store_t`.
+  type, abstract, extends(material_params_t), public :: material_t
     character(len=:), allocatable :: name
   contains
     procedure(elastic_tangent_interface), deferred :: elastic_tangent
@@ -21,6 +26,8 @@ module feps_material
     procedure(is_linear_interface), deferred :: is_linear
     procedure :: symmetric_tangent => material_symmetric_tangent
     procedure :: state_note => material_state_note
+    procedure :: state_size => material_state_size
+    procedure :: section_area => material_section_area
   end type material_t
 
   abstract interface
@@ -33,10 +40,12 @@ module feps_material
       real(dp), intent(out) :: d(:, :)
     end subroutine elastic_tangent_interface
 
-    !> Stress update over a step: from stress sig0, total strain eps0 and state0 at the start
-    !! of the step and the strain increment deps, the stress sig and state at its end and the
-    !! consistent tangent dtan = d sig / d deps there.
-    pure subroutine update_interface(self, sig0, eps0, deps, state0, sig, state, dtan)
+    !> Stress update over a step: from stress sig0, total strain eps0, state0 and the internal
+    !! variables var0 at the start of the step and the strain increment deps, the stress sig,
+    !! state and internal variables var at its end and the consistent tangent
+    !! dtan = d sig / d deps there. var0 and var have `state_size()` entries; the point-state
+    !! store always passes them, and a material with no internal variables may ignore them.
+    pure subroutine update_interface(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
       import :: material_t, dp
       class(material_t), intent(in) :: self
       real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
@@ -44,6 +53,8 @@ module feps_material
       real(dp), intent(out) :: sig(:)
       integer, intent(out) :: state
       real(dp), intent(out) :: dtan(:, :)
+      real(dp), intent(in), optional :: var0(:)
+      real(dp), intent(out), optional :: var(:)
     end subroutine update_interface
 
     !> True when the material is linear elastic (no iteration, no state).
@@ -75,5 +86,20 @@ contains
     character(len=:), allocatable, intent(out) :: note
     note = ''
   end subroutine material_state_note
+
+  !> Number of internal variables per point beyond stress, strain and the state flag (hardening
+  !! variables, plastic strains, ...): what `update` receives as var0 and returns as var. None
+  !! by default; a material that needs them overrides this.
+  pure integer function material_state_size(self) result(n)
+    class(material_t), intent(in) :: self
+    n = 0
+  end function material_state_size
+
+  !> The cross-section area of a material whose stress is a force (bars: A, so that a
+  !! PRESTRESS given as STRESS= is the axial force STRESS A); 0 for a material without one.
+  pure real(dp) function material_section_area(self) result(area)
+    class(material_t), intent(in) :: self
+    area = 0.0_dp
+  end function material_section_area
 
 end module feps_material

@@ -12,7 +12,7 @@ module feps_material_factory
   implicit none
   private
 
-  public :: new_material
+  public :: new_material, material_of
 
 contains
 
@@ -36,6 +36,23 @@ contains
                              '" (ELASTIC, MATSUOKA, INTERFACE, BAR)', spec%kind_field)
     end select
   end subroutine new_material
+
+  !> The material of a MATERIAL record: a copy of the typed record the deck reader built and
+  !! checked (spec%params), or, for a record built by hand or changed since (spec%set), one
+  !! built and checked now by new_material.
+  subroutine material_of(spec, material, error)
+    type(material_spec_t), intent(in) :: spec
+    class(material_t), allocatable, intent(out) :: material
+    type(error_t), allocatable, intent(out) :: error
+    if (allocated(spec%params)) then
+      select type (params => spec%params)
+      class is (material_t)
+        allocate (material, source=params)
+        return
+      end select
+    end if
+    call new_material(spec, material, error)
+  end subroutine material_of
 
   !> An isotropic elastic material from NU and one of E or G. A bad G is reported as given
   !! (not as the E derived from it), at G's field.

@@ -213,13 +213,15 @@ contains
 
   !> Stress update over a step from sig0 (eps0 and state0 are not needed: the model is
   !! perfectly plastic and has no internal variables). See the module description.
-  pure subroutine mn_update(self, sig0, eps0, deps, state0, sig, state, dtan)
+  pure subroutine mn_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
     class(matsuoka_nakai_t), intent(in) :: self
     real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
     integer, intent(in) :: state0
     real(dp), intent(out) :: sig(:)
     integer, intent(out) :: state
     real(dp), intent(out) :: dtan(:, :)
+    real(dp), intent(in), optional :: var0(:)   !! no internal variables (state_size 0)
+    real(dp), intent(out), optional :: var(:)
     real(dp) :: d(6, 6), sig_tr(6), sig_new(6), dnew(6, 6)
     d = elastic_matrix(self%e, self%nu)
     sig_tr = sig0(1:6) + matmul(d, deps(1:6))

@@ -11,7 +11,15 @@ module feps_model
 
   integer, parameter, public :: name_len = 64
 
-  !> Material parameters by name (E, nu, G, ...), interpreted by the material layer.
+  !> A material's parameters as a typed record. The material layer's `material_t` extends it:
+  !! a material object is its own parameter record, and the one the deck reader built and
+  !! checked is kept with its MATERIAL record (this layer, below the materials, cannot name
+  !! their types).
+  type, abstract, public :: material_params_t
+  end type material_params_t
+
+  !> A MATERIAL record: its parameters as given (by name: E, nu, G, ..., for the results and
+  !! messages) and, once the deck reader has checked them, as the material's typed record.
   type, public :: material_spec_t
     character(len=:), allocatable :: name
     character(len=:), allocatable :: kind          !! 'elastic', ...
@@ -22,8 +30,13 @@ module feps_model
     integer :: kind_field = 0             !! field number of the kind (0: not known)
     character(len=:), allocatable :: file
     integer :: line = 0
+    !> The parameters parsed and checked into the material's own record (the material object,
+    !! from feps_material_factory). Unallocated: not built yet (a record built by hand), or a
+    !! value changed since (`set`).
+    class(material_params_t), allocatable :: params
   contains
     procedure :: get => material_get
+    procedure :: set => material_set
     procedure :: get_text => material_get_text
     procedure :: field_of => material_field_of
   end type material_spec_t
@@ -318,6 +331,33 @@ contains
       end if
     end do
   end subroutine material_get
+
+  !> Set parameter `key` (lower case) to `value`, adding it if absent, or the word of a
+  !! text-valued key to `text`. The typed record no longer matches and is dropped: the
+  !! analysis builds and checks the material again.
+  pure subroutine material_set(self, key, value, text)
+    class(material_spec_t), intent(inout) :: self
+    character(len=*), intent(in) :: key
+    real(dp), intent(in) :: value
+    character(len=*), intent(in), optional :: text
+    character(len=name_len) :: word
+    integer :: i
+    if (allocated(self%params)) deallocate (self%params)
+    word = ''
+    if (present(text)) word = text
+    if (.not. allocated(self%keys)) allocate (self%keys(0), self%values(0))
+    do i = 1, size(self%keys)
+      if (trim(self%keys(i)) == key) then
+        self%values(i) = value
+        if (allocated(self%texts)) self%texts(i) = word
+        return
+      end if
+    end do
+    self%keys = [character(len=name_len) :: self%keys, key]
+    self%values = [self%values, value]
+    if (allocated(self%texts)) self%texts = [character(len=name_len) :: self%texts, word]
+    if (allocated(self%fields)) self%fields = [self%fields, 0]
+  end subroutine material_set
 
   !> The word given for a text-valued key (lower case; '' if it was given as a number).
   pure subroutine material_get_text(self, key, text, found)

@@ -28,6 +28,7 @@ program tester
   use test_lame_solids, only: collect_lame_solids
   use test_result_schema, only: collect_result_schema
   use test_solid_elements, only: collect_solid_elements
+  use test_element_contract, only: collect_element_contract
   implicit none
 
   interface
@@ -70,7 +71,8 @@ program tester
     new_testsuite('lined_hole', collect_lined_hole), &
     new_testsuite('lame_solids', collect_lame_solids), &
     new_testsuite('result_schema', collect_result_schema), &
-    new_testsuite('solid_elements', collect_solid_elements) &
+    new_testsuite('solid_elements', collect_solid_elements), &
+    new_testsuite('element_contract', collect_element_contract) &
     ]
   nfail = run_testsuites(suites, only)
   if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran

@@ -15,8 +15,8 @@ module feps_program
   use feps_observer, only: observer_t, step_result_t
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
-  use feps_element, only: element_t
-  use feps_element_catalog, only: new_solid_element, point_coordinates
+  use feps_solid_element, only: solid_element_t
+  use feps_element_catalog, only: new_solid_element, point_coordinates, family_solid, family_interface, family_bar
   use feps_result_schema, only: field_name, field_components, field_displacement, field_reaction, &
                                 field_applied_force, field_stress, field_principal, field_interface, field_bar, &
                                 field_interface_strain, field_nodal_stress, field_nodal_principal, &
@@ -499,10 +499,11 @@ contains
         if (allocated(error)) return
         associate (gr => res%groups(g), name => self%model%groups(g)%name, element => self%model%groups(g)%element)
           if (.not. allocated(gr%stress)) cycle      ! no field of this group was asked for
-          if (gr%is_bar) then
+          select case (element%family)
+          case (family_bar)
             call self%h5%write_gauss(res%step, field_name(field_bar), name, gr%stress, element%component_names, &
                                      gr%points_per_element, error)
-          else if (gr%is_interface) then
+          case (family_interface)
             nc = size(gr%stress, 1)
             if (f%on(field_interface)) then
               allocate (extra(nc + 1, size(gr%state)))
@@ -517,7 +518,7 @@ contains
               gr%points_per_element, error)
             if (f%on(field_nodal_interface) .and. .not. allocated(error)) &
               call write_nodal_tractions(self%h5, self%model, res%step, g, gr%stress, error)
-          else
+          case (family_solid)
             if (f%on(field_stress)) call self%h5%write_gauss(res%step, field_name(field_stress), name, gr%stress, &
                                                    element%component_names, gr%points_per_element, error)
             if (f%on(field_principal) .and. .not. allocated(error)) then
@@ -543,7 +544,7 @@ contains
             end if
             if ((f%on(field_nodal_stress) .or. f%on(field_nodal_principal) .or. f%on(field_nodal_stress_cyl)) .and. &
                 .not. allocated(error)) call write_nodal_stresses(self%h5, self%model, res%step, g, gr%stress, error)
-          end if
+          end select
         end associate
       end do
     end associate
@@ -582,7 +583,7 @@ contains
     integer, intent(in) :: step, g
     real(dp), intent(in) :: stress(:, :)       !! (6, points) element-major
     type(error_t), allocatable, intent(out) :: error
-    class(element_t), allocatable :: element
+    class(solid_element_t), allocatable :: element
     real(dp), allocatable :: e(:, :), nodal(:, :), principal(:, :), cylindrical(:, :)
     integer, allocatable :: count(:)
     real(dp) :: p(3)

@@ -184,10 +184,11 @@ contains
   end subroutine new_element
 
   !> Allocate the solid element object of `type_name` (case-insensitive, surrounding blanks
-  !! ignored), for what only solids have (shape functions, faces): 'hex8' (2x2x2 Gauss), 'hex8b' (B-bar), 'hex20' (3x3x3), 'hex20r' (2x2x2
-  !! reduced), 'tet4' (1 point), 'tet10' (4 points), 'wedge6' (3 x 2 points), 'wedge15'
-  !! (6 x 3 points), 'tri6' (plane strain, 3 points), 'tri6-6' (6 points). Any other name, an
-  !! interface or a bar included, returns an err_input error.
+  !! ignored), for what only solids have (shape functions, faces): 'hex8' (2x2x2 Gauss),
+  !! 'hex8b' (B-bar), 'hex20' (3x3x3), 'hex20r' (2x2x2 reduced), 'tet4' (1 point), 'tet10'
+  !! (4 points), 'wedge6' (3 x 2 points), 'wedge15' (6 x 3 points), 'tri6' (plane strain,
+  !! 3 points), 'tri6-6' (6 points). Any other name, an interface or a bar included, returns
+  !! an err_input error.
   subroutine new_solid_element(type_name, element, error)
     character(len=*), intent(in) :: type_name
     class(solid_element_t), allocatable, intent(out) :: element

@@ -6,6 +6,7 @@ module test_analysis
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_model, only: model_t, node_set_t, constraint_t
   use feps_result_schema, only: field_stress, field_principal
+  use feps_element_catalog, only: family_interface
   use feps_elasticity_testing, only: lame_bore_displacement, mean_radial_displacement
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
@@ -156,7 +157,7 @@ contains
     res = obs%steps(size(obs%steps))
     do g = 1, size(model%groups)
       np = res%groups(g)%points_per_element * size(model%groups(g)%connectivity, 2)
-      if (res%groups(g)%is_interface) then
+      if (res%groups(g)%family == family_interface) then
         call check(error, allocated(res%groups(g)%stress), 'interface tractions kept')
         if (allocated(error)) return
         call check(error, real(summary%state_bytes(g), dp), real(np * (2 * (3 + 3 + 9) * 8 + 2 * 4), dp), &

@@ -38,6 +38,7 @@ contains
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
       new_unittest('non-positive Jacobian names the element', test_negative_jacobian), &
+      new_unittest('a face set on a group of bars: no faces', test_face_set_on_bars), &
       new_unittest('undefined material', test_undefined_material), &
       new_unittest('unknown element type: the message lists every type', test_element_type_unknown), &
       new_unittest('FIELDS CSYS= naming a Cartesian system', test_fields_csys_cartesian), &
@@ -695,6 +696,12 @@ contains
     call expect_failure('test/data/bad/negative_jacobian.dat', err_input, &
                         [character(len=40) :: 'negative_jacobian.dat:8:', 'element 1 ', 'Jacobian'], error)
   end subroutine test_negative_jacobian
+
+  subroutine test_face_set_on_bars(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/face_set_on_bars.dat', err_input, &
+                        [character(len=40) :: 'face_set_on_bars.dat:14:', 'group bars (bar2) has no faces'], error)
+  end subroutine test_face_set_on_bars
 
   subroutine test_undefined_material(error)
     type(error_t), allocatable, intent(out) :: error

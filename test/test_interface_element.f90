@@ -270,8 +270,8 @@ contains
       if (allocated(error)) return
       call check(error, element%ngauss(), ng_nodal(i), trim(names(i)) // '-nodal ngauss')
       if (allocated(error)) return
-      call check(error, element%element_type() == trim(names(i)) .and. element%nodal_integration, &
-                 trim(names(i)) // '-nodal name without suffix and nodal integration')
+      call check(error, element%element_type() == trim(names(i)) // '-nodal' .and. element%nodal_integration, &
+                 trim(names(i)) // '-nodal: the catalog name and nodal integration')
       if (allocated(error)) return
       call check(error, is_interface_type(names(i)) .and. is_interface_type(trim(names(i)) // '-nodal'), &
                  trim(names(i)) // ' is an interface type')
@@ -407,7 +407,7 @@ contains
       call make_case(icase, .true., element, xe, area_exact, error)
       if (allocated(error)) return
       allocate (xg(element%ndim(), element%ngauss()))
-      call element%point_coordinates(xe, xg)
+      call element%point_coordinates_nd(xe, xg)
       p = element%npairs()
       do g = 1, element%ngauss()
         if (case_shape(icase) == 'interface-tri6') then
@@ -432,7 +432,7 @@ contains
     xe = both_layers(reshape([0.0_dp, 0.0_dp, 0.0_dp, 3.0_dp, 0.0_dp, 0.0_dp, 3.0_dp, 2.0_dp, 0.0_dp, &
                               0.0_dp, 2.0_dp, 0.0_dp], [3, 4]))
     allocate (xg(3, 4))
-    call element%point_coordinates(xe, xg)
+    call element%point_coordinates_nd(xe, xg)
     r = 1.0_dp / sqrt(3.0_dp)
     call check_array(error, [xg], [1.5_dp * (1 - r), 1 - r, 0.0_dp, 1.5_dp * (1 + r), 1 - r, 0.0_dp, &
                                    1.5_dp * (1 - r), 1 + r, 0.0_dp, 1.5_dp * (1 + r), 1 + r, 0.0_dp], &
@@ -458,7 +458,7 @@ contains
         if (allocated(error)) return
         nd = element%ndim()
         allocate (b(nd, nd * element%nnodes()), xg(nd, element%ngauss()))
-        call element%point_coordinates(xe, xg)
+        call element%point_coordinates_nd(xe, xg)
         do g = 1, element%ngauss()
           frame = 0.0_dp
           call element%point_b(xe, g, b, wdet, frame(1:nd, 1:nd))
@@ -539,7 +539,7 @@ contains
         do g = 1, p
           ue(half + nd * (g - 1) + 1:half + nd * g) = ue(nd * (g - 1) + 1:nd * g) + jump(1:nd)
         end do
-        call element%strains(xe, ue, eps)
+        call element%strains_nd(xe, ue, eps)
         do g = 1, element%ngauss()
           call element%point_b(xe, g, b, wdet, frame(1:nd, 1:nd))
           call check_array(error, matmul(b, ue), matmul(frame(1:nd, 1:nd), jump(1:nd)), 1.0e-12_dp, &
@@ -579,11 +579,11 @@ contains
         do g = 1, element%ngauss()
           d(:, :, g) = symmetric_d(nd)
         end do
-        call element%strains(xe, ue, eps)
+        call element%strains_nd(xe, ue, eps)
         call check_array(error, [eps], [(0.0_dp, g = 1, size(eps))], 1.0e-13_dp, label(icase, nodal) // &
                          ' rigid translation strain')
         if (allocated(error)) return
-        call element%stiffness(xe, d, ke)
+        call element%stiffness_nd(xe, d, ke)
         call check_array(error, matmul(ke, ue), [(0.0_dp, g = 1, 2 * half)], &
                          1.0e-12_dp * maxval(abs(ke)) * norm2(move), label(icase, nodal) // ' ke u rigid')
         if (allocated(error)) return
@@ -610,7 +610,7 @@ contains
         do g = 1, element%ngauss()
           d(:, :, g) = symmetric_d(nd) * (1.0_dp + 0.1_dp * g)
         end do
-        call element%stiffness(xe, d, ke)
+        call element%stiffness_nd(xe, d, ke)
         call check(error, maxval(abs(ke)) > 0.1_dp * area_exact, label(icase, nodal) // ' ke not zero')
         if (allocated(error)) return
         call check_array(error, [ke], [transpose(ke)], 1.0e-14_dp * maxval(abs(ke)), &
@@ -670,7 +670,7 @@ contains
     do g = 1, element%ngauss()
       d(:, :, g) = dlocal
     end do
-    call element%stiffness(xe, d, ke)
+    call element%stiffness_nd(xe, d, ke)
     do c = 1, p
       do a = 1, p
         la = nd * (a - 1)
@@ -711,12 +711,12 @@ contains
     call new_interface_element('interface-quad4', element, error)
     if (allocated(error)) return
     xe = both_layers(rect)
-    call element%stiffness(xe, d, ke)
+    call element%stiffness_nd(xe, d, ke)
     call check(error, ke(3, 12 + 3), -kn * a * b / 9.0_dp, 'quad4 Gauss: ke(lower 1 z, upper 1 z)', rel=1.0e-13_dp)
     if (allocated(error)) return
     call new_interface_element('interface-quad4-nodal', element, error)
     if (allocated(error)) return
-    call element%stiffness(xe, d, ke)
+    call element%stiffness_nd(xe, d, ke)
     call check(error, ke(3, 12 + 3), -kn * a * b / 4.0_dp, 'quad4 nodal: ke(lower 1 z, upper 1 z)', rel=1.0e-13_dp)
     if (allocated(error)) return
     call check(error, maxval(abs([ke(1:3, 4:12), ke(1:3, 16:24)])), 0.0_dp, &
@@ -855,12 +855,12 @@ contains
         do g = 1, element%ngauss()
           d(:, :, g) = symmetric_d(nd) + reshape(pseudo_random(nd * nd, 0.2_dp * g), [nd, nd])
         end do
-        call element%strains(xe, ue, eps)
+        call element%strains_nd(xe, ue, eps)
         do g = 1, element%ngauss()
           sig(:, g) = matmul(d(:, :, g), eps(:, g))
         end do
-        call element%internal_force(xe, sig, fe)
-        call element%stiffness(xe, d, ke)
+        call element%internal_force_nd(xe, sig, fe)
+        call element%stiffness_nd(xe, d, ke)
         ku = matmul(ke, ue)
         call check_array(error, fe, ku, 1.0e-12_dp * maxval(abs(ku)), label(icase, nodal) // ' fe = ke ue')
         if (allocated(error)) return
@@ -913,7 +913,7 @@ contains
         allocate (sig(nd, element%ngauss()), fe(nd * 2 * np), b(nd, nd * 2 * np))
         sig = 0.0_dp
         sig(nd, :) = p
-        call element%internal_force(xe, sig, fe)
+        call element%internal_force_nd(xe, sig, fe)
         call element%point_b(xe, 1, b, wdet, frame(1:nd, 1:nd))
         normal(1:nd) = frame(nd, 1:nd)
         total = 0.0_dp
@@ -950,34 +950,34 @@ contains
     do i = 0, 1
       call new_interface_element('interface-quad4' // trim(merge('-nodal', '      ', i == 1)), element, error)
       if (allocated(error)) return
-      call check(error, element%min_jacobian(both_layers(placed(rect, r))), 1.5_dp, 'quad4 rectangle', &
+      call check(error, element%min_jacobian_nd(both_layers(placed(rect, r))), 1.5_dp, 'quad4 rectangle', &
                  rel=1.0e-13_dp)
       if (allocated(error)) return
       call new_interface_element('interface-quad8' // trim(merge('-nodal', '      ', i == 1)), element, error)
       if (allocated(error)) return
-      call check(error, element%min_jacobian(both_layers(placed(with_midpoints(rect), r))), 1.5_dp, &
+      call check(error, element%min_jacobian_nd(both_layers(placed(with_midpoints(rect), r))), 1.5_dp, &
                  'quad8 rectangle', rel=1.0e-13_dp)
       if (allocated(error)) return
     end do
     call new_interface_element('interface-tri3', element, error)
     if (allocated(error)) return
-    call check(error, element%min_jacobian(both_layers(placed(rect(:, [1, 2, 4]), r))), 6.0_dp, &
+    call check(error, element%min_jacobian_nd(both_layers(placed(rect(:, [1, 2, 4]), r))), 6.0_dp, &
                'tri3: 2 A', rel=1.0e-13_dp)
     if (allocated(error)) return
     call new_interface_element('interface-line2', element, error)
     if (allocated(error)) return
-    call check(error, element%min_jacobian(both_layers(reshape([0.3_dp, 0.1_dp, 2.3_dp, 1.6_dp], [2, 2]))), &
+    call check(error, element%min_jacobian_nd(both_layers(reshape([0.3_dp, 0.1_dp, 2.3_dp, 1.6_dp], [2, 2]))), &
                1.25_dp, 'line2: L/2', rel=1.0e-13_dp)
     if (allocated(error)) return
     call new_interface_element('interface-quad4', element, error)
     if (allocated(error)) return
     ! re-entrant corner 3 at (0.5, 0.5): the (linear) Jacobian is 6, 1.5, -3.5, 1 at the corners / 4
     rect(:, 3) = [0.5_dp, 0.5_dp, 0.0_dp]
-    call check(error, element%min_jacobian(both_layers(placed(rect, r))), &
+    call check(error, element%min_jacobian_nd(both_layers(placed(rect, r))), &
                0.25_dp * (1.25_dp - 4.75_dp / sqrt(3.0_dp)), 'inverted quad4: negative Jacobian', rel=1.0e-13_dp)
     if (allocated(error)) return
     xe = both_layers(spread(shift, 2, 4))
-    call check(error, element%min_jacobian(xe), 0.0_dp, 'collapsed quad4', abs=0.0_dp)
+    call check(error, element%min_jacobian_nd(xe), 0.0_dp, 'collapsed quad4', abs=0.0_dp)
   end subroutine test_min_jacobian
 
   !> A uniform normal traction sigma_n = p (tangential ones zero) on interface elements whose lower
@@ -1036,7 +1036,7 @@ contains
       allocate (sig(nd, element%ngauss()), fe(nd * 2 * np))
       sig = 0.0_dp
       sig(nd, :) = p
-      call element%internal_force(xe, sig, fe)
+      call element%internal_force_nd(xe, sig, fe)
       force = 0.0_dp
       moment = 0.0_dp
       do a = 1, np

@@ -6,7 +6,7 @@ module test_result_schema
   use feps_result_schema, only: result_fields
   use feps_h5_testing, only: run_and_open, close_and_delete, read_real, read_int, file_text, string_attribute
   use hdf5, only: hid_t
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   use feps_element_catalog, only: new_solid_element
   implicit none
   private
@@ -188,7 +188,7 @@ contains
     integer(hid_t) :: file_id
     real(dp), allocatable :: x(:, :)
     integer, allocatable :: anchor(:, :), low(:, :), high(:, :), connectivity(:, :)
-    class(element_t), allocatable :: hex8
+    class(solid_element_t), allocatable :: hex8
     call run_and_open('input/modelB/SE1.dat', 'schema_sets', file_id, error)
     if (allocated(error)) return
     call read_real(file_id, '/mesh/coordinates', x, error)

@@ -12,7 +12,7 @@ module test_stress_recovery
   use feps_kinds, only: dp
   use feps_error, only: str
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   use feps_element_catalog, only: new_element => new_solid_element
   use feps_stress_recovery, only: extrapolation_matrix, extrapolation_from_points, nodal_average
   use feps_interface_element, only: interface_element_t, new_interface_element
@@ -66,7 +66,7 @@ contains
     character(len=6), parameter :: types(6) = [character(len=6) :: 'hex8', 'hex8b', 'hex20', 'hex20r', 'tri6', 'tri6-6']
     integer, parameter :: degrees(6) = [1, 1, 2, 1, 1, 2]
     logical, parameter :: tensor(6) = [.true., .true., .true., .true., .false., .false.]
-    class(element_t), allocatable :: element
+    class(solid_element_t), allocatable :: element
     real(dp), allocatable :: e(:, :), xg(:, :), w(:), xn(:, :), at_gauss(:), at_nodes(:)
     logical :: ok
     integer :: t, q, a
@@ -109,7 +109,7 @@ contains
   !! element is 0 with count 0.
   subroutine test_average(error)
     type(error_t), allocatable, intent(out) :: error
-    class(element_t), allocatable :: element
+    class(solid_element_t), allocatable :: element
     real(dp), allocatable :: e(:, :)
     real(dp) :: values(6, 16), nodal(6, 13)
     integer :: count(13), node

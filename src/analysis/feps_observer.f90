@@ -13,8 +13,7 @@ module feps_observer
     real(dp), allocatable :: strain(:, :)    !! (ncomp, npoints)
     integer, allocatable :: state(:)         !! point states (feps_material state_*)
     integer :: points_per_element = 0
-    logical :: is_interface = .false.
-    logical :: is_bar = .false.
+    integer :: family = 0                    !! the element catalog's family of the group's type
   end type group_result_t
 
   !> One step's results.

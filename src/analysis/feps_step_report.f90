@@ -6,7 +6,7 @@ module feps_step_report
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_solver, str
   use feps_result_schema, only: result_fields
-  use feps_element_catalog, only: family_solid, family_interface, family_bar
+  use feps_element_catalog, only: family_interface
   use feps_model, only: model_t, stage_t, output_fields_t, method_initial_stiffness, method_full_newton_raphson, &
                         method_newton_raphson
   use feps_assembly, only: group_kernel_t, element_strains
@@ -31,7 +31,7 @@ contains
     integer :: g
     logical :: now
     do g = 1, size(model%groups)
-      if (.not. an%kernels(g)%is_interface) cycle
+      if (an%kernels(g)%family /= family_interface) cycle
       now = all(an%states(g)%state == state_open)
       if (now .and. .not. fully_open(g)) then
         call observer%progress('note: interface group ' // model%groups(g)%name // ' is fully open (' // &
@@ -70,7 +70,7 @@ contains
     integer :: g
     n = 0
     do g = 1, size(an%states)
-      if (.not. an%kernels(g)%is_interface .or. .not. an%states(g)%nonlinear) cycle
+      if (an%kernels(g)%family /= family_interface .or. .not. an%states(g)%nonlinear) cycle
       n = n + count(an%states(g)%state_t == state_open .and. an%states(g)%state /= state_open)
     end do
   end function newly_open_points
@@ -246,8 +246,7 @@ contains
     allocate (res%groups(size(model%groups)))
     do g = 1, size(model%groups)
       res%groups(g)%points_per_element = an%kernels(g)%npoints
-      res%groups(g)%is_interface = an%kernels(g)%is_interface
-      res%groups(g)%is_bar = an%kernels(g)%is_bar
+      res%groups(g)%family = an%kernels(g)%family
       ! Fields not asked for are not computed (stress recovery is most of a linear step's output cost).
       if (.not. group_output_wanted(model%fields, an%kernels(g))) cycle
       if (an%states(g)%nonlinear) then
@@ -308,21 +307,13 @@ contains
                      'precision); no results are written')
   end subroutine check_finite_results
 
-  !> Does any requested field need the point results of a group of this kernel's kind? Every
+  !> Does any requested field need the point results of a group of this kernel's family? Every
   !! field of the result schema that belongs to the group's element family does (the nodal
   !! averages are made from the points).
   pure logical function group_output_wanted(fields, kernel)
     type(output_fields_t), intent(in) :: fields
     type(group_kernel_t), intent(in) :: kernel
-    integer :: family
-    if (kernel%is_bar) then
-      family = family_bar
-    else if (kernel%is_interface) then
-      family = family_interface
-    else
-      family = family_solid
-    end if
-    group_output_wanted = any(fields%on .and. result_fields%family == family)
+    group_output_wanted = any(fields%on .and. result_fields%family == kernel%family)
   end function group_output_wanted
 
   !> Strains and stresses of a linear group from the total displacements (sigma = D eps).

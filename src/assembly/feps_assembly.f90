@@ -7,24 +7,19 @@ module feps_assembly
   use feps_dof_map, only: dof_map_t
   use feps_sparse_matrix, only: csr_matrix_t
   use feps_element, only: element_t
-  use feps_element_catalog, only: new_solid_element, family_interface, family_bar
-  use feps_interface_element, only: interface_element_t, new_interface_element
-  use feps_bar_element, only: bar_element_t, new_bar_element
+  use feps_element_catalog, only: new_element, family_solid
   use feps_material, only: material_slot_t
   use feps_material_factory, only: material_of
   implicit none
   private
 
-  !> Element and material objects of one group, built once.
+  !> The element object of one group, made once by the element catalog, and its sizes.
   type, public :: group_kernel_t
-    logical :: is_interface = .false.
-    logical :: is_bar = .false.
-    class(element_t), allocatable :: element      !! solid groups
-    type(interface_element_t) :: iface            !! interface groups
-    type(bar_element_t) :: bar                    !! bar groups
+    class(element_t), allocatable :: element      !! any family, behind the element contract
+    integer :: family = 0                         !! the catalog's family of the group's type
     integer :: nnodes = 0                         !! nodes per element
     integer :: npoints = 0                        !! integration points per element
-    integer :: ncomp = 0                          !! stress components (6 solid, 3 interface)
+    integer :: ncomp = 0                          !! stress components per point (6 solid, 3 interface, ...)
   end type group_kernel_t
 
 
@@ -42,33 +37,16 @@ contains
     allocate (kernels(size(model%groups)))
     do g = 1, size(model%groups)
       associate (k => kernels(g), grp => model%groups(g))
-        k%is_interface = grp%element%family == family_interface
-        k%is_bar = grp%element%family == family_bar
-        if (k%is_interface) then
-          call new_interface_element(grp%element_type, k%iface, error)
-        else if (k%is_bar) then
-          call new_bar_element(grp%element_type, k%bar, error)
-        else
-          call new_solid_element(grp%element_type, k%element, error)
-        end if
+        call new_element(grp%element_type, k%element, error)
         if (allocated(error)) then
           call input_error(error, grp%file, grp%line, 'group ' // grp%name // ': unsupported element type "' // &
                            grp%element_type // '"')
           return
         end if
-        if (k%is_interface) then
-          k%nnodes = k%iface%nnodes()
-          k%npoints = k%iface%ngauss()
-          k%ncomp = k%iface%ncomp()
-        else if (k%is_bar) then
-          k%nnodes = k%bar%nnodes()
-          k%npoints = k%bar%ngauss()
-          k%ncomp = 1
-        else
-          k%nnodes = k%element%nnodes()
-          k%npoints = k%element%ngauss()
-          k%ncomp = 6
-        end if
+        k%family = grp%element%family
+        k%nnodes = k%element%nnodes()
+        k%npoints = k%element%npoints()
+        k%ncomp = k%element%ncomp()
       end associate
     end do
   end subroutine build_kernels
@@ -86,53 +64,29 @@ contains
     end do
   end subroutine build_materials
 
-  !> Every element must have positive Jacobian determinants at its Gauss points and nodes.
+  !> Every element must have a positive Jacobian (solids: determinant at their Gauss points and
+  !! nodes; interfaces and bars: their signed surface or line Jacobian). `min_detj` is the
+  !! smallest determinant of the solids (the summary's volume mapping check).
   subroutine check_jacobians(model, kernels, min_detj, error)
     type(model_t), intent(in) :: model
     type(group_kernel_t), intent(in) :: kernels(:)
     real(dp), intent(out) :: min_detj
     type(error_t), allocatable, intent(out) :: error
     integer :: g, e
-    real(dp) :: lo, hi
+    real(dp) :: lo
     min_detj = huge(1.0_dp)
     do g = 1, size(model%groups)
-      do e = 1, size(model%groups(g)%connectivity, 2)
-        if (kernels(g)%is_bar) then
-          lo = kernels(g)%bar%min_jacobian(model%coords(:, model%groups(g)%connectivity(:, e)))
+      associate (group => model%groups(g), element => kernels(g)%element)
+        do e = 1, size(group%connectivity, 2)
+          lo = element%min_jacobian(model%coords(:, group%connectivity(:, e)))
+          if (kernels(g)%family == family_solid) min_detj = min(min_detj, lo)
           if (.not. (lo > 0.0_dp)) then
-            call input_error(error, model%groups(g)%file, model%groups(g)%line, 'bar element ' // str(e) // &
-                             ' of group ' // model%groups(g)%name // ' (nodes ' // &
-                             node_list(model%groups(g)%connectivity(:, e)) // ') is folded or has coincident ' // &
-                             'nodes (Jacobian ' // str(lo) // ')')
+            call input_error(error, group%file, group%line, element%jacobian_message(str(e) // ' of group ' // &
+                             group%name // ' (nodes ' // node_list(group%connectivity(:, e)) // ')', lo))
             return
           end if
-          cycle
-        end if
-        if (kernels(g)%is_interface) then
-          if (kernels(g)%iface%ndim() == 2) then
-            lo = kernels(g)%iface%min_jacobian(model%coords(1:2, model%groups(g)%connectivity(:, e)))
-          else
-            lo = kernels(g)%iface%min_jacobian(model%coords(:, model%groups(g)%connectivity(:, e)))
-          end if
-          if (.not. (lo > 0.0_dp)) then
-            call input_error(error, model%groups(g)%file, model%groups(g)%line, 'interface element ' // str(e) // &
-                             ' of group ' // model%groups(g)%name // ' (nodes ' // &
-                             node_list(model%groups(g)%connectivity(:, e)) // ') has a degenerate or folded ' // &
-                             'lower face (surface Jacobian ' // str(lo) // ')')
-            return
-          end if
-          cycle
-        end if
-        call kernels(g)%element%jacobian_range(model%coords(:, model%groups(g)%connectivity(:, e)), lo, hi)
-        min_detj = min(min_detj, lo)
-        if (.not. (lo > 0.0_dp)) then
-          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'element ' // str(e) // &
-                           ' of group ' // model%groups(g)%name // ' (nodes ' // &
-                           node_list(model%groups(g)%connectivity(:, e)) // ') has a non-positive Jacobian (' // &
-                           str(lo) // '): check its node order or coordinates')
-          return
-        end if
-      end do
+        end do
+      end associate
     end do
   end subroutine check_jacobians
 
@@ -328,46 +282,22 @@ contains
 
 
 
-  !> Element stiffness from material tangents at its points: d(ncomp, ncomp, npoints).
-  !! Every element works with 3 DOFs per node; a 2D (plane-strain) interface's x-y matrix is
-  !! embedded with zero z rows and columns (uz is held in 2D models).
+  !> Element stiffness from material tangents at its points: d(ncomp, ncomp, npoints), ke with
+  !! 3 DOFs per node (every family, a 2D one embedded in them).
   subroutine element_stiffness(kernel, xe, d, ke)
     type(group_kernel_t), intent(in) :: kernel
     real(dp), intent(in) :: xe(:, :), d(:, :, :)
     real(dp), intent(out) :: ke(:, :)
-    real(dp) :: min_detj
-    real(dp), allocatable :: k2(:, :)
-    integer, allocatable :: map2(:)
-    if (kernel%is_bar) then
-      call kernel%bar%stiffness(xe, d, ke)
-    else if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
-      map2 = xy_dofs(kernel%nnodes)
-      allocate (k2(2 * kernel%nnodes, 2 * kernel%nnodes))
-      call kernel%iface%stiffness(xe(1:2, :), d, k2)
-      ke = 0.0_dp
-      ke(map2, map2) = k2
-    else if (kernel%is_interface) then
-      call kernel%iface%stiffness(xe, d, ke)
-    else
-      call kernel%element%stiffness(xe, d, ke, min_detj)
-    end if
+    call kernel%element%stiffness(xe, d, ke)
   end subroutine element_stiffness
 
-  !> Strains (solids: Voigt, engineering shears; interfaces: relative displacements) at the
-  !! element's points from its displacements ue (global Cartesian, node by node).
+  !> Strains (solids: Voigt, engineering shears; interfaces: relative displacements; bars: the
+  !! axial strain) at the element's points from its displacements ue (global Cartesian, node by node).
   subroutine element_strains(kernel, xe, ue, eps)
     type(group_kernel_t), intent(in) :: kernel
     real(dp), intent(in) :: xe(:, :), ue(:)
     real(dp), intent(out) :: eps(:, :)
-    if (kernel%is_bar) then
-      call kernel%bar%strains(xe, ue, eps)
-    else if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
-      call kernel%iface%strains(xe(1:2, :), ue(xy_dofs(kernel%nnodes)), eps)
-    else if (kernel%is_interface) then
-      call kernel%iface%strains(xe, ue, eps)
-    else
-      call kernel%element%gauss_strains(xe, ue, eps)
-    end if
+    call kernel%element%strains(xe, ue, eps)
   end subroutine element_strains
 
   !> Internal nodal forces, sum of B^T sigma over the element's points.
@@ -375,40 +305,7 @@ contains
     type(group_kernel_t), intent(in) :: kernel
     real(dp), intent(in) :: xe(:, :), sig(:, :)
     real(dp), intent(out) :: fe(:)
-    real(dp) :: xi(3, kernel%npoints), w(kernel%npoints), b(6, 3 * kernel%nnodes), detj
-    integer :: q
-    if (kernel%is_bar) then
-      call kernel%bar%internal_force(xe, sig, fe)
-      return
-    else if (kernel%is_interface .and. kernel%iface%ndim() == 2) then
-      fe = 0.0_dp
-      block
-        real(dp) :: f2(2 * kernel%nnodes)
-        call kernel%iface%internal_force(xe(1:2, :), sig, f2)
-        fe(xy_dofs(kernel%nnodes)) = f2
-      end block
-      return
-    else if (kernel%is_interface) then
-      call kernel%iface%internal_force(xe, sig, fe)
-      return
-    end if
-    call kernel%element%gauss_rule(xi, w)
-    fe = 0.0_dp
-    do q = 1, kernel%npoints
-      call kernel%element%b_matrix(xe, xi(:, q), b, detj)
-      fe = fe + matmul(sig(:, q), b) * (w(q) * detj)
-    end do
+    call kernel%element%internal_force(xe, sig, fe)
   end subroutine element_internal_force
-
-  !> Positions of the x and y DOFs of n nodes among 3 DOFs per node.
-  pure function xy_dofs(n) result(idx)
-    integer, intent(in) :: n
-    integer :: idx(2 * n)
-    integer :: k
-    do k = 1, n
-      idx(2 * k - 1) = 3 * k - 2
-      idx(2 * k) = 3 * k - 1
-    end do
-  end function xy_dofs
 
 end module feps_assembly

@@ -10,6 +10,7 @@ module feps_loads
   use feps_coordinate_system, only: csys_cylindrical
   use feps_dof_map, only: dof_map_t
   use feps_assembly, only: group_kernel_t
+  use feps_solid_element, only: solid_element_t
   implicit none
   private
 
@@ -17,7 +18,8 @@ module feps_loads
 
 contains
 
-  !> Faces of the set's group whose nodes all lie in the set's region.
+  !> Faces of the set's group whose nodes all lie in the set's region. Faces are a solid's:
+  !! a set on a group of another family is an input error.
   subroutine resolve_face_sets(model, kernels, error)
     type(model_t), intent(inout) :: model
     type(group_kernel_t), intent(in) :: kernels(:)
@@ -25,14 +27,22 @@ contains
     integer :: s, g, e, f, k, nfound
     integer, allocatable :: fn(:), elems(:), faces(:)
     logical :: all_in
+    class(solid_element_t), allocatable :: solid
 
     do s = 1, size(model%face_sets)
       g = model%face_sets(s)%group
+      call solid_of(kernels(g), solid)
+      if (.not. allocated(solid)) then
+        call input_error(error, model%face_sets(s)%file, model%face_sets(s)%line, 'face set ' // &
+                         model%face_sets(s)%name // ': group ' // model%groups(g)%name // ' (' // &
+                         model%groups(g)%element_type // ') has no faces; face sets take faces of solid elements')
+        return
+      end if
       allocate (elems(0), faces(0))
       nfound = 0
       do e = 1, size(model%groups(g)%connectivity, 2)
-        do f = 1, kernels(g)%element%nfaces()
-          fn = kernels(g)%element%face_nodes(f)
+        do f = 1, solid%nfaces()
+          fn = solid%face_nodes(f)
           all_in = .true.
           do k = 1, size(fn)
             if (.not. in_region(model%face_sets(s)%region, model%systems(model%face_sets(s)%region%csys), &
@@ -95,14 +105,16 @@ contains
     real(dp) :: total
     integer :: k, g, e, q
     real(dp), allocatable :: xg(:, :), nrm(:, :), wda(:), nf(:, :)
+    class(solid_element_t), allocatable :: solid
     total = 0.0_dp
     associate (fs => model%face_sets(l%face_set))
       g = fs%group
+      call solid_of(kernels(g), solid)
       do k = 1, size(fs%element)
         e = fs%element(k)
-        call face_work_arrays(kernels(g), fs%face(k), xg, nrm, wda, nf)
-        call kernels(g)%element%face_integration(model%coords(:, model%groups(g)%connectivity(:, e)), fs%face(k), &
-                                                 xg, nrm, wda, nf)
+        call face_work_arrays(solid, fs%face(k), xg, nrm, wda, nf)
+        call solid%face_integration(model%coords(:, model%groups(g)%connectivity(:, e)), fs%face(k), &
+                                    xg, nrm, wda, nf)
         do q = 1, size(wda)
           total = total + load_shape(model, l, xg(:, q)) * wda(q)
         end do
@@ -122,6 +134,7 @@ contains
     real(dp) :: t(3), peak, integral, dir(3), basis(3, 3)
     real(dp), allocatable :: xg(:, :), nrm(:, :), wda(:), nf(:, :)
     integer, allocatable :: fn(:)
+    class(solid_element_t), allocatable :: solid
 
     f = 0.0_dp
     do i = 1, size(model%nodal_loads)
@@ -164,12 +177,13 @@ contains
             peak = l%total / integral / norm2(l%components)
           end if
         end if
+        call solid_of(kernels(g), solid)
         do k = 1, size(fs%element)
           e = fs%element(k)
-          fn = kernels(g)%element%face_nodes(fs%face(k))
-          call face_work_arrays(kernels(g), fs%face(k), xg, nrm, wda, nf)
-          call kernels(g)%element%face_integration(model%coords(:, model%groups(g)%connectivity(:, e)), fs%face(k), &
-                                                   xg, nrm, wda, nf)
+          fn = solid%face_nodes(fs%face(k))
+          call face_work_arrays(solid, fs%face(k), xg, nrm, wda, nf)
+          call solid%face_integration(model%coords(:, model%groups(g)%connectivity(:, e)), fs%face(k), &
+                                      xg, nrm, wda, nf)
           do q = 1, size(wda)
             if (l%kind == load_pressure) then
               t = -peak * load_shape(model, l, xg(:, q)) * nrm(:, q)
@@ -215,19 +229,30 @@ contains
 
   !> Face-integration arrays sized for face `face` of the group's element, kept when they have
   !! that size already (the faces of one element may differ: a wedge's triangles and quadrilaterals).
-  subroutine face_work_arrays(kernel, face, xg, nrm, wda, nf)
-    type(group_kernel_t), intent(in) :: kernel
+  subroutine face_work_arrays(solid, face, xg, nrm, wda, nf)
+    class(solid_element_t), intent(in) :: solid
     integer, intent(in) :: face
     real(dp), allocatable, intent(inout) :: xg(:, :), nrm(:, :), wda(:), nf(:, :)
     integer :: ng, nn
-    ng = kernel%element%nface_gauss(face)
-    nn = kernel%element%nface_nodes(face)
+    ng = solid%nface_gauss(face)
+    nn = solid%nface_nodes(face)
     if (allocated(xg)) then
       if (size(wda) == ng .and. size(nf, 1) == nn) return
       deallocate (xg, nrm, wda, nf)
     end if
     allocate (xg(3, ng), nrm(3, ng), wda(ng), nf(nn, ng))
   end subroutine face_work_arrays
+
+  !> The group's element as a solid, for its faces (a copy: the elements carry no data beyond
+  !! their type); not allocated for an element of another family, which has no faces.
+  subroutine solid_of(kernel, solid)
+    type(group_kernel_t), intent(in) :: kernel
+    class(solid_element_t), allocatable, intent(out) :: solid
+    select type (element => kernel%element)
+    class is (solid_element_t)
+      allocate (solid, source=element)
+    end select
+  end subroutine solid_of
 
   !> Free-equation right-hand side from nodal forces (rotated into nodal systems).
   pure subroutine to_equations(map, f_nodes, b)

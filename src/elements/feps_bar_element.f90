@@ -16,8 +16,9 @@
 !! d(1, 1) = E A (eq. 2.5.10); integration weights are w J, i.e. along the arc length.
 module feps_bar_element
   use feps_kinds, only: dp
-  use feps_error, only: error_t, fatal_error, err_input
+  use feps_error, only: error_t, fatal_error, err_input, str
   use feps_gauss, only: gauss_legendre
+  use feps_element, only: element_t
   implicit none
   private
 
@@ -28,24 +29,28 @@ module feps_bar_element
   integer, parameter, public :: bar_ndim = 3        !! coordinates and DOFs per node
 
   !> A curved bar with `nodes` nodes.
-  type :: bar_element_t
+  type, extends(element_t) :: bar_element_t
     integer :: nodes = 2
   contains
+    ! the element contract
     procedure :: nnodes
-    procedure :: ndim
+    procedure :: npoints => ngauss
     procedure :: ncomp
-    procedure :: ngauss
+    procedure :: ndim
     procedure :: element_type
-    procedure :: natural_coordinates
-    procedure :: shape
-    procedure :: integration_rule
-    procedure :: point_b
     procedure :: stiffness
     procedure :: internal_force
     procedure :: strains
     procedure :: point_coordinates
-    procedure :: length
     procedure :: min_jacobian
+    procedure :: jacobian_message => bar_jacobian_message
+    ! the bar family
+    procedure :: ngauss
+    procedure :: natural_coordinates
+    procedure :: shape
+    procedure :: integration_rule
+    procedure :: point_b
+    procedure :: length
   end type bar_element_t
 
 contains
@@ -346,5 +351,14 @@ contains
       min_jacobian = min(min_jacobian, dot_product(tangent, reference))
     end do
   end function min_jacobian
+
+  !> The rejection of a bar by its line Jacobian `jac` <= 0.
+  pure function bar_jacobian_message(self, label, jac) result(message)
+    class(bar_element_t), intent(in) :: self
+    character(len=*), intent(in) :: label
+    real(dp), intent(in) :: jac
+    character(len=:), allocatable :: message
+    message = 'bar element ' // label // ' is folded or has coincident nodes (Jacobian ' // str(jac) // ')'
+  end function bar_jacobian_message
 
 end module feps_bar_element

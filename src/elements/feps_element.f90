@@ -1,51 +1,40 @@
-!> The abstract 3D solid element. A concrete element (one file each) supplies its shape
-!! functions, Gauss rules and faces; everything built on them (B-matrix, stiffness, Gauss-point
-!! strains and stresses, Jacobian checks, face integration, volume) lives here once.
+!> The element contract: what assembly, loads, the analysis and the results ask of an element of
+!! any family (solids, interfaces, bars, and any future one). The element catalog
+!! (feps_element_catalog) makes an element of every type it knows as a `class(element_t)`.
 !!
-!! Conventions:
-!! - Voigt order [xx, yy, zz, yz, xz, xy] with engineering shear strains (gamma = 2 eps);
-!!   stress tension positive.
-!! - Element DOF order u1x, u1y, u1z, u2x, ...; `xe(3, nen)` holds the node coordinates.
-!! - Faces: `face_nodes(face)` lists the face's nodes counter-clockwise seen from outside, so that
-!!   with the face-local coordinates the normal dx/ds1 x dx/ds2 points out of the element. A
-!!   quadrilateral face has s1 from face node 1 towards 2 and s2 from 1 towards 4, both in
-!!   [-1, 1]; a triangular face has the area coordinates (s1, s2) = (L2, L3), s1 from face node 1
-!!   towards 2 and s2 from 1 towards 3. Faces of one element may differ (a wedge has triangles
-!!   and quadrilaterals), so the face counts, shape functions and rules take the face number.
+!! Conventions, the same for every family:
+!! - Node coordinates `xe(3, nnodes)` and element DOFs node by node with 3 DOFs per node
+!!   (u1x, u1y, u1z, u2x, ...), global Cartesian. A plane-strain type (ndim() = 2) keeps the
+!!   three DOFs: its matrices have zero z rows and columns and it ignores uz (the analysis holds
+!!   uz in 2D models).
+!! - Each element has `npoints()` integration points and `ncomp()` strain (stress) components
+!!   per point, in the family's own order and frame: solids the Voigt strains
+!!   [xx yy zz yz xz xy] (engineering shears) and stresses; interfaces the relative
+!!   displacements and tractions in their local frame; bars the axial strain and axial force.
+!!   The material matrix of a point, `d(ncomp, ncomp)`, maps the one to the other.
+!!
+!! What a family adds of its own (a solid's shape functions, B-matrix and faces; an interface's
+!! layers and local frame; a bar's tangent) stays in the family's abstract or concrete type.
 module feps_element
   use feps_kinds, only: dp
+  use feps_error, only: str
   implicit none
   private
 
-  public :: voigt_size
-
-  integer, parameter :: voigt_size = 6   !! components of strain and stress
-
+  !> An element of any family, seen through what every family provides.
   type, abstract, public :: element_t
   contains
-    ! supplied by each element
-    procedure(count_interface), deferred :: nnodes          !! nodes per element
-    procedure(count_interface), deferred :: ngauss          !! Gauss points of the volume rule
-    procedure(shape_interface), deferred :: shape           !! N(xi) and dN/dxi
-    procedure(rule_interface), deferred :: gauss_rule       !! volume Gauss points and weights
-    procedure(nodes_xi_interface), deferred :: natural_coordinates  !! xi of every node
-    procedure(count_interface), deferred :: nfaces          !! faces of the element
-    procedure(face_count_interface), deferred :: nface_nodes  !! nodes of a face
-    procedure(face_nodes_interface), deferred :: face_nodes !! local node numbers of a face (outward order)
-    procedure(face_shape_interface), deferred :: face_shape !! a face's shape functions N(s), dN/ds
-    procedure(face_count_interface), deferred :: nface_gauss  !! Gauss points of a face's rule
-    procedure(face_rule_interface), deferred :: face_gauss_rule  !! a face's Gauss points and weights
-    procedure(name_interface), deferred :: element_type     !! 'hex8', 'hex20', ...
-    ! common to every solid element
-    procedure :: shape_gradients
-    procedure :: b_matrix
-    procedure :: stiffness
-    procedure :: gauss_strains
-    procedure :: gauss_stresses
-    procedure :: gauss_coordinates
-    procedure :: jacobian_range
-    procedure :: face_integration
-    procedure :: volume
+    procedure(count_interface), deferred :: nnodes          !! nodes per element (an interface: both layers)
+    procedure(count_interface), deferred :: npoints         !! integration points per element
+    procedure(count_interface), deferred :: ncomp           !! strain (stress) components per point
+    procedure(count_interface), deferred :: ndim            !! spatial dimension: 3, or 2 for plane strain
+    procedure(name_interface), deferred :: element_type     !! the catalog's type name: 'hex8', 'bar3', ...
+    procedure(stiffness_interface), deferred :: stiffness   !! sum of B^T D B over the points
+    procedure(force_interface), deferred :: internal_force  !! sum of B^T sig over the points
+    procedure(strains_interface), deferred :: strains       !! B ue at the points
+    procedure(coordinates_interface), deferred :: point_coordinates  !! global positions of the points
+    procedure(jacobian_interface), deferred :: min_jacobian !! mesh check: <= 0 rejects the element
+    procedure :: jacobian_message
   end type element_t
 
   abstract interface
@@ -54,331 +43,69 @@ module feps_element
       class(element_t), intent(in) :: self
     end function count_interface
 
-    !> A count (nodes, Gauss points) of face `face`.
-    pure integer function face_count_interface(self, face)
-      import :: element_t
-      class(element_t), intent(in) :: self
-      integer, intent(in) :: face
-    end function face_count_interface
-
-    !> Shape functions `n(nen)` and their derivatives `dn(3, nen)` (d/dxi_i) at `xi`.
-    pure subroutine shape_interface(self, xi, n, dn)
-      import :: element_t, dp
-      class(element_t), intent(in) :: self
-      real(dp), intent(in) :: xi(3)
-      real(dp), intent(out) :: n(:), dn(:, :)
-    end subroutine shape_interface
-
-    !> Volume rule: points `xi(3, ngauss)` and weights `w(ngauss)`.
-    pure subroutine rule_interface(self, xi, w)
-      import :: element_t, dp
-      class(element_t), intent(in) :: self
-      real(dp), intent(out) :: xi(:, :), w(:)
-    end subroutine rule_interface
-
-    !> Natural coordinates `xi(3, nen)` of the nodes.
-    pure subroutine nodes_xi_interface(self, xi)
-      import :: element_t, dp
-      class(element_t), intent(in) :: self
-      real(dp), intent(out) :: xi(:, :)
-    end subroutine nodes_xi_interface
-
-    !> Local node numbers of face `face`, ordered so that the face normal points outwards.
-    pure function face_nodes_interface(self, face) result(nodes)
-      import :: element_t
-      class(element_t), intent(in) :: self
-      integer, intent(in) :: face
-      integer, allocatable :: nodes(:)
-    end function face_nodes_interface
-
-    !> Shape functions `n(nface_nodes(face))` of face `face` and their derivatives
-    !! `dn(2, nface_nodes(face))` at face point `s`.
-    pure subroutine face_shape_interface(self, face, s, n, dn)
-      import :: element_t, dp
-      class(element_t), intent(in) :: self
-      integer, intent(in) :: face
-      real(dp), intent(in) :: s(2)
-      real(dp), intent(out) :: n(:), dn(:, :)
-    end subroutine face_shape_interface
-
-    !> Rule of face `face`: points `s(2, nface_gauss(face))` and weights `w(nface_gauss(face))`.
-    pure subroutine face_rule_interface(self, face, s, w)
-      import :: element_t, dp
-      class(element_t), intent(in) :: self
-      integer, intent(in) :: face
-      real(dp), intent(out) :: s(:, :), w(:)
-    end subroutine face_rule_interface
-
     pure function name_interface(self) result(name)
       import :: element_t
       class(element_t), intent(in) :: self
       character(len=:), allocatable :: name
     end function name_interface
+
+    !> Element stiffness `ke(3 nnodes, 3 nnodes)` from the material matrices `d(ncomp, ncomp,
+    !! npoints)` of its points (need not be symmetric).
+    pure subroutine stiffness_interface(self, xe, d, ke)
+      import :: element_t, dp
+      class(element_t), intent(in) :: self
+      real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+      real(dp), intent(in) :: d(:, :, :)   !! (ncomp, ncomp, npoints)
+      real(dp), intent(out) :: ke(:, :)    !! (3 nnodes, 3 nnodes)
+    end subroutine stiffness_interface
+
+    !> Internal nodal forces `fe(3 nnodes)` from the stresses `sig(ncomp, npoints)` of its points.
+    pure subroutine force_interface(self, xe, sig, fe)
+      import :: element_t, dp
+      class(element_t), intent(in) :: self
+      real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+      real(dp), intent(in) :: sig(:, :)    !! (ncomp, npoints)
+      real(dp), intent(out) :: fe(:)       !! (3 nnodes)
+    end subroutine force_interface
+
+    !> Strains `eps(ncomp, npoints)` at the points from the displacements `ue(3 nnodes)`.
+    pure subroutine strains_interface(self, xe, ue, eps)
+      import :: element_t, dp
+      class(element_t), intent(in) :: self
+      real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+      real(dp), intent(in) :: ue(:)        !! (3 nnodes)
+      real(dp), intent(out) :: eps(:, :)   !! (ncomp, npoints)
+    end subroutine strains_interface
+
+    !> Global coordinates `xg(3, npoints)` of the points, in the order of their results.
+    pure subroutine coordinates_interface(self, xe, xg)
+      import :: element_t, dp
+      class(element_t), intent(in) :: self
+      real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+      real(dp), intent(out) :: xg(:, :)    !! (3, npoints)
+    end subroutine coordinates_interface
+
+    !> The smallest Jacobian of the element's mapping (a solid: the determinant; an interface or
+    !! a bar: its signed surface or line Jacobian); the caller rejects values <= 0.
+    pure real(dp) function jacobian_interface(self, xe)
+      import :: element_t, dp
+      class(element_t), intent(in) :: self
+      real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    end function jacobian_interface
   end interface
 
 contains
 
-  !> Shape functions `n(nen)`, their global derivatives `dndx(3, nen)` (d/dx, d/dy, d/dz) and the
-  !! Jacobian determinant at natural point `xi`. With detj = 0 (singular mapping) the derivatives
-  !! are returned as zero.
-  pure subroutine shape_gradients(self, xe, xi, n, dndx, detj)
+  !> The error message for an element rejected by its smallest Jacobian `jac` (<= 0): `label`
+  !! names the element ('<k> of group <name> (nodes ...)'). A family whose Jacobian means
+  !! something else (a surface, a line) overrides it to say so.
+  pure function jacobian_message(self, label, jac) result(message)
     class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)     !! (3, nen) node coordinates
-    real(dp), intent(in) :: xi(3)
-    real(dp), intent(out) :: n(:)        !! (nen)
-    real(dp), intent(out) :: dndx(:, :)  !! (3, nen)
-    real(dp), intent(out) :: detj
-    real(dp) :: dn(3, size(xe, 2)), jac(3, 3), inv(3, 3)
-    integer :: a
-    call self%shape(xi, n, dn)
-    ! jac(i, j) = d x_j / d xi_i
-    jac = 0.0_dp
-    do a = 1, size(xe, 2)
-      jac(:, 1) = jac(:, 1) + dn(:, a) * xe(1, a)
-      jac(:, 2) = jac(:, 2) + dn(:, a) * xe(2, a)
-      jac(:, 3) = jac(:, 3) + dn(:, a) * xe(3, a)
-    end do
-    inv(1, 1) = jac(2, 2) * jac(3, 3) - jac(2, 3) * jac(3, 2)
-    inv(2, 1) = jac(2, 3) * jac(3, 1) - jac(2, 1) * jac(3, 3)
-    inv(3, 1) = jac(2, 1) * jac(3, 2) - jac(2, 2) * jac(3, 1)
-    inv(1, 2) = jac(1, 3) * jac(3, 2) - jac(1, 2) * jac(3, 3)
-    inv(2, 2) = jac(1, 1) * jac(3, 3) - jac(1, 3) * jac(3, 1)
-    inv(3, 2) = jac(1, 2) * jac(3, 1) - jac(1, 1) * jac(3, 2)
-    inv(1, 3) = jac(1, 2) * jac(2, 3) - jac(1, 3) * jac(2, 2)
-    inv(2, 3) = jac(1, 3) * jac(2, 1) - jac(1, 1) * jac(2, 3)
-    inv(3, 3) = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
-    detj = jac(1, 1) * inv(1, 1) + jac(1, 2) * inv(2, 1) + jac(1, 3) * inv(3, 1)
-    if (abs(detj) <= tiny(detj)) then
-      dndx = 0.0_dp
-      return
-    end if
-    ! dN/dx = J^{-1} dN/dxi
-    inv = inv / detj
-    do a = 1, size(xe, 2)
-      dndx(:, a) = inv(:, 1) * dn(1, a) + inv(:, 2) * dn(2, a) + inv(:, 3) * dn(3, a)
-    end do
-  end subroutine shape_gradients
-
-  !> Fill the strain-displacement matrix `b(6, 3 nen)` from global derivatives `dndx(3, nen)`.
-  pure subroutine fill_b(dndx, b)
-    real(dp), intent(in) :: dndx(:, :)
-    real(dp), intent(out) :: b(:, :)
-    integer :: a, c
-    b = 0.0_dp
-    do a = 1, size(dndx, 2)
-      c = 3 * (a - 1)
-      b(1, c + 1) = dndx(1, a)
-      b(2, c + 2) = dndx(2, a)
-      b(3, c + 3) = dndx(3, a)
-      b(4, c + 2) = dndx(3, a)
-      b(4, c + 3) = dndx(2, a)
-      b(5, c + 1) = dndx(3, a)
-      b(5, c + 3) = dndx(1, a)
-      b(6, c + 1) = dndx(2, a)
-      b(6, c + 2) = dndx(1, a)
-    end do
-  end subroutine fill_b
-
-  !> Strain-displacement matrix `b(6, 3 nen)` at `xi` (eps = B u, engineering shears) and the
-  !! Jacobian determinant there.
-  pure subroutine b_matrix(self, xe, xi, b, detj)
-    class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)   !! (3, nen)
-    real(dp), intent(in) :: xi(3)
-    real(dp), intent(out) :: b(:, :)   !! (6, 3 nen)
-    real(dp), intent(out) :: detj
-    real(dp) :: n(size(xe, 2)), dndx(3, size(xe, 2))
-    call self%shape_gradients(xe, xi, n, dndx, detj)
-    call fill_b(dndx, b)
-  end subroutine b_matrix
-
-  !> Element stiffness `ke(3 nen, 3 nen)` = sum over Gauss points of B^T D B detJ w, with the
-  !! material matrix `d(6, 6, ngauss)` of each point (need not be symmetric). `min_detj` is the
-  !! smallest Jacobian determinant met; the caller must reject min_detj <= 0. size(d, 3) must be
-  !! ngauss() (it sizes the Gauss rule).
-  pure subroutine stiffness(self, xe, d, ke, min_detj)
-    class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)      !! (3, nen)
-    real(dp), intent(in) :: d(:, :, :)    !! (6, 6, ngauss)
-    real(dp), intent(out) :: ke(:, :)     !! (3 nen, 3 nen)
-    real(dp), intent(out) :: min_detj
-    integer :: g, a, col, r
-    real(dp) :: xi(3, size(d, 3)), w(size(d, 3))
-    real(dp) :: n(size(xe, 2)), dndx(3, size(xe, 2)), db(6, 3 * size(xe, 2))
-    real(dp) :: detj, dv, nx, ny, nz
-    call self%gauss_rule(xi, w)
-    ke = 0.0_dp
-    min_detj = huge(1.0_dp)
-    do g = 1, size(w)
-      call self%shape_gradients(xe, xi(:, g), n, dndx, detj)
-      min_detj = min(min_detj, detj)
-      dv = detj * w(g)
-      ! D B, using the sparsity of B (three nonzeros per column)
-      do a = 1, size(xe, 2)
-        nx = dndx(1, a)
-        ny = dndx(2, a)
-        nz = dndx(3, a)
-        col = 3 * (a - 1)
-        db(:, col + 1) = (d(:, 1, g) * nx + d(:, 6, g) * ny + d(:, 5, g) * nz) * dv
-        db(:, col + 2) = (d(:, 2, g) * ny + d(:, 6, g) * nx + d(:, 4, g) * nz) * dv
-        db(:, col + 3) = (d(:, 3, g) * nz + d(:, 4, g) * ny + d(:, 5, g) * nx) * dv
-      end do
-      ! B^T (D B), again three nonzeros per row of B^T
-      do col = 1, size(db, 2)
-        do a = 1, size(xe, 2)
-          nx = dndx(1, a)
-          ny = dndx(2, a)
-          nz = dndx(3, a)
-          r = 3 * (a - 1)
-          ke(r + 1, col) = ke(r + 1, col) + nx * db(1, col) + ny * db(6, col) + nz * db(5, col)
-          ke(r + 2, col) = ke(r + 2, col) + ny * db(2, col) + nx * db(6, col) + nz * db(4, col)
-          ke(r + 3, col) = ke(r + 3, col) + nz * db(3, col) + ny * db(4, col) + nx * db(5, col)
-        end do
-      end do
-    end do
-  end subroutine stiffness
-
-  !> Strains `eps(6, ngauss)` = B ue at the Gauss points.
-  pure subroutine gauss_strains(self, xe, ue, eps)
-    class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)     !! (3, nen)
-    real(dp), intent(in) :: ue(:)        !! (3 nen)
-    real(dp), intent(out) :: eps(:, :)   !! (6, ngauss)
-    integer :: g, a
-    real(dp) :: xi(3, size(eps, 2)), w(size(eps, 2))
-    real(dp) :: n(size(xe, 2)), dndx(3, size(xe, 2)), grad(3, 3), detj
-    call self%gauss_rule(xi, w)
-    do g = 1, size(w)
-      call self%shape_gradients(xe, xi(:, g), n, dndx, detj)
-      ! grad(i, j) = d u_i / d x_j
-      grad = 0.0_dp
-      do a = 1, size(xe, 2)
-        grad(:, 1) = grad(:, 1) + ue(3 * a - 2:3 * a) * dndx(1, a)
-        grad(:, 2) = grad(:, 2) + ue(3 * a - 2:3 * a) * dndx(2, a)
-        grad(:, 3) = grad(:, 3) + ue(3 * a - 2:3 * a) * dndx(3, a)
-      end do
-      eps(1, g) = grad(1, 1)
-      eps(2, g) = grad(2, 2)
-      eps(3, g) = grad(3, 3)
-      eps(4, g) = grad(2, 3) + grad(3, 2)
-      eps(5, g) = grad(1, 3) + grad(3, 1)
-      eps(6, g) = grad(1, 2) + grad(2, 1)
-    end do
-  end subroutine gauss_strains
-
-  !> Linear elastic stresses `sig(6, ngauss)` = D B ue at the Gauss points.
-  pure subroutine gauss_stresses(self, xe, ue, d, sig)
-    class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)      !! (3, nen)
-    real(dp), intent(in) :: ue(:)         !! (3 nen)
-    real(dp), intent(in) :: d(:, :, :)    !! (6, 6, ngauss)
-    real(dp), intent(out) :: sig(:, :)    !! (6, ngauss)
-    real(dp) :: eps(6, size(sig, 2))
-    integer :: g, k
-    call self%gauss_strains(xe, ue, eps)
-    do g = 1, size(sig, 2)
-      sig(:, g) = 0.0_dp
-      do k = 1, 6
-        sig(:, g) = sig(:, g) + d(:, k, g) * eps(k, g)
-      end do
-    end do
-  end subroutine gauss_stresses
-
-  !> Global coordinates `xg(3, ngauss)` of the Gauss points.
-  pure subroutine gauss_coordinates(self, xe, xg)
-    class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)    !! (3, nen)
-    real(dp), intent(out) :: xg(:, :)   !! (3, ngauss)
-    integer :: g
-    real(dp) :: xi(3, size(xg, 2)), w(size(xg, 2)), n(size(xe, 2)), dn(3, size(xe, 2))
-    integer :: a
-    call self%gauss_rule(xi, w)
-    do g = 1, size(w)
-      call self%shape(xi(:, g), n, dn)
-      xg(:, g) = 0.0_dp
-      do a = 1, size(xe, 2)
-        xg(:, g) = xg(:, g) + xe(:, a) * n(a)
-      end do
-    end do
-  end subroutine gauss_coordinates
-
-  !> Smallest and largest Jacobian determinant over the Gauss points and the nodes (mesh check:
-  !! a valid element has min_detj > 0).
-  pure subroutine jacobian_range(self, xe, min_detj, max_detj)
-    class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)   !! (3, nen)
-    real(dp), intent(out) :: min_detj, max_detj
-    real(dp) :: xig(3, self%ngauss()), w(self%ngauss()), xin(3, size(xe, 2))
-    real(dp) :: n(size(xe, 2)), dndx(3, size(xe, 2)), detj
-    integer :: k
-    call self%gauss_rule(xig, w)
-    call self%natural_coordinates(xin)
-    min_detj = huge(1.0_dp)
-    max_detj = -huge(1.0_dp)
-    do k = 1, size(w)
-      call self%shape_gradients(xe, xig(:, k), n, dndx, detj)
-      min_detj = min(min_detj, detj)
-      max_detj = max(max_detj, detj)
-    end do
-    do k = 1, size(xe, 2)
-      call self%shape_gradients(xe, xin(:, k), n, dndx, detj)
-      min_detj = min(min_detj, detj)
-      max_detj = max(max_detj, detj)
-    end do
-  end subroutine jacobian_range
-
-  !> For every Gauss point of face `face`: global position `xg(3, :)`, unit outward normal
-  !! `normal(3, :)`, weight times surface Jacobian `wda(:)` and face shape functions
-  !! `nf(nface_nodes(face), :)` (in the order of `face_nodes(face)`). Consistent nodal forces of a
-  !! traction t(x) are then f_a = sum_g nf(a, g) t(xg(:, g)) wda(g).
-  pure subroutine face_integration(self, xe, face, xg, normal, wda, nf)
-    class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)       !! (3, nen)
-    integer, intent(in) :: face
-    real(dp), intent(out) :: xg(:, :)      !! (3, nface_gauss(face))
-    real(dp), intent(out) :: normal(:, :)  !! (3, nface_gauss(face))
-    real(dp), intent(out) :: wda(:)        !! (nface_gauss(face))
-    real(dp), intent(out) :: nf(:, :)      !! (nface_nodes(face), nface_gauss(face))
-    real(dp) :: s(2, size(wda)), w(size(wda)), dnf(2, size(nf, 1)), xf(3, size(nf, 1))
-    real(dp) :: t1(3), t2(3), c(3), da
-    integer :: g, a
-    xf = xe(:, self%face_nodes(face))
-    call self%face_gauss_rule(face, s, w)
-    do g = 1, size(w)
-      call self%face_shape(face, s(:, g), nf(:, g), dnf)
-      xg(:, g) = 0.0_dp
-      t1 = 0.0_dp
-      t2 = 0.0_dp
-      do a = 1, size(xf, 2)
-        xg(:, g) = xg(:, g) + xf(:, a) * nf(a, g)
-        t1 = t1 + xf(:, a) * dnf(1, a)
-        t2 = t2 + xf(:, a) * dnf(2, a)
-      end do
-      c(1) = t1(2) * t2(3) - t1(3) * t2(2)
-      c(2) = t1(3) * t2(1) - t1(1) * t2(3)
-      c(3) = t1(1) * t2(2) - t1(2) * t2(1)
-      da = norm2(c)
-      if (da > 0.0_dp) then
-        normal(:, g) = c / da
-      else
-        normal(:, g) = 0.0_dp
-      end if
-      wda(g) = w(g) * da
-    end do
-  end subroutine face_integration
-
-  !> Volume of the element (sum of detJ w over the volume rule).
-  pure real(dp) function volume(self, xe)
-    class(element_t), intent(in) :: self
-    real(dp), intent(in) :: xe(:, :)   !! (3, nen)
-    real(dp) :: xi(3, self%ngauss()), w(self%ngauss()), n(size(xe, 2)), dndx(3, size(xe, 2)), detj
-    integer :: g
-    call self%gauss_rule(xi, w)
-    volume = 0.0_dp
-    do g = 1, size(w)
-      call self%shape_gradients(xe, xi(:, g), n, dndx, detj)
-      volume = volume + detj * w(g)
-    end do
-  end function volume
+    character(len=*), intent(in) :: label
+    real(dp), intent(in) :: jac
+    character(len=:), allocatable :: message
+    message = 'element ' // label // ' has a non-positive Jacobian (' // str(jac) // &
+              '): check its node order or coordinates'
+  end function jacobian_message
 
 end module feps_element

@@ -1,19 +1,23 @@
 !> The element catalog: the one place that maps an element type name (the `TYPE=` of a deck's
-!! GROUP) to its element object and to everything the rest of feps asks of a type: family,
-!! dimension, nodes, integration points, the component names of its point results, XDMF cell
-!! (which result field a family's points fill is the result schema's, src/model). The deck
-!! reader, model, assembly, results and XDMF writers and stress recovery ask it; no other
-!! module spells an element type name. The results file carries the answers as attributes of
-!! each `/mesh/groups/<name>`, so the Python scripts read them from there.
+!! GROUP) to its element object (`new_element`, any family behind the element contract
+!! `element_t`) and to everything the rest of feps asks of a type: family, dimension, nodes,
+!! integration points, the component names of its point results, XDMF cell (which result field
+!! a family's points fill is the result schema's, src/model). The deck reader, model, assembly,
+!! results and XDMF writers and stress recovery ask it; no other module spells an element type
+!! name. The results file carries the answers as attributes of each `/mesh/groups/<name>`, so
+!! the Python scripts read them from there.
 !!
 !! Adding an element type: its module in src/elements/, a row in `catalog` below and, for a
-!! solid, its constructor `case` in `new_solid_element` (test_result_schema's catalog test
-!! builds every row).
+!! solid, its constructor `case` in `new_solid_element` (an interface or bar type: its shape in
+!! that family's module, whose constructor parses the name). A new family: its module (a type
+!! extending `element_t`), a `family_*` code, its `case` in `new_element` and its result
+!! component names in `element_info`. test_element_contract runs every row through the contract.
 module feps_element_catalog
   use feps_kinds, only: dp
   use feps_strings, only: to_lower
   use feps_error, only: error_t, fatal_error, err_input
   use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   use feps_hex8, only: hex8_t
   use feps_hex8_bbar, only: hex8_bbar_t
   use feps_hex20, only: hex20_t
@@ -27,7 +31,7 @@ module feps_element_catalog
   implicit none
   private
 
-  public :: element_info_t, element_info, is_element_type, new_solid_element, known_element_types
+  public :: element_info_t, element_info, is_element_type, new_element, new_solid_element, known_element_types
   public :: family_name, bare_mesh_type, point_coordinates
 
   !> Element families: how an element's points carry their results.
@@ -93,9 +97,7 @@ contains
     character(len=*), intent(in) :: type_name
     type(element_info_t), intent(out) :: info
     type(error_t), allocatable, intent(out) :: error
-    class(element_t), allocatable :: solid
-    type(interface_element_t) :: iface
-    type(bar_element_t) :: bar
+    class(element_t), allocatable :: element
     integer :: row
     row = find_row(type_name)
     if (row == 0) then
@@ -106,34 +108,22 @@ contains
     info%family = catalog(row)%family
     info%dimension = catalog(row)%dimension
     info%xdmf_topology = trim(catalog(row)%xdmf_topology)
+    call new_element(info%name, element, error)
+    if (allocated(error)) return
+    info%nnodes = element%nnodes()
+    info%npoints = element%npoints()
+    info%ncomp = element%ncomp()
+    info%strain_component_names = ''
+    info%xdmf_cell_nodes = info%nnodes
     select case (info%family)
     case (family_solid)
-      call new_solid_element(info%name, solid, error)
-      if (allocated(error)) return
-      info%nnodes = solid%nnodes()
-      info%npoints = solid%ngauss()
-      info%ncomp = 6
       info%component_names = 'sxx syy szz syz sxz sxy'
-      info%strain_component_names = ''
-      info%xdmf_cell_nodes = info%nnodes
     case (family_interface)
-      call new_interface_element(info%name, iface, error)
-      if (allocated(error)) return
-      info%nnodes = iface%nnodes()
-      info%npoints = iface%ngauss()
-      info%ncomp = iface%ncomp()
       info%component_names = trim(merge('tau1 tau2 sigma_n', 'tau sigma_n      ', info%ncomp == 3))
       info%strain_component_names = trim(merge('gamma1 gamma2 eps_n', 'gamma eps_n        ', info%ncomp == 3))
       info%xdmf_cell_nodes = info%nnodes / 2
     case (family_bar)
-      call new_bar_element(info%name, bar, error)
-      if (allocated(error)) return
-      info%nnodes = bar%nnodes()
-      info%npoints = bar%ngauss()
-      info%ncomp = 1
       info%component_names = 'axial_force'
-      info%strain_component_names = ''
-      info%xdmf_cell_nodes = info%nnodes
     end select
   end subroutine element_info
 
@@ -146,37 +136,16 @@ contains
     integer, intent(in) :: connectivity(:, :)     !! (nnodes, nelem)
     real(dp), allocatable, intent(out) :: xg(:, :)
     type(error_t), allocatable, intent(out) :: error
-    type(element_info_t) :: info
-    class(element_t), allocatable :: solid
-    type(interface_element_t) :: iface
-    type(bar_element_t) :: bar
-    integer :: e, np, nd
-    call element_info(type_name, info, error)
+    class(element_t), allocatable :: element
+    integer :: e, np
+    call new_element(type_name, element, error)
     if (allocated(error)) return
-    np = info%npoints
+    np = element%npoints()
     allocate (xg(3, np * size(connectivity, 2)))
     xg = 0.0_dp
-    select case (info%family)
-    case (family_solid)
-      call new_solid_element(info%name, solid, error)
-      if (allocated(error)) return
-      do e = 1, size(connectivity, 2)
-        call solid%gauss_coordinates(coords(:, connectivity(:, e)), xg(:, (e - 1) * np + 1:e * np))
-      end do
-    case (family_interface)
-      call new_interface_element(info%name, iface, error)
-      if (allocated(error)) return
-      nd = iface%ndim()
-      do e = 1, size(connectivity, 2)
-        call iface%point_coordinates(coords(1:nd, connectivity(:, e)), xg(1:nd, (e - 1) * np + 1:e * np))
-      end do
-    case (family_bar)
-      call new_bar_element(info%name, bar, error)
-      if (allocated(error)) return
-      do e = 1, size(connectivity, 2)
-        call bar%point_coordinates(coords(:, connectivity(:, e)), xg(:, (e - 1) * np + 1:e * np))
-      end do
-    end select
+    do e = 1, size(connectivity, 2)
+      call element%point_coordinates(coords(:, connectivity(:, e)), xg(:, (e - 1) * np + 1:e * np))
+    end do
   end subroutine point_coordinates
 
   !> True if `type_name` (case-insensitive) is in the catalog.
@@ -185,14 +154,44 @@ contains
     is_element_type = find_row(type_name) /= 0
   end function is_element_type
 
-  !> Allocate the solid element object of `type_name` (case-insensitive, surrounding blanks
-  !! ignored): 'hex8' (2x2x2 Gauss), 'hex8b' (B-bar), 'hex20' (3x3x3), 'hex20r' (2x2x2
-  !! reduced), 'tet4' (1 point), 'tet10' (4 points), 'wedge6' (3 x 2 points), 'wedge15'
-  !! (6 x 3 points), 'tri6' (plane strain, 3 points), 'tri6-6' (6 points). Any other name, an
-  !! interface or a bar included, returns an err_input error.
-  subroutine new_solid_element(type_name, element, error)
+  !> Allocate the element object of `type_name` (case-insensitive, surrounding blanks ignored),
+  !! of any family, behind the element contract. An unknown name returns an err_input error
+  !! naming it and every known name.
+  subroutine new_element(type_name, element, error)
     character(len=*), intent(in) :: type_name
     class(element_t), allocatable, intent(out) :: element
+    type(error_t), allocatable, intent(out) :: error
+    class(solid_element_t), allocatable :: solid
+    type(interface_element_t) :: iface
+    type(bar_element_t) :: bar
+    integer :: row
+    row = find_row(type_name)
+    if (row == 0) then
+      call unknown_type(type_name, error)
+      return
+    end if
+    select case (catalog(row)%family)
+    case (family_solid)
+      call new_solid_element(catalog(row)%name, solid, error)
+      if (.not. allocated(error)) call move_alloc(solid, element)
+    case (family_interface)
+      call new_interface_element(catalog(row)%name, iface, error)
+      if (.not. allocated(error)) allocate (element, source=iface)
+    case (family_bar)
+      call new_bar_element(catalog(row)%name, bar, error)
+      if (.not. allocated(error)) allocate (element, source=bar)
+    end select
+  end subroutine new_element
+
+  !> Allocate the solid element object of `type_name` (case-insensitive, surrounding blanks
+  !! ignored), for what only solids have (shape functions, faces): 'hex8' (2x2x2 Gauss),
+  !! 'hex8b' (B-bar), 'hex20' (3x3x3), 'hex20r' (2x2x2 reduced), 'tet4' (1 point), 'tet10'
+  !! (4 points), 'wedge6' (3 x 2 points), 'wedge15' (6 x 3 points), 'tri6' (plane strain,
+  !! 3 points), 'tri6-6' (6 points). Any other name, an interface or a bar included, returns
+  !! an err_input error.
+  subroutine new_solid_element(type_name, element, error)
+    character(len=*), intent(in) :: type_name
+    class(solid_element_t), allocatable, intent(out) :: element
     type(error_t), allocatable, intent(out) :: error
     select case (to_lower(trim(adjustl(type_name))))
     case ('hex8')

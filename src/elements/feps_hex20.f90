@@ -9,7 +9,7 @@
 module feps_hex20
   use feps_kinds, only: dp
   use feps_gauss, only: cube_rule, square_rule
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   use feps_face_shapes, only: quad8_face_shape
   implicit none
   private
@@ -35,7 +35,7 @@ module feps_hex20
   !> Direction (1: xi, 2: eta, 3: zeta) of the edge that holds each mid-edge node 9-20.
   integer, parameter :: edge_direction(9:20) = [1, 2, 1, 2, 1, 2, 1, 2, 3, 3, 3, 3]
 
-  type, extends(element_t), public :: hex20_t
+  type, extends(solid_element_t), public :: hex20_t
     logical :: reduced = .false.   !! .true.: 2x2x2 reduced integration instead of 3x3x3
   contains
     procedure :: nnodes => hex20_nnodes
@@ -81,11 +81,15 @@ contains
     hex20_nface_gauss = 9
   end function hex20_nface_gauss
 
-  !> 'hex20' for both integration rules.
+  !> The catalog's name: 'hex20' (3x3x3 Gauss) or 'hex20r' (2x2x2, reduced).
   pure function hex20_element_type(self) result(name)
     class(hex20_t), intent(in) :: self
     character(len=:), allocatable :: name
-    name = 'hex20'
+    if (self%reduced) then
+      name = 'hex20r'
+    else
+      name = 'hex20'
+    end if
   end function hex20_element_type
 
   !> Serendipity shape functions: corners N = f1 f2 f3 (xi.xi_a - 2) / 8 with f_i = 1 + xi_i xi_a,i;

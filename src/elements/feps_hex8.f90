@@ -9,7 +9,7 @@
 module feps_hex8
   use feps_kinds, only: dp
   use feps_gauss, only: cube_rule, square_rule
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   use feps_face_shapes, only: quad4_face_shape
   implicit none
   private
@@ -24,7 +24,7 @@ module feps_hex8
     1, 4, 3, 2,  5, 6, 7, 8,  1, 2, 6, 5,  2, 3, 7, 6,  3, 4, 8, 7,  1, 5, 8, 4], [4, 6])
 
 
-  type, extends(element_t), public :: hex8_t
+  type, extends(solid_element_t), public :: hex8_t
   contains
     procedure :: nnodes => hex8_nnodes
     procedure :: ngauss => hex8_ngauss

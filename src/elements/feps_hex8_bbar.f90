@@ -15,7 +15,7 @@ module feps_hex8_bbar
     procedure :: element_type => hex8_bbar_element_type
     procedure :: b_matrix => hex8_bbar_b_matrix
     procedure :: stiffness => hex8_bbar_stiffness
-    procedure :: gauss_strains => hex8_bbar_gauss_strains
+    procedure :: strains => hex8_bbar_strains
   end type hex8_bbar_t
 
 contains
@@ -80,27 +80,24 @@ contains
     call bbar_from(dndx, dbar, b)
   end subroutine hex8_bbar_b_matrix
 
-  pure subroutine hex8_bbar_stiffness(self, xe, d, ke, min_detj)
+  pure subroutine hex8_bbar_stiffness(self, xe, d, ke)
     class(hex8_bbar_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)
     real(dp), intent(in) :: d(:, :, :)
     real(dp), intent(out) :: ke(:, :)
-    real(dp), intent(out) :: min_detj
     real(dp) :: xi(3, ng), w(ng), n(nen), dndx(3, nen), dbar(3, nen), b(6, 3 * nen), detj
     integer :: g
     call self%gauss_rule(xi, w)
     call mean_gradients(self, xe, dbar)
     ke = 0.0_dp
-    min_detj = huge(1.0_dp)
     do g = 1, ng
       call self%shape_gradients(xe, xi(:, g), n, dndx, detj)
-      min_detj = min(min_detj, detj)
       call bbar_from(dndx, dbar, b)
       ke = ke + matmul(transpose(b), matmul(d(:, :, g), b)) * (w(g) * detj)
     end do
   end subroutine hex8_bbar_stiffness
 
-  pure subroutine hex8_bbar_gauss_strains(self, xe, ue, eps)
+  pure subroutine hex8_bbar_strains(self, xe, ue, eps)
     class(hex8_bbar_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)
     real(dp), intent(in) :: ue(:)
@@ -114,6 +111,6 @@ contains
       call bbar_from(dndx, dbar, b)
       eps(:, g) = matmul(b, ue)
     end do
-  end subroutine hex8_bbar_gauss_strains
+  end subroutine hex8_bbar_strains
 
 end module feps_hex8_bbar

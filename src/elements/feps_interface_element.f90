@@ -39,12 +39,19 @@
 !! 3D [gamma1, gamma2, eps_n], 2D [gamma, eps_n]; eps_n > 0 is opening. B = C [-F  F]
 !! (eqs. 2.3.8-2.3.10) with C = frame and F the shape functions; DOFs node by node
 !! (u1x, u1y[, u1z], u2x, ...). Stresses are tractions in the same frame and order.
+!!
+!! The element contract (`element_t`) works with 3 DOFs per node: `stiffness`, `internal_force`,
+!! `strains`, `point_coordinates` and `min_jacobian` take `xe(3, nnodes)` and `ue(3 nnodes)`. A
+!! 2D (line) element embeds its x-y kernels there: zero z rows and columns, uz ignored, z = 0 at
+!! its points. The kernels in the element's own dimension (ndim coordinates and DOFs per node)
+!! are the `*_nd` procedures.
 module feps_interface_element
   use feps_strings, only: to_lower
   use feps_kinds, only: dp
-  use feps_error, only: error_t, fatal_error, err_input
+  use feps_error, only: error_t, fatal_error, err_input, str
   use feps_gauss, only: gauss_legendre, square_rule
   use feps_face_shapes, only: quad4_face_shape, tri3_face_shape, tri6_face_shape
+  use feps_element, only: element_t
   implicit none
   private
 
@@ -79,26 +86,35 @@ module feps_interface_element
   real(dp), parameter :: tri_wb = 0.054975871827660933819163162450105_dp
 
   !> A zero-thickness interface element: its shape and its integration choice.
-  type :: interface_element_t
+  type, extends(element_t) :: interface_element_t
     integer :: shape_kind = interface_quad4      !! one of the interface_* kinds
     logical :: nodal_integration = .false.       !! nodal (Newton-Cotes/Lobatto) instead of Gauss
   contains
-    procedure :: npairs
+    ! the element contract (3 DOFs per node)
     procedure :: nnodes
-    procedure :: ndim
+    procedure :: npoints => ngauss
     procedure :: ncomp
-    procedure :: ngauss
+    procedure :: ndim
     procedure :: element_type
-    procedure :: shape
-    procedure :: integration_rule
-    procedure :: node_coordinates
-    procedure :: point_b
     procedure :: stiffness
     procedure :: internal_force
     procedure :: strains
     procedure :: point_coordinates
-    procedure :: area
     procedure :: min_jacobian
+    procedure :: jacobian_message => interface_jacobian_message
+    ! the interface family, in the element's own dimension (ndim coordinates and DOFs per node)
+    procedure :: npairs
+    procedure :: ngauss
+    procedure :: shape
+    procedure :: integration_rule
+    procedure :: node_coordinates
+    procedure :: point_b
+    procedure :: stiffness_nd
+    procedure :: internal_force_nd
+    procedure :: strains_nd
+    procedure :: point_coordinates_nd
+    procedure :: area
+    procedure :: min_jacobian_nd
   end type interface_element_t
 
 contains
@@ -196,11 +212,13 @@ contains
     end if
   end function ngauss
 
-  !> Shape name without the '-nodal' suffix, e.g. 'interface-quad4'.
+  !> The catalog's type name: the shape name, with the '-nodal' suffix for nodal integration,
+  !! e.g. 'interface-quad4', 'interface-line3-nodal'.
   pure function element_type(self) result(name)
     class(interface_element_t), intent(in) :: self
     character(len=:), allocatable :: name
     name = trim(shape_names(self%shape_kind))
+    if (self%nodal_integration) name = name // nodal_suffix
   end function element_type
 
   ! ------------------------------------------------------------------ shape functions and rules
@@ -404,9 +422,9 @@ contains
     end do
   end subroutine point_b
 
-  !> Element stiffness `ke(ndim nnodes, ndim nnodes)` = sum over the points of B^T D B wdet with
+  !> Element stiffness `ke(ndim nnodes, ndim nnodes)`, in the element's own dimension, = sum over the points of B^T D B wdet with
   !! the material matrix `d(ncomp, ncomp, ngauss)` of each point (need not be symmetric).
-  pure subroutine stiffness(self, xe, d, ke)
+  pure subroutine stiffness_nd(self, xe, d, ke)
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
     real(dp), intent(in) :: d(:, :, :)   !! (ncomp, ncomp, ngauss)
@@ -439,11 +457,11 @@ contains
         end do
       end do
     end do
-  end subroutine stiffness
+  end subroutine stiffness_nd
 
-  !> Internal nodal forces `fe(ndim nnodes)` = sum over the points of B^T sig wdet, with the
+  !> Internal nodal forces `fe(ndim nnodes)`, in the element's own dimension, = sum over the points of B^T sig wdet, with the
   !! local tractions `sig(ncomp, ngauss)`.
-  pure subroutine internal_force(self, xe, sig, fe)
+  pure subroutine internal_force_nd(self, xe, sig, fe)
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
     real(dp), intent(in) :: sig(:, :)    !! (ncomp, ngauss)
@@ -468,10 +486,11 @@ contains
         fe(ua + 1:ua + nd) = fe(ua + 1:ua + nd) + n(a) * traction(1:nd)
       end do
     end do
-  end subroutine internal_force
+  end subroutine internal_force_nd
 
-  !> Strains `eps(ncomp, ngauss)` = B ue at the integration points (ue node by node).
-  pure subroutine strains(self, xe, ue, eps)
+  !> Strains `eps(ncomp, ngauss)` = B ue at the integration points, from `ue(ndim nnodes)` in
+  !! the element's own dimension (node by node).
+  pure subroutine strains_nd(self, xe, ue, eps)
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
     real(dp), intent(in) :: ue(:)        !! (ndim nnodes)
@@ -495,10 +514,11 @@ contains
       end do
       eps(1:nd, g) = matmul(frame(1:nd, 1:nd), jump(1:nd))
     end do
-  end subroutine strains
+  end subroutine strains_nd
 
-  !> Global coordinates `xg(ndim, ngauss)` of the integration points (on the lower layer).
-  pure subroutine point_coordinates(self, xe, xg)
+  !> Global coordinates `xg(ndim, ngauss)` of the integration points (on the lower layer), in
+  !! the element's own dimension.
+  pure subroutine point_coordinates_nd(self, xe, xg)
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
     real(dp), intent(out) :: xg(:, :)    !! (ndim, ngauss)
@@ -515,7 +535,7 @@ contains
         xg(1:nd, g) = xg(1:nd, g) + n(a) * xe(1:nd, a)
       end do
     end do
-  end subroutine point_coordinates
+  end subroutine point_coordinates_nd
 
   !> Area of the lower layer (length in 2D): sum of wdet over the chosen rule.
   pure real(dp) function area(self, xe)
@@ -535,11 +555,11 @@ contains
     end do
   end function area
 
-  !> Smallest surface (line) Jacobian at the integration points, signed: the normal vector
+  !> Smallest surface (line) Jacobian at the integration points, from `xe(ndim, nnodes)`, signed: the normal vector
   !! dx/ds1 x dx/ds2 (2D: the tangent) projected on the unit normal (tangent) at the element
   !! centre, so that a folded or inverted element gives a value <= 0. For a flat element it
   !! equals |dx/ds1 x dx/ds2|. The caller rejects values <= 0.
-  pure real(dp) function min_jacobian(self, xe)
+  pure real(dp) function min_jacobian_nd(self, xe)
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
     real(dp) :: s(2, max_interface_points), w(max_interface_points), centre(2)
@@ -557,17 +577,116 @@ contains
     call self%shape(centre, n, dn)
     call local_frame(nd, p, xe, dn, frame, jac, reference)
     if (jac <= tiny(jac)) then
-      min_jacobian = 0.0_dp
+      min_jacobian_nd = 0.0_dp
       return
     end if
     reference = reference / jac
     call self%integration_rule(s, w)
-    min_jacobian = huge(1.0_dp)
+    min_jacobian_nd = huge(1.0_dp)
     do g = 1, self%ngauss()
       call self%shape(s(:, g), n, dn)
       call local_frame(nd, p, xe, dn, frame, jac, nstar)
-      min_jacobian = min(min_jacobian, dot_product(nstar, reference))
+      min_jacobian_nd = min(min_jacobian_nd, dot_product(nstar, reference))
     end do
+  end function min_jacobian_nd
+
+  ! ------------------------------------------------------------------ the element contract
+
+  !> Element stiffness `ke(3 nnodes, 3 nnodes)` (3 DOFs per node) from `xe(3, nnodes)`: that of
+  !! stiffness_nd, a 2D element's x-y matrix embedded with zero z rows and columns.
+  pure subroutine stiffness(self, xe, d, ke)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    real(dp), intent(in) :: d(:, :, :)   !! (ncomp, ncomp, ngauss)
+    real(dp), intent(out) :: ke(:, :)    !! (3 nnodes, 3 nnodes)
+    real(dp), allocatable :: k2(:, :)
+    integer, allocatable :: map2(:)
+    if (self%ndim() == 3) then
+      call stiffness_nd(self, xe, d, ke)
+      return
+    end if
+    map2 = xy_dofs(self%nnodes())
+    allocate (k2(2 * self%nnodes(), 2 * self%nnodes()))
+    call stiffness_nd(self, xe(1:2, :), d, k2)
+    ke = 0.0_dp
+    ke(map2, map2) = k2
+  end subroutine stiffness
+
+  !> Internal nodal forces `fe(3 nnodes)` (3 DOFs per node) from `xe(3, nnodes)` and the local
+  !! tractions `sig(ncomp, ngauss)`: those of internal_force_nd, a 2D element's with zero z forces.
+  pure subroutine internal_force(self, xe, sig, fe)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    real(dp), intent(in) :: sig(:, :)    !! (ncomp, ngauss)
+    real(dp), intent(out) :: fe(:)       !! (3 nnodes)
+    real(dp) :: f2(2 * self%nnodes())
+    if (self%ndim() == 3) then
+      call internal_force_nd(self, xe, sig, fe)
+      return
+    end if
+    fe = 0.0_dp
+    call internal_force_nd(self, xe(1:2, :), sig, f2)
+    fe(xy_dofs(self%nnodes())) = f2
+  end subroutine internal_force
+
+  !> Strains `eps(ncomp, ngauss)` (relative displacements in the local frame) from `xe(3, nnodes)`
+  !! and `ue(3 nnodes)`: those of strains_nd, a 2D element's from the x-y displacements.
+  pure subroutine strains(self, xe, ue, eps)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    real(dp), intent(in) :: ue(:)        !! (3 nnodes)
+    real(dp), intent(out) :: eps(:, :)   !! (ncomp, ngauss)
+    if (self%ndim() == 3) then
+      call strains_nd(self, xe, ue, eps)
+    else
+      call strains_nd(self, xe(1:2, :), ue(xy_dofs(self%nnodes())), eps)
+    end if
+  end subroutine strains
+
+  !> Global coordinates `xg(3, ngauss)` of the integration points (on the lower layer) from
+  !! `xe(3, nnodes)`; a 2D element's points have z = 0.
+  pure subroutine point_coordinates(self, xe, xg)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    real(dp), intent(out) :: xg(:, :)    !! (3, ngauss)
+    if (self%ndim() == 3) then
+      call point_coordinates_nd(self, xe, xg)
+    else
+      xg(3, :) = 0.0_dp
+      call point_coordinates_nd(self, xe(1:2, :), xg(1:2, :))
+    end if
+  end subroutine point_coordinates
+
+  !> min_jacobian_nd from `xe(3, nnodes)` (a 2D element: from its x-y coordinates).
+  pure real(dp) function min_jacobian(self, xe)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    if (self%ndim() == 3) then
+      min_jacobian = min_jacobian_nd(self, xe)
+    else
+      min_jacobian = min_jacobian_nd(self, xe(1:2, :))
+    end if
   end function min_jacobian
+
+  !> The rejection of an interface element by its surface (line) Jacobian `jac` <= 0.
+  pure function interface_jacobian_message(self, label, jac) result(message)
+    class(interface_element_t), intent(in) :: self
+    character(len=*), intent(in) :: label
+    real(dp), intent(in) :: jac
+    character(len=:), allocatable :: message
+    message = 'interface element ' // label // ' has a degenerate or folded lower face (surface Jacobian ' // &
+              str(jac) // ')'
+  end function interface_jacobian_message
+
+  !> Positions of the x and y DOFs of n nodes among 3 DOFs per node.
+  pure function xy_dofs(n) result(idx)
+    integer, intent(in) :: n
+    integer :: idx(2 * n)
+    integer :: k
+    do k = 1, n
+      idx(2 * k - 1) = 3 * k - 2
+      idx(2 * k) = 3 * k - 1
+    end do
+  end function xy_dofs
 
 end module feps_interface_element

@@ -13,7 +13,7 @@ module feps_tet10
   use feps_kinds, only: dp
   use feps_gauss, only: tetrahedron_rule, triangle_rule
   use feps_face_shapes, only: tri6_face_shape
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   implicit none
   private
 
@@ -33,7 +33,7 @@ module feps_tet10
     2, 3, 4, 6, 10, 9, &
     3, 1, 4, 7, 8, 10], [6, 4])
 
-  type, extends(element_t), public :: tet10_t
+  type, extends(solid_element_t), public :: tet10_t
   contains
     procedure :: nnodes => tet10_nnodes
     procedure :: ngauss => tet10_ngauss

@@ -15,7 +15,7 @@ module feps_tet4
   use feps_kinds, only: dp
   use feps_gauss, only: tetrahedron_rule, triangle_rule
   use feps_face_shapes, only: tri3_face_shape
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   implicit none
   private
 
@@ -26,7 +26,7 @@ module feps_tet4
   !> Nodes of each face (columns), counter-clockwise seen from outside.
   integer, parameter :: tet4_faces(3, 4) = reshape([1, 3, 2,  1, 2, 4,  2, 3, 4,  3, 1, 4], [3, 4])
 
-  type, extends(element_t), public :: tet4_t
+  type, extends(solid_element_t), public :: tet4_t
   contains
     procedure :: nnodes => tet4_nnodes
     procedure :: ngauss => tet4_ngauss

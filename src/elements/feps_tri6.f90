@@ -16,7 +16,7 @@
 module feps_tri6
   use feps_kinds, only: dp
   use feps_gauss, only: gauss_legendre, triangle_rule
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   use feps_face_shapes, only: quadratic_triangle => tri6_face_shape
   implicit none
   private
@@ -30,7 +30,7 @@ module feps_tri6
   integer, parameter :: tri6_edges(3, 3) = reshape([1, 2, 4,  2, 3, 5,  3, 1, 6], [3, 3])
 
   !> Plane-strain 6-node triangle; `six_point` selects the 6-point rule instead of 3 points.
-  type, extends(element_t), public :: tri6_t
+  type, extends(solid_element_t), public :: tri6_t
     logical :: six_point = .false.
   contains
     procedure :: nnodes => tri6_nnodes
@@ -45,12 +45,14 @@ module feps_tri6
     procedure :: nface_gauss => tri6_nface_gauss
     procedure :: face_gauss_rule => tri6_face_gauss_rule
     procedure :: element_type => tri6_element_type
-    ! the 3D versions of element_t replaced by their plane-strain forms; jacobian_range,
-    ! volume, gauss_stresses and gauss_coordinates of element_t work through these
+    ! the 3D versions of solid_element_t replaced by their plane-strain forms; jacobian_range,
+    ! min_jacobian, volume, internal_force, gauss_stresses and point_coordinates of
+    ! solid_element_t work through these
+    procedure :: ndim => tri6_ndim
     procedure :: shape_gradients => tri6_shape_gradients
     procedure :: b_matrix => tri6_b_matrix
     procedure :: stiffness => tri6_stiffness
-    procedure :: gauss_strains => tri6_gauss_strains
+    procedure :: strains => tri6_strains
     procedure :: face_integration => tri6_face_integration
   end type tri6_t
 
@@ -60,6 +62,12 @@ contains
     class(tri6_t), intent(in) :: self
     tri6_nnodes = 6
   end function tri6_nnodes
+
+  !> 2: a plane-strain type (its element contract still has 3 DOFs per node, uz held).
+  pure integer function tri6_ndim(self)
+    class(tri6_t), intent(in) :: self
+    tri6_ndim = 2
+  end function tri6_ndim
 
   pure integer function tri6_ngauss(self)
     class(tri6_t), intent(in) :: self
@@ -189,31 +197,28 @@ contains
   end subroutine tri6_b_matrix
 
   !> Stiffness per unit thickness `ke(18, 18)` = sum B^T D B detJ w with the plane-strain B, so
-  !! only D(xx|yy|xy, xx|yy|xy) enters and the z rows and columns are zero. `min_detj` as in
-  !! element_t; size(d, 3) must be ngauss().
-  pure subroutine tri6_stiffness(self, xe, d, ke, min_detj)
+  !! only D(xx|yy|xy, xx|yy|xy) enters and the z rows and columns are zero; size(d, 3) must be
+  !! ngauss().
+  pure subroutine tri6_stiffness(self, xe, d, ke)
     class(tri6_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)      !! (3, 6)
     real(dp), intent(in) :: d(:, :, :)    !! (6, 6, ngauss)
     real(dp), intent(out) :: ke(:, :)     !! (18, 18)
-    real(dp), intent(out) :: min_detj
     integer, parameter :: plane(3) = [1, 2, 6]   ! Voigt rows of B that are not zero
     real(dp) :: xi(3, size(d, 3)), w(size(d, 3)), b(6, 3 * size(xe, 2)), db(3, 3 * size(xe, 2))
     real(dp) :: detj
     integer :: g
     call self%gauss_rule(xi, w)
     ke = 0.0_dp
-    min_detj = huge(1.0_dp)
     do g = 1, size(w)
       call self%b_matrix(xe, xi(:, g), b, detj)
-      min_detj = min(min_detj, detj)
       db = matmul(d(plane, plane, g), b(plane, :)) * (detj * w(g))
       ke = ke + matmul(transpose(b(plane, :)), db)
     end do
   end subroutine tri6_stiffness
 
   !> Plane-strain strains `eps(6, ngauss)` = B ue: eps_zz = gamma_yz = gamma_xz = 0.
-  pure subroutine tri6_gauss_strains(self, xe, ue, eps)
+  pure subroutine tri6_strains(self, xe, ue, eps)
     class(tri6_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (3, 6)
     real(dp), intent(in) :: ue(:)        !! (18)
@@ -225,7 +230,7 @@ contains
       call self%b_matrix(xe, xi(:, g), b, detj)
       eps(:, g) = matmul(b, ue)
     end do
-  end subroutine tri6_gauss_strains
+  end subroutine tri6_strains
 
   !> For every Gauss point of edge `face`: position `xg(3, 3)`, unit outward in-plane normal
   !! `normal(3, 3)` (z component 0), `wda` = weight * |dx/ds| * unit thickness and the edge

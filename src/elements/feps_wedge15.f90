@@ -21,7 +21,7 @@ module feps_wedge15
   use feps_kinds, only: dp
   use feps_gauss, only: wedge_rule, triangle_rule, square_rule
   use feps_face_shapes, only: tri6_face_shape, quad8_face_shape
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   implicit none
   private
 
@@ -48,7 +48,7 @@ module feps_wedge15
   !> Faces 1 and 2 are triangles, 3 to 5 quadrilaterals.
   integer, parameter :: ntriangles = 2
 
-  type, extends(element_t), public :: wedge15_t
+  type, extends(solid_element_t), public :: wedge15_t
   contains
     procedure :: nnodes => wedge15_nnodes
     procedure :: ngauss => wedge15_ngauss

@@ -21,7 +21,7 @@ module feps_wedge6
   use feps_kinds, only: dp
   use feps_gauss, only: wedge_rule, triangle_rule, square_rule
   use feps_face_shapes, only: tri3_face_shape, quad4_face_shape
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   implicit none
   private
 
@@ -37,7 +37,7 @@ module feps_wedge6
   !> Faces 1 and 2 are triangles, 3 to 5 quadrilaterals.
   integer, parameter :: ntriangles = 2
 
-  type, extends(element_t), public :: wedge6_t
+  type, extends(solid_element_t), public :: wedge6_t
   contains
     procedure :: nnodes => wedge6_nnodes
     procedure :: ngauss => wedge6_ngauss

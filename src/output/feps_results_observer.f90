@@ -9,7 +9,7 @@ module feps_results_observer
   use feps_observer, only: observer_t, step_result_t
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
-  use feps_element_catalog, only: point_coordinates
+  use feps_element_catalog, only: point_coordinates, family_solid, family_interface, family_bar
   use feps_result_schema, only: field_name, field_components, field_displacement, field_reaction, &
                                 field_applied_force, field_stress, field_principal, field_interface, field_bar, &
                                 field_interface_strain, field_nodal_stress, field_nodal_principal, &
@@ -79,10 +79,11 @@ contains
         if (allocated(error)) return
         associate (gr => res%groups(g), name => self%model%groups(g)%name, element => self%model%groups(g)%element)
           if (.not. allocated(gr%stress)) cycle      ! no field of this group was asked for
-          if (gr%is_bar) then
+          select case (element%family)
+          case (family_bar)
             call self%h5%write_gauss(res%step, field_name(field_bar), name, gr%stress, element%component_names, &
                                      gr%points_per_element, error)
-          else if (gr%is_interface) then
+          case (family_interface)
             nc = size(gr%stress, 1)
             if (f%on(field_interface)) then
               allocate (extra(nc + 1, size(gr%state)))
@@ -97,7 +98,7 @@ contains
               gr%points_per_element, error)
             if (f%on(field_nodal_interface) .and. .not. allocated(error)) &
               call write_nodal_tractions(self%h5, self%model, res%step, g, gr%stress, error)
-          else
+          case (family_solid)
             if (f%on(field_stress)) call self%h5%write_gauss(res%step, field_name(field_stress), name, gr%stress, &
                                                    element%component_names, gr%points_per_element, error)
             if (f%on(field_principal) .and. .not. allocated(error)) then
@@ -123,7 +124,7 @@ contains
             end if
             if ((f%on(field_nodal_stress) .or. f%on(field_nodal_principal) .or. f%on(field_nodal_stress_cyl)) .and. &
                 .not. allocated(error)) call write_nodal_stresses(self%h5, self%model, res%step, g, gr%stress, error)
-          end if
+          end select
         end associate
       end do
     end associate

@@ -6,7 +6,7 @@ module feps_nodal_fields
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_internal
   use feps_model, only: model_t
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   use feps_element_catalog, only: new_solid_element
   use feps_interface_element, only: interface_element_t, new_interface_element
   use feps_principal, only: principal_values
@@ -31,7 +31,7 @@ contains
     integer, intent(in) :: csys                !! 0: no cylindrical components
     real(dp), allocatable, intent(out) :: nodal(:, :), principal(:, :), cylindrical(:, :)
     type(error_t), allocatable, intent(out) :: error
-    class(element_t), allocatable :: element
+    class(solid_element_t), allocatable :: element
     real(dp), allocatable :: e(:, :)
     integer, allocatable :: count(:)
     real(dp) :: p(3)

@@ -15,7 +15,7 @@
 !! element; a linear one by all of feps's solids).
 module feps_stress_recovery
   use feps_kinds, only: dp
-  use feps_element, only: element_t
+  use feps_solid_element, only: solid_element_t
   implicit none
   private
 
@@ -27,7 +27,7 @@ contains
   !! its nodes (in connectivity order): nodal = matmul(e, gauss). `ok` is false when the rule's
   !! points determine no polynomial space of their own size (no feps element today).
   pure subroutine extrapolation_matrix(element, e, ok)
-    class(element_t), intent(in) :: element
+    class(solid_element_t), intent(in) :: element
     real(dp), allocatable, intent(out) :: e(:, :)
     logical, intent(out) :: ok
     real(dp), allocatable :: xi_gauss(:, :), w(:), xi_nodes(:, :)

@@ -89,6 +89,12 @@ contains
       new_unittest('a node repeat count beyond the mesh size limit', test_repeat_too_large), &
       new_unittest('an element repeat count beyond the mesh size limit', test_element_repeat_too_large), &
       new_unittest('a NODE number beyond the mesh size limit', test_node_number_too_large), &
+      new_unittest('STEPS beyond the integer range names its range', test_steps_out_of_range), &
+      new_unittest('steps adding up past what one run numbers', test_steps_total_too_large), &
+      new_unittest('MAXIT beyond what --maxit takes', test_maxit_out_of_range), &
+      new_unittest('CUTBACKS beyond 50', test_cutbacks_out_of_range), &
+      new_unittest('a subnormal number (E=1e-320) is refused at once', test_subnormal_number), &
+      new_unittest('a bad field on a continuation line names that line', test_continuation_field_line), &
       new_unittest('MATSUOKA with an unknown TENSION rule', test_tension_rule_unknown), &
       new_unittest('ELASTIC with a parameter it does not have (TENSION)', test_tension_on_elastic), &
       new_unittest('ELASTIC with both E and G', test_elastic_e_and_g), &
@@ -537,14 +543,61 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/repeat_too_large.dat', err_input, &
                         [character(len=60) :: 'repeat_too_large.dat:5: field 2:', &
-                         'the mesh would have 300000000 nodes', 'more than feps reads (20000000)'], error)
+                         'repeat count 100000000 is outside the allowed range', '-20000000..20000000'], error)
   end subroutine test_repeat_too_large
+
+  !> Integer fields are range-checked before any arithmetic (issue 24: STEPS=2147483647 ran 16 s
+  !! and ended with an internal message; steps adding up past the integer range ended with a
+  !! negative step number after the whole run).
+  subroutine test_steps_out_of_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/steps_out_of_range.dat', err_input, &
+                        [character(len=70) :: 'steps_out_of_range.dat:24: field 3:', &
+                         'STEPS 2147483647 is outside the allowed range 1..10000000'], error, before_first_step=.true.)
+  end subroutine test_steps_out_of_range
+
+  subroutine test_steps_total_too_large(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/steps_total_too_large.dat', err_input, &
+                        [character(len=80) :: 'steps_total_too_large.dat:25: field 3:', &
+                         'steps add up to 12000000, more than feps numbers in one run (10000000)'], error, &
+                        before_first_step=.true.)
+  end subroutine test_steps_total_too_large
+
+  subroutine test_maxit_out_of_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/maxit_out_of_range.dat', err_input, &
+                        [character(len=70) :: 'maxit_out_of_range.dat:24: field 4:', &
+                         'MAXIT 2147483647 is outside the allowed range 1..1000'], error)
+  end subroutine test_maxit_out_of_range
+
+  subroutine test_cutbacks_out_of_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/cutbacks_out_of_range.dat', err_input, &
+                        [character(len=70) :: 'cutbacks_out_of_range.dat:24: field 4:', &
+                         'CUTBACKS 1000000 is outside the allowed range 0..50'], error)
+  end subroutine test_cutbacks_out_of_range
+
+  subroutine test_subnormal_number(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/subnormal_number.dat', err_input, &
+                        [character(len=70) :: 'subnormal_number.dat:15: field 4:', &
+                         'number "1e-320" is out of range'], error, before_first_step=.true.)
+  end subroutine test_subnormal_number
+
+  !> The error names the line the field is on (issue 24: it named the record's first line).
+  subroutine test_continuation_field_line(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/continuation_field_line.dat', err_input, &
+                        [character(len=70) :: 'continuation_field_line.dat:26: field 5:', &
+                         'expected a number, got "1x0."'], error)
+  end subroutine test_continuation_field_line
 
   subroutine test_element_repeat_too_large(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/element_repeat_too_large.dat', err_input, &
                         [character(len=60) :: 'element_repeat_too_large.dat:12: field 2:', &
-                         'the mesh would have 120000000 elements', 'more than feps reads (20000000)'], error)
+                         'repeat count 30000000 is outside the allowed range', '-20000000..20000000'], error)
   end subroutine test_element_repeat_too_large
 
   subroutine test_node_number_too_large(error)

@@ -6,6 +6,7 @@ module test_bad_input
   use feps_error, only: err_input, err_input_file, err_model, err_solver, str
   use feps_program, only: run_options_t, run_summary_t, run_feps
   use feps_kinds, only: dp
+  use feps_strings, only: utf8_text_length, shown
   use feps_material, only: material_t
   use feps_material_factory, only: new_material
   use feps_linear_elastic, only: linear_elastic_t
@@ -112,6 +113,9 @@ contains
       new_unittest('BAR with a negative area names A''s field', test_bar_area_negative), &
       new_unittest('BAR without A names no field', test_bar_area_missing), &
       new_unittest('a group name with a slash', test_group_name_slash), &
+      new_unittest('a group name with a control byte', test_group_name_control), &
+      new_unittest('a group name that is not UTF-8', test_group_name_not_utf8), &
+      new_unittest('printable UTF-8 text: control bytes, overlong forms, surrogates refused', test_utf8_text), &
       new_unittest('PRESTRESS on a group of solids', test_prestress_on_solid), &
       new_unittest('PRESTRESS before its group is born', test_prestress_before_birth), &
       new_unittest('PRESTRESS with FORCE= and STRESS=', test_prestress_force_and_stress), &
@@ -729,6 +733,39 @@ contains
                         [character(len=60) :: 'bar_area_missing.dat:12: material soft: A is missing'], error, &
                         absent=['field'])
   end subroutine test_bar_area_missing
+
+  !> Issue 24: a control byte or invalid UTF-8 in a group name made an XDMF file no XML parser
+  !! reads; the deck reader refuses it, showing the byte as \xNN.
+  subroutine test_group_name_control(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/group_name_control.dat', err_input, &
+                        [character(len=70) :: 'group_name_control.dat:8: field 2:', &
+                         'the group name "blo\x1bck" has a byte that is no printable text at byte 4'], error)
+  end subroutine test_group_name_control
+
+  subroutine test_group_name_not_utf8(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/group_name_not_utf8.dat', err_input, &
+                        [character(len=70) :: 'group_name_not_utf8.dat:8: field 2:', &
+                         'the group name "caf\xe9" has a byte that is no printable text at byte 4'], error)
+  end subroutine test_group_name_not_utf8
+
+  subroutine test_utf8_text(error)
+    type(error_t), allocatable, intent(out) :: error
+    call check(error, utf8_text_length('b' // achar(195) // achar(169) // 'ton') == 6, 'UTF-8 text is printable')
+    if (allocated(error)) return
+    call check(error, utf8_text_length('ab' // achar(9)) == 2, 'a tab is a control character')
+    if (allocated(error)) return
+    call check(error, utf8_text_length('a' // achar(192) // achar(175)) == 1, 'an overlong form is no UTF-8')
+    if (allocated(error)) return
+    call check(error, utf8_text_length(achar(237) // achar(160) // achar(128)) == 0, 'a surrogate is no UTF-8')
+    if (allocated(error)) return
+    call check(error, utf8_text_length('x' // achar(226) // achar(130)) == 1, 'a cut sequence is no UTF-8')
+    if (allocated(error)) return
+    call check(error, utf8_text_length(achar(194) // achar(133)) == 0, 'U+0085 is a C1 control')
+    if (allocated(error)) return
+    call check(error, shown('a' // achar(27) // 'b') == 'a\x1bb', 'shown: ' // shown('a' // achar(27) // 'b'))
+  end subroutine test_utf8_text
 
   subroutine test_group_name_slash(error)
     type(error_t), allocatable, intent(out) :: error

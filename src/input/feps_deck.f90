@@ -552,6 +552,8 @@ contains
     call require_fields(rec, 3, error)
     if (allocated(error)) return
     s%name = field_text(rec, 2)
+    call check_result_name(rec, 'node set', s%name, error)
+    if (allocated(error)) return
     if (model%find_node_set(s%name) > 0) then
       call input_error(error, rec%file, field_line(rec, 2), 'node set "' // s%name // '" is defined twice', 2)
       return
@@ -602,6 +604,8 @@ contains
     call require_fields(rec, 3, error)
     if (allocated(error)) return
     s%name = field_text(rec, 2)
+    call check_result_name(rec, 'face set', s%name, error)
+    if (allocated(error)) return
     if (model%find_face_set(s%name) > 0) then
       call input_error(error, rec%file, field_line(rec, 2), 'face set "' // s%name // '" is defined twice', 2)
       return

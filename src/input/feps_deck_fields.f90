@@ -2,7 +2,7 @@
 !! file, line and field of a bad one, KEY=value options, coordinate names, coordinate-system
 !! options, result names and the element and material families.
 module feps_deck_fields
-  use feps_strings, only: to_upper
+  use feps_strings, only: to_upper, shown, utf8_text_length
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
   use feps_records, only: record_t, keyword, nfields, field_text, field_line, is_integer_text, is_real_text, &
@@ -318,16 +318,26 @@ contains
     end if
   end function dof_names
 
-  !> Group and material names become HDF5 paths (/mesh/groups/<name>, /materials/<name>) and
-  !! XDMF (XML) text: no '/', no XML markup characters, not '.' or '..'.
-  subroutine check_result_name(rec, what, name, error)
+  !> Group, material and set names become HDF5 paths (/mesh/groups/<name>, /materials/<name>,
+  !! /sets/nodes/<name>) and XDMF (XML) text: no '/', no XML markup characters, not '.' or
+  !! '..', and printable text: valid UTF-8 without control characters (XML cannot hold them,
+  !! and a parser stops at invalid UTF-8), shown as \xNN in the message.
+  subroutine check_result_name(rec, what, name, error, field)
     type(record_t), intent(in) :: rec
     character(len=*), intent(in) :: what, name
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: field   !! the field that holds the name (default 2)
+    integer :: f
+    f = 2
+    if (present(field)) f = field
     if (scan(name, '/<>&"''') > 0 .or. name == '.' .or. name == '..') then
-      call input_error(error, rec%file, field_line(rec, 2), &
-                       'the ' // what // ' name "' // name // '" may not contain ' // &
-                       '/ < > & " or '' nor be . or .. (it names a group in the results file)', 2)
+      call input_error(error, rec%file, field_line(rec, f), 'the ' // what // ' name "' // shown(name) // &
+                       '" may not contain / < > & " or '' nor be . or .. (it names a group in the results file)', f)
+    else if (utf8_text_length(name) < len(name)) then
+      call input_error(error, rec%file, field_line(rec, f), 'the ' // what // ' name "' // shown(name) // &
+                       '" has a byte that is no printable text at byte ' // str(utf8_text_length(name) + 1) // &
+                       ' (a control character, or not UTF-8): it names a group in the results file and ' // &
+                       'the XDMF (XML) file', f)
     end if
   end subroutine check_result_name
 

@@ -7,6 +7,7 @@ module test_bad_input
   use feps_program, only: run_options_t, run_summary_t, run_feps
   use feps_kinds, only: dp
   use feps_strings, only: utf8_text_length, shown
+  use feps_records, only: max_line_length
   use feps_material, only: material_t
   use feps_material_factory, only: new_material
   use feps_linear_elastic, only: linear_elastic_t
@@ -35,6 +36,14 @@ contains
       new_unittest('empty file', test_empty), &
       new_unittest('missing file', test_missing_file), &
       new_unittest('a directory given as the deck', test_deck_is_directory), &
+      new_unittest('a device given as the deck', test_deck_is_device), &
+      new_unittest('INCLUDE of a device', test_include_device), &
+      new_unittest('INCLUDE of a FIFO: refused, not waited on', test_include_fifo), &
+      new_unittest('a line longer than feps reads', test_line_too_long), &
+      new_unittest('a record continued over 200 000 lines is read in linear time', test_long_record), &
+      new_unittest('results named as an existing directory: refused before the run, kept', test_output_is_directory), &
+      new_unittest('the XDMF name an existing directory: refused before the run, kept', test_xdmf_is_directory), &
+      new_unittest('results in a missing folder: refused before the run', test_output_folder_missing), &
       new_unittest('two STAGE records with one name', test_stage_twice), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
@@ -526,6 +535,132 @@ contains
                         [character(len=60) :: 'test/data/bad: cannot open file: it is a directory'], error, &
                         absent=[character(len=20) :: 'empty'])
   end subroutine test_deck_is_directory
+
+  !> Only regular files are read (issue 24: INCLUDE of /dev/zero or of a FIFO hung for ever).
+  subroutine test_deck_is_device(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('/dev/zero', err_input_file, &
+                        [character(len=70) :: '/dev/zero: cannot open file: it is not a regular file'], error)
+  end subroutine test_deck_is_device
+
+  subroutine test_include_device(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/include_device.dat', err_input, &
+                        [character(len=80) :: 'include_device.dat:2: INCLUDE: /dev/zero: cannot open file: ' // &
+                         'it is not a regular file'], error)
+  end subroutine test_include_device
+
+  subroutine test_include_fifo(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: deck = 'build/test_include_fifo.dat', fifo = 'build/test_include_fifo.datain'
+    integer :: u, status, cmdstat
+    status = 1
+    call execute_command_line('rm -f ' // fifo // ' && mkfifo ' // fifo, exitstat=status, cmdstat=cmdstat)
+    if (cmdstat /= 0 .or. status /= 0) return      ! no mkfifo here: nothing to test
+    open (newunit=u, file=deck, status='replace', action='write')
+    write (u, '(a)') 'INCLUDE, test_include_fifo.datain'
+    close (u)
+    call expect_failure(deck, err_input, [character(len=80) :: 'test_include_fifo.dat:1: INCLUDE: ', &
+                        'test_include_fifo.datain: cannot open file: it is not a regular file'], error)
+    call execute_command_line('rm -f ' // fifo // ' ' // deck)
+  end subroutine test_include_fifo
+
+  !> Lines are read in bounded pieces (issue 24: a 1 MB line took time quadratic in its length,
+  !! and a longer one overflowed the stack).
+  subroutine test_line_too_long(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: deck = 'build/test_line_too_long.dat'
+    character(len=80) :: expected(1)
+    integer :: u
+    open (newunit=u, file=deck, status='replace', action='write')
+    write (u, '(a)') 'TITLE, a title', 'TITLE, ' // repeat('x', 2 * max_line_length), 'TITLE, not read'
+    close (u)
+    expected(1) = 'test_line_too_long.dat:2: line longer than ' // str(max_line_length) // ' characters'
+    call expect_failure(deck, err_input, expected, error, before_first_step=.true.)
+    open (newunit=u, file=deck)
+    close (u, status='delete')
+  end subroutine test_line_too_long
+
+  !> A node record continued over 200 000 lines: its fields grow by doubling (copied per line,
+  !! this took minutes), and the error for its first field too many names the line it is on.
+  subroutine test_long_record(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: deck = 'build/test_long_record.dat'
+    integer :: u, i
+    open (newunit=u, file=deck, status='replace', action='write')
+    write (u, '(a)') 'NODE, 1, 0.,'
+    do i = 1, 200000
+      write (u, '(a)') '0.,'
+    end do
+    close (u)
+    call expect_failure(deck, err_input, [character(len=80) :: 'test_long_record.dat:4: field 6:'], error)
+    open (newunit=u, file=deck)
+    close (u, status='delete')
+  end subroutine test_long_record
+
+  !> Issue 24: an existing directory as the results file ran the whole analysis, failed at the
+  !! rename, and was then removed. The result paths are checked first, and nothing but regular
+  !! files feps wrote is ever removed.
+  subroutine test_output_is_directory(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    logical :: exists
+    opt%deck = 'test/data/cube.dat'
+    opt%output = 'test/data/bad'
+    call run_feps(opt, summary, run_error)
+    call check(error, allocated(run_error), 'a directory as the results file is refused')
+    if (allocated(error)) return
+    call check(error, run_error%code, err_input, run_error%message)
+    if (allocated(error)) return
+    call check(error, index(run_error%message, 'results file "test/data/bad": it is a directory') > 0, &
+               run_error%message)
+    if (allocated(error)) return
+    inquire (file='test/data/bad/empty.dat', exist=exists)
+    call check(error, exists, 'the directory and its files are still there')
+  end subroutine test_output_is_directory
+
+  subroutine test_xdmf_is_directory(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    integer :: status, cmdstat
+    logical :: exists
+    status = 1
+    call execute_command_line('mkdir -p build/test_xmf_dir.xmf && touch build/test_xmf_dir.xmf/keep', &
+                              exitstat=status, cmdstat=cmdstat)
+    if (cmdstat /= 0 .or. status /= 0) return
+    opt%deck = 'test/data/cube.dat'
+    opt%output = 'build/test_xmf_dir.h5'
+    call run_feps(opt, summary, run_error)
+    call check(error, allocated(run_error), 'a directory in the XDMF file''s place is refused')
+    if (allocated(error)) return
+    call check(error, run_error%code == err_input .and. &
+               index(run_error%message, '"build/test_xmf_dir.xmf": it is a directory') > 0, run_error%message)
+    if (allocated(error)) return
+    inquire (file='build/test_xmf_dir.xmf/keep', exist=exists)
+    call check(error, exists, 'the directory and its file are still there')
+    if (allocated(error)) return
+    inquire (file='build/test_xmf_dir.h5.part', exist=exists)
+    call check(error, .not. exists, 'no .part file')
+    call execute_command_line('rm -rf build/test_xmf_dir.xmf')
+  end subroutine test_xdmf_is_directory
+
+  subroutine test_output_folder_missing(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    opt%deck = 'test/data/cube.dat'
+    opt%output = 'build/no_such_folder/cube.h5'
+    call run_feps(opt, summary, run_error, count_steps)
+    call check(error, allocated(run_error), 'a missing folder is refused')
+    if (allocated(error)) return
+    call check(error, run_error%code == err_input .and. &
+               index(run_error%message, 'cannot create it: no folder "build/no_such_folder"') > 0, run_error%message)
+  end subroutine test_output_folder_missing
 
   !> Stages are named in messages, progress lines and /steps: a second one of a name is refused.
   subroutine test_stage_twice(error)

@@ -8,7 +8,10 @@ module feps_program
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, line_search_refusal, known_fields
   use feps_deck, only: read_deck
-  use feps_strings, only: to_lower
+  use feps_strings, only: to_lower, shown, utf8_text_length
+  use feps_files, only: file_kind, file_kind_text, folder_of, folder_writable, file_missing, file_regular, &
+                        file_directory
+  use feps_paths, only: xdmf_file_name
   use feps_records, only: real_from_text
   use feps_clock, only: wall_clock
   use feps_incremental_analysis, only: analysis_summary_t, run_analysis, check_analysis
@@ -153,6 +156,12 @@ contains
     end if
     if (len(output) == 0 .and. .not. model%mesh_only) output = default_output(options%deck)
     summary%output = output
+    ! The result paths are checked before any work (a directory of that name used to be found
+    ! when the run ended, and then removed); --check writes nothing and checks none.
+    if (len(output) > 0 .and. .not. options%check_only) then
+      call check_result_paths(output, error)
+      if (allocated(error)) return
+    end if
 
     if (model%mesh_only) then
       call mesh_jacobians(model, summary%min_jacobian, error)
@@ -799,6 +808,61 @@ contains
       if (allocated(error)) return
     end do
   end subroutine write_parameters
+
+  !> Bad input (exit status 2) when the results file `path` cannot be written where it is to
+  !! go: its folder missing or not writable, or the results file, the XDMF file beside it or the
+  !! temporary names of either (`.part`) an existing directory, FIFO or device: feps replaces
+  !! regular files of these names only, and never removes anything else. The file's name is
+  !! written into the XDMF (XML) file, so it must be printable UTF-8.
+  subroutine check_result_paths(path, error)
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: folder, name, names(:), what
+    integer :: kind, i
+    folder = folder_of(path)
+    name = path(len(folder) + 1:)
+    if (len(name) > 0) then
+      if (name(1:1) == '/') name = name(2:)
+    end if
+    if (len(name) == 0) then
+      call fatal_error(error, err_input, 'results file "' // shown(path) // '": no file name (it ends in /)')
+      return
+    end if
+    if (len(folder) > 0) then
+      kind = file_kind(folder)
+      if (kind == file_missing) then
+        call fatal_error(error, err_input, 'results file "' // shown(path) // '": cannot create it: no folder "' // &
+                         shown(folder) // '"')
+        return
+      else if (kind /= file_directory) then
+        call fatal_error(error, err_input, 'results file "' // shown(path) // '": cannot create it: "' // &
+                         shown(folder) // '" is not a folder')
+        return
+      end if
+    end if
+    if (.not. folder_writable(folder)) then
+      what = '.'
+      if (len(folder) > 0) what = shown(folder)
+      call fatal_error(error, err_input, 'results file "' // shown(path) // '": cannot create it: the folder "' // &
+                       what // '" is not writable')
+      return
+    end if
+    names = [character(len=len(path) + 9) :: path, path // '.part', xdmf_file_name(path), &
+                                                xdmf_file_name(path) // '.part']
+    do i = 1, size(names)
+      kind = file_kind(trim(names(i)))
+      if (kind /= file_missing .and. kind /= file_regular) then
+        what = file_kind_text(kind) // ': feps writes a file of that name and removes nothing it did not create'
+        if (i > 1) what = '"' // shown(trim(names(i))) // '": ' // what
+        call fatal_error(error, err_input, 'results file "' // shown(path) // '": ' // what)
+        return
+      end if
+    end do
+    if (utf8_text_length(name) < len(name)) then
+      call fatal_error(error, err_input, 'results file "' // shown(path) // '": its name has a byte that is ' // &
+                       'no printable text (a control character, or not UTF-8), and the XDMF (XML) file names it')
+    end if
+  end subroutine check_result_paths
 
   !> The deck's name without folder and extension, with .h5, in the working directory.
   pure function default_output(deck) result(path)

@@ -8,6 +8,7 @@ program feps_main
   use feps_strings, only: sci
   use feps_paths, only: is_xdmf_name
   use feps_model, only: max_iterations_limit
+  use feps_files, only: report_file_size_limit
   implicit none
 
   interface
@@ -22,6 +23,7 @@ program feps_main
   type(error_t), allocatable :: error
   integer :: status
 
+  call report_file_size_limit()
   call parse_arguments(options, status)
   if (status >= 0) call c_exit(int(status, c_int))
 

@@ -5,7 +5,10 @@
  * the machine's physical memory).
  */
 #include <errno.h>
+#include <signal.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -62,4 +65,55 @@ int64_t feps_memory_limit(void)
         if (limit < 0 || as < limit) limit = as;
     }
     return limit;
+}
+
+/* A text file written through C stdio, whose errors are reported: gfortran's formatted WRITE,
+ * FLUSH and CLOSE return status 0 when the disk is full (the XDMF file was left empty or cut
+ * short with exit status 0). Each call returns 0 or the errno of the failure. */
+void *feps_text_open(const char *path, int *status)
+{
+    FILE *f;
+    errno = 0;
+    f = fopen(path, "w");
+    *status = f == NULL ? (errno != 0 ? errno : EIO) : 0;
+    return f;
+}
+
+int feps_text_write(void *handle, const char *text, int64_t length)
+{
+    FILE *f = (FILE *)handle;
+    if (f == NULL) return EBADF;
+    errno = 0;
+    if (length > 0 && fwrite(text, 1, (size_t)length, f) != (size_t)length) return errno != 0 ? errno : EIO;
+    if (fputc('\n', f) == EOF) return errno != 0 ? errno : EIO;
+    return 0;
+}
+
+/* Flush and close (always closes); the data are on the disk's way when it returns 0. */
+int feps_text_close(void *handle)
+{
+    FILE *f = (FILE *)handle;
+    int status = 0;
+    if (f == NULL) return EBADF;
+    errno = 0;
+    if (fflush(f) != 0) status = errno != 0 ? errno : EIO;
+    if (status == 0 && fsync(fileno(f)) != 0 && errno != EINVAL && errno != EROFS) status = errno;
+    errno = 0;
+    if (fclose(f) != 0 && status == 0) status = errno != 0 ? errno : EIO;
+    return status;
+}
+
+/* The text of an errno (strerror) copied into buffer (at most size - 1 characters, padded). */
+void feps_error_text(int status, char *buffer, int64_t size)
+{
+    const char *text = strerror(status);
+    int64_t i, n = (int64_t)strlen(text);
+    for (i = 0; i < size; i++) buffer[i] = i < n ? text[i] : ' ';
+}
+
+/* A write past the file-size limit (ulimit -f) then fails with EFBIG, reported as any other
+ * write error, instead of killing the process with SIGXFSZ (no message, a partial file left). */
+void feps_ignore_file_size_signal(void)
+{
+    signal(SIGXFSZ, SIG_IGN);
 }

@@ -20,7 +20,7 @@ module feps_results_file
   use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_path, count_words, word
   use feps_paths, only: is_xdmf_name, xdmf_file_name
   use feps_files, only: remove_regular_file
-  use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
+  use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5dont_atexit_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
                   h5dcreate_f, h5dopen_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, h5aclose_f, &
@@ -108,6 +108,10 @@ contains
     if (allocated(self%steps)) deallocate (self%steps)
     allocate (self%groups(0), self%steps(0))
 
+    ! No HDF5 clean-up at exit: a file whose close failed (the disk full) stays open inside the
+    ! library, and its exit handler, flushing it once more, crashed the program after feps had
+    ! reported the failure and removed the file. Every file feps writes is closed explicitly.
+    call h5dont_atexit_f(hdferr)
     call h5open_f(hdferr)
     if (hdferr < 0) then
       call fatal_error(error, err_io, 'cannot initialise the HDF5 library')
@@ -613,8 +617,8 @@ contains
     if (allocated(error)) return
     call release_handles(self, hdferr)
     if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot close results file ' // self%part_path // &
-                       ' (the disk full, or an I/O error)')
+      call fatal_error(error, err_io, 'cannot write results file ' // self%path // ': closing ' // &
+                       self%part_path // ' failed (disk full, quota, or an I/O error)')
       return
     end if
 
@@ -835,7 +839,8 @@ contains
     hdferr = 0
     if (size(values) > 0) call h5dwrite_f(id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
     if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path)
+      call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path // &
+                                   ' (disk full, quota, or an I/O error)')
     else
       call write_string_attribute(id, 'components', components, error)
     end if
@@ -885,7 +890,8 @@ contains
     hdferr = 0
     if (size(values) > 0) call h5dwrite_f(id, H5T_NATIVE_INTEGER, values, dims, hdferr)
     call h5dclose_f(id, ignored)
-    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path)
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path // &
+                                   ' (disk full, quota, or an I/O error)')
   end subroutine write_int_dataset
 
   !> Fixed-length, null-padded ASCII string attribute (h5py reads it as bytes).

@@ -11,7 +11,8 @@ module feps_files
   implicit none
   private
 
-  public :: report_file_size_limit, file_kind, file_kind_text, folder_writable, remove_regular_file, memory_limit_bytes, folder_of
+  public :: report_file_size_limit, mark_partial_file, file_kind, file_kind_text, folder_writable, remove_regular_file, &
+            memory_limit_bytes, folder_of
 
   integer, parameter, public :: file_missing = 0     !! no such file
   integer, parameter, public :: file_regular = 1     !! a regular file (or a link to one)
@@ -69,6 +70,11 @@ module feps_files
       type(c_ptr), value :: handle
       integer(c_int) :: status
     end function c_text_close
+    subroutine c_mark_partial(slot, path) bind(C, name='feps_mark_partial')
+      import :: c_char, c_int
+      integer(c_int), value :: slot
+      character(kind=c_char), intent(in) :: path(*)
+    end subroutine c_mark_partial
     subroutine c_ignore_file_size_signal() bind(C, name='feps_ignore_file_size_signal')
     end subroutine c_ignore_file_size_signal
     subroutine c_error_text(status, buffer, size) bind(C, name='feps_error_text')
@@ -87,6 +93,15 @@ contains
   subroutine report_file_size_limit()
     call c_ignore_file_size_signal()
   end subroutine report_file_size_limit
+
+  !> Remember the temporary file `path` (slot 1: the results, 2: the XDMF file) to be removed
+  !! if the process exits while it is there (the Fortran runtime ends a run whose allocation
+  !! fails without returning); '' forgets it, once it is renamed or removed.
+  subroutine mark_partial_file(slot, path)
+    integer, intent(in) :: slot
+    character(len=*), intent(in) :: path
+    call c_mark_partial(int(slot - 1, c_int), path // c_null_char)
+  end subroutine mark_partial_file
 
   !> The kind of `path` (following links): file_missing, file_regular, file_directory,
   !! file_special or file_unknown.

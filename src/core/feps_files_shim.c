@@ -8,6 +8,7 @@
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -116,4 +117,31 @@ void feps_error_text(int status, char *buffer, int64_t size)
 void feps_ignore_file_size_signal(void)
 {
     signal(SIGXFSZ, SIG_IGN);
+}
+
+/* The temporary files (`.part`) feps is writing, removed at exit if still there: a run that the
+ * Fortran runtime ends (an allocation beyond the memory left: "Error allocating ... bytes")
+ * exits without returning to feps, and left a half-written results file behind. The one piece
+ * of state in feps outside its arguments, kept here because only an exit handler can act then;
+ * a run that ends normally has removed or renamed these files and cleared them. */
+#define FEPS_PARTIAL_SLOTS 2
+static char feps_partial[FEPS_PARTIAL_SLOTS][4096];
+static int feps_partial_registered = 0;
+
+static void feps_remove_partials(void)
+{
+    int i;
+    for (i = 0; i < FEPS_PARTIAL_SLOTS; i++)
+        if (feps_partial[i][0] != '\0') (void)feps_remove_regular(feps_partial[i]);
+}
+
+/* Remember `path` in slot (0 or 1) as a file to remove at exit; "" forgets the slot. */
+void feps_mark_partial(int slot, const char *path)
+{
+    if (slot < 0 || slot >= FEPS_PARTIAL_SLOTS) return;
+    if (!feps_partial_registered) {
+        feps_partial_registered = atexit(feps_remove_partials) == 0;
+    }
+    if (strlen(path) >= sizeof feps_partial[slot]) return;
+    strcpy(feps_partial[slot], path);
 }

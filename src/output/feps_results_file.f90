@@ -19,7 +19,7 @@ module feps_results_file
   use feps_result_schema, only: field_name, family_field
   use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_path, count_words, word
   use feps_paths, only: is_xdmf_name, xdmf_file_name
-  use feps_files, only: remove_regular_file
+  use feps_files, only: remove_regular_file, mark_partial_file
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5dont_atexit_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
@@ -127,6 +127,7 @@ contains
     end if
     self%is_open = .true.
     self%part_exists = .true.
+    call mark_partial_file(1, self%part_path)
     call h5pcreate_f(H5P_LINK_CREATE_F, self%link_plist, hdferr)
     if (hdferr >= 0) call h5pset_create_inter_group_f(self%link_plist, 1, hdferr)
     if (hdferr < 0) then
@@ -623,23 +624,29 @@ contains
     end if
 
     xdmf_path = xdmf_file_name(self%path)
+    call mark_partial_file(2, xdmf_path // '.part')
     call write_xdmf(xdmf_path // '.part', base_name(self%path), self%node_count, self%groups, self%steps, error)
     if (allocated(error)) then
       removed = remove_regular_file(xdmf_path // '.part')
+      call mark_partial_file(2, '')
       return
     end if
     if (c_rename(self%part_path // c_null_char, self%path // c_null_char) /= 0) then
       removed = remove_regular_file(xdmf_path // '.part')
+      call mark_partial_file(2, '')
       call fatal_error(error, err_io, 'cannot rename ' // self%part_path // ' to ' // self%path)
       return
     end if
     self%part_exists = .false.
+    call mark_partial_file(1, '')
     if (c_rename(xdmf_path // '.part' // c_null_char, xdmf_path // c_null_char) /= 0) then
       removed = remove_regular_file(xdmf_path // '.part')
       removed = remove_regular_file(self%path)
+      call mark_partial_file(2, '')
       call fatal_error(error, err_io, 'cannot rename ' // xdmf_path // '.part to ' // xdmf_path)
       return
     end if
+    call mark_partial_file(2, '')
   end subroutine close_file
 
   !> Give up the file: close what is open and delete `<path>.part`, and the results and XDMF
@@ -662,6 +669,7 @@ contains
         removed = remove_regular_file(xdmf_file_name(self%path))
       end if
       self%part_exists = .false.
+      call mark_partial_file(1, '')
     end if
   end subroutine discard
 

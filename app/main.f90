@@ -7,6 +7,8 @@ program feps_main
   use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version, unbalanced_text
   use feps_strings, only: sci
   use feps_paths, only: is_xdmf_name
+  use feps_model, only: max_iterations_limit
+  use feps_files, only: report_file_size_limit
   implicit none
 
   interface
@@ -21,6 +23,7 @@ program feps_main
   type(error_t), allocatable :: error
   integer :: status
 
+  call report_file_size_limit()
   call parse_arguments(options, status)
   if (status >= 0) call c_exit(int(status, c_int))
 
@@ -51,17 +54,20 @@ contains
     flush (output_unit)
   end subroutine print_line
 
-  !> Fill options; status = -1 to go on, or the exit status to stop with.
+  !> Fill options; status = -1 to go on, or the exit status to stop with. Each option is given
+  !! at most once and takes no empty value: a second one, or '', would be silently ignored or
+  !! override the first (exit 2, as for a bad value).
   subroutine parse_arguments(options, status)
     type(run_options_t), intent(out) :: options
     integer, intent(out) :: status
     integer :: i, n
-    character(len=:), allocatable :: arg
+    character(len=:), allocatable :: arg, name, value, seen
     status = -1
     options%output = ''
     options%solver = ''
     options%method = ''
     options%fields = ''
+    seen = ' '
     n = command_argument_count()
     i = 0
     do while (i < n)
@@ -76,52 +82,68 @@ contains
         write (output_unit, '(a)') 'feps ' // feps_version
         status = 0
         return
-      case ('-q', '--quiet')
-        options%quiet = .true.
-      case ('--check')
-        options%check_only = .true.
-      case ('--strict')
-        options%strict = .true.
-      case ('-o', '--output', '--solver', '--method', '--maxit', '--fields')
+      case ('-q', '--quiet', '--check', '--strict', '-o', '--output', '--solver', '--method', '--maxit', '--fields')
+        name = arg
+        if (arg == '-q') name = '--quiet'
+        if (arg == '-o') name = '--output'
+        if (index(seen, ' ' // name // ' ') > 0) then
+          write (error_unit, '(a)') 'feps: error: ' // name // ' is given twice (each option at most once; ' // &
+            'see feps --help)'
+          status = 2
+          return
+        end if
+        seen = seen // name // ' '
+        if (name == '--quiet') then
+          options%quiet = .true.
+          cycle
+        else if (name == '--check') then
+          options%check_only = .true.
+          cycle
+        else if (name == '--strict') then
+          options%strict = .true.
+          cycle
+        end if
         if (i == n) then
           write (error_unit, '(a)') 'feps: error: ' // arg // ' needs a value (see feps --help)'
           status = 2
           return
         end if
         i = i + 1
-        if (arg == '--method') then
-          options%method = argument(i)
-        else if (arg == '--fields') then
-          options%fields = argument(i)
-          if (len_trim(options%fields) == 0) then
-            write (error_unit, '(a)') 'feps: error: --fields takes a list of result fields, e.g. all,nodal_principal'
+        value = argument(i)
+        if (len_trim(value) == 0) then
+          write (error_unit, '(a)') 'feps: error: ' // arg // ' takes ' // value_kind(name) // ', not an empty value'
+          status = 2
+          return
+        end if
+        select case (name)
+        case ('--method')
+          options%method = value
+        case ('--fields')
+          options%fields = value
+        case ('--maxit')
+          options%max_iterations = whole_number(value)
+          if (options%max_iterations < 1 .or. options%max_iterations > max_iterations_limit) then
+            write (error_unit, '(a)') 'feps: error: --maxit takes a whole number from 1 to ' // &
+              str(max_iterations_limit) // ', not "' // value // '"'
             status = 2
             return
           end if
-        else if (arg == '--maxit') then
-          options%max_iterations = whole_number(argument(i))
-          if (options%max_iterations < 1) then
-            write (error_unit, '(a)') 'feps: error: --maxit takes a whole number of at least 1, not "' // &
-              argument(i) // '"'
-            status = 2
-            return
-          end if
-        else if (arg == '--solver') then
-          options%solver = argument(i)
+        case ('--solver')
+          options%solver = value
           if (options%solver /= 'skyline' .and. options%solver /= 'cholmod') then
             write (error_unit, '(a)') 'feps: error: --solver takes skyline or cholmod, not "' // options%solver // '"'
             status = 2
             return
           end if
-        else
-          options%output = argument(i)
+        case default
+          options%output = value
           if (is_xdmf_name(options%output)) then
             write (error_unit, '(a)') 'feps: error: ' // arg // ' "' // options%output // &
               '": the results file must not end in .xmf (the XDMF file beside it takes that name)'
             status = 2
             return
           end if
-        end if
+        end select
       case default
         if (len(arg) > 0 .and. arg(1:1) == '-') then
           write (error_unit, '(a)') 'feps: error: unknown option "' // arg // '" (see feps --help)'
@@ -134,6 +156,11 @@ contains
           status = 2
           return
         end if
+        if (len_trim(arg) == 0) then
+          write (error_unit, '(a)') 'feps: error: the input deck is an empty name'
+          status = 2
+          return
+        end if
         options%deck = arg
       end select
     end do
@@ -142,6 +169,25 @@ contains
       status = 2
     end if
   end subroutine parse_arguments
+
+  !> What an option takes, for the message about an empty value.
+  pure function value_kind(name) result(text)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    select case (name)
+    case ('--output')
+      text = 'a results file name'
+    case ('--solver')
+      text = 'skyline or cholmod'
+    case ('--method')
+      text = 'a method name (euler, modified-euler, newton-raphson, modified-newton-raphson, ' // &
+             'initial-stiffness, full-newton-raphson)'
+    case ('--maxit')
+      text = 'a whole number from 1 to ' // str(max_iterations_limit)
+    case default
+      text = 'a list of result fields, e.g. all,nodal_principal'
+    end select
+  end function value_kind
 
   !> The value of a whole number argument, or 0 when it is not one.
   integer function whole_number(text)
@@ -178,8 +224,9 @@ contains
       '      --method NAME    solve every stage by one method: euler, modified-euler, newton-raphson,', &
       '                       modified-newton-raphson, initial-stiffness, full-newton-raphson', &
       '                       (overrides the deck)', &
-      '      --maxit N        at most N iterations per step in every stage (overrides the deck''s', &
-      '                       MAXIT; euler and modified-euler keep their one iteration)', &
+      '      --maxit N        at most N iterations per step in every stage, 1 to ' // str(max_iterations_limit) // &
+      ' (overrides', &
+      '                       the deck''s MAXIT; euler and modified-euler keep their one iteration)', &
       '      --fields LIST    the result fields to write, comma-separated as the FIELDS record names', &
       '                       them (overrides the deck''s FIELDS), e.g. all,nodal_principal', &
       '      --check          check the deck and the model: everything a run checks before its', &
@@ -191,6 +238,8 @@ contains
       '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &
+      '', &
+      'Each option is given at most once, and none takes an empty value.', &
       '', &
       'Exit status: 0 success; 2 bad input (including a deck that cannot be read) or an unsolvable', &
       'model; 1 a run that failed (no convergence, results beyond double precision) or results', &

@@ -6,6 +6,8 @@ module test_bad_input
   use feps_error, only: err_input, err_input_file, err_model, err_solver, str
   use feps_program, only: run_options_t, run_summary_t, run_feps
   use feps_kinds, only: dp
+  use feps_strings, only: utf8_text_length, shown
+  use feps_records, only: max_line_length
   use feps_material, only: material_t
   use feps_material_factory, only: new_material
   use feps_linear_elastic, only: linear_elastic_t
@@ -34,6 +36,14 @@ contains
       new_unittest('empty file', test_empty), &
       new_unittest('missing file', test_missing_file), &
       new_unittest('a directory given as the deck', test_deck_is_directory), &
+      new_unittest('a device given as the deck', test_deck_is_device), &
+      new_unittest('INCLUDE of a device', test_include_device), &
+      new_unittest('INCLUDE of a FIFO: refused, not waited on', test_include_fifo), &
+      new_unittest('a line longer than feps reads', test_line_too_long), &
+      new_unittest('a record continued over 200 000 lines is read in linear time', test_long_record), &
+      new_unittest('results named as an existing directory: refused before the run, kept', test_output_is_directory), &
+      new_unittest('the XDMF name an existing directory: refused before the run, kept', test_xdmf_is_directory), &
+      new_unittest('results in a missing folder: refused before the run', test_output_folder_missing), &
       new_unittest('two STAGE records with one name', test_stage_twice), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
@@ -90,6 +100,12 @@ contains
       new_unittest('a node repeat count beyond the mesh size limit', test_repeat_too_large), &
       new_unittest('an element repeat count beyond the mesh size limit', test_element_repeat_too_large), &
       new_unittest('a NODE number beyond the mesh size limit', test_node_number_too_large), &
+      new_unittest('STEPS beyond the integer range names its range', test_steps_out_of_range), &
+      new_unittest('steps adding up past what one run numbers', test_steps_total_too_large), &
+      new_unittest('MAXIT beyond what --maxit takes', test_maxit_out_of_range), &
+      new_unittest('CUTBACKS beyond 50', test_cutbacks_out_of_range), &
+      new_unittest('a subnormal number (E=1e-320) is refused at once', test_subnormal_number), &
+      new_unittest('a bad field on a continuation line names that line', test_continuation_field_line), &
       new_unittest('MATSUOKA with an unknown TENSION rule', test_tension_rule_unknown), &
       new_unittest('ELASTIC with a parameter it does not have (TENSION)', test_tension_on_elastic), &
       new_unittest('ELASTIC with both E and G', test_elastic_e_and_g), &
@@ -107,6 +123,9 @@ contains
       new_unittest('BAR with a negative area names A''s field', test_bar_area_negative), &
       new_unittest('BAR without A names no field', test_bar_area_missing), &
       new_unittest('a group name with a slash', test_group_name_slash), &
+      new_unittest('a group name with a control byte', test_group_name_control), &
+      new_unittest('a group name that is not UTF-8', test_group_name_not_utf8), &
+      new_unittest('printable UTF-8 text: control bytes, overlong forms, surrogates refused', test_utf8_text), &
       new_unittest('PRESTRESS on a group of solids', test_prestress_on_solid), &
       new_unittest('PRESTRESS before its group is born', test_prestress_before_birth), &
       new_unittest('PRESTRESS with FORCE= and STRESS=', test_prestress_force_and_stress), &
@@ -518,6 +537,132 @@ contains
                         absent=[character(len=20) :: 'empty'])
   end subroutine test_deck_is_directory
 
+  !> Only regular files are read (issue 24: INCLUDE of /dev/zero or of a FIFO hung for ever).
+  subroutine test_deck_is_device(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('/dev/zero', err_input_file, &
+                        [character(len=70) :: '/dev/zero: cannot open file: it is not a regular file'], error)
+  end subroutine test_deck_is_device
+
+  subroutine test_include_device(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/include_device.dat', err_input, &
+                        [character(len=80) :: 'include_device.dat:2: INCLUDE: /dev/zero: cannot open file: ' // &
+                         'it is not a regular file'], error)
+  end subroutine test_include_device
+
+  subroutine test_include_fifo(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: deck = 'build/test_include_fifo.dat', fifo = 'build/test_include_fifo.datain'
+    integer :: u, status, cmdstat
+    status = 1
+    call execute_command_line('rm -f ' // fifo // ' && mkfifo ' // fifo, exitstat=status, cmdstat=cmdstat)
+    if (cmdstat /= 0 .or. status /= 0) return      ! no mkfifo here: nothing to test
+    open (newunit=u, file=deck, status='replace', action='write')
+    write (u, '(a)') 'INCLUDE, test_include_fifo.datain'
+    close (u)
+    call expect_failure(deck, err_input, [character(len=80) :: 'test_include_fifo.dat:1: INCLUDE: ', &
+                        'test_include_fifo.datain: cannot open file: it is not a regular file'], error)
+    call execute_command_line('rm -f ' // fifo // ' ' // deck)
+  end subroutine test_include_fifo
+
+  !> Lines are read in bounded pieces (issue 24: a 1 MB line took time quadratic in its length,
+  !! and a longer one overflowed the stack).
+  subroutine test_line_too_long(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: deck = 'build/test_line_too_long.dat'
+    character(len=80) :: expected(1)
+    integer :: u
+    open (newunit=u, file=deck, status='replace', action='write')
+    write (u, '(a)') 'TITLE, a title', 'TITLE, ' // repeat('x', 2 * max_line_length), 'TITLE, not read'
+    close (u)
+    expected(1) = 'test_line_too_long.dat:2: line longer than ' // str(max_line_length) // ' characters'
+    call expect_failure(deck, err_input, expected, error, before_first_step=.true.)
+    open (newunit=u, file=deck)
+    close (u, status='delete')
+  end subroutine test_line_too_long
+
+  !> A node record continued over 200 000 lines: its fields grow by doubling (copied per line,
+  !! this took minutes), and the error for its first field too many names the line it is on.
+  subroutine test_long_record(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: deck = 'build/test_long_record.dat'
+    integer :: u, i
+    open (newunit=u, file=deck, status='replace', action='write')
+    write (u, '(a)') 'NODE, 1, 0.,'
+    do i = 1, 200000
+      write (u, '(a)') '0.,'
+    end do
+    close (u)
+    call expect_failure(deck, err_input, [character(len=80) :: 'test_long_record.dat:4: field 6:'], error)
+    open (newunit=u, file=deck)
+    close (u, status='delete')
+  end subroutine test_long_record
+
+  !> Issue 24: an existing directory as the results file ran the whole analysis, failed at the
+  !! rename, and was then removed. The result paths are checked first, and nothing but regular
+  !! files feps wrote is ever removed.
+  subroutine test_output_is_directory(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    logical :: exists
+    opt%deck = 'test/data/cube.dat'
+    opt%output = 'test/data/bad'
+    call run_feps(opt, summary, run_error)
+    call check(error, allocated(run_error), 'a directory as the results file is refused')
+    if (allocated(error)) return
+    call check(error, run_error%code, err_input, run_error%message)
+    if (allocated(error)) return
+    call check(error, index(run_error%message, 'results file "test/data/bad": it is a directory') > 0, &
+               run_error%message)
+    if (allocated(error)) return
+    inquire (file='test/data/bad/empty.dat', exist=exists)
+    call check(error, exists, 'the directory and its files are still there')
+  end subroutine test_output_is_directory
+
+  subroutine test_xdmf_is_directory(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    integer :: status, cmdstat
+    logical :: exists
+    status = 1
+    call execute_command_line('mkdir -p build/test_xmf_dir.xmf && touch build/test_xmf_dir.xmf/keep', &
+                              exitstat=status, cmdstat=cmdstat)
+    if (cmdstat /= 0 .or. status /= 0) return
+    opt%deck = 'test/data/cube.dat'
+    opt%output = 'build/test_xmf_dir.h5'
+    call run_feps(opt, summary, run_error)
+    call check(error, allocated(run_error), 'a directory in the XDMF file''s place is refused')
+    if (allocated(error)) return
+    call check(error, run_error%code == err_input .and. &
+               index(run_error%message, '"build/test_xmf_dir.xmf": it is a directory') > 0, run_error%message)
+    if (allocated(error)) return
+    inquire (file='build/test_xmf_dir.xmf/keep', exist=exists)
+    call check(error, exists, 'the directory and its file are still there')
+    if (allocated(error)) return
+    inquire (file='build/test_xmf_dir.h5.part', exist=exists)
+    call check(error, .not. exists, 'no .part file')
+    call execute_command_line('rm -rf build/test_xmf_dir.xmf')
+  end subroutine test_xdmf_is_directory
+
+  subroutine test_output_folder_missing(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(run_options_t) :: opt
+    type(run_summary_t) :: summary
+    type(error_t), allocatable :: run_error
+    opt%deck = 'test/data/cube.dat'
+    opt%output = 'build/no_such_folder/cube.h5'
+    call run_feps(opt, summary, run_error, count_steps)
+    call check(error, allocated(run_error), 'a missing folder is refused')
+    if (allocated(error)) return
+    call check(error, run_error%code == err_input .and. &
+               index(run_error%message, 'cannot create it: no folder "build/no_such_folder"') > 0, run_error%message)
+  end subroutine test_output_folder_missing
+
   !> Stages are named in messages, progress lines and /steps: a second one of a name is refused.
   subroutine test_stage_twice(error)
     type(error_t), allocatable, intent(out) :: error
@@ -538,14 +683,61 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/repeat_too_large.dat', err_input, &
                         [character(len=60) :: 'repeat_too_large.dat:5: field 2:', &
-                         'the mesh would have 300000000 nodes', 'more than feps reads (20000000)'], error)
+                         'repeat count 100000000 is outside the allowed range', '-20000000..20000000'], error)
   end subroutine test_repeat_too_large
+
+  !> Integer fields are range-checked before any arithmetic (issue 24: STEPS=2147483647 ran 16 s
+  !! and ended with an internal message; steps adding up past the integer range ended with a
+  !! negative step number after the whole run).
+  subroutine test_steps_out_of_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/steps_out_of_range.dat', err_input, &
+                        [character(len=70) :: 'steps_out_of_range.dat:24: field 3:', &
+                         'STEPS 2147483647 is outside the allowed range 1..10000000'], error, before_first_step=.true.)
+  end subroutine test_steps_out_of_range
+
+  subroutine test_steps_total_too_large(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/steps_total_too_large.dat', err_input, &
+                        [character(len=80) :: 'steps_total_too_large.dat:25: field 3:', &
+                         'steps add up to 12000000, more than feps numbers in one run (10000000)'], error, &
+                        before_first_step=.true.)
+  end subroutine test_steps_total_too_large
+
+  subroutine test_maxit_out_of_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/maxit_out_of_range.dat', err_input, &
+                        [character(len=70) :: 'maxit_out_of_range.dat:24: field 4:', &
+                         'MAXIT 2147483647 is outside the allowed range 1..1000'], error)
+  end subroutine test_maxit_out_of_range
+
+  subroutine test_cutbacks_out_of_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/cutbacks_out_of_range.dat', err_input, &
+                        [character(len=70) :: 'cutbacks_out_of_range.dat:24: field 4:', &
+                         'CUTBACKS 1000000 is outside the allowed range 0..50'], error)
+  end subroutine test_cutbacks_out_of_range
+
+  subroutine test_subnormal_number(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/subnormal_number.dat', err_input, &
+                        [character(len=70) :: 'subnormal_number.dat:15: field 4:', &
+                         'number "1e-320" is out of range'], error, before_first_step=.true.)
+  end subroutine test_subnormal_number
+
+  !> The error names the line the field is on (issue 24: it named the record's first line).
+  subroutine test_continuation_field_line(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/continuation_field_line.dat', err_input, &
+                        [character(len=70) :: 'continuation_field_line.dat:26: field 5:', &
+                         'expected a number, got "1x0."'], error)
+  end subroutine test_continuation_field_line
 
   subroutine test_element_repeat_too_large(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/element_repeat_too_large.dat', err_input, &
                         [character(len=60) :: 'element_repeat_too_large.dat:12: field 2:', &
-                         'the mesh would have 120000000 elements', 'more than feps reads (20000000)'], error)
+                         'repeat count 30000000 is outside the allowed range', '-20000000..20000000'], error)
   end subroutine test_element_repeat_too_large
 
   subroutine test_node_number_too_large(error)
@@ -677,6 +869,39 @@ contains
                         [character(len=60) :: 'bar_area_missing.dat:12: material soft: A is missing'], error, &
                         absent=['field'])
   end subroutine test_bar_area_missing
+
+  !> Issue 24: a control byte or invalid UTF-8 in a group name made an XDMF file no XML parser
+  !! reads; the deck reader refuses it, showing the byte as \xNN.
+  subroutine test_group_name_control(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/group_name_control.dat', err_input, &
+                        [character(len=70) :: 'group_name_control.dat:8: field 2:', &
+                         'the group name "blo\x1bck" has a byte that is no printable text at byte 4'], error)
+  end subroutine test_group_name_control
+
+  subroutine test_group_name_not_utf8(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/group_name_not_utf8.dat', err_input, &
+                        [character(len=70) :: 'group_name_not_utf8.dat:8: field 2:', &
+                         'the group name "caf\xe9" has a byte that is no printable text at byte 4'], error)
+  end subroutine test_group_name_not_utf8
+
+  subroutine test_utf8_text(error)
+    type(error_t), allocatable, intent(out) :: error
+    call check(error, utf8_text_length('b' // achar(195) // achar(169) // 'ton') == 6, 'UTF-8 text is printable')
+    if (allocated(error)) return
+    call check(error, utf8_text_length('ab' // achar(9)) == 2, 'a tab is a control character')
+    if (allocated(error)) return
+    call check(error, utf8_text_length('a' // achar(192) // achar(175)) == 1, 'an overlong form is no UTF-8')
+    if (allocated(error)) return
+    call check(error, utf8_text_length(achar(237) // achar(160) // achar(128)) == 0, 'a surrogate is no UTF-8')
+    if (allocated(error)) return
+    call check(error, utf8_text_length('x' // achar(226) // achar(130)) == 1, 'a cut sequence is no UTF-8')
+    if (allocated(error)) return
+    call check(error, utf8_text_length(achar(194) // achar(133)) == 0, 'U+0085 is a C1 control')
+    if (allocated(error)) return
+    call check(error, shown('a' // achar(27) // 'b') == 'a\x1bb', 'shown: ' // shown('a' // achar(27) // 'b'))
+  end subroutine test_utf8_text
 
   subroutine test_group_name_slash(error)
     type(error_t), allocatable, intent(out) :: error

@@ -431,7 +431,7 @@ contains
     call get_option(records(1), 'thickness', value, found)
     call check(error, .not. found .and. len(value) == 0, 'missing option')
     if (allocated(error)) return
-    call field_int(records(1), 3, i, error)
+    call field_int(records(1), 3, i, error, 1, 12)
     if (allocated(error)) return
     call check(error, i, 12, 'integer field')
     if (allocated(error)) return
@@ -443,13 +443,13 @@ contains
     if (allocated(error)) return
     call check(error, x, 7.0_dp, 'integer text as a real', rel=1.0e-15_dp)
     if (allocated(error)) return
-    call field_int(records(1), 4, i, got)
+    call field_int(records(1), 4, i, got, -huge(1), huge(1))
     call expect_error(error, got, err_input, name // ':1: field 4: ', 'expected an integer')
     if (allocated(error)) return
     call field_real(records(1), 6, x, got)
     call expect_error(error, got, err_input, name // ':1: field 6: ', "expected a real number, got 'x1'")
     if (allocated(error)) return
-    call field_int(records(1), 7, i, got)
+    call field_int(records(1), 7, i, got, -huge(1), huge(1))
     call expect_error(error, got, err_input, name // ':1: field 7: ', 'missing')
   end subroutine test_records_fields
 
@@ -584,7 +584,43 @@ contains
     ! a count whose nodes could not be numbered
     call mesh_error([character(len=30) :: 'A, 2, 0., 0., 0.', '%, 2, 1., 0., 0.', &
                      '%, 2000000000, 0., 1., 0.', 'E', 'E'], got)
-    call expect_error(error, got, err_input, name // ':3: field 2: ', 'repeat count too large')
+    call expect_error(error, got, err_input, name // ':3: field 2: ', &
+                      'repeat count 2000000000 is outside the allowed range -20000000..20000000')
+    if (allocated(error)) return
+    ! the most negative integer, whose negation overflows (it crashed the reader, issue 24), in a
+    ! node block and in an element block
+    call mesh_error([character(len=30) :: 'A, 2, 0., 0., 0.', '%, 2, 1., 0., 0.', &
+                     '%, -2147483648, 1., 0., 0.', 'E', 'E'], got)
+    call expect_error(error, got, err_input, name // ':3: field 2: ', &
+                      'repeat count -2147483648 is outside the allowed range -20000000..20000000')
+    if (allocated(error)) return
+    call mesh_error([character(len=30) :: 'A, 2, 0., 0., 0.', '%, 2, 1., 0., 0.', 'E', &
+                     'A, 2, 1, 2', '%, 2, *, *, 1', '%, -2147483648, *, *, 1', 'E', 'E'], got)
+    call expect_error(error, got, err_input, name // ':6: field 2: ', &
+                      'repeat count -2147483648 is outside the allowed range')
+    if (allocated(error)) return
+    ! beyond any integer
+    call mesh_error([character(len=40) :: 'A, 2, 0., 0., 0.', '%, 99999999999999999999999, 1., 0., 0.', &
+                     'E', 'E'], got)
+    call expect_error(error, got, err_input, name // ':2: field 2: ', &
+                      'repeat count 99999999999999999999999 is outside the allowed range')
+    if (allocated(error)) return
+    ! an increment, and the shift a repeat adds up from counts and increments within range
+    call mesh_error([character(len=30) :: 'A, 2, 0., 0., 0.', '%, 2, 1., 0., 0.', 'E', &
+                     'A, 2, 1, 2', '%, 2, *, *, 2147483647', 'E', 'E'], got)
+    call expect_error(error, got, err_input, name // ':5: field 5: ', &
+                      'increment 2147483647 is outside the allowed range -20000000..20000000')
+    if (allocated(error)) return
+    call mesh_error([character(len=30) :: 'A, 2, 0., 0., 0.', '%, 2, 1., 0., 0.', 'E', &
+                     'A, 2, 1, 2', '%, 20000, *, *, 20000', 'E', 'E'], got)
+    call expect_error(error, got, err_input, name // ':5: field 5: ', &
+                      'would shift node numbers by 399980000, beyond the largest node number feps reads')
+    if (allocated(error)) return
+    ! a node number of an A record
+    call mesh_error([character(len=30) :: 'A, 2, 0., 0., 0.', '%, 2, 1., 0., 0.', 'E', &
+                     'A, 2, 1, -2147483648', 'E', 'E'], got)
+    call expect_error(error, got, err_input, name // ':4: field 4: ', &
+                      'node number -2147483648 is outside the allowed range 1..20000000')
     if (allocated(error)) return
     ! one node past the mesh size limit, counted across node blocks: 3 + 2 x 9999999 = 2e7 + 1
     ! (the second block alone is within it)

@@ -2,7 +2,7 @@
 !! with the HDF5 API and compared exactly with the values written (all are exact binary fractions).
 module test_results_file
   use feps_kinds, only: dp, i8
-  use feps_error, only: err_internal, err_solver, err_input, str
+  use feps_error, only: err_internal, err_solver, err_input, err_io, str
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_results_file, only: results_file_t, step_group_name
   use feps_program, only: run_options_t, run_summary_t, run_feps
@@ -11,6 +11,8 @@ module test_results_file
                              real_attribute, int_attribute, int64_attribute, file_exists, delete_file, &
                              file_text, occurrences
   use hdf5, only: hid_t, hsize_t, h5fclose_f
+  use feps_xdmf, only: write_xdmf, xdmf_group_t, xdmf_step_t
+  use feps_files, only: text_file_t, remove_regular_file, file_kind, file_directory, file_special
   implicit none
   private
 
@@ -30,6 +32,9 @@ contains
       new_unittest("xdmf: only global x y z nodal fields are vectors", test_xdmf_nodal_system_field), &
       new_unittest("mesh-only xdmf", test_mesh_only_xdmf), &
       new_unittest("discard leaves no file", test_discard), &
+      new_unittest("a full disk under the XDMF file is reported (/dev/full)", test_xdmf_disk_full), &
+      new_unittest("a text file's write errors are reported, unlike gfortran's", test_text_file_errors), &
+      new_unittest("discard removes regular files only, never a directory", test_discard_keeps_directory), &
       new_unittest("contract violations are errors", test_contract_errors), &
       new_unittest("non-finite values are refused", test_non_finite_refused, nonfinite=.true.), &
       new_unittest("step group names", test_step_names), &
@@ -714,5 +719,55 @@ contains
       end do
     end subroutine group_connectivity
   end subroutine test_xdmf_every_type
+
+  !> Issue 24: the disk filling while the XDMF file was written left it empty or cut short with
+  !! exit status 0 (gfortran's WRITE and CLOSE report no error). /dev/full fails every write
+  !! with ENOSPC.
+  subroutine test_xdmf_disk_full(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(error_t), allocatable :: got
+    type(xdmf_group_t) :: groups(0)
+    type(xdmf_step_t) :: steps(0)
+    logical :: exists
+    inquire (file='/dev/full', exist=exists)
+    if (.not. exists) return
+    call write_xdmf('/dev/full', 'r.h5', 8, groups, steps, got)
+    call check(error, allocated(got), 'the full disk is reported')
+    if (allocated(error)) return
+    call check(error, got%code == err_io .and. index(got%message, 'cannot write XDMF file /dev/full: ') > 0, &
+               got%message)
+  end subroutine test_xdmf_disk_full
+
+  subroutine test_text_file_errors(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(text_file_t) :: file
+    character(len=:), allocatable :: message
+    call file%open('build/no_such_folder/x.txt', message)
+    call check(error, len(message) > 0, 'a file in a missing folder cannot be opened')
+    if (allocated(error)) return
+    call file%write('nothing')
+    call file%close(message)
+    call check(error, len(message) > 0, 'and its close says so')
+    if (allocated(error)) return
+    call file%open('build/test_text_file.txt', message)
+    call check(error, len(message) == 0, 'a file opens: ' // message)
+    if (allocated(error)) return
+    call file%write('one line')
+    call file%close(message)
+    call check(error, len(message) == 0, 'it is written: ' // message)
+    if (allocated(error)) return
+    call check(error, remove_regular_file('build/test_text_file.txt'), 'and removed')
+  end subroutine test_text_file_errors
+
+  subroutine test_discard_keeps_directory(error)
+    type(error_t), allocatable, intent(out) :: error
+    call check(error, .not. remove_regular_file('build'), 'a directory is not removed')
+    if (allocated(error)) return
+    call check(error, file_kind('build') == file_directory, 'it is still there')
+    if (allocated(error)) return
+    call check(error, file_kind('/dev/null') == file_special, '/dev/null is no regular file')
+    if (allocated(error)) return
+    call check(error, .not. remove_regular_file('/dev/null'), 'and is not removed')
+  end subroutine test_discard_keeps_directory
 
 end module test_results_file

@@ -11,6 +11,7 @@ module feps_error
   integer, parameter, public :: err_io = 5         !! files that cannot be written (results)
   integer, parameter, public :: err_internal = 6   !! a broken invariant: a bug in feps
   integer, parameter, public :: err_input_file = 7 !! an input file that cannot be opened or read (named)
+  integer, parameter, public :: err_memory = 8     !! more memory than the process may use (a run that fails)
 
   !> An error: category, one-line message and an optional integer (e.g. the failing equation).
   type, public :: error_t

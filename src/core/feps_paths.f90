@@ -5,7 +5,7 @@ module feps_paths
   implicit none
   private
 
-  public :: is_xdmf_name
+  public :: is_xdmf_name, xdmf_file_name
 
 contains
 
@@ -19,5 +19,21 @@ contains
     is_xdmf_name = .false.
     if (n >= 4) is_xdmf_name = to_lower(path(n - 3:n)) == '.xmf'
   end function is_xdmf_name
+
+  !> The XDMF file beside the results file `path`: its extension replaced by '.xmf', or '.xmf'
+  !! appended (a dot that starts the file name, a hidden file, is no extension). The program
+  !! checks this path before a run; the output writes it.
+  pure function xdmf_file_name(path) result(xdmf)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: xdmf
+    integer :: slash, dot
+    slash = index(path, '/', back=.true.)
+    dot = index(path, '.', back=.true.)
+    if (dot > slash + 1) then
+      xdmf = path(:dot - 1) // '.xmf'
+    else
+      xdmf = path // '.xmf'
+    end if
+  end function xdmf_file_name
 
 end module feps_paths

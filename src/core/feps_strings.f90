@@ -4,7 +4,7 @@ module feps_strings
   implicit none
   private
 
-  public :: to_upper, to_lower, sci
+  public :: to_upper, to_lower, sci, utf8_text_length, shown
 
 contains
 
@@ -52,5 +52,68 @@ contains
     res = trim(adjustl(buf))
     if (len(res) < width) res = repeat(' ', width - len(res)) // res
   end function sci
+
+  !> How many bytes of `text` from the start are printable text: valid UTF-8 (no overlong form,
+  !! no surrogate, nothing beyond U+10FFFF) without control characters (bytes 0-31 and 127; the
+  !! C1 controls U+0080-U+009F). len(text) when all of it is; otherwise the offset of the first
+  !! bad byte minus one. Names written into the XDMF (XML) file and the HDF5 file must be such
+  !! text: XML 1.0 has no way to write a control character, and a parser stops at invalid UTF-8.
+  pure integer function utf8_text_length(text) result(good)
+    character(len=*), intent(in) :: text
+    integer :: i, b, n, k, cp, lowest
+    i = 1
+    good = 0
+    do while (i <= len(text))
+      b = iachar(text(i:i))
+      if (b < 32 .or. b == 127) return
+      if (b < 128) then
+        n = 0
+        cp = b
+        lowest = 0
+      else if (b >= 194 .and. b <= 223) then
+        n = 1
+        cp = b - 192
+        lowest = 128
+      else if (b >= 224 .and. b <= 239) then
+        n = 2
+        cp = b - 224
+        lowest = 2048
+      else if (b >= 240 .and. b <= 244) then
+        n = 3
+        cp = b - 240
+        lowest = 65536
+      else
+        return
+      end if
+      if (i + n > len(text)) return
+      do k = 1, n
+        b = iachar(text(i + k:i + k))
+        if (b < 128 .or. b > 191) return
+        cp = 64 * cp + (b - 128)
+      end do
+      if (cp < lowest .or. cp > 1114111 .or. (cp >= 55296 .and. cp <= 57343) .or. (cp >= 128 .and. cp <= 159)) return
+      i = i + n + 1
+      good = i - 1
+    end do
+  end function utf8_text_length
+
+  !> `text` for a message: bytes that are not printable text (utf8_text_length) as \xNN.
+  pure function shown(text) result(res)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: res
+    character(len=*), parameter :: hex = '0123456789abcdef'
+    integer :: i, good, b
+    res = ''
+    i = 1
+    do while (i <= len(text))
+      good = utf8_text_length(text(i:))
+      res = res // text(i:i + good - 1)
+      i = i + good
+      if (i > len(text)) exit
+      b = iachar(text(i:i))
+      res = res // '\x' // hex(b / 16 + 1:b / 16 + 1) // hex(mod(b, 16) + 1:mod(b, 16) + 1)
+      i = i + 1
+    end do
+  end function shown
 
 end module feps_strings

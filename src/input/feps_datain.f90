@@ -222,7 +222,7 @@ contains
     logical :: has_real, fits_node, fits_element
 
     node_block = .false.
-    call field_int(rec, 2, c, error)
+    call field_int(rec, 2, c, error, -huge(1), huge(1))
     if (allocated(error)) return
     m = nfields(rec) - 2
     has_real = .false.
@@ -275,7 +275,7 @@ contains
     logical :: ok
 
     first_pos = pos
-    call field_int(records(pos), 2, c, error)
+    call field_int(records(pos), 2, c, error, 1, size(systems))
     if (allocated(error)) return
     nc = systems(c)%ncoords()
     allocate (local(3, 64))
@@ -361,11 +361,11 @@ contains
     logical :: ok
 
     first_pos = pos
-    call field_int(records(pos), 2, k, error)
+    call field_int(records(pos), 2, k, error, 1, nfields(records(pos)) - 2)
     if (allocated(error)) return
     allocate (conn(k, 64), reached(k), offset(k))
     do i = 1, k
-      call field_int(records(pos), 2 + i, conn(i, 1), error)
+      call field_int(records(pos), 2 + i, conn(i, 1), error, 1, max_mesh_nodes, 'node number')
       if (allocated(error)) return
     end do
     nel = 1
@@ -401,7 +401,7 @@ contains
                             str(s1), 4)
           return
         end if
-        call field_int(records(pos), 5, inc, error)
+        call field_int(records(pos), 5, inc, error, -max_mesh_nodes, max_mesh_nodes, 'increment')
         if (allocated(error)) return
         if (n > 0) then
           layer = nel
@@ -414,6 +414,13 @@ contains
         call make_room(records(pos), mesh%nelements() + nel, layer, count, 'elements', &
                        max_mesh_elements, error)
         if (allocated(error)) return
+        ! the largest shift of a node number, checked wide before the copies add it up
+        if (maxval(abs(int(reached(s1:s2), i8) + int(count, i8) * inc)) > max_mesh_nodes) then
+          call record_error(error, records(pos), 'this repeat would shift node numbers by ' // &
+                            str(maxval(abs(int(reached(s1:s2), i8) + int(count, i8) * inc))) // &
+                            ', beyond the largest node number feps reads (' // str(max_mesh_nodes) // ')', 5)
+          return
+        end if
         call grow_int(conn, nel + layer * count, ok)
         if (.not. ok) then
           call record_error(error, records(pos), 'cannot allocate memory for the elements of this repeat', 2)
@@ -461,12 +468,14 @@ contains
     call move_alloc(blocks, mesh%blocks)
   end subroutine append_block
 
-  !> Repeat count n of a % record (field 2): an integer other than zero.
+  !> Repeat count n of a % record (field 2): an integer other than zero, |n| within the mesh's
+  !! size limit (so that -n and n - 1 are safe).
   pure subroutine read_repeat(rec, n, error)
     type(record_t), intent(in) :: rec
     integer, intent(out) :: n
     type(error_t), allocatable, intent(out) :: error
-    call field_int(rec, 2, n, error)
+    call field_int(rec, 2, n, error, -max(max_mesh_nodes, max_mesh_elements), max(max_mesh_nodes, max_mesh_elements), &
+                   'repeat count')
     if (allocated(error)) return
     if (n == 0) call record_error(error, rec, 'zero repeat count', 2)
   end subroutine read_repeat
@@ -486,7 +495,7 @@ contains
       slot = 0
       return
     end if
-    call field_int(rec, i, slot, error)
+    call field_int(rec, i, slot, error, 1, k, 'slot')
     if (allocated(error)) return
     if (slot < 1 .or. slot > k) call record_error(error, rec, 'slot ' // str(slot) // &
                                                    ' out of range 1..' // str(k), i)

@@ -8,7 +8,8 @@ module feps_deck
   use feps_error, only: error_t, input_error, err_input, str
   use feps_records, only: record_t, read_records, keyword, nfields, field_text, field_line
   use feps_paths, only: is_xdmf_name
-  use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check, max_mesh_nodes
+  use feps_datain, only: datain_mesh_t, datain_read_block, is_datain_record, datain_check, max_mesh_nodes, &
+                       max_mesh_elements
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian, &
                                     csys_cylindrical
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
@@ -214,18 +215,19 @@ contains
       name = trim(adjustl(f(:max(eq - 1, 0))))
       value = trim(adjustl(f(eq + 1:)))
       if (eq == 0 .or. len(name) == 0 .or. len(value) == 0) then
-        call input_error(error, rec%file, rec%line, 'expected NAME=value, got "' // f // '"', i)
+        call input_error(error, rec%file, field_line(rec, i), 'expected NAME=value, got "' // f // '"', i)
         return
       end if
       if (verify(name, 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0 .or. &
           scan(name(1:1), '0123456789') /= 0 .or. len(name) > name_len - 10 .or. len(value) > name_len) then
-        call input_error(error, rec%file, rec%line, 'parameter "' // name // '": a name is letters, digits and ' // &
+        call input_error(error, rec%file, field_line(rec, i), &
+                         'parameter "' // name // '": a name is letters, digits and ' // &
                          'underscores, not starting with a digit, at most ' // str(name_len - 10) // &
                          ' characters; a value at most ' // str(name_len), i)
         return
       end if
       if (any(model%parameter_names == name)) then
-        call input_error(error, rec%file, rec%line, 'parameter "' // name // '" is given twice', i)
+        call input_error(error, rec%file, field_line(rec, i), 'parameter "' // name // '" is given twice', i)
         return
       end if
       n = size(model%parameter_names)
@@ -252,10 +254,10 @@ contains
 
     call require_fields(rec, 3, error)
     if (allocated(error)) return
-    call get_int(rec, 2, id, error)
+    call get_int(rec, 2, -huge(1), huge(1), id, error)
     if (allocated(error)) return
     if (id /= size(model%systems) + 1) then
-      call input_error(error, rec%file, rec%line, 'coordinate systems are numbered in order: expected ' // &
+      call input_error(error, rec%file, field_line(rec, 2), 'coordinate systems are numbered in order: expected ' // &
                        str(size(model%systems) + 1) // ', got ' // str(id), 2)
       return
     end if
@@ -269,14 +271,15 @@ contains
         if (allocated(error)) return
       end do
       if (norm2(v(4:6)) == 0.0_dp) then
-        call input_error(error, rec%file, rec%line, 'the cylinder axis has zero length', 7)
+        call input_error(error, rec%file, field_line(rec, 7), 'the cylinder axis has zero length', 7)
         return
       end if
       ref = [1.0_dp, 0.0_dp, 0.0_dp]
       if (nfields(rec) > 9) then
         ! all three components or none: two would silently leave the default in place
         if (nfields(rec) < 12) then
-          call input_error(error, rec%file, rec%line, 'the theta reference takes all three of rx, ry, rz ' // &
+          call input_error(error, rec%file, field_line(rec, nfields(rec) + 1), &
+                           'the theta reference takes all three of rx, ry, rz ' // &
                            '(fields 10 to 12) or none; field ' // str(nfields(rec) + 1) // ' is missing', &
                            nfields(rec) + 1)
           return
@@ -290,7 +293,8 @@ contains
         ! theta = 0 is the part of the reference normal to the axis: it must have one
         if (norm2(ref - dot_product(ref, v(4:6)) / dot_product(v(4:6), v(4:6)) * v(4:6)) <= &
             1.0e-9_dp * norm2(ref) .or. norm2(ref) == 0.0_dp) then
-          call input_error(error, rec%file, rec%line, 'the theta reference (rx, ry, rz) is zero or parallel ' // &
+          call input_error(error, rec%file, field_line(rec, 10), &
+                           'the theta reference (rx, ry, rz) is zero or parallel ' // &
                            'to the axis, so it gives no direction for theta = 0', 10)
           return
         end if
@@ -310,7 +314,7 @@ contains
       cs%kind = csys_cartesian
       cs%origin = v(1:3)
     case default
-      call input_error(error, rec%file, rec%line, 'unknown coordinate system kind "' // kind // &
+      call input_error(error, rec%file, field_line(rec, 3), 'unknown coordinate system kind "' // kind // &
                        '" (CARTESIAN or CYLINDRICAL)', 3)
       return
     end select
@@ -379,14 +383,15 @@ contains
     real(dp) :: c(3)
     call require_fields(rec, 5, error)
     if (allocated(error)) return
-    call get_int(rec, 2, id, error)
+    call get_int(rec, 2, -huge(1), huge(1), id, error)
     if (allocated(error)) return
     if (id < 1) then
-      call input_error(error, rec%file, rec%line, 'node number ' // str(id) // ' must be positive', 2)
+      call input_error(error, rec%file, field_line(rec, 2), 'node number ' // str(id) // ' must be positive', 2)
       return
     end if
     if (id > max_mesh_nodes) then
-      call input_error(error, rec%file, rec%line, 'node number ' // str(id) // ' is larger than feps reads (' // &
+      call input_error(error, rec%file, field_line(rec, 2), &
+                       'node number ' // str(id) // ' is larger than feps reads (' // &
                        str(max_mesh_nodes) // ')', 2)
       return
     end if
@@ -399,7 +404,7 @@ contains
     call get_csys_option(rec, model, 'CSYS', csys_cartesian, cs, error)
     if (allocated(error)) return
     if (any(st%explicit_ids(1:st%explicit_nodes) == id)) then
-      call input_error(error, rec%file, rec%line, 'duplicate node ' // str(id) // ' (defined before)', 2)
+      call input_error(error, rec%file, field_line(rec, 2), 'duplicate node ' // str(id) // ' (defined before)', 2)
       return
     end if
     st%explicit_ids = [st%explicit_ids, id]
@@ -427,7 +432,7 @@ contains
     call check_result_name(rec, 'material', m%name, error)
     if (allocated(error)) return
     if (model%find_material(m%name) > 0) then
-      call input_error(error, rec%file, rec%line, 'material "' // m%name // '" is defined twice', 2)
+      call input_error(error, rec%file, field_line(rec, 2), 'material "' // m%name // '" is defined twice', 2)
       return
     end if
     m%kind = to_lower(field_text(rec, 3))
@@ -441,7 +446,7 @@ contains
       if (allocated(error)) return
       key = to_lower(key)
       if (any(m%keys == key)) then
-        call input_error(error, rec%file, rec%line, 'material ' // m%name // ': ' // to_upper(key) // &
+        call input_error(error, rec%file, field_line(rec, i), 'material ' // m%name // ': ' // to_upper(key) // &
                          ' is given twice (fields ' // str(m%fields(maxloc(merge(1, 0, m%keys == key), dim=1))) // ' and ' // &
                          str(i) // ')', i)
         return
@@ -482,7 +487,7 @@ contains
     call check_result_name(rec, 'group', g%name, error)
     if (allocated(error)) return
     if (model%find_group(g%name) > 0) then
-      call input_error(error, rec%file, rec%line, 'group "' // g%name // '" is defined twice', 2)
+      call input_error(error, rec%file, field_line(rec, 2), 'group "' // g%name // '" is defined twice', 2)
       return
     end if
     call check_option_keys(rec, 3, error, allowed=[character(len=8) :: 'TYPE', 'MATERIAL', 'BLOCKS'])
@@ -494,7 +499,7 @@ contains
     end if
     call element_info(text, g%element, unknown)
     if (allocated(unknown)) then
-      call input_error(error, rec%file, rec%line, 'unknown element type "' // text // '" (solids: ' // &
+      call input_error(error, rec%file, field_line(rec, ifield), 'unknown element type "' // text // '" (solids: ' // &
                        known_element_types(family_solid) // '; interfaces: ' // &
                        known_element_types(family_interface) // '; bars: ' // known_element_types(family_bar) // &
                        '; of them 2D (plane strain): ' // known_element_types(dimension=2) // ')', ifield)
@@ -515,10 +520,11 @@ contains
     tmp = [model%groups, g]
     call move_alloc(tmp, model%groups)
     if (found) then
-      call parse_range_int(text, lo, hi, error, rec, ifield)
+      call parse_range_int(text, -huge(1), max_mesh_elements, lo, hi, error, rec, ifield)
       if (allocated(error)) return
       if (lo < 1 .or. hi < lo) then
-        call input_error(error, rec%file, rec%line, 'BLOCKS range "' // text // '" is empty or not positive', &
+        call input_error(error, rec%file, field_line(rec, ifield), &
+                         'BLOCKS range "' // text // '" is empty or not positive', &
                          ifield)
         return
       end if
@@ -546,22 +552,26 @@ contains
     call require_fields(rec, 3, error)
     if (allocated(error)) return
     s%name = field_text(rec, 2)
+    call check_result_name(rec, 'node set', s%name, error)
+    if (allocated(error)) return
     if (model%find_node_set(s%name) > 0) then
-      call input_error(error, rec%file, rec%line, 'node set "' // s%name // '" is defined twice', 2)
+      call input_error(error, rec%file, field_line(rec, 2), 'node set "' // s%name // '" is defined twice', 2)
       return
     end if
     node = 0
     call option_text(rec, 'NODE', text, ifield, found)
     if (found) then
       if (nfields(rec) > 3) then
-        call input_error(error, rec%file, rec%line, 'NODE= selects one node and takes no other option', &
+        call input_error(error, rec%file, field_line(rec, merge(4, 3, ifield == 3)), &
+                         'NODE= selects one node and takes no other option', &
                          merge(4, 3, ifield == 3))
         return
       end if
-      call parse_int(text, node, error, rec, ifield)
+      call parse_int(text, -huge(1), huge(1), node, error, rec, ifield)
       if (allocated(error)) return
       if (node < 1) then
-        call input_error(error, rec%file, rec%line, 'node number ' // str(node) // ' must be positive', ifield)
+        call input_error(error, rec%file, field_line(rec, ifield), &
+                         'node number ' // str(node) // ' must be positive', ifield)
         return
       end if
     else
@@ -594,8 +604,10 @@ contains
     call require_fields(rec, 3, error)
     if (allocated(error)) return
     s%name = field_text(rec, 2)
+    call check_result_name(rec, 'face set', s%name, error)
+    if (allocated(error)) return
     if (model%find_face_set(s%name) > 0) then
-      call input_error(error, rec%file, rec%line, 'face set "' // s%name // '" is defined twice', 2)
+      call input_error(error, rec%file, field_line(rec, 2), 'face set "' // s%name // '" is defined twice', 2)
       return
     end if
     call option_text(rec, 'GROUP', text, ifield, found)
@@ -605,11 +617,12 @@ contains
     end if
     s%group = model%find_group(text)
     if (s%group == 0) then
-      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
+      call input_error(error, rec%file, field_line(rec, ifield), 'undefined element group "' // text // '"', ifield)
       return
     end if
     if (model%groups(s%group)%element%family == family_interface) then
-      call input_error(error, rec%file, rec%line, 'face sets take faces of solid elements; group "' // text // &
+      call input_error(error, rec%file, field_line(rec, ifield), &
+                       'face sets take faces of solid elements; group "' // text // &
                        '" holds interface elements', ifield)
       return
     end if
@@ -632,7 +645,7 @@ contains
     if (allocated(error)) return
     model%solver = to_lower(field_text(rec, 2))
     if (model%solver /= 'cholmod' .and. model%solver /= 'skyline') then
-      call input_error(error, rec%file, rec%line, 'unknown solver "' // field_text(rec, 2) // &
+      call input_error(error, rec%file, field_line(rec, 2), 'unknown solver "' // field_text(rec, 2) // &
                        '" (skyline or cholmod)', 2)
     end if
   end subroutine read_solver
@@ -644,7 +657,7 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(error_t), allocatable, intent(out) :: error
     if (st%output_line > 0) then
-      call input_error(error, rec%file, rec%line, 'OUTPUT is given twice (first at line ' // &
+      call input_error(error, rec%file, field_line(rec, 1), 'OUTPUT is given twice (first at line ' // &
                        str(st%output_line) // ')', 1)
       return
     end if
@@ -681,18 +694,18 @@ contains
         call key_value(rec, i, 'CSYS=n', key, value, error)
         if (allocated(error)) return
         if (key /= 'CSYS') then
-          call input_error(error, rec%file, rec%line, 'unknown FIELDS option "' // field_text(rec, i) // &
+          call input_error(error, rec%file, field_line(rec, i), 'unknown FIELDS option "' // field_text(rec, i) // &
                            '" (FIELDS takes field names, and CSYS=n for stress_cyl)', i)
           return
         else if (csys_given) then
-          call input_error(error, rec%file, rec%line, 'CSYS is given twice', i)
+          call input_error(error, rec%file, field_line(rec, i), 'CSYS is given twice', i)
           return
         end if
         csys_given = .true.
         call get_csys_option(rec, model, 'CSYS', 3, model%fields%csys, error)
         if (allocated(error)) return
         if (model%systems(model%fields%csys)%kind /= csys_cylindrical) then
-          call input_error(error, rec%file, rec%line, 'CSYS=' // str(model%fields%csys) // ' is not a ' // &
+          call input_error(error, rec%file, field_line(rec, i), 'CSYS=' // str(model%fields%csys) // ' is not a ' // &
                            'cylindrical system (stress_cyl takes the radial, hoop and axial directions of one)', i)
           return
         end if
@@ -700,7 +713,7 @@ contains
       end if
       call model%fields%select(to_lower(field_text(rec, i)), known)
       if (.not. known) then
-        call input_error(error, rec%file, rec%line, 'unknown field "' // field_text(rec, i) // '" (' // &
+        call input_error(error, rec%file, field_line(rec, i), 'unknown field "' // field_text(rec, i) // '" (' // &
                          known_fields() // ')', i)
         return
       end if
@@ -1122,12 +1135,14 @@ contains
       end select
       call dof_index(key, model%systems(r%csys)%kind, k)
       if (k == 0) then
-        call input_error(error, rec%file, rec%line, 'unknown coordinate "' // key // '" for this system (' // &
+        call input_error(error, rec%file, field_line(rec, i), &
+                         'unknown coordinate "' // key // '" for this system (' // &
                          dof_names(model%systems(r%csys)%kind) // ')', i)
         return
       end if
       if (r%active(k)) then
-        call input_error(error, rec%file, rec%line, 'coordinate ' // key // ' names the same coordinate as ' // &
+        call input_error(error, rec%file, field_line(rec, i), &
+                         'coordinate ' // key // ' names the same coordinate as ' // &
                          'another field of the selection', i)
         return
       end if

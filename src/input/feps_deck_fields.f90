@@ -2,10 +2,11 @@
 !! file, line and field of a bad one, KEY=value options, coordinate names, coordinate-system
 !! options, result names and the element and material families.
 module feps_deck_fields
-  use feps_strings, only: to_upper
+  use feps_strings, only: to_upper, shown, utf8_text_length
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
-  use feps_records, only: record_t, keyword, nfields, field_text, is_integer_text, real_from_text
+  use feps_records, only: record_t, keyword, nfields, field_text, field_line, is_integer_text, is_real_text, &
+                          real_from_text, int_in_range
   use feps_coordinate_system, only: csys_cylindrical
   use feps_model, only: model_t
   use feps_element_catalog, only: family_solid, family_interface, family_bar
@@ -28,7 +29,8 @@ contains
     if (nfields(rec) >= n) return
     least = str(n - 1) // ' fields'
     if (n == 2) least = '1 field'
-    call input_error(error, rec%file, rec%line, keyword(rec) // ' needs at least ' // least // &
+    call input_error(error, rec%file, field_line(rec, nfields(rec) + 1), &
+                     keyword(rec) // ' needs at least ' // least // &
                      ' after the keyword; field ' // str(nfields(rec) + 1) // ' is missing', nfields(rec) + 1)
   end subroutine require_fields
 
@@ -43,7 +45,8 @@ contains
     most = 'at most ' // str(n - 1) // ' fields'
     if (n == 2) most = 'at most 1 field'
     if (n == 1) most = 'no field'
-    call input_error(error, rec%file, rec%line, keyword(rec) // ' takes ' // most // ' after the keyword; "' // &
+    call input_error(error, rec%file, field_line(rec, n + 1), &
+                     keyword(rec) // ' takes ' // most // ' after the keyword; "' // &
                      field_text(rec, n + 1) // '" is one too many', n + 1)
   end subroutine forbid_extra_fields
 
@@ -56,13 +59,14 @@ contains
     call parse_real(field_text(rec, i), v, error, rec, i)
   end subroutine get_real
 
-  !> Field `i` of `rec` as an integer; an error naming the field otherwise.
-  subroutine get_int(rec, i, v, error)
+  !> Field `i` of `rec` as an integer in lo..hi; an error naming the field otherwise.
+  subroutine get_int(rec, i, lo, hi, v, error, what)
     type(record_t), intent(in) :: rec
-    integer, intent(in) :: i
+    integer, intent(in) :: i, lo, hi
     integer, intent(out) :: v
     type(error_t), allocatable, intent(out) :: error
-    call parse_int(field_text(rec, i), v, error, rec, i)
+    character(len=*), intent(in), optional :: what   !! its name in the message (default 'integer')
+    call parse_int(field_text(rec, i), lo, hi, v, error, rec, i, what)
   end subroutine get_int
 
   !> `text` (field `i` of `rec`, for the message) as a finite real number.
@@ -74,21 +78,33 @@ contains
     integer, intent(in) :: i
     logical :: ok
     call real_from_text(text, v, ok)
-    if (.not. ok) call input_error(error, rec%file, rec%line, 'expected a number, got "' // trim(text) // '"', i)
+    if (ok) return
+    if (is_real_text(trim(adjustl(text)))) then
+      call input_error(error, rec%file, field_line(rec, i), 'number "' // trim(text) // '" is out of range ' // &
+                       '(zero or a magnitude from 2.2e-308 to 1.8e308)', i)
+    else
+      call input_error(error, rec%file, field_line(rec, i), 'expected a number, got "' // trim(text) // '"', i)
+    end if
   end subroutine parse_real
 
-  !> `text` (field `i` of `rec`, for the message) as an integer (0 on error).
-  subroutine parse_int(text, v, error, rec, i)
+  !> `text` (field `i` of `rec`, for the message) as an integer in lo..hi (0 on error). Every
+  !! integer of a deck is read with its range, before any arithmetic on it.
+  subroutine parse_int(text, lo, hi, v, error, rec, i, what)
     character(len=*), intent(in) :: text
+    integer, intent(in) :: lo, hi
     integer, intent(out) :: v
     type(error_t), allocatable, intent(out) :: error
     type(record_t), intent(in) :: rec
     integer, intent(in) :: i
-    integer :: ios
+    character(len=*), intent(in), optional :: what   !! its name in the message (default 'integer')
+    type(error_t), allocatable :: range
     v = 0
-    ios = 1
-    if (is_integer_text(trim(adjustl(text)))) read (text, *, iostat=ios) v
-    if (ios /= 0) call input_error(error, rec%file, rec%line, 'expected an integer, got "' // trim(text) // '"', i)
+    if (.not. is_integer_text(trim(adjustl(text)))) then
+      call input_error(error, rec%file, field_line(rec, i), 'expected an integer, got "' // trim(text) // '"', i)
+      return
+    end if
+    call int_in_range(trim(adjustl(text)), lo, hi, v, range, what)
+    if (allocated(range)) call input_error(error, rec%file, field_line(rec, i), range%message, i)
   end subroutine parse_int
 
   !> `text` as a real number or a range LO:HI with LO <= HI (a number: `lo` = `hi`).
@@ -109,12 +125,13 @@ contains
     if (allocated(error)) return
     call parse_real(text(c + 1:), hi, error, rec, i)
     if (allocated(error)) return
-    if (hi < lo) call input_error(error, rec%file, rec%line, 'empty range "' // text // '" (from > to)', i)
+    if (hi < lo) call input_error(error, rec%file, field_line(rec, i), 'empty range "' // text // '" (from > to)', i)
   end subroutine parse_range_real
 
-  !> `text` as an integer or a range LO:HI (an integer: `lo` = `hi`).
-  subroutine parse_range_int(text, lo, hi, error, rec, i)
+  !> `text` as an integer or a range LO:HI (an integer: `lo` = `hi`), each in first..last.
+  subroutine parse_range_int(text, first, last, lo, hi, error, rec, i)
     character(len=*), intent(in) :: text
+    integer, intent(in) :: first, last
     integer, intent(out) :: lo, hi
     type(error_t), allocatable, intent(out) :: error
     type(record_t), intent(in) :: rec
@@ -122,13 +139,13 @@ contains
     integer :: c
     c = index(text, ':')
     if (c == 0) then
-      call parse_int(text, lo, error, rec, i)
+      call parse_int(text, first, last, lo, error, rec, i)
       hi = lo
       return
     end if
-    call parse_int(text(:c - 1), lo, error, rec, i)
+    call parse_int(text(:c - 1), first, last, lo, error, rec, i)
     if (allocated(error)) return
-    call parse_int(text(c + 1:), hi, error, rec, i)
+    call parse_int(text(c + 1:), first, last, hi, error, rec, i)
   end subroutine parse_range_int
 
   !> Field `i` of `rec` as KEY=value: `key` upper-cased, `value` as written. A field without
@@ -144,7 +161,7 @@ contains
     f = field_text(rec, i)
     eq = index(f, '=')
     if (eq < 2) then
-      call input_error(error, rec%file, rec%line, 'expected ' // expected // ', got "' // f // '"', i)
+      call input_error(error, rec%file, field_line(rec, i), 'expected ' // expected // ', got "' // f // '"', i)
       return
     end if
     key = to_upper(f(:eq - 1))
@@ -174,7 +191,7 @@ contains
           do j = 2, size(allowed)
             list = list // ', ' // trim(allowed(j))
           end do
-          call input_error(error, rec%file, rec%line, 'unknown ' // keyword(rec) // ' option "' // key // &
+          call input_error(error, rec%file, field_line(rec, i), 'unknown ' // keyword(rec) // ' option "' // key // &
                            '" (' // list // ')', i)
           return
         end if
@@ -185,7 +202,8 @@ contains
       do j = first, i - 1
         call key_value(rec, j, 'KEY=value', other, value, error)
         if (other == key) then
-          call input_error(error, rec%file, rec%line, key // ' is given twice (fields ' // str(j) // ' and ' // &
+          call input_error(error, rec%file, field_line(rec, i), &
+                           key // ' is given twice (fields ' // str(j) // ' and ' // &
                            str(i) // ')', i)
           return
         end if
@@ -246,10 +264,10 @@ contains
     cs = default
     call option_text(rec, key, text, ifield, found)
     if (.not. found) return
-    call parse_int(text, cs, error, rec, ifield)
+    call parse_int(text, -huge(1), huge(1), cs, error, rec, ifield)
     if (allocated(error)) return
     if (cs < 1 .or. cs > size(model%systems)) then
-      call input_error(error, rec%file, rec%line, 'undefined coordinate system ' // str(cs), ifield)
+      call input_error(error, rec%file, field_line(rec, ifield), 'undefined coordinate system ' // str(cs), ifield)
     end if
   end subroutine get_csys_option
 
@@ -300,15 +318,26 @@ contains
     end if
   end function dof_names
 
-  !> Group and material names become HDF5 paths (/mesh/groups/<name>, /materials/<name>) and
-  !! XDMF (XML) text: no '/', no XML markup characters, not '.' or '..'.
-  subroutine check_result_name(rec, what, name, error)
+  !> Group, material and set names become HDF5 paths (/mesh/groups/<name>, /materials/<name>,
+  !! /sets/nodes/<name>) and XDMF (XML) text: no '/', no XML markup characters, not '.' or
+  !! '..', and printable text: valid UTF-8 without control characters (XML cannot hold them,
+  !! and a parser stops at invalid UTF-8), shown as \xNN in the message.
+  subroutine check_result_name(rec, what, name, error, field)
     type(record_t), intent(in) :: rec
     character(len=*), intent(in) :: what, name
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: field   !! the field that holds the name (default 2)
+    integer :: f
+    f = 2
+    if (present(field)) f = field
     if (scan(name, '/<>&"''') > 0 .or. name == '.' .or. name == '..') then
-      call input_error(error, rec%file, rec%line, 'the ' // what // ' name "' // name // '" may not contain ' // &
-                       '/ < > & " or '' nor be . or .. (it names a group in the results file)', 2)
+      call input_error(error, rec%file, field_line(rec, f), 'the ' // what // ' name "' // shown(name) // &
+                       '" may not contain / < > & " or '' nor be . or .. (it names a group in the results file)', f)
+    else if (utf8_text_length(name) < len(name)) then
+      call input_error(error, rec%file, field_line(rec, f), 'the ' // what // ' name "' // shown(name) // &
+                       '" has a byte that is no printable text at byte ' // str(utf8_text_length(name) + 1) // &
+                       ' (a control character, or not UTF-8): it names a group in the results file and ' // &
+                       'the XDMF (XML) file', f)
     end if
   end subroutine check_result_name
 

@@ -5,7 +5,7 @@ module feps_deck_loads
   use feps_strings, only: to_upper
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
-  use feps_records, only: record_t, keyword, nfields, field_text
+  use feps_records, only: record_t, keyword, nfields, field_text, field_line
   use feps_coordinate_system, only: csys_cartesian, csys_cylindrical
   use feps_element_catalog, only: family_bar
   use feps_model, only: model_t, constraint_t, nodal_load_t, face_load_t, load_pressure, load_traction, prestress_t
@@ -29,7 +29,8 @@ contains
     character(len=:), allocatable :: f
 
     if (release .and. stage <= 1) then
-      call input_error(error, rec%file, rec%line, 'RELEASE frees supports from a stage on: put it after the ' // &
+      call input_error(error, rec%file, field_line(rec, 1), &
+                       'RELEASE frees supports from a stage on: put it after the ' // &
                        'STAGE record of a later stage than the first (in the first stage, leave the FIX out)', 1)
       return
     end if
@@ -47,10 +48,10 @@ contains
         if (f(:index(f, '=') - 1) == 'CSYS') then
           csys_field = csys_field + 1
           if (csys_field == 1) cycle
-          call input_error(error, rec%file, rec%line, 'CSYS is given twice', i)
+          call input_error(error, rec%file, field_line(rec, i), 'CSYS is given twice', i)
           return
         end if
-        call input_error(error, rec%file, rec%line, keyword(rec) // ' takes DOF names and CSYS=n, not "' // &
+        call input_error(error, rec%file, field_line(rec, i), keyword(rec) // ' takes DOF names and CSYS=n, not "' // &
                          field_text(rec, i) // '"', i)
         return
       end if
@@ -62,7 +63,8 @@ contains
       end if
       call dof_index(f, model%systems(cs)%kind, dof)
       if (dof == 0) then
-        call input_error(error, rec%file, rec%line, 'unknown degree of freedom "' // f // '" for this system (' &
+        call input_error(error, rec%file, field_line(rec, i), &
+                         'unknown degree of freedom "' // f // '" for this system (' &
                          // dof_names(model%systems(cs)%kind) // ' or ALL)', i)
         return
       end if
@@ -151,7 +153,7 @@ contains
       if (k == 'CSYS') cycle
       call dof_index(k, kind, dof)
       if (dof == 0) then
-        call input_error(error, rec%file, rec%line, 'unknown direction "' // k // '" for this system (' // &
+        call input_error(error, rec%file, field_line(rec, i), 'unknown direction "' // k // '" for this system (' // &
                          dof_names(kind) // ')', i)
         return
       end if
@@ -171,7 +173,7 @@ contains
     integer, intent(in) :: dof, i
     type(error_t), allocatable, intent(out) :: error
     if (given(dof) > 0) then
-      call input_error(error, rec%file, rec%line, 'fields ' // str(given(dof)) // ' and ' // str(i) // &
+      call input_error(error, rec%file, field_line(rec, i), 'fields ' // str(given(dof)) // ' and ' // str(i) // &
                        ' set the same direction', i)
       return
     end if
@@ -195,11 +197,11 @@ contains
     name = field_text(rec, 2)
     p%group = model%find_group(name)
     if (p%group == 0) then
-      call input_error(error, rec%file, rec%line, 'undefined element group "' // name // '"', 2)
+      call input_error(error, rec%file, field_line(rec, 2), 'undefined element group "' // name // '"', 2)
       return
     end if
     if (model%groups(p%group)%element%family /= family_bar) then
-      call input_error(error, rec%file, rec%line, 'PRESTRESS acts on bars; group "' // name // '" holds ' // &
+      call input_error(error, rec%file, field_line(rec, 2), 'PRESTRESS acts on bars; group "' // name // '" holds ' // &
                        model%groups(p%group)%element_type // ' elements', 2)
       return
     end if
@@ -211,7 +213,7 @@ contains
       case ('FORCE', 'STRESS')
         given = given + 1
         if (given > 1) then
-          call input_error(error, rec%file, rec%line, 'PRESTRESS takes one of FORCE= and STRESS=, once', i)
+          call input_error(error, rec%file, field_line(rec, i), 'PRESTRESS takes one of FORCE= and STRESS=, once', i)
           return
         end if
         call parse_real(f(eq + 1:), p%force, error, rec, i)
@@ -225,19 +227,20 @@ contains
           p%bond_after = .true.
           p%bond_field = i
         case default
-          call input_error(error, rec%file, rec%line, 'BOND is BEFORE (pretensioned: bonded while ' // &
+          call input_error(error, rec%file, field_line(rec, i), 'BOND is BEFORE (pretensioned: bonded while ' // &
                            'prestressed) or AFTER (post-tensioned: bonded from the next stage), not "' // &
                            f(eq + 1:) // '"', i)
           return
         end select
       case default
-        call input_error(error, rec%file, rec%line, 'expected FORCE=axial force or STRESS=axial stress ' // &
+        call input_error(error, rec%file, field_line(rec, i), 'expected FORCE=axial force or STRESS=axial stress ' // &
                          '(tension positive) or BOND=BEFORE|AFTER, got "' // f // '"', i)
         return
       end select
     end do
     if (given == 0) then
-      call input_error(error, rec%file, rec%line, 'PRESTRESS needs FORCE=axial force or STRESS=axial stress', 3)
+      call input_error(error, rec%file, field_line(rec, 3), &
+                       'PRESTRESS needs FORCE=axial force or STRESS=axial stress', 3)
       return
     end if
     p%stage = stage
@@ -264,7 +267,7 @@ contains
     if (allocated(error)) return
     l%face_set = model%find_face_set(field_text(rec, 2))
     if (l%face_set == 0) then
-      call input_error(error, rec%file, rec%line, 'undefined face set "' // field_text(rec, 2) // '"', 2)
+      call input_error(error, rec%file, field_line(rec, 2), 'undefined face set "' // field_text(rec, 2) // '"', 2)
       return
     end if
     l%file = rec%file
@@ -289,7 +292,8 @@ contains
         select case (k)
         case ('VALUE')
           if (l%kind == load_traction) then
-            call input_error(error, rec%file, rec%line, 'TRACTION takes components (e.g. Z=1.0), not VALUE=', i)
+            call input_error(error, rec%file, field_line(rec, i), &
+                             'TRACTION takes components (e.g. Z=1.0), not VALUE=', i)
             return
           end if
           l%value = v
@@ -308,13 +312,13 @@ contains
         end select
       case default
         if (l%kind == load_pressure) then
-          call input_error(error, rec%file, rec%line, 'unknown PRESSURE option "' // k // &
+          call input_error(error, rec%file, field_line(rec, i), 'unknown PRESSURE option "' // k // &
                            '" (VALUE, TOTAL, VARY, ZERO, PEAK, VARY_CSYS, VARY2, ZERO2, PEAK2, VARY2_CSYS)', i)
           return
         end if
         call dof_index(k, model%systems(l%csys)%kind, dof)
         if (dof == 0) then
-          call input_error(error, rec%file, rec%line, 'unknown TRACTION option or direction "' // k // '"', i)
+          call input_error(error, rec%file, field_line(rec, i), 'unknown TRACTION option or direction "' // k // '"', i)
           return
         end if
         call claim_dof(rec, given, dof, i, error)
@@ -344,7 +348,8 @@ contains
     if (allocated(error)) return
     if (l%vary2_coord > 0 .and. l%vary_coord == 0) then
       call option_text(rec, 'VARY2', text, ifield, found)   ! the field to name
-      call input_error(error, rec%file, rec%line, 'VARY2 is the second variation: give VARY= too', ifield)
+      call input_error(error, rec%file, field_line(rec, ifield), &
+                       'VARY2 is the second variation: give VARY= too', ifield)
       return
     end if
     tmp = [model%face_loads, l]
@@ -365,13 +370,15 @@ contains
         call option_text(rec, 'VARY' // n // '_CSYS', text, ifield, found)
         if (has_zero .or. has_peak .or. found) then
           if (.not. found) ifield = merge(zero_field, peak_field, has_zero)
-          call input_error(error, rec%file, rec%line, 'ZERO' // n // '=, PEAK' // n // '= and VARY' // n // &
+          call input_error(error, rec%file, field_line(rec, ifield), &
+                           'ZERO' // n // '=, PEAK' // n // '= and VARY' // n // &
                            '_CSYS= belong to a variation: give VARY' // n // '= too', ifield)
         end if
         return
       end if
       if (.not. (has_zero .and. has_peak)) then
-        call input_error(error, rec%file, rec%line, 'VARY' // n // ' needs ZERO' // n // '= and PEAK' // n // &
+        call input_error(error, rec%file, field_line(rec, ifield), &
+                         'VARY' // n // ' needs ZERO' // n // '= and PEAK' // n // &
                          '= (where the load is zero and where it peaks)', ifield)
         return
       end if
@@ -390,7 +397,8 @@ contains
         coord = 2
         csys = csys_cylindrical
       case default
-        call input_error(error, rec%file, rec%line, 'VARY' // n // ' takes X, Y, Z, R or THETA, not "' // text // &
+        call input_error(error, rec%file, field_line(rec, ifield), &
+                         'VARY' // n // ' takes X, Y, Z, R or THETA, not "' // text // &
                          '"', ifield)
         return
       end select
@@ -400,7 +408,8 @@ contains
       ! X and Y name no coordinate of a cylindrical system, R and THETA none of a Cartesian one
       if (coord /= 3 .and. ((model%systems(csys)%kind == csys_cylindrical) .neqv. &
                             (default_csys == csys_cylindrical))) then
-        call input_error(error, rec%file, rec%line, 'VARY' // n // '=' // to_upper(text) // ' is no coordinate of ' // &
+        call input_error(error, rec%file, field_line(rec, ifield), &
+                         'VARY' // n // '=' // to_upper(text) // ' is no coordinate of ' // &
                          'system ' // str(csys) // ' (' // dof_names(model%systems(csys)%kind) // ')', ifield)
         return
       end if
@@ -436,7 +445,8 @@ contains
     integer, intent(out) :: iset
     type(error_t), allocatable, intent(out) :: error
     iset = model%find_node_set(field_text(rec, 2))
-    if (iset == 0) call input_error(error, rec%file, rec%line, 'undefined node set "' // field_text(rec, 2) // '"', 2)
+    if (iset == 0) call input_error(error, rec%file, field_line(rec, 2), &
+                                    'undefined node set "' // field_text(rec, 2) // '"', 2)
   end subroutine get_node_set
 
 end module feps_deck_loads

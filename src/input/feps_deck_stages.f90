@@ -2,10 +2,11 @@
 !! REPORT (the quantities printed beside the thesis's values).
 module feps_deck_stages
   use feps_strings, only: to_upper, to_lower
-  use feps_kinds, only: dp
+  use feps_kinds, only: dp, i8
   use feps_error, only: error_t, input_error, str
-  use feps_records, only: record_t, nfields, field_text
-  use feps_model, only: model_t, name_len, stage_t, controls_t, method_names, report_t
+  use feps_records, only: record_t, nfields, field_text, field_line
+  use feps_model, only: model_t, name_len, stage_t, controls_t, method_names, report_t, max_total_steps, &
+                        max_iterations_limit, max_cutbacks_limit
   use feps_deck_fields, only: key_value, check_option_keys, option_real, option_text, require_fields, parse_real, parse_int
   implicit none
   private
@@ -31,7 +32,8 @@ contains
     ! Messages, progress lines and /steps name a stage by its name: two alike would be ambiguous.
     do i = 1, size(model%stages)
       if (model%stages(i)%name == st%name) then
-        call input_error(error, rec%file, rec%line, 'STAGE "' // st%name // '" is defined twice (first at line ' // &
+        call input_error(error, rec%file, field_line(rec, 2), &
+                         'STAGE "' // st%name // '" is defined twice (first at line ' // &
                          str(model%stages(i)%line) // ')', 2)
         return
       end if
@@ -52,10 +54,13 @@ contains
       if (allocated(error)) return
       select case (k)
       case ('STEPS')
-        call parse_int(v, st%steps, error, rec, i)
+        call parse_int(v, 1, max_total_steps, st%steps, error, rec, i, 'STEPS')
         if (allocated(error)) return
-        if (st%steps < 1) then
-          call input_error(error, rec%file, rec%line, 'STEPS must be at least 1', i)
+        ! steps are numbered over all stages: their sum must stay countable (i8 for the sum)
+        if (sum(int([model%stages%steps], i8)) + st%steps > max_total_steps) then
+          call input_error(error, rec%file, field_line(rec, i), 'the stages'' steps add up to ' // &
+                           str(sum(int([model%stages%steps], i8)) + st%steps) // ', more than feps numbers in one run (' // &
+                           str(max_total_steps) // ')', i)
           return
         end if
       case ('LOAD')
@@ -63,19 +68,16 @@ contains
         if (allocated(error)) return
         st%load_given = .true.   ! else the default, decided once all stages are known
       case ('OUTPUT')
-        call parse_int(v, st%output_every, error, rec, i)
+        call parse_int(v, 0, max_total_steps, st%output_every, error, rec, i, 'OUTPUT (every k steps)')
         if (allocated(error)) return
-        if (st%output_every < 0) then
-          call input_error(error, rec%file, rec%line, 'OUTPUT (every k steps) must not be negative', i)
-          return
-        end if
       case ('ACTIVATE')
         names = v
         do
           colon = index(names, ':')
           if (colon == 0) colon = len(names) + 1
           if (len_trim(names(:colon - 1)) == 0 .or. colon - 1 > name_len) then
-            call input_error(error, rec%file, rec%line, 'ACTIVATE takes group names separated by ":", got "' // &
+            call input_error(error, rec%file, field_line(rec, i), &
+                             'ACTIVATE takes group names separated by ":", got "' // &
                              v // '"', i)
             return
           end if
@@ -87,7 +89,8 @@ contains
       case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE', 'ACCELERATION', &
             'LINESEARCH')
       case default
-        call input_error(error, rec%file, rec%line, 'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
+        call input_error(error, rec%file, field_line(rec, i), &
+                         'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
                          'ACTIVATE, METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ' // &
                          'ACCELERATION, LINESEARCH)', i)
         return
@@ -107,7 +110,7 @@ contains
     type(model_t), intent(inout) :: model
     type(error_t), allocatable, intent(out) :: error
     if (size(model%stages) > 0) then
-      call input_error(error, rec%file, rec%line, 'CONTROLS after STAGE ' // model%stages(1)%name // &
+      call input_error(error, rec%file, field_line(rec, 1), 'CONTROLS after STAGE ' // model%stages(1)%name // &
                        ' would not apply to it: put CONTROLS before the first STAGE, or give the options ' // &
                        'on the STAGE records', 1)
       return
@@ -137,17 +140,18 @@ contains
           if (to_lower(v) == trim(method_names(m))) c%method = m
         end do
         if (c%method == 0) then
-          call input_error(error, rec%file, rec%line, 'unknown METHOD "' // v // '" (euler, modified-euler, ' // &
+          call input_error(error, rec%file, field_line(rec, i), &
+                           'unknown METHOD "' // v // '" (euler, modified-euler, ' // &
                            'newton-raphson, modified-newton-raphson, initial-stiffness, full-newton-raphson)', i)
           return
         end if
       case ('MAXIT', 'CUTBACKS')
-        call parse_int(v, m, error, rec, i)
-        if (allocated(error)) return
-        if (m < merge(1, 0, k == 'MAXIT')) then
-          call input_error(error, rec%file, rec%line, k // ' must be ' // merge('>= 1', '>= 0', k == 'MAXIT'), i)
-          return
+        if (k == 'MAXIT') then
+          call parse_int(v, 1, max_iterations_limit, m, error, rec, i, k)
+        else
+          call parse_int(v, 0, max_cutbacks_limit, m, error, rec, i, k)
         end if
+        if (allocated(error)) return
         if (k == 'MAXIT') then
           c%max_iterations = m
           c%max_iterations_set = .true.
@@ -161,7 +165,7 @@ contains
         case ('none')
           c%bfgs = .false.
         case default
-          call input_error(error, rec%file, rec%line, 'unknown ACCELERATION "' // v // '" (none, bfgs)', i)
+          call input_error(error, rec%file, field_line(rec, i), 'unknown ACCELERATION "' // v // '" (none, bfgs)', i)
           return
         end select
       case ('LINESEARCH')
@@ -171,7 +175,7 @@ contains
         case ('none')
           c%line_search = .false.
         case default
-          call input_error(error, rec%file, rec%line, 'unknown LINESEARCH "' // v // '" (none, energy)', i)
+          call input_error(error, rec%file, field_line(rec, i), 'unknown LINESEARCH "' // v // '" (none, energy)', i)
           return
         end select
         c%line_search_file = rec%file
@@ -181,7 +185,7 @@ contains
         call parse_real(v, x, error, rec, i)
         if (allocated(error)) return
         if (x < 0.0_dp) then
-          call input_error(error, rec%file, rec%line, k // ' must not be negative', i)
+          call input_error(error, rec%file, field_line(rec, i), k // ' must not be negative', i)
           return
         end if
         select case (k)
@@ -198,7 +202,7 @@ contains
         end select
       case default
         if (first == 2) then
-          call input_error(error, rec%file, rec%line, 'unknown CONTROLS option "' // k // &
+          call input_error(error, rec%file, field_line(rec, i), 'unknown CONTROLS option "' // k // &
                            '" (METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ACCELERATION, ' // &
                            'LINESEARCH)', i)
           return
@@ -224,7 +228,7 @@ contains
     if (allocated(error)) return
     r%kind = to_lower(field_text(rec, 2))
     if (r%kind /= 'rotation' .and. r%kind /= 'tilt' .and. r%kind /= 'reaction') then
-      call input_error(error, rec%file, rec%line, 'unknown REPORT "' // field_text(rec, 2) // &
+      call input_error(error, rec%file, field_line(rec, 2), 'unknown REPORT "' // field_text(rec, 2) // &
                        '" (ROTATION, TILT, REACTION)', 2)
       return
     end if
@@ -257,7 +261,7 @@ contains
     end if
     r%group = model%find_group(text)
     if (r%group == 0) then
-      call input_error(error, rec%file, rec%line, 'undefined element group "' // text // '"', ifield)
+      call input_error(error, rec%file, field_line(rec, ifield), 'undefined element group "' // text // '"', ifield)
       return
     end if
     call option_real(rec, 'REFERENCE', r%reference, r%has_reference, error)
@@ -321,7 +325,8 @@ contains
       return
     end if
     r%node_set = model%find_node_set(text)
-    if (r%node_set == 0) call input_error(error, rec%file, rec%line, 'undefined node set "' // text // '"', ifield)
+    if (r%node_set == 0) call input_error(error, rec%file, field_line(rec, ifield), &
+                                          'undefined node set "' // text // '"', ifield)
   end subroutine read_reaction_report
 
   !> Each REPORT's values are written under its name (rotation_<name>_deg, reaction_<name>_fx):
@@ -335,7 +340,8 @@ contains
     integer :: i
     do i = 1, size(model%reports)
       if (model%reports(i)%name == name) then
-        call input_error(error, rec%file, rec%line, 'REPORT name "' // name // '" is used twice (first at line ' // &
+        call input_error(error, rec%file, field_line(rec, ifield), &
+                         'REPORT name "' // name // '" is used twice (first at line ' // &
                          str(model%reports(i)%line) // ')', ifield)
         return
       end if

@@ -15,15 +15,21 @@
 module feps_records
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_strings, only: to_upper
-  use feps_kinds, only: dp
+  use feps_kinds, only: dp, i8
   use feps_error, only: error_t, fatal_error, input_error, str, err_input_file, err_input
+  use feps_files, only: file_kind, file_kind_text, file_regular
   implicit none
   private
 
   public :: field_t, record_t
   public :: read_records, records_from_text
   public :: keyword, nfields, field_text, field_line, field_real, field_int, get_option
-  public :: record_error, is_integer_text, is_real_text, real_from_text
+  public :: record_error, is_integer_text, is_real_text, real_from_text, int_in_range
+
+  !> The longest line feps reads (characters, the end of line not counted): a record longer
+  !! than that continues on the next line. A longer line is an input error naming it, read
+  !! no further (docs/input-format.md).
+  integer, parameter, public :: max_line_length = 100000
 
   !> One field of a record: its trimmed text and the line it is on.
   type :: field_t
@@ -38,10 +44,14 @@ module feps_records
     type(field_t), allocatable :: fields(:)
   end type record_t
 
-  !> Records being collected from the lines of one file.
+  !> Records being collected from the lines of one file. The fields of the last record grow in
+  !! `open` (doubling its size), so that a record continued over many lines is built in linear
+  !! time; they move to the record when the next record starts or the file ends.
   type :: record_builder_t
     type(record_t), allocatable :: records(:)
     integer :: nrec = 0
+    type(field_t), allocatable :: open(:)
+    integer :: nopen = 0
   end type record_builder_t
 
   character(len=*), parameter :: continuation_start = '0123456789+-.'
@@ -56,20 +66,16 @@ contains
     type(record_t), allocatable, intent(out) :: records(:)
     type(error_t), allocatable, intent(out) :: error
     type(record_builder_t) :: builder
-    character(len=:), allocatable :: line
+    character(len=:), allocatable :: buffer
     character(len=256) :: iomsg
-    integer :: unit, iostat, lineno
-    logical :: eof, exists
+    integer :: unit, iostat, lineno, length, kind
+    logical :: eof, too_long
 
-    inquire (file=path, exist=exists)
-    if (.not. exists) then
-      call fatal_error(error, err_input_file, path // ': cannot open file: no such file')
-      return
-    end if
-    ! A directory opens and reads as an empty file; 'path/.' exists only for a directory (POSIX).
-    inquire (file=path // '/.', exist=exists)
-    if (exists) then
-      call fatal_error(error, err_input_file, path // ': cannot open file: it is a directory')
+    ! Only a regular file is read: a FIFO would block at open, a device such as /dev/zero
+    ! never ends, and a directory opens and reads as an empty file.
+    kind = file_kind(path)
+    if (kind /= file_regular) then
+      call fatal_error(error, err_input_file, path // ': cannot open file: ' // file_kind_text(kind))
       return
     end if
     open (newunit=unit, file=path, status='old', action='read', form='formatted', &
@@ -78,16 +84,26 @@ contains
       call fatal_error(error, err_input_file, path // ': cannot open file: ' // trim(iomsg))
       return
     end if
+    allocate (character(len=max_line_length) :: buffer)
     lineno = 0
     do
-      call read_line(unit, line, eof, iostat, iomsg)
+      call read_line(unit, buffer, length, eof, too_long, iostat, iomsg)
       if (iostat /= 0) then
         call fatal_error(error, err_input_file, path // ':' // str(lineno + 1) // ': cannot read: ' // trim(iomsg))
         exit
       end if
       if (eof) exit
       lineno = lineno + 1
-      call add_line(builder, path, line, lineno, error)
+      if (too_long) then
+        call input_error(error, path, lineno, 'line longer than ' // str(max_line_length) // &
+                         ' characters, the most feps reads in one line (continue a record on the next line)')
+        exit
+      end if
+      if (lineno == huge(lineno)) then
+        call input_error(error, path, lineno, 'more lines than feps reads in one file (' // str(huge(lineno)) // ')')
+        exit
+      end if
+      call add_line(builder, path, buffer(:length), lineno, error)
       if (allocated(error)) exit
     end do
     close (unit)
@@ -191,29 +207,67 @@ contains
     end if
     call real_from_text(rec%fields(i)%text, value, ok)
     if (.not. ok) call record_error(error, rec, "real number out of range: '" // &
-                                    rec%fields(i)%text // "'", i)
+                                    rec%fields(i)%text // "' (zero or a magnitude from 2.2e-308 to 1.8e308)", i)
   end subroutine field_real
 
-  !> Field i as an integer; error if it is missing or not an integer.
-  pure subroutine field_int(rec, i, value, error)
+  !> Field i as an integer in lo..hi; error if it is missing, not an integer or outside that
+  !! range (`what` names it in the message, default 'integer'). Every integer of a deck is read
+  !! with its range, so that no later arithmetic on it (a count negated, multiplied, added up)
+  !! can overflow.
+  pure subroutine field_int(rec, i, value, error, lo, hi, what)
     type(record_t), intent(in) :: rec
     integer, intent(in) :: i
     integer, intent(out) :: value
     type(error_t), allocatable, intent(out) :: error
-    integer :: iostat
-    value = 0
+    integer, intent(in) :: lo, hi
+    character(len=*), intent(in), optional :: what
+    type(error_t), allocatable :: range
     if (i > nfields(rec)) then
+      value = 0
       call record_error(error, rec, 'missing field: expected an integer', i)
       return
     end if
     if (.not. is_integer_text(rec%fields(i)%text)) then
+      value = 0
       call record_error(error, rec, "expected an integer, got '" // rec%fields(i)%text // "'", i)
       return
     end if
-    read (rec%fields(i)%text, *, iostat=iostat) value
-    if (iostat /= 0) call record_error(error, rec, "integer out of range: '" // &
-                                       rec%fields(i)%text // "'", i)
+    call int_in_range(rec%fields(i)%text, lo, hi, value, range, what)
+    if (allocated(range)) call record_error(error, rec, range%message, i)
   end subroutine field_int
+
+  !> `text` (integer syntax: is_integer_text) as an integer in lo..hi; otherwise `value` = 0
+  !! and an error whose message (no place: the caller adds it) names the range.
+  pure subroutine int_in_range(text, lo, hi, value, error, what)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: lo, hi
+    integer, intent(out) :: value
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: what
+    integer(i8) :: wide
+    integer :: iostat, first
+    character(len=:), allocatable :: name
+    value = 0
+    name = 'integer'
+    if (present(what)) name = what
+    ! leading zeros aside, more than 18 digits cannot be in range (and could overflow i8)
+    first = verify(text, '+-0')
+    iostat = 1
+    if (first == 0) then
+      wide = 0
+      iostat = 0
+    else if (len(text) - first + 1 <= 18) then
+      read (text, *, iostat=iostat) wide
+    end if
+    if (iostat == 0) then
+      if (wide >= lo .and. wide <= hi) then
+        value = int(wide)
+        return
+      end if
+    end if
+    call fatal_error(error, err_input, name // ' ' // trim(adjustl(text)) // ' is outside the allowed range ' // &
+                     str(lo) // '..' // str(hi))
+  end subroutine int_in_range
 
   !> Look for a field `key=value` (key case-insensitive, blanks around `=` allowed);
   !! `value_text` is the trimmed text after `=` ('' if not found), `index` the field number
@@ -254,8 +308,10 @@ contains
   end function is_integer_text
 
   !> The number `text` holds (blanks around it aside): `ok` when it has the syntax of
-  !! is_real_text and is finite in double precision; otherwise `v` = 0. The syntax comes first:
-  !! a list-directed read alone takes '100-1' as 100e-1.
+  !! is_real_text and is zero or a normal double (magnitude 2.2e-308 .. 1.8e308); otherwise
+  !! `v` = 0. The syntax comes first: a list-directed read alone takes '100-1' as 100e-1. A
+  !! subnormal number (1e-320) is refused as out of range: it has lost digits, and arithmetic on
+  !! it runs at a fraction of the normal speed (an E = 1e-320 took 15 s to be refused).
   pure subroutine real_from_text(text, v, ok)
     character(len=*), intent(in) :: text
     real(dp), intent(out) :: v
@@ -266,6 +322,7 @@ contains
     if (.not. is_real_text(trim(adjustl(text)))) return
     read (text, *, iostat=ios) v
     if (ios == 0) ok = ieee_is_finite(v)
+    if (ok .and. v /= 0.0_dp) ok = abs(v) >= tiny(v)
     if (.not. ok) v = 0.0_dp
   end subroutine real_from_text
 
@@ -357,7 +414,7 @@ contains
       return
     end if
     first_field = 0
-    if (continues) first_field = nfields(builder%records(builder%nrec))
+    if (continues) first_field = builder%nopen
     do i = 1, nparts
       if (len(parts(i)%text) == 0) then
         call input_error(error, name, lineno, 'empty field', first_field + i)
@@ -365,36 +422,56 @@ contains
       end if
     end do
 
-    if (continues) then
-      call append_fields(builder%records(builder%nrec), parts(1:nparts))
-    else
-      call push_record(builder, name, lineno, parts(1:nparts))
-    end if
+    if (.not. continues) call push_record(builder, name, lineno)
+    call append_fields(builder, parts(1:nparts))
   end subroutine add_line
 
-  subroutine append_fields(rec, parts)
-    type(record_t), intent(inout) :: rec
-    type(field_t), intent(in) :: parts(:)
-    type(field_t), allocatable :: merged(:)
-    integer :: i, n
-    n = nfields(rec)
-    allocate (merged(n + size(parts)))
-    do i = 1, n
-      merged(i) = rec%fields(i)
-    end do
+  !> Add fields to the last record's growing list.
+  subroutine append_fields(builder, parts)
+    type(record_builder_t), intent(inout) :: builder
+    type(field_t), intent(inout) :: parts(:)
+    type(field_t), allocatable :: bigger(:)
+    integer :: i
+    if (.not. allocated(builder%open)) allocate (builder%open(16))
+    if (builder%nopen + size(parts) > size(builder%open)) then
+      allocate (bigger(max(2 * size(builder%open), builder%nopen + size(parts))))
+      do i = 1, builder%nopen
+        call move_alloc(builder%open(i)%text, bigger(i)%text)
+        bigger(i)%line = builder%open(i)%line
+      end do
+      call move_alloc(bigger, builder%open)
+    end if
     do i = 1, size(parts)
-      merged(n + i) = parts(i)
+      call move_alloc(parts(i)%text, builder%open(builder%nopen + i)%text)
+      builder%open(builder%nopen + i)%line = parts(i)%line
     end do
-    call move_alloc(merged, rec%fields)
+    builder%nopen = builder%nopen + size(parts)
   end subroutine append_fields
 
-  subroutine push_record(builder, name, lineno, parts)
+  !> The last record takes the fields collected for it.
+  subroutine close_record(builder)
+    type(record_builder_t), intent(inout) :: builder
+    integer :: i
+    if (builder%nrec == 0) return
+    associate (rec => builder%records(builder%nrec))
+      if (allocated(rec%fields)) return
+      allocate (rec%fields(builder%nopen))
+      do i = 1, builder%nopen
+        call move_alloc(builder%open(i)%text, rec%fields(i)%text)
+        rec%fields(i)%line = builder%open(i)%line
+      end do
+    end associate
+    builder%nopen = 0
+  end subroutine close_record
+
+  !> Start a new record (its fields follow by append_fields).
+  subroutine push_record(builder, name, lineno)
     type(record_builder_t), intent(inout) :: builder
     character(len=*), intent(in) :: name
     integer, intent(in) :: lineno
-    type(field_t), intent(in) :: parts(:)
     type(record_t), allocatable :: bigger(:)
     integer :: i
+    call close_record(builder)
     if (.not. allocated(builder%records)) allocate (builder%records(64))
     if (builder%nrec == size(builder%records)) then
       allocate (bigger(2 * size(builder%records)))
@@ -407,10 +484,6 @@ contains
     associate (rec => builder%records(builder%nrec))
       rec%file = name
       rec%line = lineno
-      allocate (rec%fields(size(parts)))
-      do i = 1, size(parts)
-        rec%fields(i) = parts(i)
-      end do
     end associate
   end subroutine push_record
 
@@ -429,6 +502,7 @@ contains
     type(record_t), allocatable, intent(out) :: records(:)
     type(error_t), allocatable, intent(out) :: error
     integer :: i
+    call close_record(builder)
     if (builder%nrec == 0) then
       call fatal_error(error, err_input, name // ': empty file (no records)')
       allocate (records(0))
@@ -440,33 +514,41 @@ contains
     end do
   end subroutine finish_records
 
-  !> Read one whole line of any length; `eof` on end of file.
-  subroutine read_line(unit, line, eof, iostat, iomsg)
+  !> Read one line into `buffer(:length)` in pieces of 512 characters, in time linear in its
+  !! length; `eof` at the end of the file; `too_long` when it has more than len(buffer)
+  !! characters (the rest of it is not read: the caller stops there).
+  subroutine read_line(unit, buffer, length, eof, too_long, iostat, iomsg)
     integer, intent(in) :: unit
-    character(len=:), allocatable, intent(out) :: line
-    logical, intent(out) :: eof
+    character(len=*), intent(inout) :: buffer
+    integer, intent(out) :: length
+    logical, intent(out) :: eof, too_long
     integer, intent(out) :: iostat
     character(len=*), intent(inout) :: iomsg
     character(len=512) :: chunk
     integer :: nread
-    line = ''
+    length = 0
     eof = .false.
+    too_long = .false.
     do
       read (unit, '(a)', advance='no', iostat=iostat, iomsg=iomsg, size=nread) chunk
+      if (length + nread > len(buffer)) then
+        too_long = .true.
+        iostat = 0
+        return
+      end if
+      buffer(length + 1:length + nread) = chunk(:nread)
+      length = length + nread
       if (is_iostat_eor(iostat)) then
-        line = line // chunk(:nread)
         iostat = 0
         return
       else if (is_iostat_end(iostat)) then
         ! a last line without a newline still counts; the next call reports the end
-        line = line // chunk(:nread)
-        eof = len(line) == 0
+        eof = length == 0
         iostat = 0
         return
       else if (iostat /= 0) then
         return
       end if
-      line = line // chunk(:nread)
     end do
   end subroutine read_line
 

@@ -167,6 +167,14 @@ module feps_model
   character(len=23), parameter, public :: method_names(6) = [character(len=23) :: 'euler', 'modified-euler', &
     'newton-raphson', 'modified-newton-raphson', 'initial-stiffness', 'full-newton-raphson']
 
+  !> Limits of the controls, checked where the deck (or the command line) gives them, before
+  !! any arithmetic: steps are numbered over all stages in default integers; MAXIT sizes the
+  !! BFGS history (two vectors of the DOFs per iteration); a step halved more than 50 times is
+  !! below double precision's resolution of the load factor.
+  integer, parameter, public :: max_total_steps = 10000000     !! steps of all stages together
+  integer, parameter, public :: max_iterations_limit = 1000    !! MAXIT, --maxit
+  integer, parameter, public :: max_cutbacks_limit = 50        !! CUTBACKS
+
   !> Solution controls of a stage (thesis eqs. 2.6.6-2.6.7).
   type, public :: controls_t
     integer :: method = method_modified_newton_raphson

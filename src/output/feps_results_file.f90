@@ -18,8 +18,9 @@ module feps_results_file
   use feps_element_catalog, only: element_info_t, element_info, family_name, point_coordinates
   use feps_result_schema, only: field_name, family_field
   use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_path, count_words, word
-  use feps_paths, only: is_xdmf_name
-  use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
+  use feps_paths, only: is_xdmf_name, xdmf_file_name
+  use feps_files, only: remove_regular_file, mark_partial_file
+  use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5dont_atexit_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
                   h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
                   h5dcreate_f, h5dopen_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, h5aclose_f, &
@@ -68,11 +69,6 @@ module feps_results_file
       character(kind=c_char), intent(in) :: old_name(*), new_name(*)
       integer(c_int) :: status
     end function c_rename
-    function c_remove(name) bind(C, name='remove') result(status)
-      import :: c_char, c_int
-      character(kind=c_char), intent(in) :: name(*)
-      integer(c_int) :: status
-    end function c_remove
   end interface
 
 contains
@@ -112,6 +108,10 @@ contains
     if (allocated(self%steps)) deallocate (self%steps)
     allocate (self%groups(0), self%steps(0))
 
+    ! No HDF5 clean-up at exit: a file whose close failed (the disk full) stays open inside the
+    ! library, and its exit handler, flushing it once more, crashed the program after feps had
+    ! reported the failure and removed the file. Every file feps writes is closed explicitly.
+    call h5dont_atexit_f(hdferr)
     call h5open_f(hdferr)
     if (hdferr < 0) then
       call fatal_error(error, err_io, 'cannot initialise the HDF5 library')
@@ -127,6 +127,7 @@ contains
     end if
     self%is_open = .true.
     self%part_exists = .true.
+    call mark_partial_file(1, self%part_path)
     call h5pcreate_f(H5P_LINK_CREATE_F, self%link_plist, hdferr)
     if (hdferr >= 0) call h5pset_create_inter_group_f(self%link_plist, 1, hdferr)
     if (hdferr < 0) then
@@ -603,55 +604,72 @@ contains
     if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute ' // key)
   end subroutine write_int8_attribute
 
-  !> Close the HDF5 file, write the XDMF file beside it and rename `<path>.part` to `<path>`.
-  !! On an error the caller should `discard`.
+  !> Close the HDF5 file, write the XDMF file beside it (as `<xmf>.part`) and rename both to
+  !! their names, the results first. On an error nothing of either is left (the caller's
+  !! `discard` then removes what an earlier run left under these names).
   subroutine close_file(self, error)
     class(results_file_t), intent(inout) :: self
     type(error_t), allocatable, intent(out) :: error
     character(len=:), allocatable :: xdmf_path
-    integer :: hdferr, status
+    integer :: hdferr
+    logical :: removed
 
     call require_open(self, error)
     if (allocated(error)) return
     call release_handles(self, hdferr)
     if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot close results file ' // self%part_path)
+      call fatal_error(error, err_io, 'cannot write results file ' // self%path // ': closing ' // &
+                       self%part_path // ' failed (disk full, quota, or an I/O error)')
       return
     end if
 
     xdmf_path = xdmf_file_name(self%path)
-    call write_xdmf(xdmf_path, base_name(self%path), self%node_count, self%groups, self%steps, error)
+    call mark_partial_file(2, xdmf_path // '.part')
+    call write_xdmf(xdmf_path // '.part', base_name(self%path), self%node_count, self%groups, self%steps, error)
     if (allocated(error)) then
-      status = c_remove(xdmf_path // c_null_char)
+      removed = remove_regular_file(xdmf_path // '.part')
+      call mark_partial_file(2, '')
       return
     end if
     if (c_rename(self%part_path // c_null_char, self%path // c_null_char) /= 0) then
-      status = c_remove(xdmf_path // c_null_char)
+      removed = remove_regular_file(xdmf_path // '.part')
+      call mark_partial_file(2, '')
       call fatal_error(error, err_io, 'cannot rename ' // self%part_path // ' to ' // self%path)
       return
     end if
     self%part_exists = .false.
+    call mark_partial_file(1, '')
+    if (c_rename(xdmf_path // '.part' // c_null_char, xdmf_path // c_null_char) /= 0) then
+      removed = remove_regular_file(xdmf_path // '.part')
+      removed = remove_regular_file(self%path)
+      call mark_partial_file(2, '')
+      call fatal_error(error, err_io, 'cannot rename ' // xdmf_path // '.part to ' // xdmf_path)
+      return
+    end if
+    call mark_partial_file(2, '')
   end subroutine close_file
 
   !> Give up the file: close what is open and delete `<path>.part`, and the results and XDMF
   !! files an earlier run left under this name: after a failed run they would pass for its
   !! results. With keep_earlier (a deck refused before its first step) only `<path>.part` goes.
-  !! Harmless after `close`, twice, or before `create`.
+  !! Only regular files are removed, never a directory (the program refuses such result paths
+  !! before a run). Harmless after `close`, twice, or before `create`.
   subroutine discard(self, keep_earlier)
     class(results_file_t), intent(inout) :: self
     logical, intent(in), optional :: keep_earlier
-    integer :: hdferr, status
-    logical :: keep
+    integer :: hdferr
+    logical :: keep, removed
     keep = .false.
     if (present(keep_earlier)) keep = keep_earlier
     if (self%is_open) call release_handles(self, hdferr)
     if (self%part_exists) then
-      status = c_remove(self%part_path // c_null_char)
+      removed = remove_regular_file(self%part_path)
       if (.not. keep) then
-        status = c_remove(self%path // c_null_char)
-        status = c_remove(xdmf_file_name(self%path) // c_null_char)
+        removed = remove_regular_file(self%path)
+        removed = remove_regular_file(xdmf_file_name(self%path))
       end if
       self%part_exists = .false.
+      call mark_partial_file(1, '')
     end if
   end subroutine discard
 
@@ -829,7 +847,8 @@ contains
     hdferr = 0
     if (size(values) > 0) call h5dwrite_f(id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
     if (hdferr < 0) then
-      call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path)
+      call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path // &
+                                   ' (disk full, quota, or an I/O error)')
     else
       call write_string_attribute(id, 'components', components, error)
     end if
@@ -879,7 +898,8 @@ contains
     hdferr = 0
     if (size(values) > 0) call h5dwrite_f(id, H5T_NATIVE_INTEGER, values, dims, hdferr)
     call h5dclose_f(id, ignored)
-    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path)
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write dataset ' // path // ' in ' // self%part_path // &
+                                   ' (disk full, quota, or an I/O error)')
   end subroutine write_int_dataset
 
   !> Fixed-length, null-padded ASCII string attribute (h5py reads it as bytes).
@@ -958,21 +978,6 @@ contains
     end if
     if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute ' // name)
   end subroutine write_int_attribute
-
-  !> The XDMF file beside `path`: its extension replaced by '.xmf', or '.xmf' appended.
-  pure function xdmf_file_name(path) result(xdmf)
-    character(len=*), intent(in) :: path
-    character(len=:), allocatable :: xdmf
-    integer :: slash, dot
-    slash = index(path, '/', back=.true.)
-    dot = index(path, '.', back=.true.)
-    ! A dot that starts the file name (hidden file) is not an extension.
-    if (dot > slash + 1) then
-      xdmf = path(:dot - 1) // '.xmf'
-    else
-      xdmf = path // '.xmf'
-    end if
-  end function xdmf_file_name
 
   pure function base_name(path) result(name)
     character(len=*), intent(in) :: path

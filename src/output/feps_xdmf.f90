@@ -9,6 +9,7 @@
 module feps_xdmf
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_io, str
+  use feps_files, only: text_file_t
   implicit none
   private
 
@@ -105,15 +106,14 @@ contains
     type(xdmf_group_t), intent(in) :: groups(:)
     type(xdmf_step_t), intent(in) :: steps(:)
     type(error_t), allocatable, intent(out) :: error
-    integer :: unit, ios, i
-    character(len=256) :: message
-    character(len=:), allocatable :: h5
+    type(text_file_t) :: file
+    integer :: i
+    character(len=:), allocatable :: h5, message
 
     h5 = escape(hdf5_name)
-    open (newunit=unit, file=path, status='replace', action='write', form='formatted', &
-          iostat=ios, iomsg=message)
-    if (ios /= 0) then
-      call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // trim(message))
+    call file%open(path, message)
+    if (len(message) > 0) then
+      call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // message)
       return
     end if
 
@@ -142,21 +142,17 @@ contains
     call put('  </Domain>')
     call put('</Xdmf>')
 
-    if (ios /= 0) then
-      close (unit, status='delete', iostat=i)
-      call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // trim(message))
-      return
-    end if
-    close (unit, iostat=ios, iomsg=message)
-    if (ios /= 0) call fatal_error(error, err_io, 'cannot close XDMF file ' // path // ': ' // trim(message))
+    ! The close reports the first failure of any write, and a full disk at the flush: gfortran's
+    ! formatted WRITE and CLOSE report none (an XDMF file was left empty with exit status 0).
+    call file%close(message)
+    if (len(message) > 0) call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // message)
 
   contains
 
-    !> One line; after the first failure nothing more is written (the error is reported once).
+    !> One line; after the first failure nothing more is written (the close reports it).
     subroutine put(line)
       character(len=*), intent(in) :: line
-      if (ios /= 0) return
-      write (unit, '(a)', iostat=ios, iomsg=message) line
+      call file%write(line)
     end subroutine put
 
     !> One uniform grid per group with an XDMF topology; fields of step `istep` (0: none).

@@ -4,12 +4,15 @@
 module feps_program
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, fatal_error, err_input, err_input_file, err_model, &
-                        err_solver, str
+  use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, err_internal, &
+                        err_solver, err_memory, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, line_search_refusal, known_fields
   use feps_deck, only: read_deck
-  use feps_strings, only: to_lower
+  use feps_strings, only: to_lower, shown, utf8_text_length
+  use feps_files, only: file_kind, file_kind_text, folder_of, folder_writable, file_missing, file_regular, &
+                        file_directory, memory_limit_bytes
+  use feps_paths, only: xdmf_file_name
   use feps_records, only: real_from_text
   use feps_clock, only: wall_clock
   use feps_incremental_analysis, only: analysis_summary_t, run_analysis, check_analysis
@@ -91,6 +94,16 @@ contains
     end if
     if (len(output) == 0 .and. .not. model%mesh_only) output = default_output(options%deck)
     summary%output = output
+    ! The memory the model will need, before any of it is taken (a mesh near the size limit
+    ! used to die in an allocation with a backtrace, leaving a .h5.part behind).
+    call check_memory(model, error)
+    if (allocated(error)) return
+    ! The result paths are checked before any work (a directory of that name used to be found
+    ! when the run ended, and then removed); --check writes nothing and checks none.
+    if (len(output) > 0 .and. .not. options%check_only) then
+      call check_result_paths(output, error)
+      if (allocated(error)) return
+    end if
 
     if (model%mesh_only) then
       call mesh_jacobians(model, summary%min_jacobian, error)
@@ -519,6 +532,100 @@ contains
       if (allocated(error)) return
     end do
   end subroutine write_parameters
+
+  !> A failed run (err_memory, exit status 1) when the memory the model will take is beyond what
+  !! this process may use (memory_limit_bytes: its address-space limit, ulimit -v, or the
+  !! machine's memory). The estimate counts only arrays every run allocates, so it is a lower
+  !! bound: for a mesh, its coordinates (three copies: the reader's, the model's and the
+  !! results'), its connectivity and its integration points' positions; for an analysis also ten
+  !! vectors of the DOFs, two stress states per integration point and the lower triangle of the
+  !! stiffness matrix, at least (9 k + 3) / 2 entries of 12 bytes per node for the smallest
+  !! element of k nodes (each of a node's 3 rows couples the 3 DOFs of every node of an element
+  !! that holds it). The factor comes on top (feps --check reports its size).
+  subroutine check_memory(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: need, limit, points
+    integer :: g, kmin
+    character(len=32) :: text
+    limit = memory_limit_bytes()
+    if (limit <= 0) return
+    points = 0
+    kmin = huge(1)
+    need = 3_i8 * 24_i8 * model%nnode
+    do g = 1, size(model%groups)
+      associate (gr => model%groups(g))
+        kmin = min(kmin, size(gr%connectivity, 1))
+        need = need + 4_i8 * size(gr%connectivity, kind=i8)
+        points = points + int(max(gr%element%npoints, 0), i8) * size(gr%connectivity, 2, kind=i8)
+      end associate
+    end do
+    need = need + 24_i8 * points
+    if (.not. model%mesh_only .and. size(model%groups) > 0) need = need + 10_i8 * 24_i8 * model%nnode + &
+      2_i8 * 48_i8 * points + 12_i8 * ((9_i8 * kmin + 3_i8) * model%nnode / 2_i8)
+    if (need <= limit) return
+    write (text, '(f0.1)') real(need, dp) / 1024.0_dp**3
+    call fatal_error(error, err_memory, model%deck_file // ': the model (' // str(model%nnode) // ' nodes, ' // &
+                     str(model%nelem()) // ' elements) needs about ' // trim(text) // ' GiB at least')
+    write (text, '(f0.1)') real(limit, dp) / 1024.0_dp**3
+    error%message = error%message // ', more than the ' // trim(text) // ' GiB this process may use ' // &
+                    '(its address-space limit, ulimit -v, or the machine''s memory)'
+  end subroutine check_memory
+
+  !> Bad input (exit status 2) when the results file `path` cannot be written where it is to
+  !! go: its folder missing or not writable, or the results file, the XDMF file beside it or the
+  !! temporary names of either (`.part`) an existing directory, FIFO or device: feps replaces
+  !! regular files of these names only, and never removes anything else. The file's name is
+  !! written into the XDMF (XML) file, so it must be printable UTF-8.
+  subroutine check_result_paths(path, error)
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: folder, name, names(:), what
+    integer :: kind, i
+    folder = folder_of(path)
+    name = path(len(folder) + 1:)
+    if (len(name) > 0) then
+      if (name(1:1) == '/') name = name(2:)
+    end if
+    if (len(name) == 0) then
+      call fatal_error(error, err_input, 'results file "' // shown(path) // '": no file name (it ends in /)')
+      return
+    end if
+    if (len(folder) > 0) then
+      kind = file_kind(folder)
+      if (kind == file_missing) then
+        call fatal_error(error, err_input, 'results file "' // shown(path) // '": cannot create it: no folder "' // &
+                         shown(folder) // '"')
+        return
+      else if (kind /= file_directory) then
+        call fatal_error(error, err_input, 'results file "' // shown(path) // '": cannot create it: "' // &
+                         shown(folder) // '" is not a folder')
+        return
+      end if
+    end if
+    if (.not. folder_writable(folder)) then
+      what = '.'
+      if (len(folder) > 0) what = shown(folder)
+      call fatal_error(error, err_input, 'results file "' // shown(path) // '": cannot create it: the folder "' // &
+                       what // '" is not writable')
+      return
+    end if
+    names = [character(len=len(path) + 9) :: path, path // '.part', xdmf_file_name(path), &
+                                                xdmf_file_name(path) // '.part']
+    do i = 1, size(names)
+      kind = file_kind(trim(names(i)))
+      if (kind /= file_missing .and. kind /= file_regular) then
+        what = file_kind_text(kind) // ': feps writes a file of that name and removes nothing it did not create'
+        if (i > 1) what = '"' // shown(trim(names(i))) // '": ' // what
+        call fatal_error(error, err_input, 'results file "' // shown(path) // '": ' // what)
+        return
+      end if
+    end do
+    if (utf8_text_length(name) < len(name)) then
+      call fatal_error(error, err_input, 'results file "' // shown(path) // '": its name has a byte that is ' // &
+                       'no printable text (a control character, or not UTF-8), and the XDMF (XML) file names it')
+    end if
+  end subroutine check_result_paths
 
   !> The deck's name without folder and extension, with .h5, in the working directory.
   pure function default_output(deck) result(path)

@@ -42,10 +42,82 @@ expect_status "newton-raphson on the psi = 0 joint stops" 1 "$feps" test/data/jo
   --output "$tmp/psi0.h5"
 grep -q "step 1, .*10 cut-backs.*METHOD=full-newton-raphson" "$tmp/err" && [ ! -e "$tmp/psi0.h5" ] \
   && ok "... and its message names full-newton-raphson" || bad "newton-raphson stop names full Newton: $(head -c 400 "$tmp/err")"
-expect_status "results into a missing folder" 1 "$feps" test/data/cube.dat --output "$tmp/no_such_folder/cube.h5"
-[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: cannot create results file" "$tmp/err" \
+# Result paths are checked before the run: a missing folder is the user's to fix (exit 2).
+expect_status "results into a missing folder" 2 "$feps" test/data/cube.dat --output "$tmp/no_such_folder/cube.h5"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: results file .*cannot create it: no folder" "$tmp/err" \
   && ok "the unwritable results file is named in one line" \
   || bad "the unwritable results file is named in one line: $(head -c 300 "$tmp/err")"
+
+# Issue 24: hostile input and machine faults. Each gives exit 1 or 2 within seconds, one line
+# "feps: error: ...", no .h5, .h5.part, .xmf or .xmf.part of its stem, and nothing of the user's
+# removed (fpm test holds the library's side: test_bad_input, test_results_file, test_datain).
+hostile() {  # name want-status stem command...: the command's stderr is one line, no stem.* left
+  local name=$1 want=$2 stem=$3; shift 3
+  timeout 60 "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  local left; left=$(ls -d "$stem".h5 "$stem".h5.part "$stem".xmf "$stem".xmf.part 2>/dev/null | tr '\n' ' ')
+  if [ "$got" -eq "$want" ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: " "$tmp/err" && [ -z "$left" ]; then
+    ok "$name (exit $got): $(head -c 160 "$tmp/err")"
+  else
+    bad "$name: exit $got (want $want), $(wc -l <"$tmp/err") lines, left: $left: $(head -c 300 "$tmp/err")"
+  fi
+}
+for opt in --output --method --solver --maxit --fields; do
+  hostile "$opt '' is refused" 2 "$tmp/empty" "$feps" test/data/cube.dat "$opt" '' --output "$tmp/empty.h5"
+done
+hostile "an option given twice is refused" 2 "$tmp/twice" "$feps" test/data/cube.dat --output "$tmp/twice.h5" -o "$tmp/twice2.h5"
+hostile "--maxit 2147483647 is refused like MAXIT=2147483647" 2 "$tmp/maxit" "$feps" test/data/cube.dat --maxit 2147483647 \
+  --output "$tmp/maxit.h5"
+mkdir -p "$tmp/userdir" "$tmp/xdir.xmf" && echo keep >"$tmp/userdir/keep" && echo keep >"$tmp/xdir.xmf/keep"
+hostile "--output an existing directory: refused at once" 2 "$tmp/userdir" "$feps" input/modelB/SE1.dat --output "$tmp/userdir"
+[ -f "$tmp/userdir/keep" ] && ok "... and the directory is kept with its file" || bad "the user's directory was removed"
+hostile "the XDMF name an existing directory: refused at once" 2 "$tmp/xdir_results" "$feps" test/data/cube.dat \
+  --output "$tmp/xdir.h5"
+[ -f "$tmp/xdir.xmf/keep" ] && [ ! -e "$tmp/xdir.h5" ] && [ ! -e "$tmp/xdir.h5.part" ] \
+  && ok "... no results written, and that directory is kept" || bad "the user's .xmf directory was removed, or results written"
+mkfifo "$tmp/fifo.datain" "$tmp/fifo.dat"
+printf 'INCLUDE, fifo.datain\n' >"$tmp/inc_fifo.dat"
+hostile "INCLUDE of a FIFO: refused, not waited on" 2 "$tmp/incf" "$feps" "$tmp/inc_fifo.dat" --output "$tmp/incf.h5"
+hostile "a FIFO as the deck: refused" 2 "$tmp/fifod" "$feps" "$tmp/fifo.dat" --output "$tmp/fifod.h5"
+hostile "/dev/zero as the deck: refused" 2 "$tmp/zero" "$feps" /dev/zero --output "$tmp/zero.h5"
+python3 -c "print('TITLE, ' + 'x' * 1000000)" >"$tmp/long_line.dat"
+start=$(date +%s)
+hostile "a line of 1 MB: refused at its limit" 2 "$tmp/longl" "$feps" "$tmp/long_line.dat" --output "$tmp/longl.h5"
+[ $(( $(date +%s) - start )) -le 5 ] && ok "... within 5 s" || bad "a line of 1 MB took $(( $(date +%s) - start )) s"
+python3 -c "
+import sys
+sys.stdout.write('NODE, 1, 0.,\n' + '0.,\n' * 500000)" >"$tmp/long_record.dat"
+start=$(date +%s)
+hostile "a record continued over 500 000 lines: read in linear time" 2 "$tmp/longr" "$feps" "$tmp/long_record.dat" \
+  --output "$tmp/longr.h5"
+[ $(( $(date +%s) - start )) -le 10 ] && ok "... within 10 s" || bad "500 000 continuation lines took $(( $(date +%s) - start )) s"
+# Memory: a mesh of a million nodes in a 1 GB address space is refused before anything is
+# allocated or written (it died in an allocation with a backtrace and left its .h5.part).
+sed -e 's/^%, 3, 5., 0., 0.,$/%, 101, 0.1, 0., 0.,/; s/^%, 3, 0., 5., 0.,$/%, 101, 0., 0.1, 0.,/' \
+    -e 's/^%, 3, 0., 0., 5.,$/%, 101, 0., 0., 0.1,/' -e 's/^A, 8, 1, 2, 5, 4, 10, 11, 14, 13,$/A, 8, 1, 2, 103, 102, 10202, 10203, 10304, 10303,/' \
+    -e 's/^%, 2, \*, 8, 1,$/%, 100, *, 8, 1,/; s/^%, 2, \*, 8, 3,$/%, 100, *, 8, 101,/; s/^%, 2, \*, 8, 9,$/%, 100, *, 8, 10201,/' \
+    test/data/cube.dat >"$tmp/million.dat"
+hostile "a million-node mesh under ulimit -v 1 GB: refused with the memory it needs" 1 "$tmp/million" \
+  bash -c "ulimit -v 1000000; exec \"\$0\" \"\$@\"" "$feps_abs" "$tmp/million.dat" --output "$tmp/million.h5"
+grep -q "needs about .* GiB at least" "$tmp/err" && ok "... naming the GiB it needs" || bad "the memory message: $(head -c 300 "$tmp/err")"
+# Disk full while the results are written, at several points (the mesh, a step, the XDMF file):
+# a small tmpfs where this machine allows mounting, else a file-size limit (ulimit -f: EFBIG).
+"$feps" input/modelB/SE1.dat --quiet --output "$tmp/se1full.h5" >/dev/null 2>&1
+h5kb=$(( $(stat -c %s "$tmp/se1full.h5") / 1024 )); rm -f "$tmp/se1full".*
+mkdir -p "$tmp/full"
+if mount -t tmpfs -o size=64k tmpfs "$tmp/full" 2>/dev/null; then
+  umount "$tmp/full"
+  for kb in 64 $(( h5kb / 2 )) $(( h5kb + 4 )); do
+    mount -t tmpfs -o size=${kb}k tmpfs "$tmp/full"
+    hostile "disk full (a ${kb} kB tmpfs) while writing model B SE1's results" 1 "$tmp/full/se1" \
+      "$feps" input/modelB/SE1.dat --quiet --output "$tmp/full/se1.h5"
+    umount "$tmp/full"
+  done
+else
+  for kb in 64 $(( h5kb / 2 )) $(( h5kb + 4 )); do
+    hostile "file-size limit (ulimit -f ${kb} kB) while writing model B SE1's results" 1 "$tmp/full/se1" \
+      bash -c "ulimit -f $kb; exec \"\$0\" \"\$@\"" "$feps_abs" input/modelB/SE1.dat --quiet --output "$tmp/full/se1.h5"
+  done
+fi
 expect_status "unknown option" 2 "$feps" --frobnicate input/modelB.dat
 expect_status "bad --solver" 2 "$feps" test/data/cube.dat --solver lu
 expect_status "bad --method" 2 "$feps" test/data/cube.dat --method newton
@@ -189,6 +261,13 @@ python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB
   && ok "fuzz --check: $(tail -n 1 "$tmp/out")" || bad "fuzz --check: $(grep FAIL "$tmp/out" | head -3)"
 python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --cases 40 --seed 2 --run --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --run: $(tail -n 1 "$tmp/out")" || bad "fuzz --run: $(grep FAIL "$tmp/out" | head -3)"
+# Issue 24's classes (--hostile): integer limits, control bytes and bytes that are not UTF-8, long
+# lines, INCLUDE of /dev/zero, a FIFO or a directory, and machine faults (file-size and
+# address-space limits, a directory as the results): a fixed-seed slice of about 40 s.
+python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --hostile --cases 300 --seed 3 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+  && ok "fuzz --hostile --check: $(tail -n 1 "$tmp/out")" || bad "fuzz --hostile --check: $(grep FAIL "$tmp/out" | head -3)"
+python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --hostile --run --cases 100 --seed 4 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+  && ok "fuzz --hostile --run: $(tail -n 1 "$tmp/out")" || bad "fuzz --hostile --run: $(grep FAIL "$tmp/out" | head -3)"
 # ... and the fuzzer does fail on a program that crashes (exit 134) or hangs
 printf '#!/bin/sh\necho "Program received signal SIGSEGV" >&2\nexit 134\n' >"$tmp/crash" && chmod +x "$tmp/crash"
 printf '#!/bin/sh\nsleep 30\n' >"$tmp/hang" && chmod +x "$tmp/hang"

@@ -11,7 +11,7 @@
 # "signed integer overflow" inside gfortran's size arithmetic of realloc-on-assignment of an
 # unallocated array is not counted (the result is discarded; docs/verification.md, "Runtime-
 # checking audit"). The deck sweep and check_cli.sh under the same build are
-# `bash scripts/check_runtime.sh --sanitize` (about 30 min). Its last run is recorded in
+# `bash test/cli/check_runtime.sh --sanitize` (about 30 min). Its last run is recorded in
 # docs/verification.md ("Hostile input and machine faults"). Exit status 0 when all passed.
 set -uo pipefail
 cd "$(dirname "$0")/.."

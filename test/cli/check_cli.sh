@@ -264,9 +264,9 @@ python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB
 # Issue 24's classes (--hostile): integer limits, control bytes and bytes that are not UTF-8, long
 # lines, INCLUDE of /dev/zero, a FIFO or a directory, and machine faults (file-size and
 # address-space limits, a directory as the results): a fixed-seed slice of about 40 s.
-python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --hostile --cases 300 --seed 3 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --hostile --cases 300 --seed 3 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --hostile --check: $(tail -n 1 "$tmp/out")" || bad "fuzz --hostile --check: $(grep FAIL "$tmp/out" | head -3)"
-python3 scripts/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --hostile --run --cases 100 --seed 4 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
+python3 test/cli/fuzz_input.py --feps "$feps" --memory-gb "${FEPS_FUZZ_MEMORY_GB:-4}" --timeout "${FEPS_FUZZ_TIMEOUT:-60}" --hostile --run --cases 100 --seed 4 --out "$tmp/fuzz" >"$tmp/out" 2>&1 \
   && ok "fuzz --hostile --run: $(tail -n 1 "$tmp/out")" || bad "fuzz --hostile --run: $(grep FAIL "$tmp/out" | head -3)"
 # ... and the fuzzer does fail on a program that crashes (exit 134) or hangs
 printf '#!/bin/sh\necho "Program received signal SIGSEGV" >&2\nexit 134\n' >"$tmp/crash" && chmod +x "$tmp/crash"

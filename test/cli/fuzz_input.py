@@ -34,7 +34,7 @@ may end with exit 1 and one line also under --check. Every case must leave no .h
 
 The same seed gives the same cases. check_cli.sh runs a short fixed-seed campaign (with
 --hostile too); longer ones (docs/verification.md, "Input fuzzing") are run by hand, e.g.
-`python3 scripts/fuzz_input.py --feps build/.../feps --hostile --run --cases 2000 --seed 24`.
+`python3 test/cli/fuzz_input.py --feps build/.../feps --hostile --run --cases 2000 --seed 24`.
 """
 import argparse
 import glob

@@ -74,6 +74,7 @@ hostile "the XDMF name an existing directory: refused at once" 2 "$tmp/xdir_resu
   --output "$tmp/xdir.h5"
 [ -f "$tmp/xdir.xmf/keep" ] && [ ! -e "$tmp/xdir.h5" ] && [ ! -e "$tmp/xdir.h5.part" ] \
   && ok "... no results written, and that directory is kept" || bad "the user's .xmf directory was removed, or results written"
+rm -rf "$tmp/userdir" "$tmp/xdir.xmf"   # (later checks read every $tmp/*.xmf as an XDMF file)
 mkfifo "$tmp/fifo.datain" "$tmp/fifo.dat"
 printf 'INCLUDE, fifo.datain\n' >"$tmp/inc_fifo.dat"
 hostile "INCLUDE of a FIFO: refused, not waited on" 2 "$tmp/incf" "$feps" "$tmp/inc_fifo.dat" --output "$tmp/incf.h5"

@@ -422,8 +422,9 @@ contains
     end do
   end subroutine point_b
 
-  !> Element stiffness `ke(ndim nnodes, ndim nnodes)`, in the element's own dimension, = sum over the points of B^T D B wdet with
-  !! the material matrix `d(ncomp, ncomp, ngauss)` of each point (need not be symmetric).
+  !> Element stiffness `ke(ndim nnodes, ndim nnodes)` in the element's own dimension = sum over
+  !! the points of B^T D B wdet with the material matrix `d(ncomp, ncomp, ngauss)` of each point
+  !! (need not be symmetric).
   pure subroutine stiffness_nd(self, xe, d, ke)
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
@@ -459,8 +460,8 @@ contains
     end do
   end subroutine stiffness_nd
 
-  !> Internal nodal forces `fe(ndim nnodes)`, in the element's own dimension, = sum over the points of B^T sig wdet, with the
-  !! local tractions `sig(ncomp, ngauss)`.
+  !> Internal nodal forces `fe(ndim nnodes)` in the element's own dimension = sum over the
+  !! points of B^T sig wdet, with the local tractions `sig(ncomp, ngauss)`.
   pure subroutine internal_force_nd(self, xe, sig, fe)
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)

@@ -64,7 +64,7 @@ contains
     if (allocated(error)) return
     call init_states(model, an)
     do n = 19, model%nnode            ! the upper block (the deck's second node block)
-      an%u_t(:, n) = [1.0_dp, 0.0_dp, -0.01_dp]
+      an%path%u_t(:, n) = [1.0_dp, 0.0_dp, -0.01_dp]
     end do
     call update_points(model, an, [(0.0_dp, g = 1, size(model%groups))])
     g = size(model%groups)            ! joint, the deck's last group
@@ -73,18 +73,18 @@ contains
     if (allocated(error)) return
     call factorize_tangent(model, an, .false., summary, error, trial=.true., exact=.true.)
     if (allocated(error)) return
-    call check(error, an%lu_singular == 1, 'the exact tangent is found singular once, got ' // str(an%lu_singular))
+    call check(error, an%eq%lu_singular == 1, 'the exact tangent is found singular once, got ' // str(an%eq%lu_singular))
     if (allocated(error)) return
-    call check(error, .not. an%use_lu .and. an%symmetrized, 'the symmetric stand-in is factorized')
+    call check(error, .not. an%eq%use_lu .and. an%eq%symmetrized, 'the symmetric stand-in is factorized')
     if (allocated(error)) return
     ! The stand-in is regular: x in the lower block's nodes under a unit load there is finite.
-    allocate (b(an%map%neq))
+    allocate (b(an%eq%map%neq))
     b = 0.0_dp
     do n = 1, 18
-      if (an%map%eq(1, n) > 0) b(an%map%eq(1, n)) = 1.0_dp
+      if (an%eq%map%eq(1, n) > 0) b(an%eq%map%eq(1, n)) = 1.0_dp
     end do
     x = b
-    call an%solver%solve(x, error)
+    call an%eq%solver%solve(x, error)
     if (allocated(error)) return
     call check(error, all(abs(x) <= huge(1.0_dp)) .and. maxval(abs(x)) > 0.0_dp .and. maxval(abs(x)) < 1.0e3_dp, &
                'the stand-in solve is finite and bounded, max |x| = ' // str(maxval(abs(x))))
@@ -107,22 +107,22 @@ contains
     if (allocated(error)) return
     call init_states(model, an)
     f = [3.0_dp, -2.0_dp, 5.0_dp]
-    if (.not. allocated(an%f_applied)) allocate (an%f_applied(3, model%nnode))
-    if (.not. allocated(an%fint)) allocate (an%fint(3, model%nnode))
-    an%f_applied = 0.0_dp
-    an%fint = 0.0_dp
+    if (.not. allocated(an%path%f_applied)) allocate (an%path%f_applied(3, model%nnode))
+    if (.not. allocated(an%path%fint)) allocate (an%path%fint(3, model%nnode))
+    an%path%f_applied = 0.0_dp
+    an%path%fint = 0.0_dp
     do n = 1, model%nnode
-      if (.not. an%map%used(n)) cycle
-      call check(error, (.not. an%map%constrained(1, n)) .and. an%map%constrained(2, n) .and. &
-                 an%map%constrained(3, n), 'node ' // str(n) // ' is held in theta and z only')
+      if (.not. an%eq%map%used(n)) cycle
+      call check(error, (.not. an%eq%map%constrained(1, n)) .and. an%eq%map%constrained(2, n) .and. &
+                 an%eq%map%constrained(3, n), 'node ' // str(n) // ' is held in theta and z only')
       if (allocated(error)) return
-      an%fint(:, n) = f
+      an%path%fint(:, n) = f
       r = support_reaction(an, n)
-      expected = dot_product(an%map%basis(:, 2, n), f) * an%map%basis(:, 2, n) + &
-                 dot_product(an%map%basis(:, 3, n), f) * an%map%basis(:, 3, n)
+      expected = dot_product(an%eq%map%basis(:, 2, n), f) * an%eq%map%basis(:, 2, n) + &
+                 dot_product(an%eq%map%basis(:, 3, n), f) * an%eq%map%basis(:, 3, n)
       call check(error, maxval(abs(r - expected)) <= 1.0e-14_dp * norm2(f), 'reaction at node ' // str(n))
       if (allocated(error)) return
-      call check(error, abs(dot_product(an%map%basis(:, 1, n), r)) <= 1.0e-14_dp * norm2(f), &
+      call check(error, abs(dot_product(an%eq%map%basis(:, 1, n), r)) <= 1.0e-14_dp * norm2(f), &
                  'no radial reaction at node ' // str(n))
       if (allocated(error)) return
     end do

@@ -13,7 +13,6 @@ module feps_analysis_state
   use feps_model, only: model_t
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
   use feps_sparse_matrix, only: csr_matrix_t, full_pattern
-  use feps_umfpack_solver, only: umfpack_solver_t
   use feps_assembly, only: group_kernel_t, build_kernels, build_materials, build_pattern, check_jacobians, &
                            element_dofs, element_stiffness, element_strains, element_internal_force, &
                            scatter_element_matrix, rotate_matrix
@@ -22,9 +21,9 @@ module feps_analysis_state
   use feps_material, only: material_slot_t
   use feps_point_state_store, only: point_state_store_t
   use feps_tangent_symmetry, only: nearest_symmetric_psd
-  use feps_linear_solver, only: linear_solver_t
   use feps_solver_factory, only: new_linear_solver
   use feps_observer, only: observer_t
+  use feps_equation_system, only: equation_system_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
   implicit none
   private
@@ -47,28 +46,28 @@ module feps_analysis_state
     type(csr_matrix_t) :: k
   end type linear_part_t
 
-  !> Everything the analysis works on.
-  type, public :: analysis_t
-    type(group_kernel_t), allocatable :: kernels(:)
-    type(material_slot_t), allocatable :: materials(:)
-    type(dof_map_t) :: map
-    type(csr_matrix_t) :: a
-    class(linear_solver_t), allocatable :: solver
-    type(group_state_t), allocatable :: states(:)
+  !> The state along the load path: displacements (committed and trial), internal forces,
+  !! the loads applied so far, the constrained values reached and the groups active.
+  type, public :: load_path_t
     real(dp), allocatable :: u(:, :), u_t(:, :)        !! committed and trial displacements (global)
     real(dp), allocatable :: fint(:, :)                !! internal forces of the trial state (global)
     real(dp), allocatable :: f_ref(:, :)               !! reference (stage-0) loads (global)
     real(dp), allocatable :: f_applied(:, :)           !! external load applied so far (global)
     real(dp), allocatable :: uc(:, :)                  !! constrained values reached (nodal systems)
-    logical :: symmetrized = .false.
-    logical :: warned_condition = .false.
-    type(csr_matrix_t) :: a_full                       !! both triangles: the exact non-symmetric tangent
-    type(umfpack_solver_t) :: lu                       !! its LU factors (full Newton, psi /= phi)
-    logical :: use_lu = .false.                        !! solve with lu, not solver (set by factorize_tangent)
-    integer :: lu_singular = 0                         !! exact tangents found singular (the stand-in was used)
-    type(linear_part_t) :: lin
-    logical, allocatable :: active(:)                  !! groups active in the current stage
     real(dp), allocatable :: release_force(:, :)       !! load increment of the stage that removes released supports' forces
+    logical, allocatable :: active(:)                  !! groups active in the current stage
+  end type load_path_t
+
+  !> Everything the analysis works on: the element and material objects, the equation system
+  !! (numbering, matrix, its factors), the point states, the linear part, and the state along
+  !! the load path.
+  type, public :: analysis_t
+    type(group_kernel_t), allocatable :: kernels(:)
+    type(material_slot_t), allocatable :: materials(:)
+    type(equation_system_t) :: eq
+    type(group_state_t), allocatable :: states(:)
+    type(linear_part_t) :: lin
+    type(load_path_t) :: path
   end type analysis_t
 
   public :: is_linear_model, set_up, init_states, state_bytes
@@ -107,23 +106,23 @@ contains
     if (allocated(error)) return
     call resolve_face_sets(model, an%kernels, error)
     if (allocated(error)) return
-    call build_dof_map(model, an%map, error)
+    call build_dof_map(model, an%eq%map, error)
     if (allocated(error)) return
-    summary%dofs = an%map%neq
-    summary%unused_nodes = an%map%unused_nodes
-    if (an%map%neq == 0) then
+    summary%dofs = an%eq%map%neq
+    summary%unused_nodes = an%eq%map%unused_nodes
+    if (an%eq%map%neq == 0) then
       call fatal_error(error, err_model, model%deck_file // ': the model has no free degree of freedom')
       return
     end if
     call check_later_supports(model, error)
     if (allocated(error)) return
-    call build_pattern(model, an%map, an%a)
-    if (allocated(an%a_full%row_ptr)) deallocate (an%a_full%row_ptr, an%a_full%col, an%a_full%val)
-    summary%matrix_nnz = an%a%nnz()
-    call new_linear_solver(solver_name, an%solver, error)
+    call build_pattern(model, an%eq%map, an%eq%a)
+    if (allocated(an%eq%a_full%row_ptr)) deallocate (an%eq%a_full%row_ptr, an%eq%a_full%col, an%eq%a_full%val)
+    summary%matrix_nnz = an%eq%a%nnz()
+    call new_linear_solver(solver_name, an%eq%solver, error)
     if (allocated(error)) return
-    summary%solver = an%solver%name()
-    call an%solver%analyze(an%a, error)
+    summary%solver = an%eq%solver%name()
+    call an%eq%solver%analyze(an%eq%a, error)
   end subroutine set_up
 
   !> The supports of every later stage whose supports change are valid (RELEASE records)
@@ -162,7 +161,7 @@ contains
     real(dp) :: ul(3), support(3)
     integer :: n, d, nheld, nfreed
 
-    an%release_force = 0.0_dp
+    an%path%release_force = 0.0_dp
     changed = model%supports_change(s)
     if (.not. changed) return
     call build_dof_map(model, new, error, stage=s)
@@ -171,35 +170,35 @@ contains
     nfreed = 0
     do n = 1, model%nnode
       if (.not. new%used(n)) cycle
-      if (all(new%constrained(:, n) .eqv. an%map%constrained(:, n))) cycle
-      ul = matmul(transpose(an%map%basis(:, :, n)), an%u(:, n))
-      support = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
+      if (all(new%constrained(:, n) .eqv. an%eq%map%constrained(:, n))) cycle
+      ul = matmul(transpose(an%eq%map%basis(:, :, n)), an%path%u(:, n))
+      support = matmul(transpose(an%eq%map%basis(:, :, n)), an%path%fint(:, n) - an%path%f_applied(:, n))
       do d = 1, 3
-        if (new%constrained(d, n) .and. .not. an%map%constrained(d, n)) then
-          an%uc(d, n) = ul(d)
+        if (new%constrained(d, n) .and. .not. an%eq%map%constrained(d, n)) then
+          an%path%uc(d, n) = ul(d)
           nheld = nheld + 1
-        else if (an%map%constrained(d, n) .and. .not. new%constrained(d, n)) then
-          an%f_applied(:, n) = an%f_applied(:, n) + support(d) * an%map%basis(:, d, n)
-          an%release_force(:, n) = an%release_force(:, n) - support(d) * an%map%basis(:, d, n)
+        else if (an%eq%map%constrained(d, n) .and. .not. new%constrained(d, n)) then
+          an%path%f_applied(:, n) = an%path%f_applied(:, n) + support(d) * an%eq%map%basis(:, d, n)
+          an%path%release_force(:, n) = an%path%release_force(:, n) - support(d) * an%eq%map%basis(:, d, n)
           nfreed = nfreed + 1
         end if
       end do
     end do
-    an%map = new
-    summary%dofs = an%map%neq
-    call build_pattern(model, an%map, an%a)
-    if (allocated(an%a_full%row_ptr)) deallocate (an%a_full%row_ptr, an%a_full%col, an%a_full%val)
-    summary%matrix_nnz = an%a%nnz()
-    call an%solver%analyze(an%a, error)
+    an%eq%map = new
+    summary%dofs = an%eq%map%neq
+    call build_pattern(model, an%eq%map, an%eq%a)
+    if (allocated(an%eq%a_full%row_ptr)) deallocate (an%eq%a_full%row_ptr, an%eq%a_full%col, an%eq%a_full%val)
+    summary%matrix_nnz = an%eq%a%nnz()
+    call an%eq%solver%analyze(an%eq%a, error)
     if (allocated(error)) return
     if (.not. present(observer)) return
     if (nfreed > 0) then
       call observer%progress('stage ' // model%stages(s)%name // ': supports change: ' // str(nheld) // &
                              ' DOFs held from here, ' // str(nfreed) // ' released (their support forces ' // &
-                             'removed over the stage); ' // str(an%map%neq) // ' equations')
+                             'removed over the stage); ' // str(an%eq%map%neq) // ' equations')
     else
       call observer%progress('stage ' // model%stages(s)%name // ': supports change: ' // str(nheld) // &
-                             ' DOFs held from here; ' // str(an%map%neq) // ' equations')
+                             ' DOFs held from here; ' // str(an%eq%map%neq) // ' equations')
     end if
   end subroutine change_supports
 
@@ -246,15 +245,15 @@ contains
         deallocate (ke, d, dofs)
       end do
     end if
-    allocate (an%active(size(model%groups)))
-    an%active = model%groups(:)%activate_stage <= 1
-    allocate (an%u(3, model%nnode), an%u_t(3, model%nnode), an%fint(3, model%nnode), an%uc(3, model%nnode))
-    an%u = 0.0_dp
-    an%u_t = 0.0_dp
-    an%fint = 0.0_dp
-    an%uc = 0.0_dp
-    allocate (an%release_force(3, model%nnode))
-    an%release_force = 0.0_dp
+    allocate (an%path%active(size(model%groups)))
+    an%path%active = model%groups(:)%activate_stage <= 1
+    allocate (an%path%u(3, model%nnode), an%path%u_t(3, model%nnode), an%path%fint(3, model%nnode), an%path%uc(3, model%nnode))
+    an%path%u = 0.0_dp
+    an%path%u_t = 0.0_dp
+    an%path%fint = 0.0_dp
+    an%path%uc = 0.0_dp
+    allocate (an%path%release_force(3, model%nnode))
+    an%path%release_force = 0.0_dp
   end subroutine init_states
 
   !> Memory held per group for point states (stresses, strains, flags, internal variables,
@@ -316,12 +315,12 @@ contains
     if (s > 1) tension = model%stage_prestress(s - 1, after=.true.)
     do g = 1, size(model%groups)
       if (model%groups(g)%activate_stage /= s .or. s == 1) cycle
-      an%active(g) = .true.
+      an%path%active(g) = .true.
       any_born = .true.
       if (tension(g) /= 0.0_dp) call an%states(g)%set_stress(tension(g))
     end do
     call add_bar_forces(model, an, merge(tension, 0.0_dp, model%groups(:)%activate_stage == s), 1.0_dp, &
-                        an%f_applied)
+                        an%path%f_applied)
   end subroutine activate_groups
 
   !> f <- f + sign * the nodal forces of the bars of each group g at the axial force force(g)
@@ -357,26 +356,26 @@ contains
     type(error_t), allocatable, intent(out) :: error
     logical, allocatable :: carried(:)
     integer :: g, n, d, later
-    if (all(an%active)) return
+    if (all(an%path%active)) return
     allocate (carried(model%nnode))
     carried = .false.
     do g = 1, size(model%groups)
-      if (an%active(g)) carried(pack(model%groups(g)%connectivity, .true.)) = .true.
+      if (an%path%active(g)) carried(pack(model%groups(g)%connectivity, .true.)) = .true.
     end do
     do n = 1, model%nnode
       if (carried(n)) cycle
       do d = 1, 3
-        if (an%map%eq(d, n) == 0) cycle
+        if (an%eq%map%eq(d, n) == 0) cycle
         later = 0
         do g = 1, size(model%groups)
-          if (.not. an%active(g) .and. any(model%groups(g)%connectivity == n)) later = g
+          if (.not. an%path%active(g) .and. any(model%groups(g)%connectivity == n)) later = g
         end do
         if (later == 0) cycle   ! a node of no element at all: the DOF map does not number it
         call fatal_error(error, err_model, model%deck_file // ': stage ' // model%stages(s)%name // ': ' // &
-                         an%map%dof_name(an%map%eq(d, n)) // ' has no stiffness: its node belongs only to ' // &
+                         an%eq%map%dof_name(an%eq%map%eq(d, n)) // ' has no stiffness: its node belongs only to ' // &
                          'elements not yet active (group ' // model%groups(later)%name // ', ACTIVATE in stage ' // &
                          model%stages(model%groups(later)%activate_stage)%name // '); hold it (FIX, DISPLACE) ' // &
-                         'or activate its elements earlier', item=an%map%eq(d, n))
+                         'or activate its elements earlier', item=an%eq%map%eq(d, n))
         return
       end do
     end do
@@ -398,8 +397,8 @@ contains
     ! Post-tensioned bars, not yet bonded: their force pulls on their nodes as a load.
     call add_bar_forces(model, an, model%stage_prestress(s, after=.true.), -1.0_dp, df)
     frac = model%stages(s)%load_fraction
-    df = df + frac * an%f_ref
-    if (allocated(an%release_force)) df = df + an%release_force
+    df = df + frac * an%path%f_ref
+    if (allocated(an%path%release_force)) df = df + an%path%release_force
     duc = 0.0_dp
     do c = 1, size(model%constraints)
       associate (con => model%constraints(c))
@@ -438,7 +437,7 @@ contains
       if (all(ieee_is_finite(v))) return
       at = findloc(ieee_is_finite(v), .false.)
       dof = cartesian(at(1))
-      if (nodal .and. an%map%node_csys(at(2)) /= 0) dof = cylindrical(at(1))
+      if (nodal .and. an%eq%map%node_csys(at(2)) /= 0) dof = cylindrical(at(1))
       message = 'stage ' // model%stages(s)%name // ': its ' // what // ' at node ' // str(at(2)) // ', DOF ' // &
                 trim(dof) // ' is not finite (' // str(v(at(1), at(2))) // '): what the stage adds up there is ' // &
                 'beyond double precision'
@@ -460,7 +459,7 @@ contains
     real(dp), allocatable :: fe(:)
     allocate (f(3, model%nnode))
     f = 0.0_dp
-    call add_linear_forces(an, an%u, f)
+    call add_linear_forces(an, an%path%u, f)
     do g = 1, size(model%groups)
       if (.not. an%states(g)%nonlinear) cycle
       np = an%kernels(g)%npoints
@@ -475,27 +474,27 @@ contains
       deallocate (fe)
     end do
     allocate (rf(size(r)))
-    call to_equations(an%map, an%f_applied - f, rf)
+    call to_equations(an%eq%map, an%path%f_applied - f, rf)
     r = rf
   end subroutine committed_residual
 
   !> Trial displacements: the committed ones with the constrained DOFs moved to their
-  !! current targets an%uc (nodal systems).
+  !! current targets an%path%uc (nodal systems).
   subroutine set_trial(model, an)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     integer :: n, d
     real(dp) :: ul(3)
     do n = 1, model%nnode
-      if (.not. any(an%map%constrained(:, n))) then
-        an%u_t(:, n) = an%u(:, n)
+      if (.not. any(an%eq%map%constrained(:, n))) then
+        an%path%u_t(:, n) = an%path%u(:, n)
         cycle
       end if
-      ul = matmul(transpose(an%map%basis(:, :, n)), an%u(:, n))
+      ul = matmul(transpose(an%eq%map%basis(:, :, n)), an%path%u(:, n))
       do d = 1, 3
-        if (an%map%constrained(d, n)) ul(d) = an%uc(d, n)
+        if (an%eq%map%constrained(d, n)) ul(d) = an%path%uc(d, n)
       end do
-      an%u_t(:, n) = matmul(an%map%basis(:, :, n), ul)
+      an%path%u_t(:, n) = matmul(an%eq%map%basis(:, :, n), ul)
     end do
   end subroutine set_trial
 
@@ -507,12 +506,12 @@ contains
     integer :: n, d
     real(dp) :: dl(3)
     do n = 1, size(u, 2)
-      if (all(an%map%eq(:, n) == 0)) cycle
+      if (all(an%eq%map%eq(:, n) == 0)) cycle
       dl = 0.0_dp
       do d = 1, 3
-        if (an%map%eq(d, n) > 0) dl(d) = x(an%map%eq(d, n))
+        if (an%eq%map%eq(d, n) > 0) dl(d) = x(an%eq%map%eq(d, n))
       end do
-      u(:, n) = u(:, n) + matmul(an%map%basis(:, :, n), dl)
+      u(:, n) = u(:, n) + matmul(an%eq%map%basis(:, :, n), dl)
     end do
   end subroutine add_free
 
@@ -526,10 +525,10 @@ contains
     real(dp), intent(in) :: dps(:)
     integer :: g, e, q, q0, np, nn, nc
     real(dp), allocatable :: xe(:, :), due(:), deps(:, :), fe(:)
-    an%fint = 0.0_dp
-    call add_linear_forces(an, an%u_t, an%fint)
+    an%path%fint = 0.0_dp
+    call add_linear_forces(an, an%path%u_t, an%path%fint)
     do g = 1, size(model%groups)
-      if (.not. an%states(g)%nonlinear .or. .not. an%active(g)) cycle
+      if (.not. an%states(g)%nonlinear .or. .not. an%path%active(g)) cycle
       np = an%kernels(g)%npoints
       nn = an%kernels(g)%nnodes
       nc = an%kernels(g)%ncomp
@@ -539,14 +538,14 @@ contains
         call s%impose(spread(dps(g), 1, nc))
         do e = 1, size(conn, 2)
           xe = model%coords(:, conn(:, e))
-          due = reshape(an%u_t(:, conn(:, e)) - an%u(:, conn(:, e)), [3 * nn])
+          due = reshape(an%path%u_t(:, conn(:, e)) - an%path%u(:, conn(:, e)), [3 * nn])
           call element_strains(an%kernels(g), xe, due, deps)
           q0 = (e - 1) * np
           do q = 1, np
             call s%update(mat, q0 + q, deps(:, q))
           end do
           call element_internal_force(an%kernels(g), xe, s%sig_t(:, q0 + 1:q0 + np), fe)
-          an%fint(:, conn(:, e)) = an%fint(:, conn(:, e)) + reshape(fe, [3, nn])
+          an%path%fint(:, conn(:, e)) = an%path%fint(:, conn(:, e)) + reshape(fe, [3, nn])
         end do
       end associate
       deallocate (xe, due, deps, fe)
@@ -562,18 +561,18 @@ contains
     real(dp), allocatable :: p(:), react(:)
     real(dp) :: fl(3)
     integer :: n, d, k
-    allocate (p(size(r)), react(3 * size(an%fint, 2)))
-    call to_equations(an%map, an%f_applied - an%fint, r)
-    call to_equations(an%map, an%f_applied, p)
+    allocate (p(size(r)), react(3 * size(an%path%fint, 2)))
+    call to_equations(an%eq%map, an%path%f_applied - an%path%fint, r)
+    call to_equations(an%eq%map, an%path%f_applied, p)
     rnorm = norm2(r)
     ! norm2 scales: a sum of squares would overflow for forces near huge() and make the
     ! relative residual zero
     k = 0
-    do n = 1, size(an%fint, 2)
-      if (.not. any(an%map%constrained(:, n))) cycle
-      fl = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
+    do n = 1, size(an%path%fint, 2)
+      if (.not. any(an%eq%map%constrained(:, n))) cycle
+      fl = matmul(transpose(an%eq%map%basis(:, :, n)), an%path%fint(:, n) - an%path%f_applied(:, n))
       do d = 1, 3
-        if (.not. an%map%constrained(d, n)) cycle
+        if (.not. an%eq%map%constrained(d, n)) cycle
         k = k + 1
         react(k) = fl(d)
       end do
@@ -585,7 +584,7 @@ contains
   subroutine commit(an)
     type(analysis_t), intent(inout) :: an
     integer :: g
-    an%u = an%u_t
+    an%path%u = an%path%u_t
     do g = 1, size(an%states)
       call an%states(g)%commit()
     end do
@@ -595,7 +594,7 @@ contains
   subroutine restore(an)
     type(analysis_t), intent(inout) :: an
     integer :: g
-    an%u_t = an%u
+    an%path%u_t = an%path%u
     do g = 1, size(an%states)
       call an%states(g)%restore()
     end do
@@ -620,56 +619,56 @@ contains
     ! Non-symmetric points under full Newton: factorize the exact tangent (UMFPACK LU) and
     ! solve with it. Where it is singular (a body held only by faces sliding without
     ! dilation, a neutral equilibrium) the symmetric stand-in below is used instead.
-    an%use_lu = .false.
+    an%eq%use_lu = .false.
     nonsymmetric = .false.
     if (present(exact) .and. .not. elastic) then
       if (exact) nonsymmetric = any_nonsymmetric_tangent(model, an, use_trial)
     end if
     if (nonsymmetric) then
       t0 = wall_clock()
-      if (.not. allocated(an%a_full%row_ptr)) call full_pattern(an%a, an%a_full)
-      call assemble_tangent(model, an, elastic, use_trial, .true., an%a_full, nonsymmetric)
+      if (.not. allocated(an%eq%a_full%row_ptr)) call full_pattern(an%eq%a, an%eq%a_full)
+      call assemble_tangent(model, an, elastic, use_trial, .true., an%eq%a_full, nonsymmetric)
       summary%time_assembly = summary%time_assembly + wall_clock() - t0
       t0 = wall_clock()
-      call an%lu%factorize(an%a_full, lu_error)
+      call an%eq%lu%factorize(an%eq%a_full, lu_error)
       summary%time_factorization = summary%time_factorization + wall_clock() - t0
       if (.not. allocated(lu_error)) then
-        an%use_lu = .true.
-        summary%lu_factorizations = an%lu%factorizations
-        summary%lu_min_rcond = an%lu%min_rcond
-        summary%factorizations = an%solver%factorizations + an%lu%factorizations
+        an%eq%use_lu = .true.
+        summary%lu_factorizations = an%eq%lu%factorizations
+        summary%lu_min_rcond = an%eq%lu%min_rcond
+        summary%factorizations = an%eq%solver%factorizations + an%eq%lu%factorizations
         return
       end if
       if (lu_error%code /= err_model) then
         call move_alloc(lu_error, error)
         return
       end if
-      an%lu_singular = an%lu_singular + 1
+      an%eq%lu_singular = an%eq%lu_singular + 1
     end if
 
     t0 = wall_clock()
-    call assemble_tangent(model, an, elastic, use_trial, .false., an%a, nonsymmetric)
+    call assemble_tangent(model, an, elastic, use_trial, .false., an%eq%a, nonsymmetric)
     summary%time_assembly = summary%time_assembly + wall_clock() - t0
-    if (nonsymmetric) an%symmetrized = .true.
+    if (nonsymmetric) an%eq%symmetrized = .true.
 
     t0 = wall_clock()
-    call an%solver%factorize(an%a, error)
+    call an%eq%solver%factorize(an%eq%a, error)
     summary%time_factorization = summary%time_factorization + wall_clock() - t0
     if (allocated(error)) then
       ieq = error%item   ! fatal_error reallocates error: keep the item first
-      if (ieq > 0 .and. ieq <= an%map%neq) then
+      if (ieq > 0 .and. ieq <= an%eq%map%neq) then
         call fatal_error(error, err_model, model%deck_file // ': the stiffness matrix is singular at ' // &
-                         an%map%dof_name(ieq) // ' ' // node_position(model, an%map%eq_node(ieq)) // &
+                         an%eq%map%dof_name(ieq) // ' ' // node_position(model, an%eq%map%eq_node(ieq)) // &
                          ': that DOF is not held (an unconstrained rigid-body mode ' // &
                          'or a missing support), or held only through a stiffness contrast beyond double ' // &
                          'precision (pivot below 1e-11 of its diagonal)', item=ieq)
       end if
       return
     end if
-    summary%factorizations = an%solver%factorizations + an%lu%factorizations
-    if (.not. an%warned_condition .and. an%solver%min_pivot_ratio > 0.0_dp) then
-      if (an%solver%max_pivot_ratio / an%solver%min_pivot_ratio > condition_warning) then
-        an%warned_condition = .true.
+    summary%factorizations = an%eq%solver%factorizations + an%eq%lu%factorizations
+    if (.not. an%eq%warned_condition .and. an%eq%solver%min_pivot_ratio > 0.0_dp) then
+      if (an%eq%solver%max_pivot_ratio / an%eq%solver%min_pivot_ratio > condition_warning) then
+        an%eq%warned_condition = .true.
         summary%condition_warning = .true.
       end if
     end if
@@ -699,7 +698,7 @@ contains
     integer :: g, q
     found = .false.
     do g = 1, size(model%groups)
-      if (.not. an%active(g) .or. .not. an%states(g)%nonlinear) cycle
+      if (.not. an%path%active(g) .or. .not. an%states(g)%nonlinear) cycle
       do q = 1, size(an%states(g)%dtan, 3)
         if (use_trial) then
           found = is_nonsymmetric(an%states(g)%dtan_t(:, :, q))
@@ -727,7 +726,7 @@ contains
     nonsymmetric = .false.
     a%val = 0.0_dp
     do g = 1, size(model%groups)
-      if (.not. an%active(g)) cycle   ! not yet born: no stiffness
+      if (.not. an%path%active(g)) cycle   ! not yet born: no stiffness
       np = an%kernels(g)%npoints
       nn = an%kernels(g)%nnodes
       nc = an%kernels(g)%ncomp
@@ -754,8 +753,8 @@ contains
             end do
           end if
           call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
-          if (an%map%has_rotations()) call rotate_matrix(an%map, conn(:, e), ke)
-          call element_dofs(an%map, conn(:, e), dofs)
+          if (an%eq%map%has_rotations()) call rotate_matrix(an%eq%map, conn(:, e), ke)
+          call element_dofs(an%eq%map, conn(:, e), dofs)
           call scatter_element_matrix(dofs, ke, a, both_triangles=exact)
         end do
       end associate
@@ -771,7 +770,7 @@ contains
     type(analysis_t), intent(in) :: an
     integer, intent(in) :: n
     real(dp) :: r(3)
-    r = matmul(an%map%basis(:, :, n), support_reaction_nodal(an, n))
+    r = matmul(an%eq%map%basis(:, :, n), support_reaction_nodal(an, n))
   end function support_reaction
 
   !> The support reaction at node `n` in its nodal system: exactly zero in the free directions
@@ -780,8 +779,8 @@ contains
     type(analysis_t), intent(in) :: an
     integer, intent(in) :: n
     real(dp) :: local(3)
-    local = matmul(transpose(an%map%basis(:, :, n)), an%fint(:, n) - an%f_applied(:, n))
-    where (.not. an%map%constrained(:, n)) local = 0.0_dp
+    local = matmul(transpose(an%eq%map%basis(:, :, n)), an%path%fint(:, n) - an%path%f_applied(:, n))
+    where (.not. an%eq%map%constrained(:, n)) local = 0.0_dp
   end function support_reaction_nodal
 
 end module feps_analysis_state

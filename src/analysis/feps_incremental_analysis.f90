@@ -54,10 +54,10 @@ contains
     if (allocated(error)) return
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
-    allocate (an%f_ref(3, model%nnode), an%f_applied(3, model%nnode))
-    call nodal_load_vector(model, an%kernels, an%f_ref, error, stage=0)
+    allocate (an%path%f_ref(3, model%nnode), an%path%f_applied(3, model%nnode))
+    call nodal_load_vector(model, an%kernels, an%path%f_ref, error, stage=0)
     if (allocated(error)) return
-    an%f_applied = 0.0_dp
+    an%path%f_applied = 0.0_dp
     summary%time_assembly = wall_clock() - t0
 
     summary%linear = is_linear_model(model, an%materials)
@@ -70,15 +70,15 @@ contains
     end if
     if (allocated(error)) return
 
-    summary%factor_nnz = an%solver%factor_nnz
-    summary%flops = an%solver%flops
-    summary%min_pivot_ratio = an%solver%min_pivot_ratio
-    summary%max_pivot_ratio = an%solver%max_pivot_ratio
-    summary%applied_force = sum(an%f_applied, dim=2)
+    summary%factor_nnz = an%eq%solver%factor_nnz
+    summary%flops = an%eq%solver%flops
+    summary%min_pivot_ratio = an%eq%solver%min_pivot_ratio
+    summary%max_pivot_ratio = an%eq%solver%max_pivot_ratio
+    summary%applied_force = sum(an%path%f_applied, dim=2)
     summary%reaction_force = 0.0_dp
     do n = 1, model%nnode
-      if (any(an%map%constrained(:, n))) summary%reaction_force = summary%reaction_force + support_reaction(an, n)
-      length = magnitude(an%u(:, n))
+      if (any(an%eq%map%constrained(:, n))) summary%reaction_force = summary%reaction_force + support_reaction(an, n)
+      length = magnitude(an%path%u(:, n))
       if (length > summary%max_displacement) then
         summary%max_displacement = length
         summary%max_displacement_node = n
@@ -123,12 +123,12 @@ contains
     summary%linear = is_linear_model(model, an%materials)
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
-    allocate (an%f_ref(3, model%nnode), df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)))
-    call nodal_load_vector(model, an%kernels, an%f_ref, error, stage=0)
+    allocate (an%path%f_ref(3, model%nnode), df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)))
+    call nodal_load_vector(model, an%kernels, an%path%f_ref, error, stage=0)
     if (allocated(error)) return
     summary%time_assembly = wall_clock() - t0
-    allocate (an%f_applied(3, model%nnode))
-    an%f_applied = 0.0_dp
+    allocate (an%path%f_applied(3, model%nnode))
+    an%path%f_applied = 0.0_dp
     do s = 1, size(model%stages)
       ! as a run reports a failed factorization: a nonlinear run factorizes in the stage's first step
       call start_elastic_stage(model, an, s, summary, changed, error, observer=observer, &
@@ -163,10 +163,10 @@ contains
       end associate
       call observer%progress(line)
     end do
-    summary%factor_nnz = an%solver%factor_nnz
-    summary%flops = an%solver%flops
-    summary%min_pivot_ratio = an%solver%min_pivot_ratio
-    summary%max_pivot_ratio = an%solver%max_pivot_ratio
+    summary%factor_nnz = an%eq%solver%factor_nnz
+    summary%flops = an%eq%solver%flops
+    summary%min_pivot_ratio = an%eq%solver%min_pivot_ratio
+    summary%max_pivot_ratio = an%eq%solver%max_pivot_ratio
   end subroutine check_analysis
 
   !> The start of a stage on the elastic stiffness (the linear driver, feps --check): the
@@ -215,7 +215,7 @@ contains
     integer :: s, k, n, step
     logical :: changed
 
-    allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%map%neq))
+    allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%eq%map%neq))
     step = 0
     do s = 1, size(model%stages)
       n = model%stages(s)%steps
@@ -223,28 +223,28 @@ contains
       if (allocated(error)) return
       if (changed) then
         deallocate (r)
-        allocate (r(an%map%neq))
+        allocate (r(an%eq%map%neq))
       end if
       call stage_increments(model, an, s, df, duc, dps, error)
       if (allocated(error)) return
-      u0 = an%u
-      f0 = an%f_applied
-      uc0 = an%uc
-      an%f_applied = f0 + df
-      an%uc = uc0 + duc
+      u0 = an%path%u
+      f0 = an%path%f_applied
+      uc0 = an%path%uc
+      an%path%f_applied = f0 + df
+      an%path%uc = uc0 + duc
       ! Move the constrained DOFs, then one solve for the free ones.
       call set_trial(model, an)
       call update_points(model, an, dps)
       call residual(an, r, rnorm, pnorm)
       r_scale = rnorm
       t0 = wall_clock()
-      call an%solver%solve(r, error)
+      call an%eq%solver%solve(r, error)
       if (allocated(error)) return
       summary%time_solve = summary%time_solve + wall_clock() - t0
       call check_finite_solution(model, an, s, r, 'the solution', error)
       if (allocated(error)) return
-      call add_free(an, r, an%u_t)
-      u_end = an%u_t
+      call add_free(an, r, an%path%u_t)
+      u_end = an%path%u_t
       summary%iterations = summary%iterations + 1
       ! The steps written: each state from the last one committed (point states carry the
       ! groups born in a stage and the prestressed ones) with its share of the prestress.
@@ -253,13 +253,13 @@ contains
         if (.not. writes_step(model%stages(s), k)) cycle
         t = real(k, dp) / n
         if (k < n) then
-          an%u_t = u0 + t * (u_end - u0)
-          an%f_applied = f0 + t * df
-          an%uc = uc0 + t * duc
+          an%path%u_t = u0 + t * (u_end - u0)
+          an%path%f_applied = f0 + t * df
+          an%path%uc = uc0 + t * duc
         else
-          an%u_t = u_end
-          an%f_applied = f0 + df
-          an%uc = uc0 + duc
+          an%path%u_t = u_end
+          an%path%f_applied = f0 + df
+          an%path%uc = uc0 + duc
         end if
         call update_points(model, an, dps * (t - t_done))
         call residual(an, r, rnorm, pnorm)
@@ -293,7 +293,7 @@ contains
     if (all(ieee_is_finite(x))) return
     ieq = findloc(ieee_is_finite(x), .false., dim=1)
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // model%stages(s)%name // ': ' // what // &
-                     ' is not finite at ' // an%map%dof_name(ieq) // ' (' // str(x(ieq)) // '): the loads or ' // &
+                     ' is not finite at ' // an%eq%map%dof_name(ieq) // ' (' // str(x(ieq)) // '): the loads or ' // &
                      'prescribed displacements are too large for the stiffness (beyond double precision), or ' // &
                      'a nodal system (FIX ..., CSYS=) gives no direction')
   end subroutine check_finite_solution
@@ -319,7 +319,7 @@ contains
     class(solution_method_t), allocatable :: method
     logical, allocatable :: fully_open(:)
 
-    allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%map%neq), &
+    allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%eq%map%neq), &
               fully_open(size(model%groups)))
     fully_open = .false.
     step = 0
@@ -333,7 +333,7 @@ contains
         if (allocated(error)) return
         if (changed) then
           deallocate (r)
-          allocate (r(an%map%neq))
+          allocate (r(an%eq%map%neq))
           f%have_factor = .false.     ! a new set of equations: factorize again, whatever the method
         end if
         call activate_groups(model, an, s, born)
@@ -394,8 +394,8 @@ contains
               if (.not. (f%rel_prev < c%delta1 .or. rnorm < c%delta2)) step_unconverged = .true.
               call commit(an)
               call collect_point_notes(model, an, .false., run_notes)
-              an%f_applied = an%f_applied + df * (h / st%steps)
-              an%uc = an%uc + duc * (h / st%steps)
+              an%path%f_applied = an%path%f_applied + df * (h / st%steps)
+              an%path%uc = an%path%uc + duc * (h / st%steps)
             else
               cut = cut + 1
               summary%cutbacks = summary%cutbacks + 1
@@ -441,13 +441,13 @@ contains
     if (summary%lu_factorizations > 0) call observer%progress('note: ' // str(summary%lu_factorizations) // &
       ' tangents were non-symmetric (non-associated flow, psi /= phi, or a gap closing within a step): ' // &
       'factorized as they are by UMFPACK (LU)')
-    if (an%lu_singular > 0) call observer%progress('note: ' // str(an%lu_singular) // ' exact non-symmetric ' // &
+    if (an%eq%lu_singular > 0) call observer%progress('note: ' // str(an%eq%lu_singular) // ' exact non-symmetric ' // &
       'tangents were singular (a body held only by faces sliding without dilation): their nearest symmetric ' // &
       'positive semi-definite stand-ins were factorized')
     if (allocated(run_notes)) then
       if (len(run_notes) > 0) call observer%progress('note: ' // run_notes)
     end if
-    if (an%symmetrized) call observer%progress('note: the tangent was non-symmetric at some points (non-' // &
+    if (an%eq%symmetrized) call observer%progress('note: the tangent was non-symmetric at some points (non-' // &
                                                'associated flow, psi /= phi, or a gap closing within a step); ' // &
                                                'the nearest symmetric positive semi-definite matrix was ' // &
                                                'factorized and the exact residual iterated on')
@@ -471,7 +471,7 @@ contains
     summary%unbalanced_step = st%steps
     summary%unbalanced_load_factor = lf
     summary%unbalanced_at = ''
-    if (imax >= 1) summary%unbalanced_at = an%map%dof_name(imax)
+    if (imax >= 1) summary%unbalanced_at = an%eq%map%dof_name(imax)
     summary%unbalanced_tolerance = st%controls%delta1
   end subroutine note_unbalanced
 
@@ -510,11 +510,11 @@ contains
     character(len=:), allocatable :: mechanism
     integer :: ieq
     ieq = error%item
-    if (error%code /= err_model .or. ieq < 1 .or. ieq > an%map%neq) then
+    if (error%code /= err_model .or. ieq < 1 .or. ieq > an%eq%map%neq) then
       call name_step(error, st, k, lf_try)
       return
     end if
-    mechanism = an%map%dof_name(ieq)
+    mechanism = an%eq%map%dof_name(ieq)
     call factorize_tangent(model, an, .true., summary, elastic_error)
     if (allocated(elastic_error)) then
       call name_step(error, st, k, lf_try)
@@ -541,7 +541,7 @@ contains
     ieq = 0
     call factorize_tangent(model, an, .false., summary, probe_error, trial=trial, exact=.true.)
     if (.not. allocated(probe_error)) return
-    if (probe_error%code /= err_model .or. probe_error%item < 1 .or. probe_error%item > an%map%neq) return
+    if (probe_error%code /= err_model .or. probe_error%item < 1 .or. probe_error%item > an%eq%map%neq) return
     ieq = probe_error%item
     deallocate (probe_error)
     call factorize_tangent(model, an, .true., summary, probe_error)
@@ -579,8 +579,8 @@ contains
       allocate (r_carry(size(r)))
       call committed_residual(model, an, r_carry)
     end if
-    an%f_applied = an%f_applied + df
-    an%uc = an%uc + duc
+    an%path%f_applied = an%path%f_applied + df
+    an%path%uc = an%path%uc + duc
     call set_trial(model, an)
     call update_points(model, an, dps)
     call collect_point_notes(model, an, .true., notes)
@@ -593,7 +593,7 @@ contains
     use_bfgs = method%takes_bfgs(c)
     if (use_bfgs) call bfgs%start(size(r), c%max_iterations)
     if (c%line_search) then
-      allocate (du(size(r)), r0(size(r)), u_base(3, size(an%u_t, 2)))
+      allocate (du(size(r)), r0(size(r)), u_base(3, size(an%path%u_t, 2)))
       summary%line_search = .true.
     end if
     do m = 1, c%max_iterations
@@ -606,20 +606,18 @@ contains
       t0 = wall_clock()
       if (c%line_search) r0 = r
       if (use_bfgs) then
-        call bfgs%direction(an%solver, r, error)
-      else if (an%use_lu) then
-        call an%lu%solve(r, error)
+        call bfgs%direction(an%eq%solver, r, error)
       else
-        call an%solver%solve(r, error)
+        call an%eq%solve(r, error)
       end if
       if (allocated(error)) exit
       summary%time_solve = summary%time_solve + wall_clock() - t0
       if (c%line_search) then
         g0 = dot_product(r, r0)     ! du . R(u)
         du = r
-        u_base = an%u_t
+        u_base = an%path%u_t
       end if
-      call add_free(an, r, an%u_t)
+      call add_free(an, r, an%path%u_t)
       if (use_bfgs) call bfgs%record_correction(r)
       t0 = wall_clock()
       call update_points(model, an, dps)
@@ -649,8 +647,8 @@ contains
       end if
     end do
     ! Undo the step's load and constraint increments; the caller applies them on success.
-    an%f_applied = an%f_applied - df
-    an%uc = an%uc - duc
+    an%path%f_applied = an%path%f_applied - df
+    an%path%uc = an%path%uc - duc
     if (allocated(error)) return
     if (.not. ok) return
     rel = rnorm / pnorm
@@ -682,8 +680,8 @@ contains
     summary%line_searches = summary%line_searches + 1
     do
       t0 = wall_clock()
-      an%u_t = u_base
-      call add_free(an, ls%s * du, an%u_t)
+      an%path%u_t = u_base
+      call add_free(an, ls%s * du, an%path%u_t)
       call update_points(model, an, dps)
       call collect_point_notes(model, an, .true., notes)
       summary%time_update = summary%time_update + wall_clock() - t0

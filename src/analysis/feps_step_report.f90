@@ -87,7 +87,7 @@ contains
     logical :: present_
     if (.not. allocated(notes)) notes = ''
     do g = 1, size(an%states)
-      if (.not. an%active(g) .or. .not. an%states(g)%nonlinear) cycle
+      if (.not. an%path%active(g) .or. .not. an%states(g)%nonlinear) cycle
       do state = state_elastic, state_tension
         if (trial) then
           present_ = any(an%states(g)%state_t == state)
@@ -146,7 +146,7 @@ contains
           'force: STAGE ..., DIVERGENCE=1)'
       end if
     end if
-    if (an%symmetrized .and. st%controls%method /= method_initial_stiffness .and. cutbacks_exhausted) then
+    if (an%eq%symmetrized .and. st%controls%method /= method_initial_stiffness .and. cutbacks_exhausted) then
       ! Non-associated flow: outside full Newton (which factorizes the exact tangent by LU) the
       ! factorized matrix is only a symmetric stand-in for the tangent, and as psi -> 0 the
       ! iterations stall (the 2D joint with psi = 0; docs/input-format.md, CONTROLS).
@@ -154,7 +154,7 @@ contains
         'stand-in was factorized: try STAGE ..., METHOD=full-newton-raphson (exact tangent, LU) or ' // &
         'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400'
     end if
-    if (st%controls%method == method_newton_raphson .and. .not. an%symmetrized .and. cutbacks_exhausted) then
+    if (st%controls%method == method_newton_raphson .and. .not. an%eq%symmetrized .and. cutbacks_exhausted) then
       ! The thesis's Newton-Raphson iterates on the tangent of the step's start (elastic in the
       ! first step), so cut-backs do not help where the path bends within every step.
       hint = hint // '; newton-raphson keeps the tangent of the step''s start through its iterations: ' // &
@@ -176,7 +176,7 @@ contains
                        str(k) // ': no equilibrium found beyond load factor ' // str(lf_equilibrium) // ' (' // &
                        last // '; the last try went to ' // str(lf) // ', relative residual ' // &
                        str(rel) // ' after ' // str(st%controls%max_cutbacks) // ' cut-backs): the tangent ' // &
-                       'stiffness of the last try is singular at ' // an%map%dof_name(mechanism) // ' while the ' // &
+                       'stiffness of the last try is singular at ' // an%eq%map%dof_name(mechanism) // ' while the ' // &
                        'elastic stiffness of the same model is not: the load has formed a mechanism or reached a ' // &
                        'limit point (the structure or its interfaces have no more capacity), no support is ' // &
                        'missing', item=mechanism)
@@ -184,7 +184,7 @@ contains
     end if
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
                      ', load factor ' // str(lf) // ': ' // why // ' (relative residual ' // str(rel) // &
-                     ', largest at ' // an%map%dof_name(imax) // '); ' // last // ': load factor ' // &
+                     ', largest at ' // an%eq%map%dof_name(imax) // '); ' // last // ': load factor ' // &
                      str(lf_equilibrium) // hint)
   end subroutine stop_error
 
@@ -232,17 +232,17 @@ contains
     res%load_factor = lf
     res%iterations = iters
     res%residual = rel
-    res%displacement = an%u
-    res%applied_force = an%f_applied
+    res%displacement = an%path%u
+    res%applied_force = an%path%f_applied
     allocate (res%reaction(3, model%nnode), res%reaction_nodal(3, model%nnode))
     res%reaction = 0.0_dp
     res%reaction_nodal = 0.0_dp
     do n = 1, model%nnode
-      if (.not. any(an%map%constrained(:, n))) cycle
+      if (.not. any(an%eq%map%constrained(:, n))) cycle
       res%reaction(:, n) = support_reaction(an, n)
       res%reaction_nodal(:, n) = support_reaction_nodal(an, n)
     end do
-    res%has_nodal_systems = an%map%has_rotations()
+    res%has_nodal_systems = an%eq%map%has_rotations()
     allocate (res%groups(size(model%groups)))
     do g = 1, size(model%groups)
       res%groups(g)%points_per_element = an%kernels(g)%npoints
@@ -333,7 +333,7 @@ contains
     call an%materials(model%groups(g)%material)%m%elastic_tangent(d)
     do e = 1, size(model%groups(g)%connectivity, 2)
       q0 = (e - 1) * np
-      ue = reshape(an%u(:, model%groups(g)%connectivity(:, e)), [3 * nn])
+      ue = reshape(an%path%u(:, model%groups(g)%connectivity(:, e)), [3 * nn])
       call element_strains(an%kernels(g), model%coords(:, model%groups(g)%connectivity(:, e)), ue, &
                            gr%strain(:, q0 + 1:q0 + np))
       do q = 1, np

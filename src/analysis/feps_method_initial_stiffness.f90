@@ -2,7 +2,6 @@
 !! step; a stage whose elements change factorizes it again. A factor another stage's method
 !! left is a tangent, not the initial stiffness, and is not kept.
 module feps_method_initial_stiffness
-  use feps_kinds, only: dp
   use feps_model, only: controls_t
   use feps_solution_method, only: solution_method_t, factor_state_t
   implicit none

@@ -4,7 +4,7 @@
 module feps_method_modified_euler
   use feps_kinds, only: dp
   use feps_model, only: controls_t
-  use feps_solution_method, only: solution_method_t, factor_state_t
+  use feps_solution_method, only: solution_method_t
   implicit none
   private
 

@@ -3,7 +3,7 @@
 module feps_method_newton_raphson
   use feps_kinds, only: dp
   use feps_model, only: controls_t
-  use feps_solution_method, only: solution_method_t, factor_state_t
+  use feps_solution_method, only: solution_method_t
   implicit none
   private
 

@@ -23,7 +23,7 @@ module feps_assembly
   end type group_kernel_t
 
 
-  public :: build_kernels, build_materials, build_pattern, element_dofs, check_jacobians
+  public :: build_kernels, build_materials, build_pattern, element_dofs, check_jacobians, node_list
   public :: element_stiffness, element_strains, element_internal_force, scatter_element_matrix, rotate_matrix
 
 contains
@@ -90,6 +90,7 @@ contains
     end do
   end subroutine check_jacobians
 
+  !> The node numbers of an element, blank-separated, for messages.
   function node_list(nodes) result(s)
     integer, intent(in) :: nodes(:)
     character(len=:), allocatable :: s

@@ -10,7 +10,7 @@ module feps_interface_orientation
   use feps_error, only: error_t, input_error, str
   use feps_model, only: model_t
   use feps_element_catalog, only: family_solid, family_interface
-  use feps_assembly, only: group_kernel_t, element_strains
+  use feps_assembly, only: group_kernel_t, element_strains, node_list
   implicit none
   private
 
@@ -137,15 +137,5 @@ contains
       end do
     end do
   end subroutine solids_at_nodes
-
-  function node_list(nodes) result(text)
-    integer, intent(in) :: nodes(:)
-    character(len=:), allocatable :: text
-    integer :: i
-    text = str(nodes(1))
-    do i = 2, size(nodes)
-      text = text // ' ' // str(nodes(i))
-    end do
-  end function node_list
 
 end module feps_interface_orientation

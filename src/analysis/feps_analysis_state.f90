@@ -8,8 +8,10 @@
 module feps_analysis_state
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, fatal_error, input_error, err_model, err_input, str
+  use feps_error, only: error_t, fatal_error, input_error, err_model, err_input, err_memory, str
   use feps_clock, only: wall_clock
+  use feps_files, only: memory_limit_bytes
+  use feps_strings, only: gib_text
   use feps_model, only: model_t
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
   use feps_sparse_matrix, only: csr_matrix_t, full_pattern
@@ -123,7 +125,28 @@ contains
     if (allocated(error)) return
     summary%solver = an%eq%solver%name()
     call an%eq%solver%analyze(an%eq%a, error)
+    if (.not. allocated(error)) call check_factor_memory(model, an, error)
   end subroutine set_up
+
+  !> A failed run (err_memory, exit status 1) when the factor the solver's analysis foresees
+  !! (8 bytes a nonzero, a lower bound: its indices and workspace come on top), with the matrix
+  !! it is made from, is beyond the memory this process may use (memory_limit_bytes), before it
+  !! is allocated.
+  subroutine check_factor_memory(model, an, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: need, limit
+    limit = memory_limit_bytes()
+    if (limit <= 0) return
+    need = 8_i8 * an%eq%solver%factor_nnz + 12_i8 * an%eq%a%nnz()
+    if (need <= limit) return
+    call fatal_error(error, err_memory, model%deck_file // ': the factor of the stiffness matrix (' // &
+                     str(an%eq%map%neq) // ' equations, ' // str(real(an%eq%solver%factor_nnz, dp)) // &
+                     ' nonzeros) needs about ' // gib_text(need) // ' GiB at least, more than the ' // &
+                     gib_text(limit) // ' GiB this process may use (its address-space limit, ulimit -v, ' // &
+                     'or the machine''s memory)')
+  end subroutine check_factor_memory
 
   !> The supports of every later stage whose supports change are valid (RELEASE records)
   !! and leave a free DOF: input errors before any solving.
@@ -190,6 +213,7 @@ contains
     if (allocated(an%eq%a_full%row_ptr)) deallocate (an%eq%a_full%row_ptr, an%eq%a_full%col, an%eq%a_full%val)
     summary%matrix_nnz = an%eq%a%nnz()
     call an%eq%solver%analyze(an%eq%a, error)
+    if (.not. allocated(error)) call check_factor_memory(model, an, error)
     if (allocated(error)) return
     if (.not. present(observer)) return
     if (nfreed > 0) then

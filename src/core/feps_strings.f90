@@ -1,10 +1,10 @@
 !> Small string helpers shared by the readers and factories.
 module feps_strings
-  use feps_kinds, only: dp
+  use feps_kinds, only: dp, i8
   implicit none
   private
 
-  public :: to_upper, to_lower, sci, utf8_text_length, shown
+  public :: to_upper, to_lower, sci, utf8_text_length, shown, gib_text
 
 contains
 
@@ -115,5 +115,16 @@ contains
       i = i + 1
     end do
   end function shown
+
+  !> `bytes` in GiB with one decimal, for messages about memory.
+  pure function gib_text(bytes) result(text)
+    integer(i8), intent(in) :: bytes
+    character(len=:), allocatable :: text
+    character(len=32) :: buf
+    write (buf, '(f0.1)') real(bytes, dp) / 1024.0_dp**3
+    buf = adjustl(buf)
+    if (buf(1:1) == '.') buf = '0' // buf
+    text = trim(buf)
+  end function gib_text
 
 end module feps_strings

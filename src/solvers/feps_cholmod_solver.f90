@@ -6,9 +6,10 @@
 module feps_cholmod_solver
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_int64_t
   use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, fatal_error, err_model, err_solver, err_internal, str
+  use feps_error, only: error_t, fatal_error, err_model, err_solver, err_internal, err_memory, str
   use feps_sparse_matrix, only: csr_matrix_t
   use feps_linear_solver, only: linear_solver_t, pivot_tolerance
+  use feps_strings, only: gib_text
   use feps_cholmod_bindings, only: feps_chol_create, feps_chol_free, feps_chol_analyze, &
     feps_chol_factorize, feps_chol_solve, feps_chol_flops, feps_chol_lnz, feps_chol_status, &
     feps_chol_failed_column, feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column, &
@@ -17,6 +18,9 @@ module feps_cholmod_solver
   private
 
   public :: count_supervariables
+
+  !> CHOLMOD's status when it cannot allocate (CHOLMOD_OUT_OF_MEMORY in cholmod.h).
+  integer, parameter :: cholmod_out_of_memory = -2
 
   !> CHOLMOD LL' solver: analyze once per pattern, factorize per set of values, solve many times.
   type, extends(linear_solver_t), public :: cholmod_solver_t
@@ -64,6 +68,12 @@ contains
                        'with the diagonal last in each row')
       return
     case default
+      if (feps_chol_status(self%handle) == cholmod_out_of_memory) then
+        call fatal_error(error, err_memory, 'cholmod: the ordering and analysis of ' // str(a%n) // &
+                         ' equations (' // str(real(a%nnz(), dp)) // ' matrix entries) do not fit in the ' // &
+                         'memory this process may use (its address-space limit, ulimit -v, or the machine''s memory)')
+        return
+      end if
       call fatal_error(error, err_solver, 'cholmod: analysis failed (CHOLMOD status ' // &
                        str(int(feps_chol_status(self%handle))) // ')')
       return
@@ -112,6 +122,12 @@ contains
       call fatal_error(error, err_internal, 'cholmod: factorize called before analyze')
       return
     case default
+      if (feps_chol_status(self%handle) == cholmod_out_of_memory) then
+        call fatal_error(error, err_memory, 'cholmod: the factor (' // str(real(self%factor_nnz, dp)) // &
+                         ' nonzeros, about ' // gib_text(8 * self%factor_nnz) // ' GiB) does not fit in the ' // &
+                         'memory this process may use (its address-space limit, ulimit -v, or the machine''s memory)')
+        return
+      end if
       call fatal_error(error, err_solver, 'cholmod: factorization failed (CHOLMOD status ' // &
                        str(int(feps_chol_status(self%handle))) // ')')
       return

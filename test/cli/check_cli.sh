@@ -100,6 +100,14 @@ sed -e 's/^%, 3, 5., 0., 0.,$/%, 101, 0.1, 0., 0.,/; s/^%, 3, 0., 5., 0.,$/%, 10
 hostile "a million-node mesh under ulimit -v 1 GB: refused with the memory it needs" 1 "$tmp/million" \
   bash -c "ulimit -v 1000000; exec \"\$0\" \"\$@\"" "$feps_abs" "$tmp/million.dat" --output "$tmp/million.h5"
 grep -q "needs about .* GiB at least" "$tmp/err" && ok "... naming the GiB it needs" || bad "the memory message: $(head -c 300 "$tmp/err")"
+# The factor: a 50k-DOF pipe mesh whose mesh fits in 400 MB of address space but whose CHOLMOD
+# analysis or factor does not: one line naming the memory, exit 1, nothing left (before, CHOLMOD's
+# out-of-memory status came out as "analysis failed (CHOLMOD status -2)").
+python3 scripts/make_pipe_mesh.py --preset 50k -o "$tmp/pipe50k.dat" >/dev/null
+hostile "a 50k-DOF mesh whose factor does not fit in 400 MB: one line, exit 1" 1 "$tmp/pipe50k" \
+  bash -c "ulimit -v 400000; exec \"\$0\" \"\$@\"" "$feps_abs" "$tmp/pipe50k.dat" --output "$tmp/pipe50k.h5"
+grep -q "fit in the memory this process may use\|more than the .* GiB this process may use" "$tmp/err" \
+  && ok "... saying it does not fit in the memory" || bad "the factor's memory message: $(head -c 300 "$tmp/err")"
 # Disk full while the results are written, at several points (the mesh, a step, the XDMF file):
 # a small tmpfs where this machine allows mounting, else a file-size limit (ulimit -f: EFBIG).
 "$feps" input/modelB/SE1.dat --quiet --output "$tmp/se1full.h5" >/dev/null 2>&1

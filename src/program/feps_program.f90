@@ -9,7 +9,7 @@ module feps_program
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, line_search_refusal, known_fields
   use feps_deck, only: read_deck
-  use feps_strings, only: to_lower, shown, utf8_text_length
+  use feps_strings, only: to_lower, shown, utf8_text_length, gib_text
   use feps_files, only: file_kind, file_kind_text, folder_of, folder_writable, file_missing, file_regular, &
                         file_directory, memory_limit_bytes
   use feps_paths, only: xdmf_file_name
@@ -547,7 +547,6 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(i8) :: need, limit, points
     integer :: g, kmin
-    character(len=32) :: text
     limit = memory_limit_bytes()
     if (limit <= 0) return
     points = 0
@@ -564,12 +563,10 @@ contains
     if (.not. model%mesh_only .and. size(model%groups) > 0) need = need + 10_i8 * 24_i8 * model%nnode + &
       2_i8 * 48_i8 * points + 12_i8 * ((9_i8 * kmin + 3_i8) * model%nnode / 2_i8)
     if (need <= limit) return
-    write (text, '(f0.1)') real(need, dp) / 1024.0_dp**3
     call fatal_error(error, err_memory, model%deck_file // ': the model (' // str(model%nnode) // ' nodes, ' // &
-                     str(model%nelem()) // ' elements) needs about ' // trim(text) // ' GiB at least')
-    write (text, '(f0.1)') real(limit, dp) / 1024.0_dp**3
-    error%message = error%message // ', more than the ' // trim(text) // ' GiB this process may use ' // &
-                    '(its address-space limit, ulimit -v, or the machine''s memory)'
+                     str(model%nelem()) // ' elements) needs about ' // gib_text(need) // ' GiB at least, ' // &
+                     'more than the ' // gib_text(limit) // ' GiB this process may use (its address-space ' // &
+                     'limit, ulimit -v, or the machine''s memory)')
   end subroutine check_memory
 
   !> Bad input (exit status 2) when the results file `path` cannot be written where it is to

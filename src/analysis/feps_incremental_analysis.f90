@@ -28,8 +28,8 @@ module feps_incremental_analysis
   use feps_bfgs, only: bfgs_t
   use feps_line_search, only: line_search_t, line_search_begin, line_search_next, line_search_eta, &
                               line_search_s_min, line_search_max_evaluations
-  use feps_step_report, only: progress_line, time_text, report_step, report_open_interfaces, writes_step, name_step, &
-                              newly_open_points, collect_point_notes, stop_error
+  use feps_step_report, only: progress_line, time_text, collapse_error, report_step, report_open_interfaces, &
+                              writes_step, name_step, newly_open_points, collect_point_notes, stop_error
   implicit none
   private
 
@@ -506,27 +506,31 @@ contains
     character(len=*), intent(in) :: last     !! what the last accepted state was (last_state)
     type(analysis_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(inout) :: error
-    type(error_t), allocatable :: elastic_error
-    character(len=:), allocatable :: mechanism
     integer :: ieq
     ieq = error%item
     if (error%code /= err_model .or. ieq < 1 .or. ieq > an%eq%map%neq) then
       call name_step(error, st, k, lf_try)
       return
     end if
-    mechanism = an%eq%map%dof_name(ieq)
-    call factorize_tangent(model, an, .true., summary, elastic_error)
-    if (allocated(elastic_error)) then
+    if (.not. elastic_factorizes(model, an, summary)) then
       call name_step(error, st, k, lf_try)
       return
     end if
-    call fatal_error(error, err_solver, model%deck_file // ': collapse in stage ' // st%name // ', step ' // &
-                     str(k) // ': no equilibrium found beyond load factor ' // str(lf_equilibrium) // ' (' // &
-                     last // '; the step went to ' // str(lf_try) // '): the tangent stiffness ' // &
-                     'there is singular at ' // mechanism // ' while the elastic stiffness of the same model is ' // &
-                     'not: the load has formed a mechanism or reached a limit point (the structure or its ' // &
-                     'interfaces have no more capacity), no support is missing', item=ieq)
+    call collapse_error(model, an, st, k, lf_equilibrium, last, 'the step went to ' // str(lf_try), 'there', &
+                        ieq, error)
   end subroutine explain_failed_factorization
+
+  !> Whether the elastic stiffness of the model as it stands (supports, active groups)
+  !! factorizes: a singular tangent is then a mechanism of the load, not a missing support.
+  !! Replaces the factor held.
+  logical function elastic_factorizes(model, an, summary) result(ok)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable :: elastic_error
+    call factorize_tangent(model, an, .true., summary, elastic_error)
+    ok = .not. allocated(elastic_error)
+  end function elastic_factorizes
 
   !> The equation where the tangent of the current trial state (`trial`) or of the committed
   !! one is singular while the elastic stiffness of the same model is not: where a mechanism
@@ -543,9 +547,7 @@ contains
     if (.not. allocated(probe_error)) return
     if (probe_error%code /= err_model .or. probe_error%item < 1 .or. probe_error%item > an%eq%map%neq) return
     ieq = probe_error%item
-    deallocate (probe_error)
-    call factorize_tangent(model, an, .true., summary, probe_error)
-    if (allocated(probe_error)) ieq = 0
+    if (.not. elastic_factorizes(model, an, summary)) ieq = 0
   end subroutine find_mechanism
 
   !> One (sub)step: move the constrained DOFs by duc, apply df, iterate on the residual.

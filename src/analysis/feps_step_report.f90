@@ -16,7 +16,7 @@ module feps_step_report
   implicit none
   private
 
-  public :: progress_line, time_text, report_step, report_open_interfaces, writes_step
+  public :: progress_line, time_text, collapse_error, report_step, report_open_interfaces, writes_step
   public :: name_step, newly_open_points, collect_point_notes, stop_error
 
 contains
@@ -172,14 +172,9 @@ contains
     end if
     if (len(notes) > 0 .and. cutbacks_exhausted) hint = hint // '; ' // notes
     if (mechanism > 0) then
-      call fatal_error(error, err_solver, model%deck_file // ': collapse in stage ' // st%name // ', step ' // &
-                       str(k) // ': no equilibrium found beyond load factor ' // str(lf_equilibrium) // ' (' // &
-                       last // '; the last try went to ' // str(lf) // ', relative residual ' // &
-                       str(rel) // ' after ' // str(st%controls%max_cutbacks) // ' cut-backs): the tangent ' // &
-                       'stiffness of the last try is singular at ' // an%eq%map%dof_name(mechanism) // ' while the ' // &
-                       'elastic stiffness of the same model is not: the load has formed a mechanism or reached a ' // &
-                       'limit point (the structure or its interfaces have no more capacity), no support is ' // &
-                       'missing', item=mechanism)
+      call collapse_error(model, an, st, k, lf_equilibrium, last, 'the last try went to ' // str(lf) // &
+                          ', relative residual ' // str(rel) // ' after ' // str(st%controls%max_cutbacks) // &
+                          ' cut-backs', 'of the last try', mechanism, error)
       return
     end if
     call fatal_error(error, err_solver, model%deck_file // ': stage ' // st%name // ', step ' // str(k) // &
@@ -187,6 +182,25 @@ contains
                      ', largest at ' // an%eq%map%dof_name(imax) // '); ' // last // ': load factor ' // &
                      str(lf_equilibrium) // hint)
   end subroutine stop_error
+
+  !> The stop of a collapse: no equilibrium beyond `lf_equilibrium` (the last state accepted,
+  !! as `last` says; `tried`: what the step tried), the tangent stiffness (`whose`) singular at
+  !! equation `ieq` while the elastic one of the same model is not.
+  subroutine collapse_error(model, an, st, k, lf_equilibrium, last, tried, whose, ieq, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    type(stage_t), intent(in) :: st
+    integer, intent(in) :: k, ieq
+    real(dp), intent(in) :: lf_equilibrium
+    character(len=*), intent(in) :: last, tried, whose
+    type(error_t), allocatable, intent(inout) :: error
+    call fatal_error(error, err_solver, model%deck_file // ': collapse in stage ' // st%name // ', step ' // &
+                     str(k) // ': no equilibrium found beyond load factor ' // str(lf_equilibrium) // ' (' // &
+                     last // '; ' // tried // '): the tangent stiffness ' // whose // ' is singular at ' // &
+                     an%eq%map%dof_name(ieq) // ' while the elastic stiffness of the same model is not: the ' // &
+                     'load has formed a mechanism or reached a limit point (the structure or its interfaces ' // &
+                     'have no more capacity), no support is missing', item=ieq)
+  end subroutine collapse_error
 
   !> The progress line of a step: stage, step, load factor, iterations, relative residual and
   !! refactorizations (in all, and in this step).

@@ -5,6 +5,7 @@
 module feps_hex8_bbar
   use feps_kinds, only: dp
   use feps_hex8, only: hex8_t
+  use feps_solid_element, only: fill_b
   implicit none
   private
 
@@ -50,18 +51,9 @@ contains
     real(dp), intent(in) :: dndx(3, nen), dbar(3, nen)
     real(dp), intent(out) :: b(6, 3 * nen)
     integer :: a, c
-    b = 0.0_dp
+    call fill_b(dndx, b)
     do a = 1, nen
       c = 3 * (a - 1)
-      b(1, c + 1) = dndx(1, a)
-      b(2, c + 2) = dndx(2, a)
-      b(3, c + 3) = dndx(3, a)
-      b(4, c + 2) = dndx(3, a)
-      b(4, c + 3) = dndx(2, a)
-      b(5, c + 1) = dndx(3, a)
-      b(5, c + 3) = dndx(1, a)
-      b(6, c + 1) = dndx(2, a)
-      b(6, c + 2) = dndx(1, a)
       b(1:3, c + 1) = b(1:3, c + 1) + (dbar(1, a) - dndx(1, a)) / 3.0_dp
       b(1:3, c + 2) = b(1:3, c + 2) + (dbar(2, a) - dndx(2, a)) / 3.0_dp
       b(1:3, c + 3) = b(1:3, c + 3) + (dbar(3, a) - dndx(3, a)) / 3.0_dp

@@ -19,7 +19,7 @@ module feps_solid_element
   implicit none
   private
 
-  public :: voigt_size
+  public :: voigt_size, fill_b
 
   integer, parameter :: voigt_size = 6   !! components of strain and stress
 

@@ -9,6 +9,7 @@ program feps_main
   use feps_paths, only: is_xdmf_name
   use feps_model, only: max_iterations_limit
   use feps_files, only: report_file_size_limit
+  use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
   implicit none
 
   interface
@@ -24,6 +25,9 @@ program feps_main
   integer :: status
 
   call report_file_size_limit()
+  if (command_argument_count() >= 1) then
+    if (argument(1) == 'joint') call c_exit(int(joint_command(), c_int))
+  end if
   call parse_arguments(options, status)
   if (status >= 0) call c_exit(int(status, c_int))
 
@@ -53,6 +57,41 @@ contains
     write (output_unit, '(a)') line
     flush (output_unit)
   end subroutine print_line
+
+  !> `feps joint ...` (feps_joint_command): the analytical joint models; returns the exit status.
+  integer function joint_command() result(status)
+    type(joint_request_t) :: request
+    type(error_t), allocatable :: error
+    character(len=:), allocatable :: name
+    integer :: i
+    status = 2
+    i = 1
+    do while (i < command_argument_count())
+      i = i + 1
+      name = argument(i)
+      if (name == '--json') then
+        call set_joint_option(request, name, '', error)
+      else if (name == '-h' .or. name == '--help') then
+        write (output_unit, '(a)') joint_usage
+        status = 0
+        return
+      else if (i == command_argument_count() .or. len(name) < 3 .or. name(1:min(2, len(name))) /= '--') then
+        write (error_unit, '(a)') 'feps: error: joint: "' // name // '" is not an option with a value (' // &
+          joint_usage // ')'
+        return
+      else
+        i = i + 1
+        call set_joint_option(request, name, argument(i), error)
+      end if
+      if (allocated(error)) exit
+    end do
+    if (.not. allocated(error)) call run_joint_command(request, print_line, error)
+    if (allocated(error)) then
+      write (error_unit, '(a)') 'feps: error: ' // error%message
+      return
+    end if
+    status = 0
+  end function joint_command
 
   !> Fill options; status = -1 to go on, or the exit status to stop with. Each option is given
   !! at most once and takes no empty value: a second one, or '', would be silently ignored or
@@ -214,6 +253,7 @@ contains
       '', &
       'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N]', &
       '                 [--fields LIST] [--check] [--strict] [--quiet]', &
+      '       feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--json] ...', &
       '       feps --help | --version', &
       '', &
       '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
@@ -238,6 +278,7 @@ contains
       '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &
+      '  joint                the analytical joint models of thesis chapter 7 (feps joint --help)', &
       '', &
       'Each option is given at most once, and none takes an empty value.', &
       '', &

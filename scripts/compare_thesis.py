@@ -295,9 +295,10 @@ def case_sec2_6_4(table, feps, tmp):
 # Thesis chapter 7: analytical joint models and model B
 # --------------------------------------------------------------------------------------------
 
-def joint_model_rows(table, prefix):
+def joint_model_rows(table, prefix, feps):
     sys.path.insert(0, os.path.join(ROOT, "scripts"))
     import joint_models
+    joint_models.use_feps(feps)       # the library's models, through `feps joint`
     known = joint_models.not_reproduced()
     for case, quantity, thesis, value, tol in joint_models.table_rows():
         if not case.startswith(prefix):
@@ -318,7 +319,7 @@ def summary_attr(path, key):
 
 
 def case_table7_1(table, feps, tmp, full=False):
-    joint_model_rows(table, "table7.1")
+    joint_model_rows(table, "table7.1", feps)
     for case, thesis in MODEL_B_EDGE.items():
         if case != "FE1" and not full:
             continue
@@ -384,7 +385,7 @@ def case_table7_3(table, feps, tmp, full=True):
 
 
 def case_table7_4(table, feps, tmp, full=False):
-    joint_model_rows(table, "table7.4")
+    joint_model_rows(table, "table7.4", feps)
     if full:
         model_c_into(table, feps, tmp, "table7.4")
 

@@ -6,6 +6,11 @@
     python3 scripts/joint_models.py ... --json                         # full results as JSON
     python3 scripts/joint_models.py --check                            # thesis Tables 7.1 and 7.4
 
+The models are the library's (src/post/feps_joint_models.f90), asked through `feps joint` (--feps
+or $FEPS names the executable; default fpm's debug build). This script adds the command-line
+form of issue 5, the comparison with the thesis's tables and the diagnostics of the entries the
+stated equations do not reproduce.
+
 --check reads Table 7.4 from the benchmarks folder, $FEPS_BENCHMARKS (default ../shared/benchmarks
 beside the repository). Bad inputs (non-finite, out of range) exit with status 2 and one line.
 
@@ -37,13 +42,13 @@ import csv
 import json
 import math
 import os
+import subprocess
 import sys
 from collections import namedtuple
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from feps_cli import benchmark_file, guard  # noqa: E402
+from feps_cli import benchmark_file, feps_option, guard  # noqa: E402
 
-Q_DEFAULT = 10.0        # MPa on the top pipe end, thesis section 7.4.3
 DEFAULTS = dict(a=15.0, L=2500.0, Ec=40000.0, R=715.0, r=600.0)
 TOLERANCE = 0.005       # SPEC section 9: 0.5 %
 
@@ -51,130 +56,57 @@ JointResult = namedtuple("JointResult", "model Z sigma_max beta P M")
 JointResult.__doc__ = ("Z contact width (mm), sigma_max edge stress (MPa), beta misalignment (deg), "
                        "P joint load (N), M moment about the pipe axis (N mm).")
 
+_FEPS = {}
+
+
+def use_feps(path):
+    """Ask this feps executable (default: $FEPS, else fpm's debug build, built if needed)."""
+    _FEPS["path"] = path
+
+
+def _feps_joint(**given):
+    """`feps joint ... --json` for the given quantities (None = not given): {model: fields}.
+    feps's own refusal (a value out of range, an angle no contact width gives) is a ValueError."""
+    if "path" not in _FEPS:
+        _FEPS["path"] = feps_option(os.environ.get("FEPS", ""), "debug")
+    cmd = [_FEPS["path"], "joint", "--json"]
+    for name, value in given.items():
+        if value is not None:
+            cmd += [f"--{name}", repr(float(value))]
+    run = subprocess.run(cmd, capture_output=True, text=True)
+    if run.returncode != 0:
+        message = (run.stderr.strip().splitlines() or ["feps joint failed"])[-1]
+        raise ValueError(message.removeprefix("feps: error: ").removeprefix("joint: "))
+    return json.loads(run.stdout)
+
 
 def annulus_area(R, r):
     return math.pi * (R * R - r * r)
 
 
-def default_load(R=DEFAULTS["R"], r=DEFAULTS["r"], q=Q_DEFAULT):
-    """P = q on the full annulus (N)."""
+def default_load(R=DEFAULTS["R"], r=DEFAULTS["r"], q=10.0):
+    """P = q on the full annulus (N): the models' default, q = 10 MPa (thesis section 7.4.3)."""
     return q * annulus_area(R, r)
 
 
-def second_moment(R, r):
-    """I_c = pi (R^4 - r^4) / 4 (mm^4)."""
-    return math.pi / 4.0 * (R ** 4 - r ** 4)
-
-
-def _disk_integrals(rho, H):
-    """Over a disk of radius rho, for x > H: (int (x - H) dA, int x (x - H) dA)."""
-    if rho <= 0.0 or H >= rho:
-        return 0.0, 0.0
-    h = min(max(H, -rho), rho)
-    s = math.sqrt(max(rho * rho - h * h, 0.0))
-    angle = math.acos(h / rho)
-    first = 2.0 / 3.0 * s ** 3                      # int x dA  over x > h
-    area = rho * rho * angle - h * s                # int dA    over x > h
-    second = rho ** 4 / 4.0 * angle - h / 4.0 * (2.0 * h * h - rho * rho) * s   # int x^2 dA
-    return first - H * area, second - H * first
-
-
 def load_and_moment_factors(Z, R, r):
-    """p(Z) = P / sigma_max (mm^2) and m(Z) = M / sigma_max (mm^3) for the linear joint stress."""
-    H = R - Z
-    lo, mo = _disk_integrals(R, H)
-    li, mi = _disk_integrals(r, H)
-    return (lo - li) / Z, (mo - mi) / Z
-
-
-def _check_inputs(a, L, Ec, Ep, R, r):
-    if Ep is None:
-        raise ValueError("Ep (packing Young's modulus) is required")
-    if not (R > r >= 0.0):
-        raise ValueError(f"need R > r >= 0, got R = {R}, r = {r}")
-    if not (a >= 0.0 and L >= 0.0):
-        raise ValueError(f"need a >= 0 and L >= 0, got a = {a}, L = {L}")
-    if not (Ec > 0.0 and Ep > 0.0):
-        raise ValueError(f"need Ec > 0 and Ep > 0, got Ec = {Ec}, Ep = {Ep}")
-
-
-def _angle_per_stress(model, Z, a, L, Ec, Ep, R, r):
-    """k(Z) with 'angle measure' = sigma_max * k(Z): tan(beta) for the Australian model, beta (rad) for Haslem."""
-    if model == "australian":
-        return (a / Ep + L / Ec) / Z
-    _, m = load_and_moment_factors(Z, R, r)
-    return a / (Z * Ep) + m * L / (Ec * second_moment(R, r))
-
-
-def _to_degrees(model, measure):
-    return math.degrees(math.atan(measure) if model == "australian" else measure)
-
-
-def _from_degrees(model, beta):
-    rad = math.radians(beta)
-    return math.tan(rad) if model == "australian" else rad
-
-
-def _solve_contact_width(model, target, P, a, L, Ec, Ep, R, r):
-    """Z where P k(Z) / p(Z) = target; that ratio decreases with Z."""
-    def excess(Z):
-        p, _ = load_and_moment_factors(Z, R, r)
-        return P * _angle_per_stress(model, Z, a, L, Ec, Ep, R, r) / p - target
-
-    lo = hi = 2.0 * R
-    while excess(lo) < 0.0:          # angle too small at lo: the contact must be narrower
-        lo *= 0.5
-        if lo < 1.0e-9 * R:
-            raise ValueError(f"{model}: no contact width gives this angle (beyond the model's limit)")
-    while excess(hi) > 0.0:
-        hi *= 2.0
-        if hi > 1.0e12 * R:
-            raise ValueError(f"{model}: angle too small for this load")
-    for _ in range(200):
-        mid = math.sqrt(lo * hi)
-        if excess(mid) > 0.0:
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo <= 1.0e-14 * hi:
-            break
-    return 0.5 * (lo + hi)
+    """p(Z) = P / sigma_max (mm^2) and m(Z) = M / sigma_max (mm^3) for the linear joint stress,
+    from the library's closed forms."""
+    res = _feps_joint(Z=Z, P=1.0, a=0.0, Ep=1.0, R=R, r=r)["australian"]
+    return res["p_factor"], res["m_factor"]
 
 
 def _solve(model, beta, Z, P, a, L, Ec, Ep, R, r):
-    for name, value in (("beta", beta), ("Z", Z), ("P", P), ("a", a), ("L", L), ("Ec", Ec), ("Ep", Ep),
-                        ("R", R), ("r", r)):
-        if value is not None and not math.isfinite(value):   # NaN passes every comparison below
-            raise ValueError(f"need a finite {name}, got {value}")
-    _check_inputs(a, L, Ec, Ep, R, r)
-    if beta is not None and beta <= 0.0:
-        raise ValueError(f"need beta > 0, got {beta}")
-    if Z is not None and Z <= 0.0:
-        raise ValueError(f"need Z > 0, got {Z}")
-    if P is not None and P <= 0.0:
-        raise ValueError(f"need P > 0, got {P}")
-    if beta is not None and Z is not None:
-        if P is not None:
-            raise ValueError("give at most two of beta, Z and P")
-        p, m = load_and_moment_factors(Z, R, r)
-        sigma = _from_degrees(model, beta) / _angle_per_stress(model, Z, a, L, Ec, Ep, R, r)
-        return JointResult(model, Z, sigma, beta, sigma * p, sigma * m)
-    if P is None:
-        P = default_load(R, r)
-    if Z is None:
-        if beta is None:
-            raise ValueError("give beta or Z")
-        Z = _solve_contact_width(model, _from_degrees(model, beta), P, a, L, Ec, Ep, R, r)
-    p, m = load_and_moment_factors(Z, R, r)
-    sigma = P / p
-    beta_out = _to_degrees(model, sigma * _angle_per_stress(model, Z, a, L, Ec, Ep, R, r))
-    return JointResult(model, Z, sigma, beta_out, P, sigma * m)
+    if Ep is None:
+        raise ValueError("Ep (packing Young's modulus) is required")
+    res = _feps_joint(beta=beta, Z=Z, P=P, a=a, L=L, Ec=Ec, Ep=Ep, R=R, r=r)[model]
+    return JointResult(model, res["Z"], res["sigma_max"], res["beta"], res["P"], res["M"])
 
 
 def australian(beta=None, Z=None, P=None, a=DEFAULTS["a"], L=DEFAULTS["L"], Ec=DEFAULTS["Ec"], Ep=None,
                R=DEFAULTS["R"], r=DEFAULTS["r"]):
-    """Australian model (eqs. 7.2.1-7.2.11). Give beta (deg) or Z (mm) with P (N; default q = 10 MPa on
-    the annulus), or beta and Z without P. Returns JointResult(model, Z, sigma_max, beta, P, M)."""
+    """Australian model (eqs. 7.2.1-7.2.11). Give beta (deg) or Z (mm), with P (N; default q = 10 MPa on
+    the annulus). Returns JointResult(model, Z, sigma_max, beta, P, M)."""
     return _solve("australian", beta, Z, P, a, L, Ec, Ep, R, r)
 
 
@@ -257,7 +189,7 @@ def _full_contact_variant_australian(beta, Ep, P, a=15.0, L=2500.0, Ec=40000.0, 
         return p + math.pi * R * R * max(0.0, (Z - 2.0 * R) / Z)
     target = math.tan(math.radians(beta))
     lo, hi = 1.0, 1.0e6
-    for _ in range(200):
+    while hi > lo * (1.0 + 1.0e-10):     # each p(Z) is a run of feps joint: stop at 1e-10
         mid = math.sqrt(lo * hi)
         if P / p_variant(mid) * (a / Ep + L / Ec) / mid > target:
             lo = mid
@@ -268,7 +200,8 @@ def _full_contact_variant_australian(beta, Ep, P, a=15.0, L=2500.0, Ec=40000.0, 
 
 
 def _quadrature_factors(Z, R, r, n=200000):
-    """Independent check of the closed forms: midpoint rule in x over the chord lengths of eq. 7.2.1."""
+    """Independent check of the library's closed forms (deliberately a second implementation): the
+    midpoint rule in x over the chord lengths of eq. 7.2.1."""
     H = max(R - Z, -R)
     dx = (R - H) / n
     p = m = 0.0
@@ -345,7 +278,10 @@ def main(argv=None):
     ap.add_argument("--r", type=float, default=DEFAULTS["r"], help="internal radius (mm), default 600")
     ap.add_argument("--json", action="store_true", help="print the full results as JSON")
     ap.add_argument("--check", action="store_true", help="compare with thesis Tables 7.1 and 7.4")
+    ap.add_argument("--feps", default="", help="feps executable (default: $FEPS, else fpm's debug build)")
     args = ap.parse_args(argv)
+    if args.feps:
+        use_feps(feps_option(args.feps))
     if args.check:
         given = [name for name in ("beta", "Z", "a", "Ep", "P", "json") if getattr(args, name) not in (None, False)]
         given += [name for name in ("L", "Ec", "R", "r") if getattr(args, name) != DEFAULTS[name]]

@@ -1,5 +1,5 @@
 !> Tests of the analytical joint models (thesis chapter 7) against quadrature, closed forms, thesis
-!! Tables 7.1 and 7.4 and values printed by scripts/joint_models.py.
+!! Tables 7.1 and 7.4 and values printed by an independent Python implementation.
 module test_joint_models
   use feps_kinds, only: dp, pi, rad2deg
   use feps_error, only: error_t, err_input
@@ -44,7 +44,7 @@ contains
       new_unittest("table 7.1 edge load deflections", test_table7_1), &
       new_unittest("table 7.4 Australian columns", test_table7_4_australian), &
       new_unittest("table 7.4 Haslem columns", test_table7_4_haslem), &
-      new_unittest("agrees with scripts/joint_models.py", test_python_agreement), &
+      new_unittest("agrees with an independent Python implementation", test_python_agreement), &
       new_unittest("impossible inputs return errors", test_bad_input) &
       ]
   end subroutine collect_joint_models
@@ -210,7 +210,8 @@ contains
     end do
   end subroutine check_table7_4
 
-  !> Values printed by `python3 scripts/joint_models.py --json` (same equations, separate code).
+  !> Values printed by the separate Python implementation of the same equations that
+  !! scripts/joint_models.py held until it became a front end of `feps joint` (commit b8b287f).
   subroutine test_python_agreement(error)
     type(error_t), allocatable, intent(out) :: error
     type(joint_t) :: joint

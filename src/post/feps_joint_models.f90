@@ -7,7 +7,7 @@
 !! P = sigma_max p(Z) and M = sigma_max m(Z) in closed form, and
 !!   Australian: tan(beta) = sigma_max (a / E_p + L / E_c) / Z
 !!   Haslem:     beta = sigma_max a / (Z E_p) + M L / (E_c I_c),  I_c = pi (R^4 - r^4) / 4.
-!! scripts/joint_models.py implements the same equations in Python.
+!! `feps joint` (feps_joint_command) gives them to scripts (scripts/joint_models.py and those that use it).
 module feps_joint_models
   use feps_kinds, only: dp, pi, deg2rad, rad2deg
   use feps_error, only: error_t, fatal_error, err_input, str

@@ -1051,6 +1051,31 @@ expect_line "export_inp.py, a missing HDF5 file" 2 "export_inp: error: no HDF5 f
   python3 scripts/export_inp.py "$tmp/no.h5" input/modelB/SE1.dat -o "$tmp/x.inp"
 python3 scripts/export_inp.py --help | grep -q -- "--print-nodes" && bad "export_inp.py --help: no --print-nodes" \
   || ok "export_inp.py --help: no --print-nodes"
+# `feps joint` is the library's joint models on the command line; joint_models.py is its front end.
+"$feps" joint --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 >"$tmp/fj" 2>&1 \
+  && python3 scripts/joint_models.py --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 --feps "$feps" >"$tmp/out" 2>&1 \
+  && cmp -s "$tmp/fj" "$tmp/out" && ok "feps joint prints what joint_models.py prints" \
+  || bad "feps joint against joint_models.py: $(head -c 300 "$tmp/fj")"
+# --json carries the library's doubles: the values of the independent Python implementation it
+# replaced (test/test_joint_models.f90, the same pins) to 1e-12.
+python3 - "$feps" <<'PY' && ok "feps joint --json: Z, sigma_max, M of both models to 1e-12" || bad "feps joint --json values"
+import json, subprocess, sys
+out = json.loads(subprocess.run([sys.argv[1], "joint", "--beta", "0.2061", "--a", "15", "--Ep", "660", "--json"],
+                                capture_output=True, text=True, check=True).stdout)
+pins = {("australian", "Z"): 767.8632154555078, ("australian", "sigma_max"): 32.408766699089384,
+        ("australian", "M"): 2405869653.7617483, ("haslem", "Z"): 504.666987623762,
+        ("haslem", "sigma_max"): 43.70940224656189}
+worst = max(abs(out[m][q] - v) / v for (m, q), v in pins.items())
+p, m = out["australian"]["p_factor"], out["australian"]["m_factor"]
+s = out["australian"]
+sys.exit(0 if worst < 1e-12 and abs(p * s["sigma_max"] / s["P"] - 1) < 1e-14 and abs(m * s["sigma_max"] / s["M"] - 1) < 1e-14 else 1)
+PY
+expect_line "feps joint without --Ep" 2 "^feps: error: joint: --a and --Ep are required" "$feps" joint --beta 0.1 --a 15
+expect_line "feps joint with --beta and --Z" 2 "give exactly one of --beta and --Z" "$feps" joint --beta 0.1 --Z 500 --a 15 --Ep 660
+expect_line "feps joint, an unknown option" 2 'joint: unknown option "--q"' "$feps" joint --q 10 --beta 0.1 --a 15 --Ep 660
+expect_line "feps joint, an option given twice" 2 "joint: --beta is given twice" "$feps" joint --beta 0.1 --beta 0.2 --a 15 --Ep 660
+expect_line "feps joint, an option without its value" 2 'joint: "--Ep" is not an option with a value' "$feps" joint --beta 0.1 --a 15 --Ep
+expect_line "feps joint, a negative packing modulus" 2 "joint: australian: need E_c > 0 and E_p > 0" "$feps" joint --beta 0.1 --a 15 --Ep -660
 for v in nan inf; do
   expect_line "joint_models.py --beta $v" 2 "joint_models: need a finite beta" \
     python3 scripts/joint_models.py --beta $v --a 15 --Ep 660

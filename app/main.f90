@@ -34,7 +34,7 @@ program feps_main
   if (options%quiet) then
     call run_feps(options, summary, error)
   else
-    call run_feps(options, summary, error, print_line)
+    call run_feps(options, summary, error, print_line, print_warning)
   end if
   if (allocated(error)) then
     write (error_unit, '(a)') 'feps: error: ' // error%message
@@ -51,6 +51,12 @@ program feps_main
   if (.not. options%quiet) call print_summary(summary)
 
 contains
+
+  subroutine print_warning(line)
+    character(len=*), intent(in) :: line
+    write (error_unit, '(a)') 'feps: warning: ' // line
+    flush (error_unit)
+  end subroutine print_warning
 
   subroutine print_line(line)
     character(len=*), intent(in) :: line

@@ -54,6 +54,7 @@ contains
       new_unittest('FIELDS CSYS= naming a Cartesian system', test_fields_csys_cartesian), &
       new_unittest('FIELDS with an option other than CSYS=', test_fields_option_unknown), &
       new_unittest('nu = 0.5 rejected', test_nu_half), &
+      new_unittest('a modulus far outside N-mm-MPa warns, naming the parameter', test_unit_warnings), &
       new_unittest('nu = -1 rejected', test_nu_minus_one), &
       new_unittest('rigid-body mode names node and DOF', test_rigid_body_mode), &
       new_unittest('unknown result field name', test_unknown_field), &
@@ -1208,5 +1209,42 @@ contains
     if (.not. allocated(error)) call expect_failure('test/data/bad/coordinates_overflow.dat', err_input, pieces, &
                                                     error, check_only=.true.)
   end subroutine test_coordinates_overflow
+
+  !> A unit slip is a warning, not an error: E outside 1 .. 1e6 MPa for every material with a
+  !! modulus, and a Matsuoka material whose E is so small beside f_t that it would reach f_t at a
+  !! strain above 5 % (E = 31.7 for 31.7 GPa with f_t = 5 MPa: 0.158). Plausible values say nothing.
+  subroutine test_unit_warnings(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect('elastic', [character(len=4) :: 'e', 'nu'], [2.0e11_dp, 0.3_dp], 'above 1e6 MPa')
+    if (allocated(error)) return
+    call expect('elastic', [character(len=4) :: 'g', 'nu'], [0.3_dp, 0.25_dp], 'below 1 MPa')
+    if (allocated(error)) return
+    call expect('elastic', [character(len=4) :: 'e', 'nu'], [40.0_dp, 0.3_dp], '')   ! a soft soil
+    if (allocated(error)) return
+    call expect('elastic', [character(len=4) :: 'e', 'nu'], [2.1e5_dp, 0.3_dp], '')  ! steel
+    if (allocated(error)) return
+    call expect('bar', [character(len=4) :: 'e', 'a'], [2.0e8_dp, 10.0_dp], 'above 1e6 MPa')
+    if (allocated(error)) return
+    call expect('matsuoka', [character(len=4) :: 'e', 'nu', 'phi', 'psi', 'ft'], &
+                [31.7_dp, 0.22_dp, 54.9_dp, 54.9_dp, 5.0_dp], 'reaches f_t at a strain of 1.577E-01')
+    if (allocated(error)) return
+    call expect('matsuoka', [character(len=4) :: 'e', 'nu', 'phi', 'psi', 'ft'], &
+                [31700.0_dp, 0.22_dp, 54.9_dp, 54.9_dp, 5.0_dp], '')                 ! thesis CR concrete
+  contains
+    subroutine expect(kind, keys, values, text)
+      character(len=*), intent(in) :: kind, keys(:), text
+      real(dp), intent(in) :: values(:)
+      class(material_t), allocatable :: material
+      character(len=:), allocatable :: warning, key
+      call new_material(material_spec('m', kind, keys, values), material, error)
+      if (allocated(error)) return
+      call material%unit_warning(warning, key)
+      if (len(text) == 0 .and. len(warning) > 0) then
+        call test_failed(error, kind // ': unexpected warning "' // warning // '"')
+      else if (len(text) > 0 .and. index(warning, text) == 0) then
+        call test_failed(error, kind // ': expected a warning with "' // text // '", got "' // warning // '"')
+      end if
+    end subroutine expect
+  end subroutine test_unit_warnings
 
 end module test_bad_input

@@ -343,13 +343,14 @@ contains
       any_born = .true.
       if (tension(g) /= 0.0_dp) call an%states(g)%set_stress(tension(g))
     end do
-    call add_bar_forces(model, an, merge(tension, 0.0_dp, model%groups(:)%activate_stage == s), 1.0_dp, &
+    call add_group_stress_forces(model, an, merge(tension, 0.0_dp, model%groups(:)%activate_stage == s), 1.0_dp, &
                         an%path%f_applied)
   end subroutine activate_groups
 
-  !> f <- f + sign * the nodal forces of the bars of each group g at the axial force force(g)
-  !! (global components; groups with force(g) = 0 are skipped).
-  subroutine add_bar_forces(model, an, force, sign, f)
+  !> f <- f + sign * the nodal forces of each group g's elements under the uniform stress
+  !! force(g) at every point (a prestress: the axial force of a tendon's bars), in global
+  !! components; groups with force(g) = 0 are skipped.
+  subroutine add_group_stress_forces(model, an, force, sign, f)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: an
     real(dp), intent(in) :: force(:)
@@ -369,7 +370,7 @@ contains
         deallocate (sig, fe)
       end associate
     end do
-  end subroutine add_bar_forces
+  end subroutine add_group_stress_forces
 
   !> A free DOF whose node touches no active element has no stiffness: name it (and the group
   !! that will bring it) rather than let the factorization find a zero pivot.
@@ -419,7 +420,7 @@ contains
     call nodal_load_vector(model, an%kernels, df, error, stage=s)
     if (allocated(error)) return
     ! Post-tensioned bars, not yet bonded: their force pulls on their nodes as a load.
-    call add_bar_forces(model, an, model%stage_prestress(s, after=.true.), -1.0_dp, df)
+    call add_group_stress_forces(model, an, model%stage_prestress(s, after=.true.), -1.0_dp, df)
     frac = model%stages(s)%load_fraction
     df = df + frac * an%path%f_ref
     if (allocated(an%path%release_force)) df = df + an%path%release_force

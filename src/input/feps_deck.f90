@@ -850,6 +850,7 @@ contains
       do m = 1, size(model%materials)
         call new_material(model%materials(m), material, error)
         if (allocated(error)) return
+        call note_unit_warning(model, model%materials(m), material)
         call move_alloc(material, model%materials(m)%params)
       end do
       do g = 1, size(model%groups)
@@ -1154,5 +1155,28 @@ contains
       call input_error(error, rec%file, rec%line, 'the selection gives no coordinate range')
     end if
   end subroutine read_region
+
+  !> Keep the material's unit warning, if it has one, naming the MATERIAL record's file, line
+  !! and the field of the parameter (E, or G where E was not given).
+  subroutine note_unit_warning(model, spec, material)
+    type(model_t), intent(inout) :: model
+    type(material_spec_t), intent(in) :: spec
+    class(material_t), intent(in) :: material
+    character(len=:), allocatable :: warning, key, where
+    character(len=600), allocatable :: kept(:)
+    integer :: field, n
+    call material%unit_warning(warning, key)
+    if (len(warning) == 0) return
+    field = spec%field_of(key)
+    if (field == 0 .and. key == 'e') field = spec%field_of('g')
+    where = spec%file // ':' // str(spec%line) // ': '
+    if (field > 0) where = where // 'field ' // str(field) // ': '
+    n = 0
+    if (allocated(model%warnings)) n = size(model%warnings)
+    allocate (kept(n + 1))
+    if (n > 0) kept(:n) = model%warnings
+    kept(n + 1) = where // 'material ' // spec%name // ': ' // warning
+    call move_alloc(kept, model%warnings)
+  end subroutine note_unit_warning
 
 end module feps_deck

@@ -8,7 +8,7 @@ module feps_elastic_bar
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
   use feps_material_params, only: check_known_keys, get_parameter
-  use feps_material, only: material_t, state_elastic
+  use feps_material, only: material_t, state_elastic, modulus_warning
   implicit none
   private
 
@@ -23,6 +23,7 @@ module feps_elastic_bar
     procedure :: update => elastic_bar_update
     procedure :: is_linear => elastic_bar_is_linear
     procedure :: section_area => elastic_bar_section_area
+    procedure :: unit_warning => elastic_bar_unit_warning
   end type elastic_bar_t
 
 contains
@@ -76,5 +77,13 @@ contains
     if (.not. allocated(error)) allocate (material, source=elastic_bar_t(name=spec%name, e=e, a=a))
   end subroutine new_elastic_bar
 
+
+  !> A Young's modulus far outside the physical range in N, mm and MPa (a unit slip).
+  pure subroutine elastic_bar_unit_warning(self, warning, key)
+    class(elastic_bar_t), intent(in) :: self
+    character(len=:), allocatable, intent(out) :: warning, key
+    warning = modulus_warning(self%e)
+    key = 'e'
+  end subroutine elastic_bar_unit_warning
 
 end module feps_elastic_bar

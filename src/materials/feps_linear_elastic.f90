@@ -1,7 +1,7 @@
 !> Isotropic linear elastic material (E, nu or G, nu) for solids.
 module feps_linear_elastic
   use feps_kinds, only: dp
-  use feps_material, only: material_t, state_elastic
+  use feps_material, only: material_t, state_elastic, modulus_warning
   use feps_elastic, only: elastic_matrix
   implicit none
   private
@@ -13,6 +13,7 @@ module feps_linear_elastic
     procedure :: elastic_tangent => linear_elastic_tangent
     procedure :: update => linear_elastic_update
     procedure :: is_linear => linear_elastic_is_linear
+    procedure :: unit_warning => linear_elastic_unit_warning
   end type linear_elastic_t
 
 contains
@@ -41,5 +42,13 @@ contains
     class(linear_elastic_t), intent(in) :: self
     linear_elastic_is_linear = .true.
   end function linear_elastic_is_linear
+
+  !> A Young's modulus far outside the physical range in N, mm and MPa (a unit slip).
+  pure subroutine linear_elastic_unit_warning(self, warning, key)
+    class(linear_elastic_t), intent(in) :: self
+    character(len=:), allocatable, intent(out) :: warning, key
+    warning = modulus_warning(self%e)
+    key = 'e'
+  end subroutine linear_elastic_unit_warning
 
 end module feps_linear_elastic

@@ -5,8 +5,11 @@
 module feps_material
   use feps_kinds, only: dp
   use feps_model, only: material_params_t
+  use feps_strings, only: sci
   implicit none
   private
+
+  public :: modulus_warning
 
   !> Gauss-point states written to the results.
   integer, parameter, public :: state_elastic = 0   !! elastic (interfaces: stuck)
@@ -28,6 +31,7 @@ module feps_material
     procedure :: state_note => material_state_note
     procedure :: state_size => material_state_size
     procedure :: section_area => material_section_area
+    procedure :: unit_warning => material_unit_warning
   end type material_t
 
   abstract interface
@@ -63,6 +67,10 @@ module feps_material
       class(material_t), intent(in) :: self
     end function is_linear_interface
   end interface
+
+  !> The range of Young's moduli (MPa) feps takes without a word: softer than the softest soil
+  !! or stiffer than steel by far is most likely a unit slip (feps works in N, mm and MPa).
+  real(dp), parameter, public :: plausible_modulus(2) = [1.0_dp, 1.0e6_dp]
 
   !> A slot in an array of polymorphic materials.
   type, public :: material_slot_t
@@ -101,5 +109,29 @@ contains
     class(material_t), intent(in) :: self
     area = 0.0_dp
   end function material_section_area
+
+  !> A warning when a parameter lies far outside the physical range in N, mm and MPa, most
+  !! likely a unit slip (E in GPa or Pa); empty when every value is plausible. `key` is the
+  !! parameter it names (for the deck's field), empty with no warning.
+  pure subroutine material_unit_warning(self, warning, key)
+    class(material_t), intent(in) :: self
+    character(len=:), allocatable, intent(out) :: warning, key
+    warning = ''
+    key = ''
+  end subroutine material_unit_warning
+
+  !> The unit warning about a Young's modulus e outside plausible_modulus (empty inside it).
+  pure function modulus_warning(e) result(warning)
+    real(dp), intent(in) :: e
+    character(len=:), allocatable :: warning
+    warning = ''
+    if (e < plausible_modulus(1)) then
+      warning = 'E = ' // sci(e, 3, 0) // ' MPa is below 1 MPa, softer than any soil: feps works in N, mm ' // &
+                'and MPa (E given in GPa?)'
+    else if (e > plausible_modulus(2)) then
+      warning = 'E = ' // sci(e, 3, 0) // ' MPa is above 1e6 MPa, five times steel: a rigid stand-in, ' // &
+                'or a unit slip (E given in kPa or Pa? feps works in N, mm and MPa)'
+    end if
+  end function modulus_warning
 
 end module feps_material

@@ -73,8 +73,9 @@ module feps_matsuoka_nakai
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
   use feps_material_params, only: check_known_keys, get_parameter, material_error, material_conflict
-  use feps_material, only: material_t, state_elastic, state_plastic, state_tension
+  use feps_material, only: material_t, state_elastic, state_plastic, state_tension, modulus_warning
   use feps_elastic, only: elastic_matrix
+  use feps_strings, only: sci
   implicit none
   private
 
@@ -111,6 +112,7 @@ module feps_matsuoka_nakai
     procedure :: state_note => mn_state_note
     procedure :: yield_value => mn_yield_value
     procedure :: yield_cubic => mn_yield_cubic
+    procedure :: unit_warning => mn_unit_warning
   end type matsuoka_nakai_t
 
   !> Constants of one Matsuoka-Nakai cone (yield: angle phi; potential: angle psi).
@@ -685,5 +687,23 @@ contains
 
   end subroutine new_matsuoka_nakai
 
+
+  !> A Young's modulus far outside the physical range in N, mm and MPa, or one so small beside
+  !! the strength that the material would reach its tensile strength only at a strain above
+  !! max_cracking_strain (E = 40 for 40 GPa, with f_t = 3.5 MPa: 9 %).
+  pure subroutine mn_unit_warning(self, warning, key)
+    class(matsuoka_nakai_t), intent(in) :: self
+    character(len=:), allocatable, intent(out) :: warning, key
+    real(dp), parameter :: max_cracking_strain = 0.05_dp
+    real(dp) :: ft
+    key = 'e'
+    warning = modulus_warning(self%e)
+    if (len(warning) > 0) return
+    ft = 2.0_dp * self%apex / (1.0_dp + 1.0_dp / sin(self%phi * deg2rad))   ! eq. 2.4.5 inverted
+    if (ft > max_cracking_strain * self%e) warning = 'E = ' // sci(self%e, 3, 0) // ' MPa is only ' // &
+      sci(self%e / ft, 3, 0) // ' times the tensile strength ' // sci(ft, 3, 0) // &
+      ' MPa (the material reaches f_t at a strain of ' // sci(ft / self%e, 3, 0) // &
+      '): feps works in N, mm and MPa (E given in GPa?)'
+  end subroutine mn_unit_warning
 
 end module feps_matsuoka_nakai

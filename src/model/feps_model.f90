@@ -267,6 +267,9 @@ module feps_model
     logical :: plane_strain = .false.                      !! a 2D model: uz = 0 at every node
     character(len=name_len), allocatable :: parameter_names(:)    !! PARAMETERS: the campaign's own labels
     character(len=name_len), allocatable :: parameter_values(:)   !! (written to /summary as parameter_<name>)
+    !> What the deck reader found doubtful but not wrong (a value far outside the physical
+    !! range in N, mm and MPa), each naming file, line and field: the command prints them.
+    character(len=600), allocatable :: warnings(:)
   contains
     procedure :: nelem => model_nelem
     procedure :: has_interfaces

@@ -64,12 +64,14 @@ module feps_program
 
 contains
 
-  !> Read, check, solve and write one deck; progress lines go to `sink` when given.
-  subroutine run_feps(options, summary, error, sink)
+  !> Read, check, solve and write one deck; progress lines go to `sink` when given, and the
+  !! deck's warnings (a value far outside the physical range: a unit slip?) to `warn`, as soon
+  !! as the deck is read.
+  subroutine run_feps(options, summary, error, sink, warn)
     type(run_options_t), intent(in) :: options
     type(run_summary_t), intent(out) :: summary
     type(error_t), allocatable, intent(out) :: error
-    procedure(line_sink), optional :: sink
+    procedure(line_sink), optional :: sink, warn
     type(model_t), target :: model
     type(results_observer_t) :: obs
     character(len=:), allocatable :: solver, output
@@ -81,6 +83,11 @@ contains
     if (allocated(error)) return
     call check_coordinates(model, error)
     if (allocated(error)) return
+    if (allocated(model%warnings) .and. present(warn)) then
+      do g = 1, size(model%warnings)
+        call warn(trim(model%warnings(g)))
+      end do
+    end if
     summary%title = model%title
     summary%mesh_only = model%mesh_only
     summary%nodes = model%nnode

@@ -1051,6 +1051,16 @@ expect_line "export_inp.py, a missing HDF5 file" 2 "export_inp: error: no HDF5 f
   python3 scripts/export_inp.py "$tmp/no.h5" input/modelB/SE1.dat -o "$tmp/x.inp"
 python3 scripts/export_inp.py --help | grep -q -- "--print-nodes" && bad "export_inp.py --help: no --print-nodes" \
   || ok "export_inp.py --help: no --print-nodes"
+# A unit slip (E in Pa) is a warning, not an error: one stderr line naming file, line, field and
+# material, as soon as the deck is read; the run goes on and writes its results; --quiet is silent.
+sed 's/E=200000\./E=2.0e11/' test/data/cube.dat >"$tmp/cube_pa.dat"
+"$feps" "$tmp/cube_pa.dat" --output "$tmp/cube_pa.h5" >"$tmp/out" 2>"$tmp/err"; st=$?
+[ $st -eq 0 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && [ -s "$tmp/cube_pa.h5" ] \
+  && grep -q "^feps: warning: $tmp/cube_pa.dat:15: field 4: material steel: E = 2.000E+11 MPa is above 1e6 MPa" "$tmp/err" \
+  && ok "E in Pa: one warning line naming file, line, field and material; the run goes on" \
+  || bad "E in Pa warning: exit $st: $(head -c 300 "$tmp/err")"
+"$feps" "$tmp/cube_pa.dat" --output "$tmp/cube_pa.h5" --quiet >"$tmp/out" 2>"$tmp/err" && [ ! -s "$tmp/err" ] && [ ! -s "$tmp/out" ] \
+  && ok "E in Pa with --quiet: nothing printed" || bad "E in Pa with --quiet printed: $(head -c 300 "$tmp/err")"
 # `feps joint` is the library's joint models on the command line; joint_models.py is its front end.
 "$feps" joint --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 >"$tmp/fj" 2>&1 \
   && python3 scripts/joint_models.py --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 --feps "$feps" >"$tmp/out" 2>&1 \

@@ -12,7 +12,8 @@ mutant sits in a copy of the deck's folder, so INCLUDE still finds its files.
 A case passes when feps ends with
   - exit 0 (the mutant is still a valid deck), or
   - exit 2 and exactly one line on stderr, `feps: error: ...` naming the mutant's file
-    (bad input), or
+    (bad input; `feps: warning: ...` lines before it, such as a unit-slip warning about a
+    mutated modulus, are not counted), or
   - with `--run` only: exit 1 and exactly one `feps: error: ...` line (a clear numerical stop,
     such as a step that does not converge after its cut-backs),
 and, when it did not end with 0, left no result file. Anything else fails: another exit
@@ -164,7 +165,8 @@ def long_run(progress):
 
 def judge(status, stderr, mutant, run_mode, leftovers, fault=None):
     """None if feps answered clearly, else what was wrong."""
-    lines = [line for line in stderr.splitlines() if line.strip()]
+    # a warning (a value far outside N-mm-MPa) comes before the error it may explain
+    lines = [line for line in stderr.splitlines() if line.strip() and not line.startswith('feps: warning: ')]
     if fault == 'outdir' and status == 0 and run_mode:   # --check writes nothing and checks no path
         return 'exit 0 with an existing directory as the results file'
     if status == 0:

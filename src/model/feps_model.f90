@@ -226,6 +226,7 @@ module feps_model
     real(dp) :: x_to = 0.0_dp
     logical :: has_reference = .false.
     real(dp) :: reference = 0.0_dp
+    real(dp) :: about(2) = 0.0_dp            !! 'section': X0=, Y0= of the point moments are taken about
     character(len=:), allocatable :: file
     integer :: line = 0
   end type report_t

@@ -195,8 +195,6 @@ contains
     end do
   end subroutine test_translation
 
-  !> interface-line2 and line3 (both rules): the contract's stiffness, internal force, strains
-  !! and point coordinates are stiffness_nd, ... on the x-y coordinates, placed at the x and y DOFs.
   !> A uniform body force b per unit measure gives nodal forces that add up to b times the
   !! element's volume (a solid; a plane-strain solid's area, its z force held), its length (a
   !! bar), or nothing (an interface: no thickness, no weight). The measure comes from the
@@ -238,6 +236,8 @@ contains
     end do
   end subroutine test_body_force
 
+  !> interface-line2 and line3 (both rules): the contract's stiffness, internal force, strains
+  !! and point coordinates are stiffness_nd, ... on the x-y coordinates, placed at the x and y DOFs.
   subroutine test_embedding(error)
     type(error_t), allocatable, intent(out) :: error
     character(len=21), parameter :: names(4) = [character(len=21) :: 'interface-line2', 'interface-line3', &

@@ -29,7 +29,8 @@ contains
       new_unittest('every catalog type is made by new_element and agrees with element_info', test_made), &
       new_unittest('every catalog type: K u equals the internal force of D B u', test_consistent), &
       new_unittest('every catalog type: a rigid translation strains nothing', test_translation), &
-      new_unittest('a 2D interface embeds its x-y kernels in 3 DOFs per node', test_embedding)]
+      new_unittest('a 2D interface embeds its x-y kernels in 3 DOFs per node', test_embedding), &
+      new_unittest('every catalog type: body forces add up to b times its volume or length', test_body_force)]
   end subroutine collect_element_contract
 
   !> The catalog's names, one per element.
@@ -193,6 +194,47 @@ contains
       deallocate (eps)
     end do
   end subroutine test_translation
+
+  !> A uniform body force b per unit measure gives nodal forces that add up to b times the
+  !! element's volume (a solid; a plane-strain solid's area, its z force held), its length (a
+  !! bar), or nothing (an interface: no thickness, no weight). The measure comes from the
+  !! family's own volume or length, the sum of the nodal forces from body_force.
+  subroutine test_body_force(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: b(3) = [0.3_dp, -0.7_dp, -2.0_dp]
+    character(len=32), allocatable :: names(:)
+    character(len=:), allocatable :: name
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: xe(:, :), fe(:)
+    real(dp) :: measure, expected(3)
+    integer :: k
+    names = catalog_names()
+    do k = 1, size(names)
+      name = trim(names(k))
+      call new_element(name, element, error)
+      if (allocated(error)) return
+      call reference_nodes(element, xe, error)
+      if (allocated(error)) return
+      allocate (fe(3 * element%nnodes()))
+      call element%body_force(xe, b, fe)
+      select type (element)
+      class is (solid_element_t)
+        measure = element%volume(xe)
+        expected = b * measure
+        if (element%ndim() == 2) expected(3) = 0.0_dp
+      class is (bar_element_t)
+        measure = element%length(xe)
+        expected = b * measure
+      class default
+        measure = 1.0_dp
+        expected = 0.0_dp
+      end select
+      call check(error, norm2(sum(reshape(fe, [3, element%nnodes()]), dim=2) - expected), 0.0_dp, &
+                 name // ': the body forces add up to b times the measure', abs=1.0e-13_dp * norm2(b) * measure)
+      if (allocated(error)) return
+      deallocate (fe)
+    end do
+  end subroutine test_body_force
 
   !> interface-line2 and line3 (both rules): the contract's stiffness, internal force, strains
   !! and point coordinates are stiffness_nd, ... on the x-y coordinates, placed at the x and y DOFs.

@@ -1,6 +1,6 @@
 !> External loads: face sets resolved from element faces, consistent nodal forces of
 !! pressures and tractions (uniform or linear in one coordinate, by intensity or total),
-!! and nodal forces. Forces are assembled in global Cartesian components per node, then
+!! of gravity (each element's weight), and nodal forces. Forces are assembled in global Cartesian components per node, then
 !! rotated into nodal systems for the free equations.
 module feps_loads
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
@@ -11,6 +11,8 @@ module feps_loads
   use feps_dof_map, only: dof_map_t
   use feps_assembly, only: group_kernel_t
   use feps_solid_element, only: solid_element_t
+  use feps_material, only: material_t
+  use feps_material_factory, only: material_of
   implicit none
   private
 
@@ -202,7 +204,48 @@ contains
         if (allocated(error)) return
       end associate
     end do
+
+    if (present(stage)) then
+      if (stage >= 1) call add_weights(model, kernels, stage, f, error)
+    end if
   end subroutine nodal_load_vector
+
+  !> f <- f + the weight of every group that gets it in stage `stage`: the later of GRAVITY's
+  !! stage and the group's birth, so that a group born under gravity brings its weight with it
+  !! (as PLAXIS does when it activates a cluster). A group's weight per unit volume is its
+  !! material's unit weight times the acceleration (per unit length for a bar: times its area);
+  !! an interface, of zero thickness, weighs nothing.
+  subroutine add_weights(model, kernels, stage, f, error)
+    type(model_t), intent(in) :: model
+    type(group_kernel_t), intent(in) :: kernels(:)
+    integer, intent(in) :: stage
+    real(dp), intent(inout) :: f(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    class(material_t), allocatable :: material
+    real(dp), allocatable :: fe(:)
+    real(dp) :: b(3)
+    integer :: g, e
+    if (model%gravity_stage == 0) return
+    do g = 1, size(model%groups)
+      if (max(model%gravity_stage, model%groups(g)%activate_stage, 1) /= stage) cycle
+      call material_of(model%materials(model%groups(g)%material), material, error)
+      if (allocated(error)) return
+      if (material%unit_weight == 0.0_dp) cycle
+      b = material%unit_weight * model%gravity
+      if (material%section_area() > 0.0_dp) b = b * material%section_area()
+      associate (conn => model%groups(g)%connectivity)
+        allocate (fe(3 * size(conn, 1)))
+        do e = 1, size(conn, 2)
+          call kernels(g)%element%body_force(model%coords(:, conn(:, e)), b, fe)
+          f(:, conn(:, e)) = f(:, conn(:, e)) + reshape(fe, [3, size(conn, 1)])
+        end do
+        deallocate (fe)
+      end associate
+      call check_finite_forces(f, model%gravity_file, model%gravity_line, 'GRAVITY on group ' // &
+                               model%groups(g)%name, error)
+      if (allocated(error)) return
+    end do
+  end subroutine add_weights
 
   !> A load whose nodal forces (with those of the records before it) leave double precision:
   !! an input error naming the record, the node and the DOF, before anything is solved. A force

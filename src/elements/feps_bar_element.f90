@@ -51,6 +51,7 @@ module feps_bar_element
     procedure :: integration_rule
     procedure :: point_b
     procedure :: length
+    procedure :: body_force => bar_body_force
   end type bar_element_t
 
 contains
@@ -360,5 +361,25 @@ contains
     character(len=:), allocatable :: message
     message = 'bar element ' // label // ' is folded or has coincident nodes (Jacobian ' // str(jac) // ')'
   end function bar_jacobian_message
+
+  !> Consistent nodal forces of the uniform force `b(3)` per unit length (a bar's weight: its
+  !! unit weight times its area): the sum over the Gauss points of N_a b |dx/ds| w.
+  pure subroutine bar_body_force(self, xe, b, fe)
+    class(bar_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    real(dp), intent(in) :: b(3)
+    real(dp), intent(out) :: fe(:)       !! (3 nnodes)
+    real(dp) :: s(max_bar_nodes), w(max_bar_nodes), n(max_bar_nodes), dn(max_bar_nodes), t(bar_ndim), jac
+    integer :: g, a
+    call self%integration_rule(s, w)
+    fe = 0.0_dp
+    do g = 1, self%ngauss()
+      call self%shape(s(g), n, dn)
+      call tangent_vector(self%nodes, xe, dn, t, jac)
+      do a = 1, self%nodes
+        fe(3 * a - 2:3 * a) = fe(3 * a - 2:3 * a) + n(a) * jac * w(g) * b
+      end do
+    end do
+  end subroutine bar_body_force
 
 end module feps_bar_element

@@ -35,6 +35,7 @@ module feps_element
     procedure(coordinates_interface), deferred :: point_coordinates  !! global positions of the points
     procedure(jacobian_interface), deferred :: min_jacobian !! mesh check: <= 0 rejects the element
     procedure :: jacobian_message
+    procedure :: body_force => element_body_force   !! consistent nodal forces of a uniform body force
   end type element_t
 
   abstract interface
@@ -107,5 +108,18 @@ contains
     message = 'element ' // label // ' has a non-positive Jacobian (' // str(jac) // &
               '): check its node order or coordinates'
   end function jacobian_message
+
+  !> Consistent nodal forces `fe(3 nnodes)` of the uniform force `b(3)` per unit of the element's
+  !! measure (a solid: per volume, N/mm3, or per area of a unit-thick plane-strain slice; a bar:
+  !! per length, N/mm): the sum over the points of N_a b times the point's weight. The default,
+  !! for a family with no volume or length (the zero-thickness interfaces), is no force: such an
+  !! element carries no weight.
+  pure subroutine element_body_force(self, xe, b, fe)
+    class(element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    real(dp), intent(in) :: b(3)
+    real(dp), intent(out) :: fe(:)       !! (3 nnodes)
+    fe = 0.0_dp
+  end subroutine element_body_force
 
 end module feps_element

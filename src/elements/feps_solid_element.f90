@@ -53,6 +53,7 @@ module feps_solid_element
     procedure :: jacobian_range
     procedure :: face_integration
     procedure :: volume
+    procedure :: body_force => solid_body_force
   end type solid_element_t
 
   abstract interface
@@ -422,5 +423,26 @@ contains
       volume = volume + detj * w(g)
     end do
   end function volume
+
+  !> Consistent nodal forces of the uniform force `b(3)` per unit volume: the sum over the
+  !! volume rule of N_a b detJ w (the rule of the stiffness, exact for a straight-sided element's
+  !! polynomial N detJ).
+  pure subroutine solid_body_force(self, xe, b, fe)
+    class(solid_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nen)
+    real(dp), intent(in) :: b(3)
+    real(dp), intent(out) :: fe(:)       !! (3 nen)
+    real(dp) :: xi(3, self%ngauss()), w(self%ngauss()), n(size(xe, 2)), dndx(3, size(xe, 2)), detj
+    integer :: g, a
+    call self%gauss_rule(xi, w)
+    fe = 0.0_dp
+    do g = 1, size(w)
+      call self%shape_gradients(xe, xi(:, g), n, dndx, detj)
+      do a = 1, size(n)
+        fe(3 * a - 2:3 * a) = fe(3 * a - 2:3 * a) + n(a) * detj * w(g) * b
+      end do
+    end do
+    if (self%ndim() == 2) fe(3::3) = 0.0_dp   ! plane strain: uz is held
+  end subroutine solid_body_force
 
 end module feps_solid_element

@@ -22,7 +22,7 @@ module feps_deck
                                   family_bar, bare_mesh_type
   use feps_material, only: material_t
   use feps_material_factory, only: new_material, material_of
-  use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
+  use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity
   use feps_deck_stages, only: read_stage, read_controls_record, read_report
   implicit none
   private
@@ -148,6 +148,8 @@ contains
       call read_displace(records(pos), model, st%current_stage, error)
     case ('FORCE')
       call read_force(records(pos), model, st%current_stage, error)
+    case ('GRAVITY')
+      call read_gravity(records(pos), model, st%current_stage, error)
     case ('PRESSURE', 'TRACTION')
       call read_face_load(records(pos), model, st%current_stage, error)
     case ('PRESTRESS')

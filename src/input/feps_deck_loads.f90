@@ -5,7 +5,7 @@ module feps_deck_loads
   use feps_strings, only: to_upper
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
-  use feps_records, only: record_t, keyword, nfields, field_text, field_line
+  use feps_records, only: record_t, keyword, nfields, field_text, field_line, get_option
   use feps_coordinate_system, only: csys_cartesian, csys_cylindrical
   use feps_element_catalog, only: family_bar
   use feps_model, only: model_t, constraint_t, nodal_load_t, face_load_t, load_pressure, load_traction, prestress_t
@@ -14,7 +14,7 @@ module feps_deck_loads
   implicit none
   private
 
-  public :: read_fix, read_displace, read_force, read_prestress, read_face_load
+  public :: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity
 
 contains
 
@@ -132,22 +132,26 @@ contains
     call move_alloc(tmp, model%nodal_loads)
   end subroutine read_force
 
-  !> The DOF=value fields (3 on, CSYS= aside) of a DISPLACE or FORCE record: the directions of
-  !! a system of kind `kind`, each once (Z and UZ are one), and their values.
-  subroutine read_dof_values(rec, kind, dofs, values, error)
+  !> The DOF=value fields (3 on, or `first` on; CSYS= aside) of a DISPLACE, FORCE or GRAVITY
+  !! record: the directions of a system of kind `kind`, each once (Z and UZ are one), and their
+  !! values.
+  subroutine read_dof_values(rec, kind, dofs, values, error, first)
     type(record_t), intent(in) :: rec
     integer, intent(in) :: kind
     integer, allocatable, intent(out) :: dofs(:)
     real(dp), allocatable, intent(out) :: values(:)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: first
     character(len=:), allocatable :: k, f
-    integer :: i, dof, given(3)
+    integer :: i, dof, given(3), start
     real(dp) :: v
     allocate (dofs(0), values(0))
-    call check_option_keys(rec, 3, error, expected='DOF=value')
+    start = 3
+    if (present(first)) start = first
+    call check_option_keys(rec, start, error, expected='DOF=value')
     if (allocated(error)) return
     given = 0
-    do i = 3, nfields(rec)
+    do i = start, nfields(rec)
       call key_value(rec, i, 'DOF=value', k, f, error)
       if (allocated(error)) return
       if (k == 'CSYS') cycle
@@ -165,6 +169,47 @@ contains
       values = [values, v]
     end do
   end subroutine read_dof_values
+
+  !> GRAVITY, X=gx, Y=gy, Z=gz: the acceleration of gravity in multiples of g (global
+  !! Cartesian; `Z=-1.` is the earth's, downwards in z), which gives every element of a material
+  !! with a unit weight GAMMA its weight: gamma (gx, gy, gz) per unit volume. Once per deck; it
+  !! acts from its stage on (the first stage when it comes before any STAGE record).
+  subroutine read_gravity(rec, model, stage, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: dofs(:)
+    real(dp), allocatable :: values(:)
+    character(len=:), allocatable :: text
+    logical :: given
+    integer :: at
+    if (model%gravity_line > 0) then
+      call input_error(error, rec%file, rec%line, 'GRAVITY is given twice (first at line ' // &
+                       str(model%gravity_line) // '): gravity is switched on once', 1)
+      return
+    end if
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    call get_option(rec, 'CSYS', text, given, at)
+    if (given) then
+      call input_error(error, rec%file, field_line(rec, at), 'GRAVITY takes X=, Y= and Z= in the global ' // &
+                       'system, not CSYS=', at)
+      return
+    end if
+    call read_dof_values(rec, csys_cartesian, dofs, values, error, first=2)
+    if (allocated(error)) return
+    model%gravity = 0.0_dp
+    model%gravity(dofs) = values
+    if (all(model%gravity == 0.0_dp)) then
+      call input_error(error, rec%file, rec%line, 'GRAVITY has no direction: give X=, Y= or Z= ' // &
+                       '(multiples of g, e.g. Z=-1.)', 2)
+      return
+    end if
+    model%gravity_stage = max(stage, 1)
+    model%gravity_file = rec%file
+    model%gravity_line = rec%line
+  end subroutine read_gravity
 
   !> Field `i` of `rec` sets `dof`; another field that set it before (Z and UZ, say) is an error.
   subroutine claim_dof(rec, given, dof, i, error)

@@ -227,12 +227,19 @@ contains
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     r%kind = to_lower(field_text(rec, 2))
-    if (r%kind /= 'rotation' .and. r%kind /= 'tilt' .and. r%kind /= 'reaction') then
+    if (r%kind /= 'rotation' .and. r%kind /= 'tilt' .and. r%kind /= 'reaction' .and. r%kind /= 'section') then
       call input_error(error, rec%file, field_line(rec, 2), 'unknown REPORT "' // field_text(rec, 2) // &
-                       '" (ROTATION, TILT, REACTION)', 2)
+                       '" (ROTATION, TILT, REACTION, SECTION)', 2)
       return
     end if
     kind = to_upper(r%kind)
+    if (r%kind == 'section') then
+      call read_section_report(rec, model, r, error)
+      if (allocated(error)) return
+      tmp = [model%reports, r]
+      call move_alloc(tmp, model%reports)
+      return
+    end if
     if (r%kind == 'reaction') then
       call read_reaction_report(rec, model, r, error)
       if (allocated(error)) return
@@ -299,6 +306,44 @@ contains
     tmp = [model%reports, r]
     call move_alloc(tmp, model%reports)
   end subroutine read_report
+
+  !> The options of REPORT, SECTION: NAME= (default 'section'), Z= (the section plane, required),
+  !! GROUP= (default: every group) and X0=, Y0= (the point on the plane moments are taken about,
+  !! default the z axis).
+  subroutine read_section_report(rec, model, r, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(report_t), intent(inout) :: r
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    call check_option_keys(rec, 3, error, allowed=[character(len=5) :: 'NAME', 'GROUP', 'Z', 'X0', 'Y0'])
+    if (allocated(error)) return
+    r%file = rec%file
+    r%line = rec%line
+    call option_text(rec, 'NAME', text, ifield, found)
+    r%name = r%kind
+    if (found) r%name = text
+    call refuse_duplicate_name(rec, model, r%name, merge(ifield, 2, found), error)
+    if (allocated(error)) return
+    call option_text(rec, 'GROUP', text, ifield, found)
+    if (found) then
+      r%group = model%find_group(text)
+      if (r%group == 0) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'undefined element group "' // text // '"', ifield)
+        return
+      end if
+    end if
+    call option_real(rec, 'Z', r%z, found, error)
+    if (allocated(error)) return
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'REPORT, SECTION needs Z=<the section plane>')
+      return
+    end if
+    call option_real(rec, 'X0', r%about(1), found, error)
+    if (.not. allocated(error)) call option_real(rec, 'Y0', r%about(2), found, error)
+  end subroutine read_section_report
 
   !> The options of REPORT, REACTION: NAME= (default 'reaction') and NSET=, a node set defined
   !! before the record.

@@ -7,7 +7,7 @@ module feps_elastic_bar
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
-  use feps_material_params, only: check_known_keys, get_parameter
+  use feps_material_params, only: check_known_keys, get_parameter, get_unit_weight
   use feps_material, only: material_t, state_elastic, modulus_warning
   implicit none
   private
@@ -69,12 +69,13 @@ contains
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: error
-    character(len=*), parameter :: known(2) = ['e', 'a']
-    real(dp) :: e, a
+    character(len=*), parameter :: known(3) = ['e    ', 'a    ', 'gamma']
+    real(dp) :: e, a, gamma
     call check_known_keys(spec, known, error)
     if (.not. allocated(error)) call get_parameter(spec, 'e', e, error, positive=.true.)
     if (.not. allocated(error)) call get_parameter(spec, 'a', a, error, positive=.true.)
-    if (.not. allocated(error)) allocate (material, source=elastic_bar_t(name=spec%name, e=e, a=a))
+    if (.not. allocated(error)) call get_unit_weight(spec, gamma, error)
+    if (.not. allocated(error)) allocate (material, source=elastic_bar_t(name=spec%name, e=e, a=a, unit_weight=gamma))
   end subroutine new_elastic_bar
 
 

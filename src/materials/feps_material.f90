@@ -23,6 +23,7 @@ module feps_material
   !! `state_size()` internal variables, held by `point_state_store_t`.
   type, abstract, extends(material_params_t), public :: material_t
     character(len=:), allocatable :: name
+    real(dp) :: unit_weight = 0.0_dp     !! GAMMA (N/mm3): weight per volume (a bar's: times its area)
   contains
     procedure(elastic_tangent_interface), deferred :: elastic_tangent
     procedure(update_interface), deferred :: update

@@ -8,7 +8,7 @@ module feps_material_params
   implicit none
   private
 
-  public :: check_known_keys, get_parameter, material_error, material_conflict, material_error_at
+  public :: check_known_keys, get_parameter, get_unit_weight, material_error, material_conflict, material_error_at
 
 contains
 
@@ -98,5 +98,18 @@ contains
       end if
     end if
   end subroutine get_parameter
+
+  !> GAMMA, the unit weight (N/mm3; 0 when not given: a weightless material, as the thesis's):
+  !! zero or positive and finite, else an error naming its field.
+  subroutine get_unit_weight(spec, gamma, error)
+    type(material_spec_t), intent(in) :: spec
+    real(dp), intent(out) :: gamma
+    type(error_t), allocatable, intent(out) :: error
+    call get_parameter(spec, 'gamma', gamma, error, default=0.0_dp)
+    if (allocated(error)) return
+    if (.not. (gamma >= 0.0_dp .and. gamma <= huge(gamma))) &
+      call material_error(error, spec, 'GAMMA = ' // str(gamma) // ' must be zero or positive and finite ' // &
+                          '(a unit weight, N/mm3)', 'gamma')
+  end subroutine get_unit_weight
 
 end module feps_material_params

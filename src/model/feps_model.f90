@@ -226,6 +226,7 @@ module feps_model
     real(dp) :: x_to = 0.0_dp
     logical :: has_reference = .false.
     real(dp) :: reference = 0.0_dp
+    real(dp) :: about(2) = 0.0_dp            !! 'section': X0=, Y0= of the point moments are taken about
     character(len=:), allocatable :: file
     integer :: line = 0
   end type report_t
@@ -267,6 +268,13 @@ module feps_model
     logical :: plane_strain = .false.                      !! a 2D model: uz = 0 at every node
     character(len=name_len), allocatable :: parameter_names(:)    !! PARAMETERS: the campaign's own labels
     character(len=name_len), allocatable :: parameter_values(:)   !! (written to /summary as parameter_<name>)
+    !> GRAVITY: the acceleration in multiples of g, the stage it acts from (0: no GRAVITY) and
+    !! its record. Each group with a unit weight gets its weight in the later of that stage and
+    !! the stage it is born in, spread over that stage's steps.
+    real(dp) :: gravity(3) = 0.0_dp
+    integer :: gravity_stage = 0
+    character(len=:), allocatable :: gravity_file
+    integer :: gravity_line = 0
     !> What the deck reader found doubtful but not wrong (a value far outside the physical
     !! range in N, mm and MPa), each naming file, line and field: the command prints them.
     character(len=600), allocatable :: warnings(:)

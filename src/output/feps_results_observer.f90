@@ -6,7 +6,7 @@ module feps_results_observer
   use feps_kinds, only: dp
   use feps_error, only: error_t
   use feps_model, only: model_t
-  use feps_observer, only: observer_t, step_result_t
+  use feps_observer, only: observer_t, step_result_t, group_result_t
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
   use feps_element_catalog, only: point_coordinates, family_solid, family_interface, family_bar
@@ -39,6 +39,7 @@ module feps_results_observer
     integer :: steps_written = 0
     real(dp), allocatable :: last_displacement(:, :)
     real(dp), allocatable :: last_reaction(:, :)          !! (3, nnode) global, of the last step written
+    type(group_result_t), allocatable :: last_groups(:)   !! each group's point results of the last step
     type(model_t), pointer :: model => null()
     type(group_points_t), allocatable :: points(:)        !! per group, for stress_cyl
     procedure(line_sink), pointer, nopass :: sink => null()
@@ -67,6 +68,7 @@ contains
     integer :: g, q, nc
     self%last_displacement = res%displacement
     self%last_reaction = res%reaction
+    self%last_groups = res%groups
     self%steps_written = self%steps_written + 1
     associate (f => self%model%fields)
       call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)

@@ -1,14 +1,18 @@
 !> The REPORT quantities of a solved model (thesis 7.3): the rotation of a pipe section from
-!! the axial displacements on a ring of nodes, and the tilt of a group's axis. Physics only: the
-!! program prints them and writes them to the results file.
+!! the axial displacements on a ring of nodes, the tilt of a group's axis, and the forces and
+!! moments through a section. Physics only: the program prints them and writes them to the
+!! results file.
 module feps_reports
   use feps_kinds, only: dp, rad2deg
   use feps_error, only: error_t, input_error, str
   use feps_model, only: model_t, report_t
+  use feps_element, only: element_t
+  use feps_element_catalog, only: new_element
+  use feps_observer, only: group_result_t
   implicit none
   private
 
-  public :: section_rotation, axis_tilt
+  public :: section_rotation, axis_tilt, section_forces
 
 contains
 
@@ -130,5 +134,75 @@ contains
       ux = ux / count
     end subroutine section_mean_ux
   end subroutine axis_tilt
+
+  !> Forces and moments through the section z = r%z (REPORT, SECTION; Abaqus's free-body cut):
+  !! the internal nodal forces (B^T sigma) of the elements below the plane at their nodes on it,
+  !! summed: `force` = (Vx, Vy, N), the traction resultant on the cut with outward normal +z
+  !! (N: tension positive), and `moment` = (Mx, My, T) about (X0, Y0, z). By each node's
+  !! equilibrium this equals the applied loads and reactions on everything above the plane
+  !! (where none act on the plane's own nodes), whatever the mesh. The elements of group r%group
+  !! (every group when 0) with all nodes at or below the plane count; one with nodes on both
+  !! sides is an input error (the plane must follow a layer of nodes), as is a plane with no
+  !! element below it. `groups` holds each group's point stresses (zero: checks the mesh only).
+  subroutine section_forces(model, r, groups, force, moment, count, error)
+    type(model_t), intent(in) :: model
+    type(report_t), intent(in) :: r
+    type(group_result_t), intent(in) :: groups(:)
+    real(dp), intent(out) :: force(3), moment(3)
+    integer, intent(out) :: count                  !! elements below the plane with a node on it
+    type(error_t), allocatable, intent(out) :: error
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: fe(:), sig(:, :)
+    real(dp) :: tol, arm(3)
+    integer :: g, e, a, n, np
+    logical :: on_plane, above, below
+    force = 0.0_dp
+    moment = 0.0_dp
+    count = 0
+    tol = 1.0e-6_dp * max(1.0_dp, maxval(abs(model%coords(3, :))))
+    do g = 1, size(model%groups)
+      if (r%group /= 0 .and. g /= r%group) cycle
+      associate (conn => model%groups(g)%connectivity)
+        call new_element(model%groups(g)%element_type, element, error)
+        if (allocated(error)) return
+        np = element%npoints()
+        allocate (fe(3 * size(conn, 1)), sig(element%ncomp(), np))
+        do e = 1, size(conn, 2)
+          above = any(model%coords(3, conn(:, e)) > r%z + tol)
+          below = any(model%coords(3, conn(:, e)) < r%z - tol)
+          on_plane = any(abs(model%coords(3, conn(:, e)) - r%z) <= tol)
+          if (above .and. below) then
+            call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': the section z = ' // str(r%z) // &
+                             ' cuts through element ' // str(e) // ' of group ' // model%groups(g)%name // &
+                             ': put the section on a layer of nodes')
+            return
+          end if
+          if (above .or. .not. on_plane) cycle
+          count = count + 1
+          sig = 0.0_dp
+          if (g <= size(groups)) then
+            if (allocated(groups(g)%stress)) sig = groups(g)%stress(:, (e - 1) * np + 1:e * np)
+          end if
+          call element%internal_force(model%coords(:, conn(:, e)), sig, fe)
+          do a = 1, size(conn, 1)
+            n = conn(a, e)
+            if (abs(model%coords(3, n) - r%z) > tol) cycle
+            force = force + fe(3 * a - 2:3 * a)
+            arm = [model%coords(1, n) - r%about(1), model%coords(2, n) - r%about(2), 0.0_dp]
+            moment = moment + cross(arm, fe(3 * a - 2:3 * a))
+          end do
+        end do
+        deallocate (fe, sig)
+      end associate
+    end do
+    if (count == 0) call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': no element lies below ' // &
+                                     'the section z = ' // str(r%z) // ' with a node on it')
+  contains
+    pure function cross(p, q) result(c)
+      real(dp), intent(in) :: p(3), q(3)
+      real(dp) :: c(3)
+      c = [p(2) * q(3) - p(3) * q(2), p(3) * q(1) - p(1) * q(3), p(1) * q(2) - p(2) * q(1)]
+    end function cross
+  end subroutine section_forces
 
 end module feps_reports

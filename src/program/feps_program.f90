@@ -18,7 +18,8 @@ module feps_program
   use feps_incremental_analysis, only: analysis_summary_t, run_analysis, check_analysis
   use feps_results_file, only: results_file_t
   use feps_results_observer, only: results_observer_t, line_sink
-  use feps_reports, only: section_rotation, axis_tilt
+  use feps_reports, only: section_rotation, axis_tilt, section_forces
+  use feps_observer, only: group_result_t
   use feps_version, only: feps_release
   use feps_mesh_only, only: mesh_jacobians, write_mesh_only, write_mesh
   implicit none
@@ -168,7 +169,7 @@ contains
       summary%group_names(g) = model%groups(g)%name
       summary%group_elements(g) = size(model%groups(g)%connectivity, 2)
     end do
-    call post_process(model, obs%last_displacement, obs%last_reaction, obs%h5, summary, error)
+    call post_process(model, obs%last_displacement, obs%last_reaction, obs%last_groups, obs%h5, summary, error)
     if (allocated(error)) then
       call obs%h5%discard()
       return
@@ -315,13 +316,16 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: u(:, :)
-    real(dp) :: angle
-    integer :: k
+    type(group_result_t) :: no_stress(0)
+    real(dp) :: angle, force(3), moment(3)
+    integer :: k, count
     allocate (u(3, model%nnode))
     u = 0.0_dp
     do k = 1, size(model%reports)
       if (model%reports(k)%kind == 'reaction') cycle      ! its node set was checked when read
-      if (model%reports(k)%kind == 'tilt') then
+      if (model%reports(k)%kind == 'section') then
+        call section_forces(model, model%reports(k), no_stress, force, moment, count, error)
+      else if (model%reports(k)%kind == 'tilt') then
         call axis_tilt(model, model%reports(k), u, angle, error)
       else
         call section_rotation(model, model%reports(k), u, angle, error)
@@ -331,11 +335,13 @@ contains
   end subroutine check_reports
 
   !> REPORT records: rotations of pipe sections (thesis 7.3) from the final displacements,
-  !! resultants of the final support reactions on node sets.
-  subroutine post_process(model, u, reaction, h5, summary, error)
+  !! resultants of the final support reactions on node sets, forces through sections from the
+  !! final stresses.
+  subroutine post_process(model, u, reaction, groups, h5, summary, error)
     type(model_t), intent(in) :: model
     real(dp), intent(in) :: u(:, :)
     real(dp), intent(in) :: reaction(:, :)     !! (3, nnode) global Cartesian, the last step's
+    type(group_result_t), intent(in) :: groups(:)  !! the last step's point results
     type(results_file_t), intent(inout) :: h5
     type(run_summary_t), intent(inout) :: summary
     type(error_t), allocatable, intent(out) :: error
@@ -347,6 +353,12 @@ contains
       associate (r => model%reports(k))
         if (r%kind == 'reaction') then
           call reaction_resultant(model, r, reaction, line, h5, error)
+          if (allocated(error)) return
+          summary%reports(k) = line
+          cycle
+        end if
+        if (r%kind == 'section') then
+          call section_report(model, r, groups, line, h5, error)
           if (allocated(error)) return
           summary%reports(k) = line
           cycle
@@ -370,6 +382,31 @@ contains
       end associate
     end do
   end subroutine post_process
+
+  !> REPORT, SECTION: the forces and moments through the section (feps_reports' section_forces),
+  !! printed as one line and written to /summary as section_<name>_N, _Vx, _Vy (N) and _Mx,
+  !! _My, _T (N mm).
+  subroutine section_report(model, r, groups, line, h5, error)
+    type(model_t), intent(in) :: model
+    type(report_t), intent(in) :: r
+    type(group_result_t), intent(in) :: groups(:)
+    character(len=200), intent(out) :: line
+    type(results_file_t), intent(inout) :: h5
+    type(error_t), allocatable, intent(out) :: error
+    character(len=2), parameter :: names(6) = ['N ', 'Vx', 'Vy', 'Mx', 'My', 'T ']
+    real(dp) :: force(3), moment(3), values(6)
+    integer :: count, d
+    call section_forces(model, r, groups, force, moment, count, error)
+    if (allocated(error)) return
+    values = [force(3), force(1), force(2), moment]
+    write (line, '(a,f0.1,a,i0,3(a,es13.5),a,3(a,es13.5),a)') 'section ' // r%name // ' (z = ', r%z, ', ', &
+      count, ' elements): N', values(1), ', Vx', values(2), ', Vy', values(3), ' N;', ' Mx', values(4), &
+      ', My', values(5), ', T', values(6), ' N mm'
+    do d = 1, 6
+      call h5%write_summary_real('section_' // r%name // '_' // trim(names(d)), values(d), error)
+      if (allocated(error)) return
+    end do
+  end subroutine section_report
 
   !> REPORT, REACTION: the sum of the support reactions (global x, y, z) over the nodes of the
   !! report's node set, printed as one line and written to /summary as reaction_<name>_fx, _fy

@@ -1062,6 +1062,31 @@ sed 's/E=200000\./E=2.0e11/' test/data/cube.dat >"$tmp/cube_pa.dat"
   || bad "E in Pa warning: exit $st: $(head -c 300 "$tmp/err")"
 "$feps" "$tmp/cube_pa.dat" --output "$tmp/cube_pa.h5" --quiet >"$tmp/out" 2>"$tmp/err" && [ ! -s "$tmp/err" ] && [ ! -s "$tmp/out" ] \
   && ok "E in Pa with --quiet: nothing printed" || bad "E in Pa with --quiet printed: $(head -c 300 "$tmp/err")"
+# REPORT, SECTION on model B SE1 and SD1 (issue 26): the forces and moments through two sections
+# of the whole model equal the applied loads and reactions on the nodes at or above each plane
+# (by every node's equilibrium), to 1e-6 of the largest; the pipe's own section is printed too.
+for d in SE1 SD1; do
+  { cat "input/modelB/$d.dat"; printf 'REPORT, SECTION, NAME=cut, Z=650.\nREPORT, SECTION, NAME=cut2, Z=2100.\nREPORT, SECTION, NAME=pipe650, GROUP=pipe, Z=650.\n'; } >"$tmp/sec_$d.dat"
+  sed -i "s#^INCLUDE, #INCLUDE, $PWD/input/modelB/#" "$tmp/sec_$d.dat"
+  "$feps" "$tmp/sec_$d.dat" --quiet --output "$tmp/sec_$d.h5" >"$tmp/out" 2>"$tmp/err"
+  python3 - "$tmp/sec_$d.h5" <<'PY' && ok "REPORT, SECTION on $d: N, Vx, Vy, Mx, My, T = the loads at or above z = 650 and 2100 (1e-6)" \
+    || bad "REPORT, SECTION on $d: $(head -c 300 "$tmp/err")"
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1]) as f:
+    x = f["mesh/coordinates"][()]
+    s = f["steps"][sorted(f["steps"], key=int)[-1]]
+    fa = s["applied_force"][()] + s["reaction"][()]
+    for name, z0 in (("cut", 650.0), ("cut2", 2100.0)):
+        at = x[:, 2] > z0 - 1e-6
+        ref = np.r_[fa[at].sum(0), np.cross(x[at] - [0.0, 0.0, z0], fa[at]).sum(0)]
+        got = np.array([f["summary"].attrs[f"section_{name}_{q}"] for q in ("Vx", "Vy", "N", "Mx", "My", "T")])
+        scale = np.r_[[np.abs(ref[:3]).max()] * 3, [np.abs(ref[3:]).max()] * 3]
+        assert (np.abs(got - ref) <= 1e-6 * scale).all(), (name, got, ref)
+    assert "section_pipe650_N" in f["summary"].attrs
+PY
+done
 # `feps joint` is the library's joint models on the command line; joint_models.py is its front end.
 "$feps" joint --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 >"$tmp/fj" 2>&1 \
   && python3 scripts/joint_models.py --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 --feps "$feps" >"$tmp/out" 2>&1 \

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Normalised principal-stress map on an unfolded cylinder surface r = const (thesis Figures
-5.3-5.19, 6.6-6.17): theta (deg) across, z (mm) up, filled contours of sigma / q.
+"""Normalised stress map on an unfolded cylinder surface r = const (thesis Figures 5.3-5.19,
+6.6-6.17): theta (deg) across, z (mm) up, filled contours of sigma / q.
 
     python3 scripts/plot_stress_maps.py --h5 SE1.h5 --group pipe --surface inner --field tensile \\
         --norm 4.21 --out results/figures/SE1_tensile_inner.png
@@ -17,6 +17,11 @@ reaches the pipe ends, and smooths the jumps between elements). Points that coin
 extent: Gauss points sit inside the elements, so it stops short of the pipe ends by the distance
 of the first point from the end (about 0.21 of the end element's length for 2x2x2 Gauss).
 The plot is drawn with true proportions (arc length r theta against z).
+--field tensile | compressive: the principal stresses (feps's principal / nodal_principal);
+hoop | radial | axial: the stresses in the pipe's own frame, feps's stress_cyl (Gauss points)
+or nodal_stress_cyl (--source nodes) about the z axis, which a run writes when its FIELDS or
+--fields name them (`feps DECK --fields all,stress_cyl,nodal_stress_cyl`): the hoop stress
+that cracks a pipe, with no rotation here.
 Prints the peak value and where it is.
 """
 import argparse
@@ -30,7 +35,13 @@ import feps_results as fr  # noqa: E402
 from feps_cli import Error, guard, positive, positive_int  # noqa: E402
 
 SOURCES = {"gauss": "Gauss points", "cell": "element averages", "nodes": "nodal"}
-FIELDS = {"tensile": (0, "most tensile principal stress"), "compressive": (1, "most compressive principal stress")}
+# --field: (Gauss-point dataset, its nodal counterpart, column, name, colour-bar label, peak is the largest)
+FIELDS = {"tensile": ("principal", "nodal_principal", 0, "most tensile principal stress", r"$\sigma_1 / q$", True),
+          "compressive": ("principal", "nodal_principal", 1, "most compressive principal stress",
+                          r"$\sigma_3 / q$", False),
+          "radial": ("stress_cyl", "nodal_stress_cyl", 0, "radial stress", r"$\sigma_{rr} / q$", True),
+          "hoop": ("stress_cyl", "nodal_stress_cyl", 1, "hoop stress", r"$\sigma_{\theta\theta} / q$", True),
+          "axial": ("stress_cyl", "nodal_stress_cyl", 2, "axial stress", r"$\sigma_{zz} / q$", False)}
 
 
 def surface_arg(text):
@@ -108,7 +119,7 @@ def surface_values(f, group, step, column, radius, source="gauss", tol=None, kin
     if not reach.any():
         raise ValueError(f"group {group}: no element reaches r = {radius:g}")
     if source == "nodes":
-        theta, z, values = nodal_principal(f, group, step, column, radius, tol)
+        theta, z, values = nodal_values(f, group, step, column, radius, tol, "nodal_" + kind)
     elif source == "cell":
         data = f[f"steps/{step}/cell/{kind}/{group}"][:, column]
         conn = fr.connectivity(f, group)[reach]
@@ -126,17 +137,18 @@ def surface_values(f, group, step, column, radius, source="gauss", tol=None, kin
     return merge_coincident(theta, z, values, radius)
 
 
-def nodal_principal(f, group, step, column, radius, tol):
-    """(theta, z, principal stress) at the group's nodes on r = radius: feps's nodal_principal
-    field (the principal values of the Gauss-point stresses extrapolated to the nodes and averaged
-    over the group's elements sharing each node)."""
+def nodal_values(f, group, step, column, radius, tol, kind="nodal_principal"):
+    """(theta, z, value) at the group's nodes on r = radius: feps's nodal field `kind`
+    (nodal_principal: the principal values of the Gauss-point stresses extrapolated to the nodes
+    and averaged over the group's elements sharing each node; nodal_stress_cyl: those averages in
+    the cylindrical frame)."""
     x = fr.coordinates(f)
     r, theta, z = fr.cylindrical(x)
     nodes = fr.group_nodes(f, group)
     nodes = nodes[np.abs(r[nodes] - radius) <= tol]
     if not len(nodes):
         raise ValueError(f"group {group}: no node on r = {radius:g} (--source nodes needs a node layer there)")
-    values = f[f"steps/{step}/nodal_principal/{group}"][...][nodes, column]
+    values = f[f"steps/{step}/{kind}/{group}"][...][nodes, column]
     return theta[nodes], z[nodes], values
 
 def unfolded_contour(ax, theta, z, values, radius, levels=12, cmap="turbo", zero_line=False):
@@ -215,18 +227,17 @@ def main(argv=None):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    column, field_name = FIELDS[args.field]
+    kind, nodal_kind, column, field_name, label, use_max = FIELDS[args.field]
     try:
         with fr.open_result(args.h5) as f:
             args.norm = norm_of(f, args.norm)
             step = fr.pick_step(f, args.step)
             fr.require_group(f, args.group, SOLID, "solid group")
-            kind = {"nodes": "nodal_principal", "cell": "cell/principal"}.get(args.source, "principal")
-            fr.require(f, f"steps/{step}/{kind}/{args.group}", " (left out of the run's FIELDS?" +
-                       (" --source nodes reads feps's nodal_principal: run feps DECK --fields all,nodal_principal)"
-                        if args.source == "nodes" else ")"))
+            dataset = {"nodes": nodal_kind, "cell": "cell/" + kind}.get(args.source, kind)
+            fr.require(f, f"steps/{step}/{dataset}/{args.group}", " (left out of the run's FIELDS?" +
+                       (f" run feps DECK --fields all,{dataset})" if dataset != "principal" else ")"))
             radius = surface_radius(f, args.group, args.surface)
-            theta, z, values = surface_values(f, args.group, step, column, radius, args.source)
+            theta, z, values = surface_values(f, args.group, step, column, radius, args.source, kind=kind)
             values = values / args.norm
             case = fr.case_name(f)
             where = {"inner": "inner surface", "outer": "outer surface"}.get(args.surface, "surface")
@@ -238,12 +249,12 @@ def main(argv=None):
 
     fig, ax = plt.subplots(figsize=(6.4, 6.6))
     cs = unfolded_contour(ax, theta, z, values, radius, args.levels,
-                          cmap="turbo" if args.field == "tensile" else "turbo_r", zero_line=args.zero_line)
-    i = mark_peak(ax, theta, z, values, use_max=args.field == "tensile")
+                          cmap="turbo" if use_max else "turbo_r", zero_line=args.zero_line)
+    i = mark_peak(ax, theta, z, values, use_max=use_max)
     ax.set_title(title + "\n" + peak_text(theta, z, values, i), fontsize=9.5)
     cb = fig.colorbar(cs, ax=ax, shrink=0.9, format="%.2f",
                       ticks=np.linspace(float(values.min()), float(values.max()), 7))
-    cb.set_label(r"$\sigma_1 / q$" if args.field == "tensile" else r"$\sigma_3 / q$")
+    cb.set_label(label)
     fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     fig.savefig(args.out, dpi=args.dpi)

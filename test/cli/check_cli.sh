@@ -1087,6 +1087,49 @@ with h5py.File(sys.argv[1]) as f:
     assert "section_pipe650_N" in f["summary"].attrs
 PY
 done
+# plot_stress_maps.py --field hoop reads feps's stress_cyl: its peak is the hoop stress a hand
+# rotation of the Cartesian stress gives at that Gauss point (SE1, inner surface, 4 digits).
+"$feps" input/modelB/SE1.dat --quiet --fields all,stress_cyl --output "$tmp/se1cyl.h5" >/dev/null 2>&1
+python3 scripts/plot_stress_maps.py --h5 "$tmp/se1cyl.h5" --field hoop --out "$tmp/hoop.png" >"$tmp/out" 2>"$tmp/err" \
+  && python3 - "$tmp/se1cyl.h5" "$tmp/out" <<'PY' && ok "plot_stress_maps.py --field hoop: the peak is the hand-rotated hoop stress there" \
+    || bad "plot_stress_maps.py --field hoop: $(head -c 300 "$tmp/err") $(head -c 300 "$tmp/out")"
+import re, sys
+import h5py
+import numpy as np
+line = open(sys.argv[2]).read()
+q, theta, z = (float(v) for v in re.search(r"q = (\S+) MPa at theta=(\S+) deg, z=(\S+) mm", line).groups())
+with h5py.File(sys.argv[1]) as f:
+    x = f["mesh/groups/pipe/points"][()]
+    s = f["steps/0001/stress/pipe"][()]
+r = np.hypot(x[:, 0], x[:, 1])
+t = np.degrees(np.arctan2(x[:, 1], x[:, 0]))
+at = np.flatnonzero((np.abs(t - theta) <= 0.05) & (np.abs(x[:, 2] - z) <= 0.05))   # the printed place
+i = at[np.argmin(r[at])]                              # its Gauss point nearest the bore
+c, sn = x[i, 0] / r[i], x[i, 1] / r[i]
+hoop = s[i, 0] * sn**2 + s[i, 1] * c**2 - 2 * s[i, 5] * sn * c
+assert abs(hoop - q) <= 1e-3 * abs(q), (hoop, q)
+PY
+# plot_plastic_points.py (issue 26): the states it counts are the point_state dataset's, and a
+# result without point states is one line, exit 2.
+"$feps" test/data/beam_point_state.dat --quiet --output "$tmp/pps.h5" >/dev/null 2>&1
+python3 scripts/plot_plastic_points.py --h5 "$tmp/pps.h5" --out "$tmp/pps.png" >"$tmp/out" 2>"$tmp/err" \
+  && [ -s "$tmp/pps.png" ] && python3 - "$tmp/pps.h5" "$tmp/out" <<'PY' && ok "plot_plastic_points.py counts the yielding and tension points of the dataset" \
+    || bad "plot_plastic_points.py: $(head -c 300 "$tmp/err") $(head -c 300 "$tmp/out")"
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1]) as f:
+    last = sorted(f["steps"], key=int)[-1]
+    s = f[f"steps/{last}/point_state/beam"][()][:, 0]
+line = next(l for l in open(sys.argv[2]) if l.startswith("beam (solid)"))
+want = {"elastic": (s == 0).sum(), "yielding": (s == 1).sum(), "tension cut-off": (s == 3).sum()}
+assert want["yielding"] + want["tension cut-off"] > 0, want
+for name, n in want.items():
+    assert (f"{n} {name}" in line) == (n > 0), (name, n, line)
+PY
+"$feps" test/data/cube.dat --quiet --output "$tmp/nops.h5" >/dev/null 2>&1
+expect_line "plot_plastic_points.py on a result without point states" 2 "no point states" \
+  python3 scripts/plot_plastic_points.py --h5 "$tmp/nops.h5" --out "$tmp/nops.png"
 # `feps joint` is the library's joint models on the command line; joint_models.py is its front end.
 "$feps" joint --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 >"$tmp/fj" 2>&1 \
   && python3 scripts/joint_models.py --beta 0.2061 --a 15 --Ep 660 --P 4750873.49 --feps "$feps" >"$tmp/out" 2>&1 \

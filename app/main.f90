@@ -9,6 +9,7 @@ program feps_main
   use feps_paths, only: is_xdmf_name
   use feps_model, only: max_iterations_limit
   use feps_files, only: report_file_size_limit
+  use feps_blas, only: blas_description
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
   implicit none
 
@@ -124,7 +125,7 @@ contains
         status = 0
         return
       case ('-V', '--version')
-        write (output_unit, '(a)') 'feps ' // feps_version
+        write (output_unit, '(a)') 'feps ' // feps_version, 'blas ' // blas_description()
         status = 0
         return
       case ('-q', '--quiet', '--check', '--strict', '-o', '--output', '--solver', '--method', '--maxit', '--fields')
@@ -313,6 +314,7 @@ contains
       if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
         ' (in no element; no DOFs)'
       write (output_unit, '(a)') 'solver           ' // s%solver
+      write (output_unit, '(a)') 'blas             ' // s%blas
       if (s%linear) then
         write (output_unit, '(a)') 'analysis         linear: ' // str(s%factorizations) // ' factorization(s)'
       else
@@ -393,6 +395,7 @@ contains
       str(s%stages) // ' stage(s), ' // str(s%steps) // ' steps'
     write (output_unit, '(a)') 'applied force   ' // vec3(s%applied_force)
     write (output_unit, '(a)') 'solver           ' // s%solver
+    write (output_unit, '(a)') 'blas             ' // s%blas
     write (buf, '(i0)') s%matrix_nnz
     write (output_unit, '(a)') 'matrix nonzeros  ' // trim(buf) // ' (lower triangle)'
     write (buf, '(i0)') s%factor_nnz

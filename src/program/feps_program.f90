@@ -4,6 +4,7 @@
 module feps_program
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8
+  use feps_blas, only: blas_description
   use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, err_internal, &
                         err_solver, err_memory, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
@@ -45,6 +46,7 @@ module feps_program
   type, public, extends(analysis_summary_t) :: run_summary_t
     character(len=:), allocatable :: title
     character(len=:), allocatable :: output
+    character(len=:), allocatable :: blas          !! the BLAS, its kernels and threads (feps_blas)
     logical :: mesh_only = .false.
     logical :: checked_only = .false.               !! --check: nothing solved, no file written
     integer :: stages = 0
@@ -90,6 +92,7 @@ contains
       end do
     end if
     summary%title = model%title
+    summary%blas = blas_description()
     summary%mesh_only = model%mesh_only
     summary%nodes = model%nnode
     summary%elements = model%nelem()
@@ -478,6 +481,7 @@ contains
     call h5%write_summary_string('program', 'feps ' // feps_version, error)
     if (.not. allocated(error)) call h5%write_summary_string('input_file', model%deck_file, error)
     if (.not. allocated(error)) call h5%write_summary_string('solver', summary%solver, error)
+    if (.not. allocated(error)) call h5%write_summary_string('blas', summary%blas, error)
     if (.not. allocated(error)) call h5%write_summary_real('wall_time', summary%wall_time, error)
     if (.not. allocated(error)) call h5%write_summary_int('dofs', int(summary%dofs, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('factor_nonzeros', summary%factor_nnz, error)

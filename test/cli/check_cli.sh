@@ -28,6 +28,11 @@ expect_status "--help" 0 "$feps" --help
 grep -q "usage: feps DECK" "$tmp/out" && ok "--help shows usage" || bad "--help shows usage"
 expect_status "--version" 0 "$feps" --version
 grep -q "^feps [0-9]" "$tmp/out" && ok "--version prints the version" || bad "--version prints the version"
+# issue 28: the BLAS, the kernels it chose for this CPU and its threads (solves on one thread)
+grep -Eq "^blas (OpenBLAS [0-9.]+, [A-Za-z0-9]+ kernels, [0-9]+ threads? \(solves on 1\)|not OpenBLAS)" "$tmp/out" \
+  && ok "--version names the BLAS, its kernels and threads: $(sed -n 2p "$tmp/out")" || bad "--version's BLAS line: $(cat "$tmp/out")"
+OPENBLAS_NUM_THREADS=1 "$feps" --version | grep -Eq "^blas (OpenBLAS .*, 1 thread \(|not OpenBLAS)" \
+  && ok "--version counts the BLAS threads OPENBLAS_NUM_THREADS sets" || bad "--version with OPENBLAS_NUM_THREADS=1: $(OPENBLAS_NUM_THREADS=1 "$feps" --version)"
 expect_status "no deck" 2 "$feps"
 # A deck that cannot be read is bad input (the user fixes the command or the file): exit 2, one
 # line naming the file, no result file; results that cannot be written are a failed run: exit 1.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Run a campaign of feps decks in parallel and gather one CSV.
 #
-#   scripts/campaign.sh NAME DECK...
+#   scripts/campaign.sh [--slurm] NAME DECK...
 #
 # Every deck is first checked with `feps --check` (seconds each): if any fails, the campaign
 # prints feps's errors and stops with exit status 2 before running anything.
@@ -27,6 +27,16 @@
 #   PEAK_GROUP  the group whose peak principal stress goes into the CSV (default pipe)
 #   RERUN=1     run every case again
 #
+# --slurm: run the cases on a Slurm cluster instead, as one job array (one case per task, through
+# `sbatch --wait`, so the call returns when the array has ended), with the same folders, the same
+# resumability and the same CSV: a second call submits only the cases not finished (failed,
+# timed out, never run). The array's files are in results/NAME/slurm/ (the case list, the task
+# script, one output file per task). SLURM_ARGS adds sbatch options (partition, time, memory per
+# task, e.g. "--partition=long --time=02:00:00 --mem=8G"); JOBS, when set, caps the tasks that
+# run at once (--array=...%JOBS). Every node must see the repository and results/ under the same
+# path (a shared file system). `scripts/slurm_localhost.sh start` makes a one-node Slurm of this
+# machine to try it (test/cli/check_slurm.sh runs a campaign through it).
+#
 # Exit status: 0 when every case of this call finished (status ok in the CSV); 1 when any of them
 # failed, timed out or did not finish (the CSV is gathered all the same and the cases are named);
 # 2 for bad arguments or a deck that fails feps --check (nothing is run).
@@ -34,9 +44,17 @@ set -euo pipefail
 
 usage() { awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; }
 case "${1:-}" in -h|--help) usage; exit 0 ;; esac
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# a task of a Slurm job array (--slurm below): one case, in the environment the campaign exported
+if [[ ${1:-} == --run-case ]]; then
+    source "$ROOT/scripts/campaign_case.sh"
+    run_case "$2"
+    exit 0
+fi
+SLURM=""
+if [[ ${1:-} == --slurm ]]; then SLURM=1; shift; fi
 [[ $# -ge 2 ]] || { usage >&2; exit 2; }
 
-ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 NAME=$1
 shift
 [[ $NAME =~ ^[A-Za-z0-9._-]+$ ]] || { echo "campaign: NAME must be letters, digits, . _ -" >&2; exit 2; }
@@ -67,37 +85,15 @@ fi
 [[ $FEPS == */* ]] || FEPS=$(command -v -- "$FEPS" || echo "$FEPS")
 [[ -f $FEPS && -x $FEPS ]] || { echo "campaign: FEPS=$FEPS is not an executable file" >&2; exit 2; }
 FEPS=$(cd "$(dirname "$FEPS")" && pwd)/$(basename "$FEPS")
+JOBS_SET=${JOBS:-}
 JOBS=${JOBS:-$(nproc)}
 export FEPS CAMPAIGN TIMEOUT="${TIMEOUT:-}" FEPS_ARGS="${FEPS_ARGS:-}" RERUN="${RERUN:-}"
+if [[ -n $SLURM ]] && ! command -v sbatch >/dev/null; then
+    echo "campaign: --slurm: no sbatch on PATH (a Slurm client; to try it here: scripts/slurm_localhost.sh start)" >&2
+    exit 2
+fi
 
-finished() {   # finished CASEDIR STEM: the log ends with the summary line and the HDF5 exists
-    [[ -f $1/$2.h5 && -f $1/log.txt ]] && tail -n 1 "$1/log.txt" | grep -q '^results '
-}
-
-run_case() {
-    local deck=$1 stem dir start rc ms
-    stem=$(basename "$deck"); stem=${stem%.*}
-    dir=$CAMPAIGN/$stem
-    if [[ -z $RERUN ]] && finished "$dir" "$stem"; then
-        echo "skip   $stem (finished)"
-        return 0
-    fi
-    mkdir -p "$dir"
-    rm -f "$dir/$stem.h5" "$dir/$stem.h5.part" "$dir/$stem.xmf" "$dir/exit_status.txt"
-    echo "run    $stem"
-    start=$(date +%s%N)
-    rc=0
-    # shellcheck disable=SC2086  # FEPS_ARGS is a list of options
-    (cd "$dir" && if [[ -n $TIMEOUT ]]; then
-         exec timeout --signal=TERM "$TIMEOUT" "$FEPS" "$deck" --output "$stem.h5" $FEPS_ARGS
-     else
-         exec "$FEPS" "$deck" --output "$stem.h5" $FEPS_ARGS
-     fi) > "$dir/log.txt" 2>&1 || rc=$?
-    # exit code and elapsed seconds, for the CSV (the HDF5 holds the wall time of a finished run)
-    ms=$(( ($(date +%s%N) - start) / 1000000 ))
-    printf '%s %d.%03d\n' "$rc" $((ms / 1000)) $((ms % 1000)) > "$dir/exit_status.txt"
-    echo "done   $stem (exit $rc)"
-}
+source "$ROOT/scripts/campaign_case.sh"
 export -f run_case finished
 
 # Check every deck first (feps --check: input, model, one factorization per stage; seconds):
@@ -112,9 +108,33 @@ for deck in "${DECKS[@]}"; do
 done
 [[ $nbad -eq 0 ]] || { echo "campaign: $nbad deck(s) failed feps --check; nothing was run" >&2; exit 2; }
 
-# run_case records each case's exit code itself; xargs fails only if it could not run them
+# run_case records each case's exit code itself; xargs (or sbatch) fails only if it could not run them
 xrc=0
-printf '%s\0' "${DECKS[@]}" | xargs -0 -n 1 -P "$JOBS" bash -c 'run_case "$1"' _ || xrc=$?
+if [[ -z $SLURM ]]; then
+    printf '%s\0' "${DECKS[@]}" | xargs -0 -n 1 -P "$JOBS" bash -c 'run_case "$1"' _ || xrc=$?
+else
+    mkdir -p "$CAMPAIGN/slurm"
+    : >"$CAMPAIGN/slurm/cases.txt"
+    for deck in "${DECKS[@]}"; do
+        s=$(basename "$deck"); s=${s%.*}
+        if [[ -z $RERUN ]] && finished "$CAMPAIGN/$s" "$s"; then echo "skip   $s (finished)"; continue; fi
+        echo "$deck" >>"$CAMPAIGN/slurm/cases.txt"
+    done
+    ntask=$(wc -l <"$CAMPAIGN/slurm/cases.txt")
+    if ((ntask > 0)); then
+        {
+            echo '#!/usr/bin/env bash'
+            echo "# one case of campaign $NAME: line SLURM_ARRAY_TASK_ID of cases.txt (scripts/campaign.sh --slurm)"
+            printf 'exec bash %q --run-case "$(sed -n "${SLURM_ARRAY_TASK_ID}p" %q)"\n' \
+                "$ROOT/scripts/campaign.sh" "$CAMPAIGN/slurm/cases.txt"
+        } >"$CAMPAIGN/slurm/task.sh"
+        throttle=""; [[ -n $JOBS_SET ]] && throttle="%$JOBS"
+        echo "submit $ntask case(s) as a Slurm job array"
+        # shellcheck disable=SC2086  # SLURM_ARGS is a list of sbatch options
+        sbatch --wait --quiet --array="1-$ntask$throttle" --job-name="feps-$NAME" \
+            --output="$CAMPAIGN/slurm/task_%a.out" ${SLURM_ARGS:-} "$CAMPAIGN/slurm/task.sh" || xrc=$?
+    fi
+fi
 
 # ------------------------------------------------------------------------------------- gather
 # the cases of this call, then those of earlier calls of the same campaign (folders with a log)
@@ -193,5 +213,5 @@ if bad:
     print(f"campaign: {len(bad)} of {ncall} cases not finished: {', '.join(bad)}", file=sys.stderr)
     sys.exit(1)
 PYTHON
-[[ $xrc -eq 0 ]] || { echo "campaign: xargs stopped with exit status $xrc" >&2; exit 1; }
+[[ $xrc -eq 0 ]] || { echo "campaign: $([[ -n $SLURM ]] && echo sbatch || echo xargs) stopped with exit status $xrc" >&2; exit 1; }
 [[ $grc -eq 0 ]] || exit 1

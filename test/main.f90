@@ -32,6 +32,7 @@ program tester
   use test_interface_orientation, only: collect_interface_orientation
   use test_progress, only: collect_progress
   use test_element_contract, only: collect_element_contract
+  use test_restart, only: collect_restart
   implicit none
 
   interface
@@ -78,7 +79,8 @@ program tester
     new_testsuite('collapse', collect_collapse), &
     new_testsuite('interface_orientation', collect_interface_orientation), &
     new_testsuite('progress', collect_progress), &
-    new_testsuite('element_contract', collect_element_contract) &
+    new_testsuite('element_contract', collect_element_contract), &
+    new_testsuite('restart', collect_restart) &
     ]
   nfail = run_testsuites(suites, only)
   if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran

@@ -343,6 +343,9 @@ contains
       end do
     end if
     if (len(s%output) > 0) write (output_unit, '(a)') 'results          ' // s%output
+    if (allocated(s%restart_from)) write (output_unit, '(a)') 'continued from   ' // s%restart_from // &
+      ' after step ' // str(s%restart_step) // ' (the results hold the later steps)'
+    if (allocated(s%restart_file)) write (output_unit, '(a)') 'restart data     ' // s%restart_file
   end subroutine print_summary
 
   !> A 3-vector as the summary prints it: each component after a blank, in 12 characters.

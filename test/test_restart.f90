@@ -148,19 +148,20 @@ contains
   !> Restart data of friction_pull given to block_shear: exit 2 (err_input), no results.
   subroutine test_other_model(error)
     type(error_t), allocatable, intent(out) :: error
+    type(error_t), allocatable :: refused
     call run('test/data/friction_pull.dat', 'ro_a', error, stop=2)
     if (.not. allocated(error)) then
       call test_failed(error, 'the run with --stop-after-step 2 did not stop')
       return
     end if
     deallocate (error)
-    call run('test/data/block_shear.dat', 'ro_b', error, restart=scratch_path('ro_a.restart.h5'))
-    if (.not. allocated(error)) then
+    call run('test/data/block_shear.dat', 'ro_b', refused, restart=scratch_path('ro_a.restart.h5'))
+    if (.not. allocated(refused)) then
       call test_failed(error, 'restart data of another model accepted')
     else
-      call check(error, error%code == err_input .and. index(error%message, 'restart data of another model') > 0 &
+      call check(error, refused%code == err_input .and. index(refused%message, 'restart data of another model') > 0 &
                  .and. .not. file_exists(scratch_path('ro_b.h5')) .and. .not. file_exists(scratch_path('ro_b.h5.part')), &
-                 'refused as input (exit 2), no results: ' // error%message)
+                 'refused as input (exit 2), no results: ' // refused%message)
     end if
     call remove('ro_a')
     call remove('ro_b')
@@ -169,19 +170,20 @@ contains
   !> --step 9 of a file that holds steps 1 and 2: exit 2, naming the steps it holds.
   subroutine test_missing_step(error)
     type(error_t), allocatable, intent(out) :: error
+    type(error_t), allocatable :: refused
     call run('test/data/friction_pull.dat', 'rm_a', error, stop=2)
     if (.not. allocated(error)) then
       call test_failed(error, 'the run with --stop-after-step 2 did not stop')
       return
     end if
     deallocate (error)
-    call run('test/data/friction_pull.dat', 'rm_b', error, restart=scratch_path('rm_a.restart.h5'), step=9)
-    if (.not. allocated(error)) then
+    call run('test/data/friction_pull.dat', 'rm_b', refused, restart=scratch_path('rm_a.restart.h5'), step=9)
+    if (.not. allocated(refused)) then
       call test_failed(error, '--step 9 accepted')
     else
-      call check(error, error%code == err_input .and. index(error%message, 'holds no restart data of step 9 ' // &
+      call check(error, refused%code == err_input .and. index(refused%message, 'holds no restart data of step 9 ' // &
                  '(--step; it holds steps 1 2)') > 0 .and. .not. file_exists(scratch_path('rm_b.h5')), &
-                 'refused as input (exit 2) naming the steps held: ' // error%message)
+                 'refused as input (exit 2) naming the steps held: ' // refused%message)
     end if
     call remove('rm_a')
     call remove('rm_b')

@@ -191,6 +191,9 @@ contains
                           any(error%code == [err_input, err_input_file, err_model]))
       return
     end if
+    ! no restart point written: a linear model, or fewer steps than RESTART's EVERY
+    if (allocated(summary%restart_file) .and. (summary%linear .or. summary%steps < model%restart_every)) &
+      deallocate (summary%restart_file)
     summary%fields = model%fields%names()
     allocate (summary%group_names(size(model%groups)), summary%group_elements(size(model%groups)))
     do g = 1, size(model%groups)

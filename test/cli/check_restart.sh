@@ -65,8 +65,9 @@ case_ bfgs test/data/block_shear.dat 1 "1"
 for m in euler modified-euler newton-raphson modified-newton-raphson initial-stiffness full-newton-raphson; do
   case_ "support_$m" test/data/slide_1dof_support_change.dat 1 "5 7" --method "$m"
 done
-# A bar post-tensioned in stage 1 and bonded (born carrying its force) in stage 2.
-case_ post test/data/prestress_series_post.dat 1 "2 3"
+# Tendons post-tensioned in stage 2 (pulling on their nodes, not yet bonded) and bonded (born
+# carrying their force) in stage 3: mid-stage (4) and at the boundary before the bond (7).
+case_ post test/data/prestress_post.dat 1 "4 7"
 # A group born in stage 2.
 case_ birth test/data/activate_block.dat 1 "1"
 # FE1 (400 steps of initial stiffness) after step 390, and model C (stages of 1, 250 and 100
@@ -125,6 +126,8 @@ refused "a step the restart file does not hold" "holds no restart data of step 9
   "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/friction.restart.h5" --step 99
 refused "a results file as restart data" "holds no restart data (no /restart/steps" \
   "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/friction.h5"
+refused "a restart point at the run's last step" "its restart point is step 11, the last of the run .*nothing to continue" \
+  "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/friction.restart.h5" --step 11
 refused "--step without --restart" "needs --restart FILE" \
   "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --step 3
 refused "--restart-every 0" "--restart-every takes a whole number from 1" \

@@ -67,6 +67,11 @@ contains
                          'materials, loads, stages, controls or solver differ from ' // model%deck_file // ')')
         return
       end if
+      if (resume%step >= sum(model%stages%steps)) then
+        call fatal_error(error, err_input, resume%source // ': its restart point is step ' // str(resume%step) // &
+                         ', the last of the run of ' // model%deck_file // ': nothing to continue')
+        return
+      end if
     end if
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)

@@ -150,11 +150,6 @@ contains
       ! The restart data are read (and their step checked) before the results are started.
       call read_restart_point(options%restart, options%restart_step, resume, error)
       if (allocated(error)) return
-      if (resume%step >= sum(model%stages%steps)) then
-        call fatal_error(error, err_input, options%restart // ': its restart point is step ' // str(resume%step) // &
-                         ', the last of the run of ' // options%deck // ': nothing to continue')
-        return
-      end if
       summary%restart_from = options%restart
       summary%restart_step = resume%step
     end if

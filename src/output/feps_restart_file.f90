@@ -66,7 +66,7 @@ contains
     integer, allocatable :: old_steps(:), kept(:), ints(:)
     integer(hsize_t), allocatable :: shp(:)
     character(len=:), allocatable :: part
-    logical :: have_old
+    logical :: have_old, removed
 
     call start_hdf5(error)
     if (allocated(error)) return
@@ -110,7 +110,7 @@ contains
     end if
     if (hdferr < 0 .or. i < 0) then
       call fatal_error(error, err_io, 'cannot write the restart file ' // path // ' (step ' // str(data%step) // ')')
-      if (remove_regular_file(part)) continue
+      removed = remove_regular_file(part)
     end if
     call mark_partial_file(3, '')
   end subroutine write_restart_point

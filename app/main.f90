@@ -7,7 +7,7 @@ program feps_main
   use feps_program, only: run_options_t, run_summary_t, run_feps, feps_version, unbalanced_text
   use feps_strings, only: sci
   use feps_paths, only: is_xdmf_name
-  use feps_model, only: max_iterations_limit
+  use feps_model, only: max_iterations_limit, max_total_steps
   use feps_files, only: report_file_size_limit
   use feps_blas, only: blas_description
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
@@ -113,6 +113,7 @@ contains
     options%solver = ''
     options%method = ''
     options%fields = ''
+    options%restart = ''
     seen = ' '
     n = command_argument_count()
     i = 0
@@ -128,7 +129,8 @@ contains
         write (output_unit, '(a)') 'feps ' // feps_version, 'blas ' // blas_description()
         status = 0
         return
-      case ('-q', '--quiet', '--check', '--strict', '-o', '--output', '--solver', '--method', '--maxit', '--fields')
+      case ('-q', '--quiet', '--check', '--strict', '-o', '--output', '--solver', '--method', '--maxit', '--fields', &
+            '--restart', '--step', '--restart-every', '--stop-after-step')
         name = arg
         if (arg == '-q') name = '--quiet'
         if (arg == '-o') name = '--output'
@@ -166,6 +168,19 @@ contains
           options%method = value
         case ('--fields')
           options%fields = value
+        case ('--restart')
+          options%restart = value
+        case ('--step', '--restart-every', '--stop-after-step')
+          ! a step count: whole_number gives 0 for anything else
+          if (whole_number(value) < 1 .or. whole_number(value) > max_total_steps) then
+            write (error_unit, '(a)') 'feps: error: ' // name // ' takes a whole number from 1 to ' // &
+              str(max_total_steps) // ', not "' // value // '"'
+            status = 2
+            return
+          end if
+          if (name == '--step') options%restart_step = whole_number(value)
+          if (name == '--restart-every') options%restart_every = whole_number(value)
+          if (name == '--stop-after-step') options%stop_after_step = whole_number(value)
         case ('--maxit')
           options%max_iterations = whole_number(value)
           if (options%max_iterations < 1 .or. options%max_iterations > max_iterations_limit) then
@@ -213,6 +228,10 @@ contains
     if (.not. allocated(options%deck)) then
       write (error_unit, '(a)') 'feps: error: no input deck given (see feps --help)'
       status = 2
+    else if (options%restart_step > 0 .and. len(options%restart) == 0) then
+      write (error_unit, '(a)') 'feps: error: --step ' // str(options%restart_step) // ' names a restart point: ' // &
+        'it needs --restart FILE'
+      status = 2
     end if
   end subroutine parse_arguments
 
@@ -230,6 +249,10 @@ contains
              'initial-stiffness, full-newton-raphson)'
     case ('--maxit')
       text = 'a whole number from 1 to ' // str(max_iterations_limit)
+    case ('--restart')
+      text = 'a checkpoint file name'
+    case ('--step', '--restart-every', '--stop-after-step')
+      text = 'a whole number of steps'
     case default
       text = 'a list of result fields, e.g. all,nodal_principal'
     end select
@@ -260,6 +283,7 @@ contains
       '', &
       'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N]', &
       '                 [--fields LIST] [--check] [--strict] [--quiet]', &
+      '                 [--restart-every N] [--restart FILE [--step N]]', &
       '       feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--json] ...', &
       '       feps --help | --version', &
       '', &
@@ -282,6 +306,12 @@ contains
       '                       write no file', &
       '      --strict         a run whose last step of some stage ends out of balance (relative', &
       '                       residual above DELTA1) fails: exit 1, no results file', &
+      '      --restart-every N  write restart data every N steps to the checkpoint file beside', &
+      '                       the results (NAME.restart.h5; overrides the deck''s RESTART)', &
+      '      --restart FILE   continue the deck''s run from the restart data in FILE (a checkpoint', &
+      '                       file of the same model) instead of from zero', &
+      '      --step N         the restart point of step N (default: the last one in FILE)', &
+      '      --stop-after-step K  a test aid: stop after step K as a run that dies would (exit 1)', &
       '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &
@@ -362,6 +392,9 @@ contains
       end do
     end if
     if (len(s%output) > 0) write (output_unit, '(a)') 'results          ' // s%output
+    if (allocated(s%restart_from)) write (output_unit, '(a)') 'continued from   ' // s%restart_from // &
+      ' after step ' // str(s%restart_step) // ' (the results hold the later steps)'
+    if (allocated(s%restart_file)) write (output_unit, '(a)') 'restart data     ' // s%restart_file
   end subroutine print_summary
 
   !> A 3-vector as the summary prints it: each component after a blank, in 12 characters.

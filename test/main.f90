@@ -34,6 +34,7 @@ program tester
   use test_element_contract, only: collect_element_contract
   use test_gravity, only: collect_gravity
   use test_section_report, only: collect_section_report
+  use test_restart, only: collect_restart
   implicit none
 
   interface
@@ -82,7 +83,8 @@ program tester
     new_testsuite('progress', collect_progress), &
     new_testsuite('element_contract', collect_element_contract), &
     new_testsuite('gravity', collect_gravity), &
-    new_testsuite('section_report', collect_section_report) &
+    new_testsuite('section_report', collect_section_report), &
+    new_testsuite('restart', collect_restart) &
     ]
   nfail = run_testsuites(suites, only)
   if (nfail < 0) call c_exit(2_c_int)      ! an unknown suite: the line is written, nothing ran

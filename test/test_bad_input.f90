@@ -28,6 +28,9 @@ contains
     tests = [ &
       new_unittest('the valid cube deck runs and writes its file', test_valid), &
       new_unittest('unknown keyword', test_unknown_keyword), &
+      new_unittest('RESTART, EVERY=0', test_restart_every_zero), &
+      new_unittest('RESTART given twice', test_restart_twice), &
+      new_unittest('RESTART with an unknown option', test_restart_unknown_option), &
       new_unittest('unknown record inside a DATAIN block', test_unknown_record), &
       new_unittest('missing field', test_missing_field), &
       new_unittest('non-numeric field', test_non_numeric), &
@@ -267,6 +270,27 @@ contains
     call expect_failure('test/data/bad/unknown_keyword.dat', err_input, &
                         [character(len=40) :: 'unknown_keyword.dat:3:', 'FROB'], error)
   end subroutine test_unknown_keyword
+
+  subroutine test_restart_every_zero(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/restart_every_zero.dat', err_input, &
+                        [character(len=48) :: 'restart_every_zero.dat:25:', 'field 2', &
+                         'EVERY 0 is outside the allowed range 1..'], error)
+  end subroutine test_restart_every_zero
+
+  subroutine test_restart_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/restart_twice.dat', err_input, &
+                        [character(len=48) :: 'restart_twice.dat:26:', 'RESTART is given twice (first at line 25)'], &
+                        error)
+  end subroutine test_restart_twice
+
+  subroutine test_restart_unknown_option(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/restart_unknown_option.dat', err_input, &
+                        [character(len=48) :: 'restart_unknown_option.dat:25:', 'field 2', &
+                         'unknown RESTART option "KEEP=3"'], error)
+  end subroutine test_restart_unknown_option
 
   subroutine test_tilt_no_span(error)
     type(error_t), allocatable, intent(out) :: error

@@ -27,6 +27,7 @@ module feps_analysis_state
   use feps_observer, only: observer_t
   use feps_equation_system, only: equation_system_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
+  use feps_restart_data, only: restart_data_t
   implicit none
   private
 
@@ -76,6 +77,7 @@ module feps_analysis_state
   public :: change_supports, activate_groups, check_born_nodes, stage_increments
   public :: set_trial, add_free, update_points, residual, committed_residual, commit, restore
   public :: factorize_tangent, support_reaction, support_reaction_nodal
+  public :: save_state, restore_state
 
 contains
 
@@ -807,5 +809,101 @@ contains
     local = matmul(transpose(an%eq%map%basis(:, :, n)), an%path%fint(:, n) - an%path%f_applied(:, n))
     where (.not. an%eq%map%constrained(:, n)) local = 0.0_dp
   end function support_reaction_nodal
+
+  !> The state of `an` at the end of a step into restart data: the load path, every group's
+  !! point states, the values of the matrices the held factors were formed from and the
+  !! equation system's flags and counters.
+  subroutine save_state(an, data)
+    type(analysis_t), intent(in) :: an
+    type(restart_data_t), intent(inout) :: data
+    integer :: g
+    data%u = an%path%u
+    data%u_t = an%path%u_t
+    data%fint = an%path%fint
+    data%f_applied = an%path%f_applied
+    data%uc = an%path%uc
+    data%release_force = an%path%release_force
+    data%active = an%path%active
+    allocate (data%states(size(an%states)))
+    do g = 1, size(an%states)
+      data%states(g) = an%states(g)%point_state_store_t
+    end do
+    data%a_val = an%eq%a%val
+    if (allocated(an%eq%a_full%val)) data%a_full_val = an%eq%a_full%val
+    data%use_lu = an%eq%use_lu
+    data%symmetrized = an%eq%symmetrized
+    data%warned_condition = an%eq%warned_condition
+    data%lu_singular = an%eq%lu_singular
+    data%solver_factorizations = an%eq%solver%factorizations
+    data%lu_factorizations = an%eq%lu%factorizations
+    data%lu_min_rcond = an%eq%lu%min_rcond
+  end subroutine save_state
+
+  !> `an` (set up, its states initialised) as restart data saved it at the end of a step of
+  !! stage s: the equations of stage s (renumbered where supports changed up to it), the load
+  !! path, the point states, and the held factors formed again from the same matrix values,
+  !! so that they are the same bit for bit; the solvers' counters as they were.
+  subroutine restore_state(model, an, data, s, summary, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    type(restart_data_t), intent(in) :: data
+    integer, intent(in) :: s
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    type(dof_map_t) :: map
+    integer :: g, j, numbered
+    numbered = 1
+    do j = 2, s
+      if (model%supports_change(j)) numbered = j
+    end do
+    if (numbered > 1) then
+      call build_dof_map(model, map, error, stage=numbered)
+      if (allocated(error)) return
+      an%eq%map = map
+      summary%dofs = an%eq%map%neq
+      call build_pattern(model, an%eq%map, an%eq%a)
+      if (allocated(an%eq%a_full%row_ptr)) deallocate (an%eq%a_full%row_ptr, an%eq%a_full%col, an%eq%a_full%val)
+      summary%matrix_nnz = an%eq%a%nnz()
+      call an%eq%solver%analyze(an%eq%a, error)
+      if (.not. allocated(error)) call check_factor_memory(model, an, error)
+      if (allocated(error)) return
+    end if
+    if (size(data%a_val) /= size(an%eq%a%val) .or. size(data%active) /= size(an%path%active) .or. &
+        any(shape(data%u) /= shape(an%path%u))) then
+      call fatal_error(error, err_input, data%source // ': its restart data do not fit the model of ' // &
+                       model%deck_file // ' (another mesh or other supports)')
+      return
+    end if
+    an%path%u = data%u
+    an%path%u_t = data%u_t
+    an%path%fint = data%fint
+    an%path%f_applied = data%f_applied
+    an%path%uc = data%uc
+    an%path%release_force = data%release_force
+    an%path%active = data%active
+    do g = 1, size(an%states)
+      an%states(g)%point_state_store_t = data%states(g)
+    end do
+    an%eq%a%val = data%a_val
+    if (data%solver_factorizations > 0) then
+      call an%eq%solver%factorize(an%eq%a, error)
+      if (allocated(error)) return
+    end if
+    an%eq%solver%factorizations = data%solver_factorizations
+    if (allocated(data%a_full_val)) then
+      call full_pattern(an%eq%a, an%eq%a_full)
+      an%eq%a_full%val = data%a_full_val
+      if (data%use_lu) then
+        call an%eq%lu%factorize(an%eq%a_full, error)
+        if (allocated(error)) return
+      end if
+    end if
+    an%eq%lu%factorizations = data%lu_factorizations
+    an%eq%lu%min_rcond = data%lu_min_rcond
+    an%eq%use_lu = data%use_lu
+    an%eq%symmetrized = data%symmetrized
+    an%eq%warned_condition = data%warned_condition
+    an%eq%lu_singular = data%lu_singular
+  end subroutine restore_state
 
 end module feps_analysis_state

@@ -12,8 +12,8 @@
 !! factorize, when a step has converged, diverged or is carried, and when to cut back.
 module feps_incremental_analysis
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use feps_kinds, only: dp
-  use feps_error, only: error_t, fatal_error, err_solver, err_model, str
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t, fatal_error, err_solver, err_model, err_input, str
   use feps_clock, only: wall_clock
   use feps_model, only: model_t, stage_t, controls_t, method_names
   use feps_loads, only: nodal_load_vector
@@ -22,7 +22,9 @@ module feps_incremental_analysis
   use feps_analysis_state, only: analysis_t, is_linear_model, set_up, &
                                  init_states, state_bytes, change_supports, activate_groups, check_born_nodes, &
                                  stage_increments, set_trial, add_free, update_points, residual, &
-                                 committed_residual, commit, restore, factorize_tangent, support_reaction
+                                 committed_residual, commit, restore, factorize_tangent, support_reaction, &
+                                 save_state, restore_state
+  use feps_restart_data, only: restart_data_t, model_fingerprint, set_summary_scalars, summary_reals, summary_ints
   use feps_solution_method, only: solution_method_t, factor_state_t
   use feps_solution_methods, only: new_solution_method
   use feps_bfgs, only: bfgs_t
@@ -39,19 +41,38 @@ module feps_incremental_analysis
 contains
 
   !> Run every stage of the model; report progress and the steps to write to `observer`.
-  subroutine run_analysis(model, solver_name, observer, summary, error)
+  !! A nonlinear run hands restart data to `observer%checkpoint` every model%restart_every
+  !! steps; with `resume` it continues from such data (of the same model: its fingerprint is
+  !! checked) instead of starting from zero.
+  subroutine run_analysis(model, solver_name, observer, summary, error, resume, stop_after)
     type(model_t), intent(inout) :: model
     character(len=*), intent(in) :: solver_name
     class(observer_t), intent(inout) :: observer
     type(analysis_summary_t), intent(out) :: summary
     type(error_t), allocatable, intent(out) :: error
+    type(restart_data_t), intent(in), optional :: resume
+    integer, intent(in), optional :: stop_after   !! a test aid: fail (exit 1) after this step
     type(analysis_t) :: an
     real(dp) :: t0, length
     integer :: n
+    integer(i8) :: fingerprint
 
     t0 = wall_clock()
     call set_up(model, solver_name, an, summary, error)
     if (allocated(error)) return
+    fingerprint = model_fingerprint(model, summary%solver)
+    if (present(resume)) then
+      if (resume%fingerprint /= fingerprint) then
+        call fatal_error(error, err_input, resume%source // ': restart data of another model (its mesh, ' // &
+                         'materials, loads, stages, controls or solver differ from ' // model%deck_file // ')')
+        return
+      end if
+      if (resume%step >= sum(model%stages%steps)) then
+        call fatal_error(error, err_input, resume%source // ': its restart point is step ' // str(resume%step) // &
+                         ', the last of the run of ' // model%deck_file // ': nothing to continue')
+        return
+      end if
+    end if
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
     allocate (an%path%f_ref(3, model%nnode), an%path%f_applied(3, model%nnode))
@@ -62,11 +83,25 @@ contains
 
     summary%linear = is_linear_model(model, an%materials)
     if (summary%linear) then
+      if (present(resume)) then
+        call fatal_error(error, err_input, resume%source // ': a linear model is solved in one solve per ' // &
+                         'stage and continues from no restart data')
+        return
+      end if
       call observer%progress('linear model (all materials elastic, no interfaces): one factorization, ' // &
                              'one solve per stage')
+      if (model%restart_every > 0) call observer%progress('note: no restart data: a linear model is solved ' // &
+                                                          'in one solve per stage')
       call run_linear_stages(model, an, observer, summary, error)
     else
-      call run_nonlinear_stages(model, an, observer, summary, error)
+      if (present(resume)) then
+        call restore_state(model, an, resume, resume%stage, summary, error)
+        if (allocated(error)) return
+        call set_summary_scalars(summary, summary_reals_of(resume), summary_ints_of(resume))
+        summary%unbalanced_stage = resume%summary%unbalanced_stage
+        summary%unbalanced_at = resume%summary%unbalanced_at
+      end if
+      call run_nonlinear_stages(model, an, observer, summary, fingerprint, error, resume, stop_after)
     end if
     if (allocated(error)) return
 
@@ -85,6 +120,19 @@ contains
       end if
     end do
   end subroutine run_analysis
+
+  !> The summary totals restart data carry (feps_restart_data's order).
+  pure function summary_reals_of(data) result(x)
+    type(restart_data_t), intent(in) :: data
+    real(dp), allocatable :: x(:)
+    x = summary_reals(data%summary)
+  end function summary_reals_of
+
+  pure function summary_ints_of(data) result(k)
+    type(restart_data_t), intent(in) :: data
+    integer, allocatable :: k(:)
+    k = summary_ints(data%summary)
+  end function summary_ints_of
 
   !> Euclidean length without the under- or overflow of the squares that norm2 has in
   !! gfortran (a displacement of 1e-297 mm stays 1e-297, one of 1e200 stays finite).
@@ -304,12 +352,15 @@ contains
 
   !> The stages of a nonlinear model step by step: the stiffness the method asks for, the
   !! iterations of each (sub)step, cut-backs, and the steps carried unconverged.
-  subroutine run_nonlinear_stages(model, an, observer, summary, error)
+  subroutine run_nonlinear_stages(model, an, observer, summary, fingerprint, error, resume, stop_after)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     class(observer_t), intent(inout) :: observer
     type(analysis_summary_t), intent(inout) :: summary
+    integer(i8), intent(in) :: fingerprint           !! the model's, for the restart data written
     type(error_t), allocatable, intent(out) :: error
+    type(restart_data_t), intent(in), optional :: resume   !! continue after its step
+    integer, intent(in), optional :: stop_after            !! a test aid: fail after this step
     real(dp), allocatable :: df(:, :), duc(:, :), dps(:), r(:)
     real(dp) :: h, done, rnorm, pnorm, t_start
     integer :: s, k, step, iters, cut, nfact0, iters_step, opened, mechanism, total_steps
@@ -318,39 +369,66 @@ contains
     type(factor_state_t) :: f              !! the factor held, carried from stage to stage
     class(solution_method_t), allocatable :: method
     logical, allocatable :: fully_open(:)
+    integer :: s_first, k_first, k_start
+    logical :: mid_stage
 
     allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%eq%map%neq), &
               fully_open(size(model%groups)))
     fully_open = .false.
     step = 0
+    s_first = 1
+    k_first = 1
+    if (present(resume)) then
+      ! Continue after the step of the restart data: its counters, factor state and notes.
+      step = resume%step
+      s_first = resume%stage
+      k_first = resume%step_in_stage + 1
+      f = resume%factor
+      fully_open = resume%fully_open
+      run_notes = resume%run_notes
+      if (k_first > model%stages(s_first)%steps) then
+        s_first = s_first + 1
+        k_first = 1
+      end if
+      call observer%progress('continued from ' // resume%source // ' after step ' // str(resume%step) // &
+                             ' (stage ' // model%stages(resume%stage)%name // ', step ' // &
+                             str(resume%step_in_stage) // ')')
+    end if
     total_steps = sum(model%stages%steps)
     t_start = wall_clock()
-    do s = 1, size(model%stages)
+    do s = s_first, size(model%stages)
       associate (st => model%stages(s), c => model%stages(s)%controls)
         call new_solution_method(c%method, method, error)
         if (allocated(error)) return
-        call change_supports(model, an, s, changed, summary, error, observer)
-        if (allocated(error)) return
-        if (changed) then
-          deallocate (r)
-          allocate (r(an%eq%map%neq))
-          f%have_factor = .false.     ! a new set of equations: factorize again, whatever the method
-        end if
-        call activate_groups(model, an, s, born)
-        if (s == 1 .or. born .or. changed) then
-          call check_born_nodes(model, an, s, error)
+        ! A run continued within a stage: the stage has started (supports, births, factor state
+        ! restored); only its increments are computed again.
+        mid_stage = s == s_first .and. k_first > 1
+        k_start = 1
+        if (mid_stage) k_start = k_first
+        if (.not. mid_stage) then
+          call change_supports(model, an, s, changed, summary, error, observer)
           if (allocated(error)) return
-          ! New elements change the stiffness: refactorize (the tangent, or the initial
-          ! stiffness for that method) before the stage's first step.
-          if (s > 1 .and. method%refactors_for_new_elements()) f%have_factor = .false.
-          if (s > 1) f%rel_prev = huge(1.0_dp)
+          if (changed) then
+            deallocate (r)
+            allocate (r(an%eq%map%neq))
+            f%have_factor = .false.     ! a new set of equations: factorize again, whatever the method
+          end if
+          call activate_groups(model, an, s, born)
+          if (s == 1 .or. born .or. changed) then
+            call check_born_nodes(model, an, s, error)
+            if (allocated(error)) return
+            ! New elements change the stiffness: refactorize (the tangent, or the initial
+            ! stiffness for that method) before the stage's first step.
+            if (s > 1 .and. method%refactors_for_new_elements()) f%have_factor = .false.
+            if (s > 1) f%rel_prev = huge(1.0_dp)
+          end if
         end if
         call stage_increments(model, an, s, df, duc, dps, error)
         if (allocated(error)) return
         call observer%progress('stage ' // st%name // ': ' // str(st%steps) // ' steps, method ' // &
                                trim(method_names(c%method)) // ', at most ' // str(c%max_iterations) // &
                                ' iterations per step')
-        do k = 1, st%steps
+        do k = k_start, st%steps
           step = step + 1
           done = 0.0_dp
           h = 1.0_dp
@@ -435,6 +513,19 @@ contains
                              f%rel_prev, error)
             if (allocated(error)) return
           end if
+          if (model%restart_every > 0) then
+            if (mod(step, model%restart_every) == 0) then
+              call checkpoint(an, observer, summary, f, fingerprint, step, s, k, fully_open, run_notes, error)
+              if (allocated(error)) return
+            end if
+          end if
+          if (present(stop_after)) then
+            if (step == stop_after) then
+              call fatal_error(error, err_solver, model%deck_file // ': stopped after step ' // str(step) // &
+                               ' (--stop-after-step, a test aid that stands for a run that dies)')
+              return
+            end if
+          end if
         end do
       end associate
     end do
@@ -452,6 +543,32 @@ contains
                                                'the nearest symmetric positive semi-definite matrix was ' // &
                                                'factorized and the exact residual iterated on')
   end subroutine run_nonlinear_stages
+
+  !> Hand the restart data of the end of step `step` (step k of stage s) to the observer:
+  !! the analysis state, the factor state, the totals so far and the run's notes.
+  subroutine checkpoint(an, observer, summary, f, fingerprint, step, s, k, fully_open, run_notes, error)
+    type(analysis_t), intent(in) :: an
+    class(observer_t), intent(inout) :: observer
+    type(analysis_summary_t), intent(in) :: summary
+    type(factor_state_t), intent(in) :: f
+    integer(i8), intent(in) :: fingerprint
+    integer, intent(in) :: step, s, k
+    logical, intent(in) :: fully_open(:)
+    character(len=:), allocatable, intent(in) :: run_notes
+    type(error_t), allocatable, intent(out) :: error
+    type(restart_data_t) :: data
+    data%fingerprint = fingerprint
+    data%step = step
+    data%stage = s
+    data%step_in_stage = k
+    call save_state(an, data)
+    data%factor = f
+    data%summary = summary
+    data%fully_open = fully_open
+    data%run_notes = ''
+    if (allocated(run_notes)) data%run_notes = run_notes
+    call observer%checkpoint(data, error)
+  end subroutine checkpoint
 
   !> Record that stage `st` ended with the unbalanced force r (|R| / |P| = rel) above its
   !! tolerance: the run is not converged, and the largest such residual is kept with where.

@@ -4,6 +4,7 @@
 module feps_observer
   use feps_kinds, only: dp
   use feps_error, only: error_t
+  use feps_restart_data, only: restart_data_t
   implicit none
   private
 
@@ -36,6 +37,7 @@ module feps_observer
   contains
     procedure(progress_interface), deferred :: progress
     procedure(step_interface), deferred :: write_step
+    procedure :: checkpoint
   end type observer_t
 
   abstract interface
@@ -53,5 +55,14 @@ module feps_observer
       type(error_t), allocatable, intent(out) :: error
     end subroutine step_interface
   end interface
+
+contains
+
+  !> Restart data of the end of a step (RESTART, --restart-every) to keep. Default: none kept.
+  subroutine checkpoint(self, data, error)
+    class(observer_t), intent(inout) :: self
+    type(restart_data_t), intent(in) :: data
+    type(error_t), allocatable, intent(out) :: error
+  end subroutine checkpoint
 
 end module feps_observer

@@ -5,7 +5,7 @@ module feps_paths
   implicit none
   private
 
-  public :: is_xdmf_name, xdmf_file_name
+  public :: is_xdmf_name, xdmf_file_name, restart_file_name
 
 contains
 
@@ -35,5 +35,20 @@ contains
       xdmf = path // '.xmf'
     end if
   end function xdmf_file_name
+
+  !> The checkpoint file beside the results file `path` (RESTART, --restart-every): its
+  !! extension replaced by '.restart.h5', or '.restart.h5' appended, as for the XDMF file.
+  pure function restart_file_name(path) result(restart)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: restart
+    integer :: slash, dot
+    slash = index(path, '/', back=.true.)
+    dot = index(path, '.', back=.true.)
+    if (dot > slash + 1) then
+      restart = path(:dot - 1) // '.restart.h5'
+    else
+      restart = path // '.restart.h5'
+    end if
+  end function restart_file_name
 
 end module feps_paths

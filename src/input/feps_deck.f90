@@ -12,7 +12,7 @@ module feps_deck
                        max_mesh_elements
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian, &
                                     csys_cylindrical
-  use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
+  use feps_model, only: model_t, max_total_steps, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, known_fields, line_search_refusal
   use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
@@ -47,6 +47,7 @@ module feps_deck
     logical :: fields_given = .false.            !! a FIELDS record came: only what it names
     integer :: solver_line = 0                   !! line of the SOLVER record (0: none yet)
     integer :: output_line = 0                   !! line of the OUTPUT record (0: none yet)
+    integer :: restart_line = 0                  !! line of the RESTART record (0: none yet)
   end type deck_state_t
 
 contains
@@ -173,6 +174,8 @@ contains
       call read_fields(records(pos), model, st, error)
     case ('OUTPUT')
       call read_output(records(pos), model, st, error)
+    case ('RESTART')
+      call read_restart(records(pos), model, st, error)
     case ('%')
       call input_error(error, records(pos)%file, records(pos)%line, &
                        'a % record outside a DATAIN block (no A record opened one)', 1)
@@ -673,6 +676,34 @@ contains
       call input_error(error, rec%file, field_line(rec, 2), 'results file "' // &
                        model%output_file // '" must not end in .xmf (the XDMF file beside it takes that name)', 2)
   end subroutine read_output
+
+  !> RESTART, EVERY=n: write restart data (the checkpoint file beside the results) every n
+  !! steps, counted over all stages, so that a run that dies can be continued (feps --restart).
+  subroutine read_restart(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: key, value
+    if (st%restart_line > 0) then
+      call input_error(error, rec%file, field_line(rec, 1), 'RESTART is given twice (first at line ' // &
+                       str(st%restart_line) // ')', 1)
+      return
+    end if
+    st%restart_line = rec%line
+    call require_fields(rec, 2, error)
+    if (allocated(error)) return
+    call forbid_extra_fields(rec, 2, error)
+    if (allocated(error)) return
+    call key_value(rec, 2, 'EVERY=n', key, value, error)
+    if (allocated(error)) return
+    if (key /= 'EVERY') then
+      call input_error(error, rec%file, field_line(rec, 2), 'unknown RESTART option "' // field_text(rec, 2) // &
+                       '" (RESTART takes EVERY=n: restart data every n steps)', 2)
+      return
+    end if
+    call parse_int(value, 1, max_total_steps, model%restart_every, error, rec, 2, 'EVERY')
+  end subroutine read_restart
 
   !> FIELDS, name [, name ...] [, CSYS=n]: write only the named result fields (several records
   !! add up); CSYS names the cylindrical system of stress_cyl (default 3, about the global z).

@@ -264,6 +264,7 @@ module feps_model
     character(len=:), allocatable :: solver                !! 'cholmod' or 'skyline'
     character(len=:), allocatable :: output_file
     type(output_fields_t) :: fields                        !! result fields to write
+    integer :: restart_every = 0                           !! RESTART, EVERY=n: restart data every n steps (0: none)
     logical :: mesh_only = .false.                         !! a file holding only a DATAIN mesh
     logical :: plane_strain = .false.                      !! a 2D model: uz = 0 at every node
     character(len=name_len), allocatable :: parameter_names(:)    !! PARAMETERS: the campaign's own labels

@@ -4,9 +4,11 @@
 !! feps_nodal_fields makes of them.
 module feps_results_observer
   use feps_kinds, only: dp
-  use feps_error, only: error_t
+  use feps_error, only: error_t, str
   use feps_model, only: model_t
   use feps_observer, only: observer_t, step_result_t, group_result_t
+  use feps_restart_data, only: restart_data_t
+  use feps_restart_file, only: write_restart_point
   use feps_results_file, only: results_file_t
   use feps_principal, only: principal_values
   use feps_element_catalog, only: point_coordinates, family_solid, family_interface, family_bar
@@ -43,9 +45,11 @@ module feps_results_observer
     type(model_t), pointer :: model => null()
     type(group_points_t), allocatable :: points(:)        !! per group, for stress_cyl
     procedure(line_sink), pointer, nopass :: sink => null()
+    character(len=:), allocatable :: restart_path         !! the checkpoint file (RESTART); unallocated: none
   contains
     procedure :: progress => observer_progress
     procedure :: write_step => observer_write_step
+    procedure :: checkpoint => observer_checkpoint
   end type results_observer_t
 
 contains
@@ -55,6 +59,17 @@ contains
     character(len=*), intent(in) :: line
     if (associated(self%sink)) call self%sink(line)
   end subroutine observer_progress
+
+  !> Restart data: added to the checkpoint file beside the results (feps_restart_file).
+  subroutine observer_checkpoint(self, data, error)
+    class(results_observer_t), intent(inout) :: self
+    type(restart_data_t), intent(in) :: data
+    type(error_t), allocatable, intent(out) :: error
+    if (.not. allocated(self%restart_path)) return
+    call write_restart_point(self%restart_path, data, error)
+    if (.not. allocated(error)) call self%progress('  restart data of step ' // str(data%step) // ' written to ' // &
+                                                   self%restart_path)
+  end subroutine observer_checkpoint
 
   !> One step: displacement, reactions; solids: stresses and the most tensile and most
   !! compressive principal stresses; interfaces: tractions with the point state, and the

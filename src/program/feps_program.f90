@@ -13,7 +13,9 @@ module feps_program
   use feps_strings, only: to_lower, shown, utf8_text_length, gib_text
   use feps_files, only: file_kind, file_kind_text, folder_of, folder_writable, file_missing, file_regular, &
                         file_directory, memory_limit_bytes
-  use feps_paths, only: xdmf_file_name
+  use feps_paths, only: xdmf_file_name, restart_file_name
+  use feps_restart_data, only: restart_data_t
+  use feps_restart_file, only: read_restart_point
   use feps_records, only: real_from_text
   use feps_clock, only: wall_clock
   use feps_incremental_analysis, only: analysis_summary_t, run_analysis, check_analysis
@@ -39,6 +41,10 @@ module feps_program
     logical :: quiet = .false.
     logical :: check_only = .false.             !! check the deck and the model, solve nothing, write nothing
     logical :: strict = .false.                 !! a run that ends out of balance fails (exit 1, no results)
+    character(len=:), allocatable :: restart    !! --restart FILE: continue from its restart data when not empty
+    integer :: restart_step = 0                 !! --step N: the restart point (0: the last in the file)
+    integer :: restart_every = 0                !! --restart-every N: overrides the deck's RESTART when positive
+    integer :: stop_after_step = 0              !! --stop-after-step K (a test aid): fail after step K when positive
   end type run_options_t
 
   !> What the program reports after a run: the analysis's totals (the parent type, filled by
@@ -58,6 +64,9 @@ module feps_program
     character(len=:), allocatable :: fields         !! result fields written (FIELDS)
     character(len=32), allocatable :: group_names(:)
     integer, allocatable :: group_elements(:)
+    character(len=:), allocatable :: restart_from   !! --restart: the checkpoint file continued from
+    integer :: restart_step = 0                     !! and the step after which the run continued
+    character(len=:), allocatable :: restart_file   !! the checkpoint file written (RESTART), if any
   end type run_summary_t
 
   public :: run_feps, unbalanced_text, line_sink
@@ -80,6 +89,8 @@ contains
     character(len=:), allocatable :: solver, output
     real(dp) :: t0
     integer :: g
+    type(restart_data_t) :: resume
+    logical :: resuming
 
     t0 = wall_clock()
     call read_deck(options%deck, model, error)
@@ -143,6 +154,16 @@ contains
     end if
     call check_reports(model, error)
     if (allocated(error)) return
+    if (options%restart_every > 0) model%restart_every = options%restart_every
+    resuming = .false.
+    if (allocated(options%restart)) resuming = len(options%restart) > 0
+    if (resuming .and. .not. options%check_only) then
+      ! The restart data are read (and their step checked) before the results are started.
+      call read_restart_point(options%restart, options%restart_step, resume, error)
+      if (allocated(error)) return
+      summary%restart_from = options%restart
+      summary%restart_step = resume%step
+    end if
     if (options%check_only) then
       if (present(sink)) obs%sink => sink
       call check_only(model, solver, obs, summary, error)
@@ -154,8 +175,23 @@ contains
     call obs%h5%create(output, error)
     if (allocated(error)) return
     obs%writing = .true.
+    if (model%restart_every > 0) then
+      obs%restart_path = restart_file_name(output)
+      summary%restart_file = obs%restart_path
+    end if
     call write_mesh(obs%h5, model, error)
-    if (.not. allocated(error)) call run_analysis(model, solver, obs, summary%analysis_summary_t, error)
+    if (.not. allocated(error)) then
+      if (resuming .and. options%stop_after_step > 0) then
+        call run_analysis(model, solver, obs, summary%analysis_summary_t, error, resume=resume, &
+                          stop_after=options%stop_after_step)
+      else if (resuming) then
+        call run_analysis(model, solver, obs, summary%analysis_summary_t, error, resume=resume)
+      else if (options%stop_after_step > 0) then
+        call run_analysis(model, solver, obs, summary%analysis_summary_t, error, stop_after=options%stop_after_step)
+      else
+        call run_analysis(model, solver, obs, summary%analysis_summary_t, error)
+      end if
+    end if
     if (.not. allocated(error) .and. options%strict .and. .not. summary%converged) &
       call fatal_error(error, err_solver, options%deck // ': ' // unbalanced_text(summary) // &
                        ' (--strict: a run that ends out of balance fails)')
@@ -166,6 +202,9 @@ contains
                           any(error%code == [err_input, err_input_file, err_model]))
       return
     end if
+    ! no restart point written: a linear model, or fewer steps than RESTART's EVERY
+    if (allocated(summary%restart_file) .and. (summary%linear .or. summary%steps < model%restart_every)) &
+      deallocate (summary%restart_file)
     summary%fields = model%fields%names()
     allocate (summary%group_names(size(model%groups)), summary%group_elements(size(model%groups)))
     do g = 1, size(model%groups)
@@ -493,6 +532,10 @@ contains
     if (.not. allocated(error)) call h5%write_summary_real('max_displacement', summary%max_displacement, error)
     if (.not. allocated(error) .and. summary%min_pivot_ratio > 0.0_dp) call h5%write_summary_real( &
       'condition_estimate', summary%max_pivot_ratio / summary%min_pivot_ratio, error)
+    if (allocated(summary%restart_from) .and. .not. allocated(error)) then
+      call h5%write_summary_string('restart_from', summary%restart_from, error)
+      if (.not. allocated(error)) call h5%write_summary_int('restart_step', int(summary%restart_step, i8), error)
+    end if
     if (.not. allocated(error)) call h5%write_summary_int('steps', int(summary%steps, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('iterations', int(summary%iterations, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('factorizations', int(summary%factorizations, i8), error)

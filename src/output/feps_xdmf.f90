@@ -18,7 +18,7 @@ module feps_xdmf
   implicit none
   private
 
-  public :: write_xdmf, xdmf_topology_path, count_words, word
+  public :: write_xdmf, write_meshio_xdmf, xdmf_topology_path, count_words, word
 
   !> An element group as the XDMF file needs it.
   type, public :: xdmf_group_t
@@ -46,6 +46,7 @@ module feps_xdmf
     integer :: number = 0
     real(dp) :: load_factor = 0.0_dp
     type(xdmf_field_t), allocatable :: fields(:)
+    type(xdmf_field_t), allocatable :: cells(:)  !! each field's averages over every shown cell, for meshio
   end type xdmf_step_t
 
 contains
@@ -248,6 +249,101 @@ contains
     end function data_item
 
   end subroutine write_xdmf
+
+  !> Write the XDMF file `path` for meshio's time-series reader (meshio.xdmf.TimeSeriesReader),
+  !! describing the HDF5 file `hdf5_name`. That reader takes one mesh, the domain's uniform grid
+  !! (one Topology per group with an XDMF cell: one cell block each, in the groups' order), and a
+  !! temporal collection of uniform grids holding only Time and whole-dataset Attributes (no grid
+  !! data, no hyperslab), whose cell data it splits over all the cell blocks: so a cell field is
+  !! its dataset over every cell, `/xdmf/steps/<NNNN>/<kind>` (NaN for groups without it). A
+  !! group's nodal field is named `<field>/<group>`, as its dataset.
+  subroutine write_meshio_xdmf(path, hdf5_name, node_count, groups, steps, error)
+    character(len=*), intent(in) :: path
+    character(len=*), intent(in) :: hdf5_name
+    integer, intent(in) :: node_count
+    type(xdmf_group_t), intent(in) :: groups(:)
+    type(xdmf_step_t), intent(in) :: steps(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(text_file_t) :: file
+    integer :: i, g, f
+    character(len=:), allocatable :: h5, message, name
+
+    h5 = escape(hdf5_name)
+    call file%open(path, message)
+    if (len(message) > 0) then
+      call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // message)
+      return
+    end if
+    call file%write('<?xml version="1.0" ?>')
+    call file%write('<Xdmf Version="3.0">')
+    call file%write('  <Domain>')
+    if (node_count > 0) then
+      call file%write('    <Grid Name="mesh" GridType="Uniform">')
+      do g = 1, size(groups)
+        if (len(groups(g)%topology) == 0) cycle
+        call file%write('      <Topology TopologyType="' // groups(g)%topology // '" NumberOfElements="' // &
+                        str(groups(g)%element_count) // '" NodesPerElement="' // &
+                        str(groups(g)%nodes_per_element) // '">')
+        call file%write('        ' // item(groups(g)%element_count, groups(g)%nodes_per_element, 'Int', '4', &
+                        xdmf_topology_path(escape(groups(g)%name))))
+        call file%write('      </Topology>')
+      end do
+      call file%write('      <Geometry GeometryType="XYZ">')
+      call file%write('        ' // item(node_count, 3, 'Float', '8', '/mesh/coordinates'))
+      call file%write('      </Geometry>')
+      call file%write('    </Grid>')
+    end if
+    call file%write('    <Grid Name="steps" GridType="Collection" CollectionType="Temporal">')
+    do i = 1, size(steps)
+      if (node_count == 0) exit
+      call file%write('      <Grid Name="step ' // str(steps(i)%number) // '" GridType="Uniform">')
+      call file%write('        <Time Value="' // real_text(steps(i)%load_factor) // '"/>')
+      if (allocated(steps(i)%fields)) then
+        do f = 1, size(steps(i)%fields)
+          associate (field => steps(i)%fields(f))
+            if (.not. field%nodal .or. field%rows /= node_count) cycle
+            name = field%name
+            if (len(field%group) > 0) name = name // '/' // field%group
+            call put_whole(name, field, 'Node')
+          end associate
+        end do
+      end if
+      if (allocated(steps(i)%cells)) then
+        do f = 1, size(steps(i)%cells)
+          call put_whole(steps(i)%cells(f)%name, steps(i)%cells(f), 'Cell')
+        end do
+      end if
+      call file%write('      </Grid>')
+    end do
+    call file%write('    </Grid>')
+    call file%write('  </Domain>')
+    call file%write('</Xdmf>')
+    call file%close(message)
+    if (len(message) > 0) call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // message)
+
+  contains
+
+    !> An attribute of the whole dataset of `field`.
+    subroutine put_whole(attribute, field, center)
+      character(len=*), intent(in) :: attribute, center
+      type(xdmf_field_t), intent(in) :: field
+      call file%write('        <Attribute Name="' // escape(attribute) // '" AttributeType="' // &
+                      merge('Scalar', 'Matrix', field%columns == 1) // '" Center="' // center // '">')
+      call file%write('          ' // item(field%rows, field%columns, 'Float', '8', escape(field%dataset)))
+      call file%write('        </Attribute>')
+    end subroutine put_whole
+
+    !> A DataItem pointing into the HDF5 file; rows x columns as h5py sees the dataset.
+    function item(rows, columns, number_type, precision, dataset) result(line)
+      integer, intent(in) :: rows, columns
+      character(len=*), intent(in) :: number_type, precision, dataset
+      character(len=:), allocatable :: line
+      line = '<DataItem Dimensions="' // str(rows) // ' ' // str(columns) // '" NumberType="' // &
+             number_type // '" Precision="' // precision // '" Format="HDF">' // h5 // ':' // &
+             dataset // '</DataItem>'
+    end function item
+
+  end subroutine write_meshio_xdmf
 
   !> True when the three words of `components` end in x, y and z (global Cartesian components).
   pure logical function global_xyz(components)

@@ -1128,7 +1128,7 @@ python3 test/reference/check_xdmf_vtk.py "${xmfs[@]}" >"$tmp/out" 2>&1 \
 meshios=()
 for x in "${xmfs[@]}"; do [ -e "${x%.xmf}.meshio.xdmf" ] && meshios+=("${x%.xmf}.meshio.xdmf"); done
 [ "${#meshios[@]}" -eq "${#xmfs[@]}" ] && python3 test/reference/check_meshio.py "${meshios[@]}" >"$tmp/out" 2>&1 \
-  && ok "check_meshio.py: the ${#meshios[@]} meshio files beside them read back as their HDF5 files hold them" \
+  && ok "check_meshio.py: the ${#meshios[@]} meshio files beside them: $(grep -c ': ok with' "$tmp/out") read back as their HDF5 files hold them; skipped: $(grep ': skipped' "$tmp/out" | sed 's|^.*/||; s|: skipped.*block of | (|; s| (no.*|)|' | tr '\n' ' ')" \
   || bad "check_meshio.py: ${#meshios[@]} meshio files for ${#xmfs[@]} XDMF files: $(grep -v ': ok with' "$tmp/out" | head -c 400)"
 
 echo "$pass passed, $fail failed"

@@ -420,7 +420,7 @@ class Checker:
             with h5py.File(h5) as f:
                 types = {g: text(f[f"mesh/groups/{g}"].attrs["element_type"]) for g in f["mesh/groups"]}
             xmf = open(os.path.splitext(h5)[0] + ".xmf").read()
-            for grid, topo in re.findall(r'<Grid Name="([^"]+)"[^>]*>\s*<Topology ([^>]*)>', xmf):
+            for grid, topo in re.findall(r'<Grid Name="([^"]+)"[^>]*>\s*(?:<Time [^>]*/>\s*)?<Topology ([^>]*)>', xmf):
                 group = next((g for g in types if grid == g or grid.startswith(g + "_") or grid.endswith("_" + g)), None)
                 if group:
                     cells[types[group]] = topo

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Idempotent set-up of everything feps needs on a fresh Debian bookworm machine (run as root).
 # Debian: compiler, BLAS/LAPACK, SuiteSparse (CHOLMOD), METIS, HDF5 with Fortran bindings.
-# PyPI: fpm (the Fortran package manager), numpy, h5py, matplotlib, and vtk (only for
-# test/reference/check_xdmf_vtk.py: the XDMF files read as ParaView reads them).
+# PyPI: fpm (the Fortran package manager), numpy, h5py, matplotlib, vtk (only for
+# test/reference/check_xdmf_vtk.py: the XDMF files read as ParaView reads them) and meshio (5.3.5
+# checked; only for test/reference/check_meshio.py: the meshio file read by meshio's reader).
 set -euo pipefail
 
 debs=(gfortran libopenblas-dev liblapack-dev libsuitesparse-dev libmetis-dev
@@ -18,7 +19,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-py=(fpm numpy h5py matplotlib vtk)
+py=(fpm numpy h5py matplotlib vtk meshio)
 need_py=()
 for p in "${py[@]}"; do
   python3 -m pip show -q "$p" >/dev/null 2>&1 || need_py+=("$p")

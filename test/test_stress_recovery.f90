@@ -191,8 +191,8 @@ contains
                  abs=1.0e-10_dp * 100.0_dp)
       if (allocated(error)) return
     end do
-    call check(error, occurrences(xmf, '<Attribute Name="nodal_stress_sxx" AttributeType="Scalar" ' // &
-               'Center="Node">') == 1 .and. occurrences(xmf, 'nodal_principal/beam') == 2, &
+    call check(error, occurrences(xmf, '<Attribute Name="nodal_stress" AttributeType="Matrix" ' // &
+               'Center="Node">') == 1 .and. occurrences(xmf, 'nodal_principal/beam') == 1, &
                'the XDMF file shows the nodal fields')
   end subroutine test_bending
 

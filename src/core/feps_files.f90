@@ -94,7 +94,7 @@ contains
     call c_ignore_file_size_signal()
   end subroutine report_file_size_limit
 
-  !> Remember the temporary file `path` (slot 1: the results, 2: the XDMF file, 3: the restart checkpoint) to be removed
+  !> Remember the temporary file `path` (slot 1: the results, 2: the XDMF file, 3: meshio's, 4: the restart checkpoint) to be removed
   !! if the process exits while it is there (the Fortran runtime ends a run whose allocation
   !! fails without returning); '' forgets it, once it is renamed or removed.
   subroutine mark_partial_file(slot, path)

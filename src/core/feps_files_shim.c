@@ -124,7 +124,7 @@ void feps_ignore_file_size_signal(void)
  * exits without returning to feps, and left a half-written results file behind. The one piece
  * of state in feps outside its arguments, kept here because only an exit handler can act then;
  * a run that ends normally has removed or renamed these files and cleared them. */
-#define FEPS_PARTIAL_SLOTS 3
+#define FEPS_PARTIAL_SLOTS 4
 static char feps_partial[FEPS_PARTIAL_SLOTS][4096];
 static int feps_partial_registered = 0;
 
@@ -135,7 +135,7 @@ static void feps_remove_partials(void)
         if (feps_partial[i][0] != '\0') (void)feps_remove_regular(feps_partial[i]);
 }
 
-/* Remember `path` in slot (0, 1 or 2) as a file to remove at exit; "" forgets the slot. */
+/* Remember `path` in slot (0 .. 3) as a file to remove at exit; "" forgets the slot. */
 void feps_mark_partial(int slot, const char *path)
 {
     if (slot < 0 || slot >= FEPS_PARTIAL_SLOTS) return;

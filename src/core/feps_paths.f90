@@ -5,7 +5,7 @@ module feps_paths
   implicit none
   private
 
-  public :: is_xdmf_name, xdmf_file_name, restart_file_name
+  public :: is_xdmf_name, xdmf_file_name, restart_file_name, meshio_file_name
 
 contains
 
@@ -50,5 +50,14 @@ contains
       restart = path // '.restart.h5'
     end if
   end function restart_file_name
+  !> The XDMF file for meshio beside the results file `path`: the name of its XDMF file with
+  !! '.meshio.xdmf' for '.xmf' (`run.h5` -> `run.meshio.xdmf`), which no results name can take
+  !! (that of `run.meshio.xdmf` is `run.meshio.meshio.xdmf`).
+  pure function meshio_file_name(path) result(meshio)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: meshio
+    meshio = xdmf_file_name(path)
+    meshio = meshio(:len(meshio) - 4) // '.meshio.xdmf'
+  end function meshio_file_name
 
 end module feps_paths

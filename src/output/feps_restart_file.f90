@@ -87,7 +87,7 @@ contains
       call fatal_error(error, err_io, 'cannot create the restart file ' // part)
       return
     end if
-    call mark_partial_file(3, part)
+    call mark_partial_file(4, part)
     call h5gcreate_f(new_id, '/restart', gid, hdferr)
     if (hdferr >= 0) call h5gclose_f(gid, hdferr)
     if (have_old) then
@@ -112,7 +112,7 @@ contains
       call fatal_error(error, err_io, 'cannot write the restart file ' // path // ' (step ' // str(data%step) // ')')
       removed = remove_regular_file(part)
     end if
-    call mark_partial_file(3, '')
+    call mark_partial_file(4, '')
   end subroutine write_restart_point
 
   !> The fingerprint that the first two integers of a point hold (31 bits each).

@@ -13,12 +13,13 @@
 module feps_results_file
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char, c_loc, c_ptr
   use feps_kinds, only: dp, i8
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use feps_error, only: error_t, fatal_error, err_io, err_internal, err_solver, str
   use feps_element_catalog, only: element_info_t, element_info, family_name, point_coordinates
   use feps_result_schema, only: field_name, family_field
-  use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, xdmf_topology_path, count_words, word
-  use feps_paths, only: is_xdmf_name, xdmf_file_name
+  use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, write_meshio_xdmf, xdmf_topology_path, &
+                       count_words, word
+  use feps_paths, only: is_xdmf_name, xdmf_file_name, meshio_file_name
   use feps_files, only: remove_regular_file, mark_partial_file
   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5dont_atexit_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
                   H5F_ACC_TRUNC_F, h5gcreate_f, h5gopen_f, h5gclose_f, h5lexists_f, &
@@ -33,6 +34,15 @@ module feps_results_file
 
   public :: results_file_t, step_group_name
 
+  !> Element averages of one field and group in the step being written, kept until the step
+  !! ends: the meshio file needs each field's averages over every cell of the mesh in one dataset.
+  type :: pending_cells_t
+    character(len=:), allocatable :: kind
+    character(len=:), allocatable :: components
+    integer :: group = 0
+    real(dp), allocatable :: averages(:, :)
+  end type pending_cells_t
+
   !> An HDF5 results file being written; see the module notes for the life cycle.
   type :: results_file_t
     private
@@ -45,6 +55,7 @@ module feps_results_file
     integer :: node_count = 0                    ! 0 until write_mesh
     type(xdmf_group_t), allocatable :: groups(:)
     type(xdmf_step_t), allocatable :: steps(:)
+    type(pending_cells_t), allocatable :: pending(:)  ! this step's element averages
   contains
     procedure :: create
     procedure :: write_mesh
@@ -106,7 +117,8 @@ contains
     self%node_count = 0
     if (allocated(self%groups)) deallocate (self%groups)
     if (allocated(self%steps)) deallocate (self%steps)
-    allocate (self%groups(0), self%steps(0))
+    if (allocated(self%pending)) deallocate (self%pending)
+    allocate (self%groups(0), self%steps(0), self%pending(0))
 
     ! No HDF5 clean-up at exit: a file whose close failed (the disk full) stays open inside the
     ! library, and its exit handler, flushing it once more, crashed the program after feps had
@@ -263,6 +275,8 @@ contains
 
     call require_open(self, error)
     if (allocated(error)) return
+    call flush_cells(self, error)
+    if (allocated(error)) return
     if (step < 0) then
       call fatal_error(error, err_internal, 'begin_step: negative step number ' // str(step))
       return
@@ -292,7 +306,7 @@ contains
     grown(:size(self%steps)) = self%steps
     grown(size(grown))%number = step
     grown(size(grown))%load_factor = load_factor
-    allocate (grown(size(grown))%fields(0))
+    allocate (grown(size(grown))%fields(0), grown(size(grown))%cells(0))
     call move_alloc(grown, self%steps)
   end subroutine begin_step
 
@@ -406,7 +420,88 @@ contains
     call write_real_dataset(self, cell_dataset, averages, components, error)
     if (allocated(error)) return
     call add_field(self%steps(istep), kind, cell_dataset, group, components, .false., nelem, size(values, 1))
+    if (igroup > 0) then
+      if (len(self%groups(igroup)%topology) > 0) call keep_cells(self, kind, igroup, components, averages)
+    end if
   end subroutine write_gauss
+
+  !> Keep the element averages of `kind` of group `igroup` until the step ends (flush_cells).
+  subroutine keep_cells(self, kind, igroup, components, averages)
+    type(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: kind, components
+    integer, intent(in) :: igroup
+    real(dp), intent(in) :: averages(:, :)
+    type(pending_cells_t), allocatable :: grown(:)
+    integer :: n
+    n = size(self%pending)
+    allocate (grown(n + 1))
+    grown(:n) = self%pending
+    grown(n + 1)%kind = kind
+    grown(n + 1)%components = components
+    grown(n + 1)%group = igroup
+    grown(n + 1)%averages = averages
+    call move_alloc(grown, self%pending)
+  end subroutine keep_cells
+
+  !> End of a step's element averages: `/xdmf/steps/<NNNN>/<kind>` (h5py: ncell x ncomp) for each
+  !! field, the averages of every cell the XDMF files show (the groups with an XDMF cell, in
+  !! their order), NaN in the rows of groups without the field: the one dataset per field that
+  !! meshio's reader splits over the cell blocks of its mesh. A field whose groups differ in
+  !! their number of components is left out (meshio cannot hold it; none does today).
+  subroutine flush_cells(self, error)
+    type(results_file_t), intent(inout) :: self
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: first(:)
+    real(dp), allocatable :: values(:, :)
+    integer :: p, q, g, total, ncomp, istep, n
+    logical :: seen, same
+    type(xdmf_field_t), allocatable :: grown(:)
+    character(len=:), allocatable :: dataset
+
+    if (size(self%pending) == 0 .or. size(self%steps) == 0) return
+    istep = size(self%steps)
+    allocate (first(size(self%groups)))
+    total = 0
+    do g = 1, size(self%groups)
+      first(g) = total + 1
+      if (len(self%groups(g)%topology) > 0) total = total + self%groups(g)%element_count
+    end do
+    do p = 1, size(self%pending)
+      seen = .false.
+      same = .true.
+      ncomp = size(self%pending(p)%averages, 1)
+      do q = 1, size(self%pending)
+        if (self%pending(q)%kind /= self%pending(p)%kind) cycle
+        if (q < p) seen = .true.
+        if (size(self%pending(q)%averages, 1) /= ncomp) same = .false.
+      end do
+      if (seen .or. .not. same) cycle
+      allocate (values(ncomp, total))
+      values = ieee_value(0.0_dp, ieee_quiet_nan)
+      do q = p, size(self%pending)
+        if (self%pending(q)%kind /= self%pending(p)%kind) cycle
+        g = self%pending(q)%group
+        values(:, first(g):first(g) + self%groups(g)%element_count - 1) = self%pending(q)%averages
+      end do
+      dataset = '/xdmf/steps/' // step_group_name(self%steps(istep)%number) // '/' // self%pending(p)%kind
+      call write_real_dataset(self, dataset, values, self%pending(p)%components, error)
+      deallocate (values)
+      if (allocated(error)) return
+      n = size(self%steps(istep)%cells)
+      allocate (grown(n + 1))
+      grown(:n) = self%steps(istep)%cells
+      grown(n + 1)%name = self%pending(p)%kind
+      grown(n + 1)%dataset = dataset
+      grown(n + 1)%group = ''
+      grown(n + 1)%components = self%pending(p)%components
+      grown(n + 1)%nodal = .false.
+      grown(n + 1)%rows = total
+      grown(n + 1)%columns = ncomp
+      call move_alloc(grown, self%steps(istep)%cells)
+    end do
+    deallocate (self%pending)
+    allocate (self%pending(0))
+  end subroutine flush_cells
 
   !> String attribute `key` of the group `/summary` (replaced if it exists).
   subroutine write_summary_string(self, key, value, error)
@@ -604,17 +699,19 @@ contains
     if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute ' // key)
   end subroutine write_int8_attribute
 
-  !> Close the HDF5 file, write the XDMF file beside it (as `<xmf>.part`) and rename both to
-  !! their names, the results first. On an error nothing of either is left (the caller's
+  !> Close the HDF5 file, write the XDMF files beside it (ParaView's and meshio's, as `.part`) and
+  !! rename the three to their names, the results first. On an error nothing of either is left (the caller's
   !! `discard` then removes what an earlier run left under these names).
   subroutine close_file(self, error)
     class(results_file_t), intent(inout) :: self
     type(error_t), allocatable, intent(out) :: error
-    character(len=:), allocatable :: xdmf_path
+    character(len=:), allocatable :: xdmf_path, meshio_path
     integer :: hdferr
     logical :: removed
 
     call require_open(self, error)
+    if (allocated(error)) return
+    call flush_cells(self, error)
     if (allocated(error)) return
     call release_handles(self, hdferr)
     if (hdferr < 0) then
@@ -624,16 +721,24 @@ contains
     end if
 
     xdmf_path = xdmf_file_name(self%path)
+    meshio_path = meshio_file_name(self%path)
     call mark_partial_file(2, xdmf_path // '.part')
+    call mark_partial_file(3, meshio_path // '.part')
     call write_xdmf(xdmf_path // '.part', base_name(self%path), self%node_count, self%groups, self%steps, error)
+    if (.not. allocated(error)) call write_meshio_xdmf(meshio_path // '.part', base_name(self%path), &
+                                                       self%node_count, self%groups, self%steps, error)
     if (allocated(error)) then
       removed = remove_regular_file(xdmf_path // '.part')
+      removed = remove_regular_file(meshio_path // '.part')
       call mark_partial_file(2, '')
+      call mark_partial_file(3, '')
       return
     end if
     if (c_rename(self%part_path // c_null_char, self%path // c_null_char) /= 0) then
       removed = remove_regular_file(xdmf_path // '.part')
+      removed = remove_regular_file(meshio_path // '.part')
       call mark_partial_file(2, '')
+      call mark_partial_file(3, '')
       call fatal_error(error, err_io, 'cannot rename ' // self%part_path // ' to ' // self%path)
       return
     end if
@@ -641,16 +746,27 @@ contains
     call mark_partial_file(1, '')
     if (c_rename(xdmf_path // '.part' // c_null_char, xdmf_path // c_null_char) /= 0) then
       removed = remove_regular_file(xdmf_path // '.part')
+      removed = remove_regular_file(meshio_path // '.part')
       removed = remove_regular_file(self%path)
       call mark_partial_file(2, '')
+      call mark_partial_file(3, '')
       call fatal_error(error, err_io, 'cannot rename ' // xdmf_path // '.part to ' // xdmf_path)
       return
     end if
     call mark_partial_file(2, '')
+    if (c_rename(meshio_path // '.part' // c_null_char, meshio_path // c_null_char) /= 0) then
+      removed = remove_regular_file(meshio_path // '.part')
+      removed = remove_regular_file(xdmf_path)
+      removed = remove_regular_file(self%path)
+      call mark_partial_file(3, '')
+      call fatal_error(error, err_io, 'cannot rename ' // meshio_path // '.part to ' // meshio_path)
+      return
+    end if
+    call mark_partial_file(3, '')
   end subroutine close_file
 
   !> Give up the file: close what is open and delete `<path>.part`, and the results and XDMF
-  !! files an earlier run left under this name: after a failed run they would pass for its
+  !! files (both: ParaView's and meshio's) an earlier run left under this name: after a failed run they would pass for its
   !! results. With keep_earlier (a deck refused before its first step) only `<path>.part` goes.
   !! Only regular files are removed, never a directory (the program refuses such result paths
   !! before a run). Harmless after `close`, twice, or before `create`.
@@ -667,6 +783,7 @@ contains
       if (.not. keep) then
         removed = remove_regular_file(self%path)
         removed = remove_regular_file(xdmf_file_name(self%path))
+        removed = remove_regular_file(meshio_file_name(self%path))
       end if
       self%part_exists = .false.
       call mark_partial_file(1, '')

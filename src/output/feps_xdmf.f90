@@ -1,11 +1,16 @@
-!> XDMF (version 3 XML) description of a feps HDF5 results file, so that ParaView can open it.
+!> XDMF (version 3 XML) description of a feps HDF5 results file, so that ParaView (its "XDMF Reader"
+!! and its "Xdmf3ReaderS/T") can open it.
 !!
 !! The XML only points into the HDF5 file: geometry from `/mesh/coordinates`, topology from the
 !! 0-based connectivity copies `/xdmf/<group>/topology`, attributes from the nodal datasets and the
-!! element averages `/steps/<NNNN>/cell/<kind>/<group>`. Steps form a temporal collection (time =
-!! step number, because load factors may repeat across stages); each step is a spatial collection
-!! of one uniform grid per element group. Every feps element type has an XDMF cell; a type
-!! without one (none today) would be left out.
+!! element averages `/steps/<NNNN>/cell/<kind>/<group>`, each a whole dataset (the XDMF 3 readers
+!! skip hyperslabs as "unrecognized array type"). The steps of a group form a temporal collection
+!! named after it, inside one spatial collection: readers that make grid names unique over the
+!! file (both XDMF libraries do) then never rename a group from step to step, as they did when
+!! each step was a spatial collection of the groups. Time is the step's load factor (stage - 1 +
+!! the fraction of the stage applied: cumulative over the stages, so it grows from step to step);
+!! the step number is grid (field) data. Every feps element type has an XDMF cell; a type without
+!! one (none today) would be left out.
 module feps_xdmf
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_io, str
@@ -13,7 +18,7 @@ module feps_xdmf
   implicit none
   private
 
-  public :: write_xdmf, xdmf_topology_path, count_words, word
+  public :: write_xdmf, write_meshio_xdmf, xdmf_topology_path, count_words, word
 
   !> An element group as the XDMF file needs it.
   type, public :: xdmf_group_t
@@ -41,6 +46,7 @@ module feps_xdmf
     integer :: number = 0
     real(dp) :: load_factor = 0.0_dp
     type(xdmf_field_t), allocatable :: fields(:)
+    type(xdmf_field_t), allocatable :: cells(:)  !! each field's averages over every shown cell, for meshio
   end type xdmf_step_t
 
 contains
@@ -107,7 +113,7 @@ contains
     type(xdmf_step_t), intent(in) :: steps(:)
     type(error_t), allocatable, intent(out) :: error
     type(text_file_t) :: file
-    integer :: i
+    integer :: i, g
     character(len=:), allocatable :: h5, message
 
     h5 = escape(hdf5_name)
@@ -124,16 +130,18 @@ contains
     if (node_count > 0) then
       if (size(steps) == 0) then
         call put('    <Grid Name="mesh" GridType="Collection" CollectionType="Spatial">')
-        call put_group_grids(6, 0)
+        do g = 1, size(groups)
+          if (len(groups(g)%topology) > 0) call put_group_grid(6, g, 0)
+        end do
         call put('    </Grid>')
       else
-        call put('    <Grid Name="steps" GridType="Collection" CollectionType="Temporal">')
-        do i = 1, size(steps)
-          call put('      <Grid Name="step ' // str(steps(i)%number) // &
-                   '" GridType="Collection" CollectionType="Spatial">')
-          call put('        <Time Value="' // str(steps(i)%number) // '"/>')
-          call put('        <Information Name="load_factor" Value="' // real_text(steps(i)%load_factor) // '"/>')
-          call put_group_grids(8, i)
+        call put('    <Grid Name="results" GridType="Collection" CollectionType="Spatial">')
+        do g = 1, size(groups)
+          if (len(groups(g)%topology) == 0) cycle
+          call put('      <Grid Name="' // escape(groups(g)%name) // '" GridType="Collection" CollectionType="Temporal">')
+          do i = 1, size(steps)
+            call put_group_grid(8, g, i)
+          end do
           call put('      </Grid>')
         end do
         call put('    </Grid>')
@@ -155,89 +163,80 @@ contains
       call file%write(line)
     end subroutine put
 
-    !> One uniform grid per group with an XDMF topology; fields of step `istep` (0: none).
-    subroutine put_group_grids(indent, istep)
-      integer, intent(in) :: indent, istep
+    !> The uniform grid of group `g` at step `istep` (0: the mesh alone, no time and no fields).
+    subroutine put_group_grid(indent, g, istep)
+      integer, intent(in) :: indent, g, istep
       character(len=:), allocatable :: pad, topology
-      integer :: g, f
+      integer :: f
       pad = repeat(' ', indent)
-      do g = 1, size(groups)
-        topology = groups(g)%topology
-        if (len(topology) == 0) cycle
-        call put(pad // '<Grid Name="' // escape(groups(g)%name) // '" GridType="Uniform">')
-        if (topology == 'Polyline') then
-          call put(pad // '  <Topology TopologyType="' // topology // '" NumberOfElements="' // &
-                   str(groups(g)%element_count) // '" NodesPerElement="' // &
-                   str(groups(g)%nodes_per_element) // '">')
-        else
-          call put(pad // '  <Topology TopologyType="' // topology // '" NumberOfElements="' // &
-                   str(groups(g)%element_count) // '">')
-        end if
-        call put(pad // '    ' // data_item(groups(g)%element_count, groups(g)%nodes_per_element, &
-                 'Int', '4', xdmf_topology_path(escape(groups(g)%name))))
-        call put(pad // '  </Topology>')
-        call put(pad // '  <Geometry GeometryType="XYZ">')
-        call put(pad // '    ' // data_item(node_count, 3, 'Float', '8', '/mesh/coordinates'))
-        call put(pad // '  </Geometry>')
-        if (istep > 0) then
-          ! the step's load factor as grid (field) data, which readers show beside the arrays
-          ! (XDMF readers ignore the step's Information element)
-          call put(pad // '  <Attribute Name="load_factor" AttributeType="Scalar" Center="Grid">')
-          call put(pad // '    <DataItem Dimensions="1" NumberType="Float" Precision="8" Format="XML">' // &
-                   real_text(steps(istep)%load_factor) // '</DataItem>')
-          call put(pad // '  </Attribute>')
-          if (allocated(steps(istep)%fields)) then
-            do f = 1, size(steps(istep)%fields)
-              associate (field => steps(istep)%fields(f))
-                if (field%nodal) then
-                  if (field%rows == node_count .and. (len(field%group) == 0 .or. field%group == groups(g)%name)) &
-                    call put_attributes(pad // '  ', field, 'Node')
-                else if (field%group == groups(g)%name .and. field%rows == groups(g)%element_count) then
-                  call put_attributes(pad // '  ', field, 'Cell')
-                end if
-              end associate
-            end do
-          end if
-        end if
+      topology = groups(g)%topology
+      call put(pad // '<Grid Name="' // escape(groups(g)%name) // '" GridType="Uniform">')
+      if (istep > 0) call put(pad // '  <Time Value="' // real_text(steps(istep)%load_factor) // '"/>')
+      if (topology == 'Polyline') then
+        call put(pad // '  <Topology TopologyType="' // topology // '" NumberOfElements="' // &
+                 str(groups(g)%element_count) // '" NodesPerElement="' // &
+                 str(groups(g)%nodes_per_element) // '">')
+      else
+        call put(pad // '  <Topology TopologyType="' // topology // '" NumberOfElements="' // &
+                 str(groups(g)%element_count) // '">')
+      end if
+      call put(pad // '    ' // data_item(groups(g)%element_count, groups(g)%nodes_per_element, &
+               'Int', '4', xdmf_topology_path(escape(groups(g)%name))))
+      call put(pad // '  </Topology>')
+      call put(pad // '  <Geometry GeometryType="XYZ">')
+      call put(pad // '    ' // data_item(node_count, 3, 'Float', '8', '/mesh/coordinates'))
+      call put(pad // '  </Geometry>')
+      if (istep == 0) then
         call put(pad // '</Grid>')
-      end do
-    end subroutine put_group_grids
+        return
+      end if
+      ! the step number and load factor as grid (field) data, which every reader shows beside
+      ! the arrays (they ignore Information elements)
+      call put(pad // '  <Attribute Name="step" AttributeType="Scalar" Center="Grid">')
+      call put(pad // '    <DataItem Dimensions="1" NumberType="Int" Precision="4" Format="XML">' // &
+               str(steps(istep)%number) // '</DataItem>')
+      call put(pad // '  </Attribute>')
+      call put(pad // '  <Attribute Name="load_factor" AttributeType="Scalar" Center="Grid">')
+      call put(pad // '    <DataItem Dimensions="1" NumberType="Float" Precision="8" Format="XML">' // &
+               real_text(steps(istep)%load_factor) // '</DataItem>')
+      call put(pad // '  </Attribute>')
+      if (allocated(steps(istep)%fields)) then
+        do f = 1, size(steps(istep)%fields)
+          associate (field => steps(istep)%fields(f))
+            if (field%nodal) then
+              if (field%rows == node_count .and. (len(field%group) == 0 .or. field%group == groups(g)%name)) &
+                call put_attribute(pad // '  ', field, 'Node')
+            else if (field%group == groups(g)%name .and. field%rows == groups(g)%element_count) then
+              call put_attribute(pad // '  ', field, 'Cell')
+            end if
+          end associate
+        end do
+      end if
+      call put(pad // '</Grid>')
+    end subroutine put_group_grid
 
-    !> A nodal field of global x y z components (e.g. 'ux uy uz') becomes one Vector; anything
-    !! else one Scalar per column (a hyperslab). Readers draw a Vector in global axes, so a field
-    !! in nodal systems ('f1 f2 f3' of reaction_nodal) must not be one.
-    subroutine put_attributes(pad, field, center)
+    !> One attribute of the whole dataset: a nodal field of global x y z components (e.g. 'ux uy
+    !! uz') a Vector, one column a Scalar, anything else a Matrix of its columns (its components
+    !! in the order of the dataset's `components`). Readers draw a Vector in global axes, so a field in
+    !! nodal systems ('f1 f2 f3' of reaction_nodal) must not be one; a Tensor6 would be expanded
+    !! to 9 components by one reader and not by the others.
+    subroutine put_attribute(pad, field, center)
       character(len=*), intent(in) :: pad
       type(xdmf_field_t), intent(in) :: field
       character(len=*), intent(in) :: center
-      integer :: c
-      character(len=:), allocatable :: name
+      character(len=:), allocatable :: kind
       if (field%nodal .and. field%columns == 3 .and. global_xyz(field%components)) then
-        call put(pad // '<Attribute Name="' // escape(field%name) // '" AttributeType="Vector" Center="' // &
-                 center // '">')
-        call put(pad // '  ' // data_item(field%rows, 3, 'Float', '8', escape(field%dataset)))
-        call put(pad // '</Attribute>')
-        return
+        kind = 'Vector'
+      else if (field%columns == 1) then
+        kind = 'Scalar'
+      else
+        kind = 'Matrix'
       end if
-      do c = 1, field%columns
-        if (field%nodal .and. field%columns == 1) then
-          name = field%name
-        else
-          name = word(field%components, c)
-          if (len(name) == 0) name = str(c)
-          name = field%name // '_' // name
-        end if
-        call put(pad // '<Attribute Name="' // escape(name) // '" AttributeType="Scalar" Center="' // &
-                 center // '">')
-        call put(pad // '  <DataItem ItemType="HyperSlab" Dimensions="' // str(field%rows) // &
-                 ' 1" Type="HyperSlab">')
-        call put(pad // '    <DataItem Dimensions="3 2" NumberType="Int" Format="XML">0 ' // str(c - 1) // &
-                 ' 1 1 ' // str(field%rows) // ' 1</DataItem>')
-        call put(pad // '    ' // data_item(field%rows, field%columns, 'Float', '8', escape(field%dataset)))
-        call put(pad // '  </DataItem>')
-        call put(pad // '</Attribute>')
-      end do
-    end subroutine put_attributes
+      call put(pad // '<Attribute Name="' // escape(field%name) // '" AttributeType="' // kind // &
+               '" Center="' // center // '">')
+      call put(pad // '  ' // data_item(field%rows, field%columns, 'Float', '8', escape(field%dataset)))
+      call put(pad // '</Attribute>')
+    end subroutine put_attribute
 
     !> A DataItem pointing into the HDF5 file; rows x columns as h5py sees the dataset.
     function data_item(rows, columns, number_type, precision, dataset) result(line)
@@ -250,6 +249,101 @@ contains
     end function data_item
 
   end subroutine write_xdmf
+
+  !> Write the XDMF file `path` for meshio's time-series reader (meshio.xdmf.TimeSeriesReader),
+  !! describing the HDF5 file `hdf5_name`. That reader takes one mesh, the domain's uniform grid
+  !! (one Topology per group with an XDMF cell: one cell block each, in the groups' order), and a
+  !! temporal collection of uniform grids holding only Time and whole-dataset Attributes (no grid
+  !! data, no hyperslab), whose cell data it splits over all the cell blocks: so a cell field is
+  !! its dataset over every cell, `/xdmf/steps/<NNNN>/<kind>` (NaN for groups without it). A
+  !! group's nodal field is named `<field>/<group>`, as its dataset.
+  subroutine write_meshio_xdmf(path, hdf5_name, node_count, groups, steps, error)
+    character(len=*), intent(in) :: path
+    character(len=*), intent(in) :: hdf5_name
+    integer, intent(in) :: node_count
+    type(xdmf_group_t), intent(in) :: groups(:)
+    type(xdmf_step_t), intent(in) :: steps(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(text_file_t) :: file
+    integer :: i, g, f
+    character(len=:), allocatable :: h5, message, name
+
+    h5 = escape(hdf5_name)
+    call file%open(path, message)
+    if (len(message) > 0) then
+      call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // message)
+      return
+    end if
+    call file%write('<?xml version="1.0" ?>')
+    call file%write('<Xdmf Version="3.0">')
+    call file%write('  <Domain>')
+    if (node_count > 0) then
+      call file%write('    <Grid Name="mesh" GridType="Uniform">')
+      do g = 1, size(groups)
+        if (len(groups(g)%topology) == 0) cycle
+        call file%write('      <Topology TopologyType="' // groups(g)%topology // '" NumberOfElements="' // &
+                        str(groups(g)%element_count) // '" NodesPerElement="' // &
+                        str(groups(g)%nodes_per_element) // '">')
+        call file%write('        ' // item(groups(g)%element_count, groups(g)%nodes_per_element, 'Int', '4', &
+                        xdmf_topology_path(escape(groups(g)%name))))
+        call file%write('      </Topology>')
+      end do
+      call file%write('      <Geometry GeometryType="XYZ">')
+      call file%write('        ' // item(node_count, 3, 'Float', '8', '/mesh/coordinates'))
+      call file%write('      </Geometry>')
+      call file%write('    </Grid>')
+    end if
+    call file%write('    <Grid Name="steps" GridType="Collection" CollectionType="Temporal">')
+    do i = 1, size(steps)
+      if (node_count == 0) exit
+      call file%write('      <Grid Name="step ' // str(steps(i)%number) // '" GridType="Uniform">')
+      call file%write('        <Time Value="' // real_text(steps(i)%load_factor) // '"/>')
+      if (allocated(steps(i)%fields)) then
+        do f = 1, size(steps(i)%fields)
+          associate (field => steps(i)%fields(f))
+            if (.not. field%nodal .or. field%rows /= node_count) cycle
+            name = field%name
+            if (len(field%group) > 0) name = name // '/' // field%group
+            call put_whole(name, field, 'Node')
+          end associate
+        end do
+      end if
+      if (allocated(steps(i)%cells)) then
+        do f = 1, size(steps(i)%cells)
+          call put_whole(steps(i)%cells(f)%name, steps(i)%cells(f), 'Cell')
+        end do
+      end if
+      call file%write('      </Grid>')
+    end do
+    call file%write('    </Grid>')
+    call file%write('  </Domain>')
+    call file%write('</Xdmf>')
+    call file%close(message)
+    if (len(message) > 0) call fatal_error(error, err_io, 'cannot write XDMF file ' // path // ': ' // message)
+
+  contains
+
+    !> An attribute of the whole dataset of `field`.
+    subroutine put_whole(attribute, field, center)
+      character(len=*), intent(in) :: attribute, center
+      type(xdmf_field_t), intent(in) :: field
+      call file%write('        <Attribute Name="' // escape(attribute) // '" AttributeType="' // &
+                      merge('Scalar', 'Matrix', field%columns == 1) // '" Center="' // center // '">')
+      call file%write('          ' // item(field%rows, field%columns, 'Float', '8', escape(field%dataset)))
+      call file%write('        </Attribute>')
+    end subroutine put_whole
+
+    !> A DataItem pointing into the HDF5 file; rows x columns as h5py sees the dataset.
+    function item(rows, columns, number_type, precision, dataset) result(line)
+      integer, intent(in) :: rows, columns
+      character(len=*), intent(in) :: number_type, precision, dataset
+      character(len=:), allocatable :: line
+      line = '<DataItem Dimensions="' // str(rows) // ' ' // str(columns) // '" NumberType="' // &
+             number_type // '" Precision="' // precision // '" Format="HDF">' // h5 // ':' // &
+             dataset // '</DataItem>'
+    end function item
+
+  end subroutine write_meshio_xdmf
 
   !> True when the three words of `components` end in x, y and z (global Cartesian components).
   pure logical function global_xyz(components)

@@ -13,7 +13,7 @@ module feps_program
   use feps_strings, only: to_lower, shown, utf8_text_length, gib_text
   use feps_files, only: file_kind, file_kind_text, folder_of, folder_writable, file_missing, file_regular, &
                         file_directory, memory_limit_bytes
-  use feps_paths, only: xdmf_file_name, restart_file_name
+  use feps_paths, only: xdmf_file_name, restart_file_name, meshio_file_name
   use feps_restart_data, only: restart_data_t
   use feps_restart_file, only: read_restart_point
   use feps_records, only: real_from_text
@@ -698,8 +698,9 @@ contains
                        what // '" is not writable')
       return
     end if
-    names = [character(len=len(path) + 9) :: path, path // '.part', xdmf_file_name(path), &
-                                                xdmf_file_name(path) // '.part']
+    names = [character(len=len(path) + 20) :: path, path // '.part', xdmf_file_name(path), &
+                                                 xdmf_file_name(path) // '.part', meshio_file_name(path), &
+                                                 meshio_file_name(path) // '.part']
     do i = 1, size(names)
       kind = file_kind(trim(names(i)))
       if (kind /= file_missing .and. kind /= file_regular) then

@@ -59,7 +59,8 @@ expect_status "results into a missing folder" 2 "$feps" test/data/cube.dat --out
 hostile() {  # name want-status stem command...: the command's stderr is one line, no stem.* left
   local name=$1 want=$2 stem=$3; shift 3
   timeout 60 "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
-  local left; left=$(ls -d "$stem".h5 "$stem".h5.part "$stem".xmf "$stem".xmf.part 2>/dev/null | tr '\n' ' ')
+  local left; left=$(ls -d "$stem".h5 "$stem".h5.part "$stem".xmf "$stem".xmf.part "$stem".meshio.xdmf \
+    "$stem".meshio.xdmf.part 2>/dev/null | tr '\n' ' ')
   if [ "$got" -eq "$want" ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: " "$tmp/err" && [ -z "$left" ]; then
     ok "$name (exit $got): $(head -c 160 "$tmp/err")"
   else
@@ -242,9 +243,11 @@ done
 "$feps" test/data/cube.dat --quiet --output "$tmp/earlier.h5" >/dev/null 2>&1
 lost=""
 for deck in test/data/bad/*.dat; do
-  cp "$tmp/earlier.h5" "$tmp/stale.h5" && cp "$tmp/earlier.xmf" "$tmp/stale.xmf"
+  cp "$tmp/earlier.h5" "$tmp/stale.h5" && cp "$tmp/earlier.xmf" "$tmp/stale.xmf" \
+    && cp "$tmp/earlier.meshio.xdmf" "$tmp/stale.meshio.xdmf"
   "$feps" "$deck" --output "$tmp/stale.h5" >/dev/null 2>&1
-  { [ -e "$tmp/stale.h5" ] && [ -e "$tmp/stale.xmf" ] && [ ! -e "$tmp/stale.h5.part" ]; } || lost="$lost $(basename "$deck")"
+  { [ -e "$tmp/stale.h5" ] && [ -e "$tmp/stale.xmf" ] && [ -e "$tmp/stale.meshio.xdmf" ] \
+    && [ ! -e "$tmp/stale.h5.part" ]; } || lost="$lost $(basename "$deck")"
 done
 [ -z "$lost" ] && ok "every bad deck leaves an earlier run's results and XDMF file alone" \
   || bad "bad decks that removed an earlier run's results:$lost"
@@ -1229,6 +1232,13 @@ xmfs=("$tmp"/*.xmf "$tmp"/mc_small/*.xmf)
 python3 test/reference/check_xdmf_vtk.py "${xmfs[@]}" >"$tmp/out" 2>&1 \
   && ok "check_xdmf_vtk.py: the ${#xmfs[@]} XDMF files of these checks read back as their HDF5 files hold them" \
   || bad "check_xdmf_vtk.py: $(grep -v ': ok with' "$tmp/out" | head -c 400)"
+# meshio's XDMF time-series reader reads the file for meshio beside each of them, every point and
+# cell array equal to its dataset (test/reference/check_meshio.py; docs/output-format.md).
+meshios=()
+for x in "${xmfs[@]}"; do [ -e "${x%.xmf}.meshio.xdmf" ] && meshios+=("${x%.xmf}.meshio.xdmf"); done
+[ "${#meshios[@]}" -eq "${#xmfs[@]}" ] && python3 test/reference/check_meshio.py "${meshios[@]}" >"$tmp/out" 2>&1 \
+  && ok "check_meshio.py: the ${#meshios[@]} meshio files beside them: $(grep -c ': ok with' "$tmp/out") read back as their HDF5 files hold them; skipped: $(grep ': skipped' "$tmp/out" | sed 's|^.*/||; s|: skipped.*block of | (|; s| (no.*|)|' | tr '\n' ' ')" \
+  || bad "check_meshio.py: ${#meshios[@]} meshio files for ${#xmfs[@]} XDMF files: $(grep -v ': ok with' "$tmp/out" | head -c 400)"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

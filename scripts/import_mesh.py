@@ -81,7 +81,7 @@ class Deck:
         self.groups = []                # (name, feps type, material, [(id, [node ids])])
         self.elements = {}              # id -> (feps type, [node ids])
         self.node_sets = {}             # name -> [ids]
-        self.element_sets = {}          # name -> [ids]
+        self.element_sets = {}          # name -> [ids] (the source's, to resolve its references)
         self.face_sets = {}             # name -> [(element id, face)]
         self.materials = {}             # name -> (E, nu)
         self.fixes = []                 # (set, [dof names])
@@ -97,21 +97,29 @@ class Deck:
         for name, etype, material, members in self.groups:
             lines += [f"GROUP, {name}, TYPE={etype}, MATERIAL={material}", f"ELEMENTS, {name}"]
             lines += [", ".join(str(v) for v in [eid] + conn) for eid, conn in members]
-        for keyword, sets in (("NSET", self.node_sets), ("ELSET", self.element_sets)):
-            for name, ids in sets.items():
-                lines.append(f"{keyword}, {name}, LIST")
-                ids = sorted(set(ids))
-                lines += [", ".join(map(str, ids[i:i + PER_LINE])) for i in range(0, len(ids), PER_LINE)]
+        for name, ids in self.node_sets.items():
+            lines.append(f"NSET, {name}, LIST")
+            ids = sorted(set(ids))
+            lines += [", ".join(map(str, ids[i:i + PER_LINE])) for i in range(0, len(ids), PER_LINE)]
+        group_of = {eid: name for name, _, _, members in self.groups for eid, _ in members}
+        pressures = []
         for name, faces in self.face_sets.items():
-            lines.append(f"FSET, {name}, LIST")
-            lines += [f"{e}, {k}" for e, k in sorted(set(faces))]
+            # a feps face set lies in one group: a set over several becomes one per group
+            by_group = {}
+            for e, k in sorted(set(faces)):
+                by_group.setdefault(group_of[e], []).append((e, k))
+            parts = {g: (name if len(by_group) == 1 else f"{name}_{g}") for g in by_group}
+            for g, rows in by_group.items():
+                lines.append(f"FSET, {parts[g]}, LIST, GROUP={g}")
+                lines += [f"{e}, {k}" for e, k in rows]
+            pressures += [(parts[g], v) for n, v in self.pressures if n == name for g in by_group]
         for name, dofs in self.fixes:
             lines.append(f"FIX, {name}, " + ", ".join(dofs))
         for keyword, rows in (("DISPLACE", self.displacements), ("FORCE", self.forces)):
             if rows:
                 lines.append(f"{keyword}, LIST")
                 lines += [f"{n}, {d}, {v!r}" for n, d, v in rows]
-        for name, value in self.pressures:
+        for name, value in pressures:
             lines.append(f"PRESSURE, {name}, VALUE={value!r}")
         with open(path, "w") as fh:
             fh.write("\n".join(lines) + "\n")

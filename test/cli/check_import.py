@@ -32,7 +32,7 @@ EXAMPLES = "/usr/share/doc/calculix-ccx-test/examples/test"
 # the examples within what import_mesh.py translates (a linear-static step, solids only), one per
 # element type it maps, the pressure, nodal force and prescribed displacement paths among them
 CCX_CASES = {"beam8p": "C3D8, nodal forces", "beam10p": "C3D10, nodal forces",
-             "beamp": "C3D20R, nodal forces", "achtelp": "C3D20R, nodal forces on a set",
+             "beampset": "C3D20R, nodal forces", "achtelp": "C3D20R, nodal forces on a set",
              "achteld": "C3D20R, prescribed displacements"}
 RI, RO, LENGTH, E, NU, P = 600.0, 715.0, 200.0, 40000.0, 0.2, 1.0
 

@@ -24,10 +24,20 @@ module feps_deck
   use feps_material_factory, only: new_material, material_of
   use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
   use feps_deck_stages, only: read_stage, read_controls_record, read_report
+  use feps_deck_tables, only: first_row_field, read_nodes_table, read_elements_table, read_id_list
   implicit none
   private
 
   public :: read_deck, resolve_node_sets
+
+  !> The rows of one ELEMENTS table (checked against the nodes once all are read).
+  type :: element_rows_t
+    integer :: group = 0
+    integer, allocatable :: ids(:)
+    integer, allocatable :: connectivity(:, :)
+    integer, allocatable :: id_field(:)          !! each row's id field (node i is field id_field + i)
+    type(record_t) :: rec
+  end type element_rows_t
 
   !> What the reader keeps while it walks the records.
   type :: deck_state_t
@@ -38,11 +48,13 @@ module feps_deck
     real(dp), allocatable :: explicit_coords(:, :)
     integer, allocatable :: explicit_ids(:)
     integer, allocatable :: explicit_line(:)
+    integer, allocatable :: explicit_field(:)    !! the field of each explicit node's number
     character(len=:), allocatable :: explicit_file
     type(region_t), allocatable :: set_regions(:)
     integer, allocatable :: set_node(:)          !! NSET by a single node number (0: by region)
     character(len=name_len), allocatable :: set_group(:)  !! NSET restricted to a group's nodes ('' if not)
     type(record_t), allocatable :: set_records(:)
+    type(element_rows_t), allocatable :: element_tables(:)
     integer :: current_stage = 0                 !! stage that loads and displacements belong to
     logical :: fields_given = .false.            !! a FIELDS record came: only what it names
     integer :: solver_line = 0                   !! line of the SOLVER record (0: none yet)
@@ -71,7 +83,8 @@ contains
     allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0), model%stages(0), model%reports(0))
     allocate (model%prestresses(0))
     allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0), st%set_group(0))
-    allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0))
+    allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0), st%element_tables(0), &
+              st%explicit_field(0))
     st%mesh%nnode = 0
     allocate (st%mesh%coords(3, 0), st%mesh%blocks(0))
 
@@ -132,6 +145,10 @@ contains
       call read_include(records(pos), model, st, error)
     case ('NODE')
       call read_node(records(pos), model, st, error)
+    case ('NODES')
+      call read_nodes(records(pos), model, st, error)
+    case ('ELEMENTS')
+      call read_elements(records(pos), model, st, error)
     case ('MATERIAL')
       call read_material(records(pos), model, error)
     case ('GROUP')
@@ -409,11 +426,53 @@ contains
     end if
     st%explicit_ids = [st%explicit_ids, id]
     st%explicit_line = [st%explicit_line, rec%line]
+    st%explicit_field = [st%explicit_field, 2]
     st%explicit_file = rec%file
     st%explicit_coords = reshape([st%explicit_coords, model%systems(cs)%to_global(c)], &
                                  [3, st%explicit_nodes + 1])
     st%explicit_nodes = st%explicit_nodes + 1
   end subroutine read_node
+
+  !> NODES [, CSYS=n] and its rows: nodes given explicitly, as NODE records are (a number
+  !! given twice is found once all nodes are read, naming both lines).
+  subroutine read_nodes(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: ids(:), lines(:), fields(:)
+    real(dp), allocatable :: coords(:, :)
+    call read_nodes_table(rec, model, ids, coords, lines, fields, error)
+    if (allocated(error)) return
+    st%explicit_field = [st%explicit_field, fields]
+    st%explicit_ids = [st%explicit_ids, ids]
+    st%explicit_line = [st%explicit_line, lines]
+    st%explicit_file = rec%file
+    st%explicit_coords = reshape([st%explicit_coords, coords], [3, st%explicit_nodes + size(ids)])
+    st%explicit_nodes = st%explicit_nodes + size(ids)
+  end subroutine read_nodes
+
+  !> ELEMENTS, group and its rows: the group's elements, with their ids.
+  subroutine read_elements(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(element_rows_t) :: rows
+    type(element_rows_t), allocatable :: tmp(:)
+    integer :: g
+    call read_elements_table(rec, model, g, rows%ids, rows%connectivity, rows%id_field, error)
+    if (allocated(error)) return
+    if (size(model%groups(g)%blocks) > 0) then
+      call input_error(error, rec%file, rec%line, 'group ' // model%groups(g)%name // ' takes DATAIN element ' // &
+                       'blocks (BLOCKS=); its elements come from blocks or from ELEMENTS tables, not both', 2)
+      return
+    end if
+    rows%group = g
+    rows%rec = rec
+    tmp = [st%element_tables, rows]
+    call move_alloc(tmp, st%element_tables)
+  end subroutine read_elements
 
   !> MATERIAL, name, kind, KEY=value, ...
   subroutine read_material(rec, model, error)
@@ -535,7 +594,8 @@ contains
     end if
   end subroutine read_group
 
-  !> NSET, name, [CSYS=n,] <coordinate>=a[:b] ..., [TOL=t]   or   NSET, name, NODE=n
+  !> NSET, name, [CSYS=n,] <coordinate>=a[:b] ..., [TOL=t]   or   NSET, name, NODE=n   or
+  !! NSET, name, LIST and lines of node ids (ranges a:b allowed)
   subroutine read_nset(rec, model, st, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
@@ -547,6 +607,7 @@ contains
     type(region_t) :: r
     character(len=:), allocatable :: text
     integer :: ifield, node
+    integer, allocatable :: fields(:)
     logical :: found
 
     call require_fields(rec, 3, error)
@@ -560,7 +621,21 @@ contains
     end if
     node = 0
     call option_text(rec, 'NODE', text, ifield, found)
-    if (found) then
+    if (to_upper(field_text(rec, 3)) == 'LIST') then
+      ! the ids are checked against the nodes once all are read (resolve_node_sets)
+      if (first_row_field(rec) /= 4) then
+        call input_error(error, rec%file, rec%line, 'NSET, name, LIST takes no option; its ids follow on ' // &
+                         'lines of their own', 4)
+        return
+      end if
+      call read_id_list(rec, 4, max_mesh_nodes, s%nodes, fields, error)
+      if (allocated(error)) return
+      if (size(s%nodes) == 0) then
+        call input_error(error, rec%file, rec%line, 'node set ' // s%name // ' lists no node')
+        return
+      end if
+      node = -1
+    else if (found) then
       if (nfields(rec) > 3) then
         call input_error(error, rec%file, field_line(rec, merge(4, 3, ifield == 3)), &
                          'NODE= selects one node and takes no other option', &
@@ -578,7 +653,7 @@ contains
       call read_region(rec, model, r, error)
       if (allocated(error)) return
     end if
-    allocate (s%nodes(0))
+    if (.not. allocated(s%nodes)) allocate (s%nodes(0))
     tmp = [model%node_sets, s]
     call move_alloc(tmp, model%node_sets)
     call option_text(rec, 'GROUP', text, ifield, found)
@@ -730,9 +805,10 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(error_t), allocatable, intent(out) :: error
     logical, allocatable :: defined(:)
+    integer, allocatable :: node_line(:)
     type(error_t), allocatable :: unknown
     class(material_t), allocatable :: material
-    integer :: nnode, i, g, b, nel, k, first, m
+    integer :: nnode, i, g, b, nel, k, first, m, ntab, t
 
     ! Nodes: DATAIN blocks first, explicit NODE records at their numbers.
     nnode = st%mesh%nnode
@@ -742,14 +818,22 @@ contains
     allocate (defined(nnode), source=.false.)
     model%coords(:, 1:st%mesh%nnode) = st%mesh%coords(:, 1:st%mesh%nnode)
     defined(1:st%mesh%nnode) = .true.
+    allocate (node_line(nnode), source=0)
     do i = 1, st%explicit_nodes
+      if (node_line(st%explicit_ids(i)) > 0) then
+        call input_error(error, st%explicit_file, st%explicit_line(i), 'duplicate node ' // &
+                         str(st%explicit_ids(i)) // ' (defined before, at line ' // &
+                         str(node_line(st%explicit_ids(i))) // ')', st%explicit_field(i))
+        return
+      end if
       if (defined(st%explicit_ids(i))) then
         call input_error(error, st%explicit_file, st%explicit_line(i), 'duplicate node ' // &
-                         str(st%explicit_ids(i)) // ' (already generated by a DATAIN block)', 2)
+                         str(st%explicit_ids(i)) // ' (already generated by a DATAIN block)', st%explicit_field(i))
         return
       end if
       model%coords(:, st%explicit_ids(i)) = st%explicit_coords(:, i)
       defined(st%explicit_ids(i)) = .true.
+      node_line(st%explicit_ids(i)) = st%explicit_line(i)
     end do
     model%nnode = nnode
     if (nnode == 0) then
@@ -818,19 +902,32 @@ contains
             return
           end if
         end do
-        if (nel == 0) then
+        ntab = 0
+        do t = 1, size(st%element_tables)
+          if (st%element_tables(t)%group == g) ntab = ntab + size(st%element_tables(t)%ids)
+        end do
+        if (nel > 0 .and. ntab > 0) then
+          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
+                           ' takes DATAIN element blocks and ELEMENTS rows; its elements come from one or the other')
+          return
+        end if
+        if (nel == 0 .and. ntab == 0) then
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
                            ' has no elements')
           return
         end if
-        allocate (model%groups(g)%connectivity(model%groups(g)%element%nnodes, nel))
-        first = 0
-        do k = 1, size(model%groups(g)%blocks)
-          b = model%groups(g)%blocks(k)
-          nel = size(st%mesh%blocks(b)%connectivity, 2)
-          model%groups(g)%connectivity(:, first + 1:first + nel) = st%mesh%blocks(b)%connectivity
-          first = first + nel
-        end do
+        if (ntab > 0) then
+          call gather_element_tables(st%element_tables, g, model%groups(g))
+        else
+          allocate (model%groups(g)%connectivity(model%groups(g)%element%nnodes, nel))
+          first = 0
+          do k = 1, size(model%groups(g)%blocks)
+            b = model%groups(g)%blocks(k)
+            nel = size(st%mesh%blocks(b)%connectivity, 2)
+            model%groups(g)%connectivity(:, first + 1:first + nel) = st%mesh%blocks(b)%connectivity
+            first = first + nel
+          end do
+        end if
         model%groups(g)%material = model%find_material(model%groups(g)%material_name)
         if (model%groups(g)%material == 0) then
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'undefined material "' // &
@@ -852,6 +949,8 @@ contains
         if (allocated(error)) return
         call move_alloc(material, model%materials(m)%params)
       end do
+      call check_element_tables(st%element_tables, model, defined, error)
+      if (allocated(error)) return
       do g = 1, size(model%groups)
         do k = 1, size(model%groups(g)%connectivity, 2)
           do i = 1, size(model%groups(g)%connectivity, 1)
@@ -888,6 +987,101 @@ contains
     call resolve_activations(model, error)
     if (.not. allocated(error)) call resolve_prestresses(model, error)
   end subroutine finish_model
+
+  !> A group's elements from its ELEMENTS tables, in reading order, with their ids.
+  subroutine gather_element_tables(tables, g, group)
+    type(element_rows_t), intent(in) :: tables(:)
+    integer, intent(in) :: g
+    type(element_group_t), intent(inout) :: group
+    integer :: t, n, first
+    n = 0
+    do t = 1, size(tables)
+      if (tables(t)%group == g) n = n + size(tables(t)%ids)
+    end do
+    allocate (group%connectivity(group%element%nnodes, n), group%element_ids(n))
+    first = 0
+    do t = 1, size(tables)
+      if (tables(t)%group /= g) cycle
+      n = size(tables(t)%ids)
+      group%connectivity(:, first + 1:first + n) = tables(t)%connectivity
+      group%element_ids(first + 1:first + n) = tables(t)%ids
+      first = first + n
+    end do
+  end subroutine gather_element_tables
+
+  !> Every node of an ELEMENTS row must be defined (the error names its line and field), and
+  !! an element id is given once over all tables.
+  subroutine check_element_tables(tables, model, defined, error)
+    type(element_rows_t), intent(in) :: tables(:)
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: defined(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: first_line(:)
+    integer :: t, j, i, node, id, f
+    id = 0
+    do t = 1, size(tables)
+      if (size(tables(t)%ids) > 0) id = max(id, maxval(tables(t)%ids))
+    end do
+    allocate (first_line(id), source=0)
+    do t = 1, size(tables)
+      associate (rec => tables(t)%rec)
+        do j = 1, size(tables(t)%ids)
+          id = tables(t)%ids(j)
+          f = tables(t)%id_field(j)
+          if (first_line(id) > 0) then
+            call input_error(error, rec%file, field_line(rec, f), 'duplicate element ' // str(id) // &
+                             ' (defined before, at line ' // str(first_line(id)) // ')', f)
+            return
+          end if
+          first_line(id) = field_line(rec, f)
+          do i = 1, size(tables(t)%connectivity, 1)
+            node = tables(t)%connectivity(i, j)
+            if (node > size(defined)) then
+              call input_error(error, rec%file, field_line(rec, f + i), 'element ' // str(id) // ' of group ' // &
+                               model%groups(tables(t)%group)%name // ' uses node ' // str(node) // &
+                               ', which is not defined', f + i)
+              return
+            end if
+            if (.not. defined(node)) then
+              call input_error(error, rec%file, field_line(rec, f + i), 'element ' // str(id) // ' of group ' // &
+                               model%groups(tables(t)%group)%name // ' uses node ' // str(node) // &
+                               ', which is not defined', f + i)
+              return
+            end if
+          end do
+        end do
+      end associate
+    end do
+  end subroutine check_element_tables
+
+  !> The ids of an NSET LIST must be defined nodes (the error names the field of the first
+  !! that is not); a node listed twice is kept once.
+  subroutine check_listed_nodes(set, rec, defined, error)
+    type(node_set_t), intent(inout) :: set
+    type(record_t), intent(in) :: rec
+    logical, intent(in) :: defined(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: ids(:), fields(:)
+    logical, allocatable :: seen(:)
+    integer :: i
+    call read_id_list(rec, 4, max_mesh_nodes, ids, fields, error)
+    if (allocated(error)) return
+    allocate (seen(size(defined)), source=.false.)
+    do i = 1, size(ids)
+      if (ids(i) > size(defined)) then
+        call input_error(error, rec%file, field_line(rec, fields(i)), 'node set ' // set%name // ': node ' // &
+                         str(ids(i)) // ' is not defined', fields(i))
+        return
+      end if
+      if (.not. defined(ids(i))) then
+        call input_error(error, rec%file, field_line(rec, fields(i)), 'node set ' // set%name // ': node ' // &
+                         str(ids(i)) // ' is not defined', fields(i))
+        return
+      end if
+      seen(ids(i)) = .true.
+    end do
+    set%nodes = pack([(i, i = 1, size(defined))], seen)
+  end subroutine check_listed_nodes
 
   !> STRESS= values become forces (times the bar material's area A). A post-tensioned
   !! (BOND=after) group is born at the start of the stage after its record's, which must exist.
@@ -1058,7 +1252,7 @@ contains
     type(model_t), intent(inout) :: model
     logical, intent(in) :: defined(:)   !! given by a DATAIN block or a NODE record
     type(region_t), intent(in) :: regions(:)
-    integer, intent(in) :: single(:)
+    integer, intent(in) :: single(:)   !! NSET NODE=n: n; NSET LIST: -1 (nodes listed); else 0
     type(record_t), intent(in) :: records(:)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: groups(:)   !! restrict to the nodes of a group
@@ -1068,6 +1262,11 @@ contains
     logical :: found
     allocate (inside(model%nnode), in_group(model%nnode))
     do s = 1, size(model%node_sets)
+      if (single(s) < 0) then
+        call check_listed_nodes(model%node_sets(s), records(s), defined, error)
+        if (allocated(error)) return
+        cycle
+      end if
       if (single(s) > 0) then
         call option_text(records(s), 'NODE', text, ifield, found)   ! the field to name
         if (single(s) > model%nnode) then

@@ -55,6 +55,8 @@ module feps_model
     integer :: material = 0                         !! index into model%materials
     integer, allocatable :: connectivity(:, :)      !! (nodes per element, nelem), 1-based
     integer, allocatable :: blocks(:)               !! DATAIN element blocks it holds
+    integer, allocatable :: element_ids(:)          !! the deck's element ids (ELEMENTS tables); not
+                                                    !! allocated: the elements are numbered 1, 2, ...
     integer :: activate_stage = 0                   !! 0: active from the start; s: born in stage s
     character(len=:), allocatable :: file
     integer :: line = 0

@@ -47,6 +47,14 @@ contains
       new_unittest('two STAGE records with one name', test_stage_twice), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
+      new_unittest('a NODES table: a node number given twice', test_lists_duplicate_node), &
+      new_unittest('ELEMENTS tables: an element id given twice', test_lists_duplicate_element), &
+      new_unittest('an ELEMENTS row naming an undefined node', test_lists_undefined_node), &
+      new_unittest('an ELEMENTS row a node short', test_lists_short_row), &
+      new_unittest('a NODES row of five fields', test_lists_node_row_fields), &
+      new_unittest('ELEMENTS before its GROUP', test_lists_elements_unknown_group), &
+      new_unittest('an NSET LIST naming an undefined node', test_lists_nset_undefined_node), &
+      new_unittest('a group of DATAIN blocks and ELEMENTS rows', test_lists_blocks_and_rows), &
       new_unittest('non-positive Jacobian names the element', test_negative_jacobian), &
       new_unittest('a face set on a group of bars: no faces', test_face_set_on_bars), &
       new_unittest('undefined material', test_undefined_material), &
@@ -260,6 +268,77 @@ contains
     call check(error, exists, 'XDMF file written')
     call remove_outputs()
   end subroutine test_valid
+
+  !> Issue 25's tables: a NODES table: a node number given twice.
+  subroutine test_lists_duplicate_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_duplicate_node.dat', err_input, &
+                        [character(len=60) :: 'lists_duplicate_node.dat:13:', &
+                         'field 34', &
+                         'duplicate node 3 (defined before, at line 7)'], error)
+  end subroutine test_lists_duplicate_node
+
+  !> Issue 25's tables: ELEMENTS tables: an element id given twice.
+  subroutine test_lists_duplicate_element(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_duplicate_element.dat', err_input, &
+                        [character(len=60) :: 'lists_duplicate_element.dat:16:', &
+                         'field 3', &
+                         'duplicate element 10 (defined before, at line 14)'], error)
+  end subroutine test_lists_duplicate_element
+
+  !> Issue 25's tables: an ELEMENTS row naming an undefined node.
+  subroutine test_lists_undefined_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_undefined_node.dat', err_input, &
+                        [character(len=60) :: 'lists_undefined_node.dat:14:', &
+                         'field 11', &
+                         'uses node 9, which is not defined'], error)
+  end subroutine test_lists_undefined_node
+
+  !> Issue 25's tables: an ELEMENTS row a node short.
+  subroutine test_lists_short_row(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_short_row.dat', err_input, &
+                        [character(len=60) :: 'lists_short_row.dat:15:', &
+                         'field 11', &
+                         'element 10 of group block has 7 nodes; its type hex8 has 8'], error)
+  end subroutine test_lists_short_row
+
+  !> Issue 25's tables: a NODES row of five fields.
+  subroutine test_lists_node_row_fields(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_node_row_fields.dat', err_input, &
+                        [character(len=60) :: 'lists_node_row_fields.dat:13:', &
+                         'field 38', &
+                         'this one has 5 fields'], error)
+  end subroutine test_lists_node_row_fields
+
+  !> Issue 25's tables: ELEMENTS before its GROUP.
+  subroutine test_lists_elements_unknown_group(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_elements_unknown_group.dat', err_input, &
+                        [character(len=60) :: 'lists_elements_unknown_group.dat:12:', &
+                         'field 2', &
+                         'undefined element group "block"'], error)
+  end subroutine test_lists_elements_unknown_group
+
+  !> Issue 25's tables: an NSET LIST naming an undefined node.
+  subroutine test_lists_nset_undefined_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_nset_undefined_node.dat', err_input, &
+                        [character(len=60) :: 'lists_nset_undefined_node.dat:16:', &
+                         'field 7', &
+                         'node set corners: node 12 is not defined'], error)
+  end subroutine test_lists_nset_undefined_node
+
+  !> Issue 25's tables: a group of DATAIN blocks and ELEMENTS rows.
+  subroutine test_lists_blocks_and_rows(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_blocks_and_rows.dat', err_input, &
+                        [character(len=60) :: 'lists_blocks_and_rows.dat:3:', &
+                         'takes DATAIN element blocks and ELEMENTS rows'], error)
+  end subroutine test_lists_blocks_and_rows
 
   subroutine test_unknown_keyword(error)
     type(error_t), allocatable, intent(out) :: error

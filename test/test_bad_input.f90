@@ -70,6 +70,9 @@ contains
       new_unittest('CSYS: theta reference along the axis', test_csys_reference_parallel), &
       new_unittest('CSYS: theta reference of two components', test_csys_reference_partial), &
       new_unittest('CSYS: a field too many', test_csys_extra_field), &
+      new_unittest('a rotated Cartesian system given four of its six axis components', test_csys_axes_partial), &
+      new_unittest('a rotated Cartesian system with a zero x axis', test_csys_axis_zero), &
+      new_unittest('a rotated Cartesian system whose x-y vector is parallel to its x axis', test_csys_axes_parallel), &
       new_unittest('STAGE without STEPS=', test_stage_without_steps), &
       new_unittest('an option given twice in one record', test_option_given_twice), &
       new_unittest('a direction given twice under two names', test_direction_given_twice), &
@@ -340,6 +343,33 @@ contains
                          'takes DATAIN element blocks and ELEMENTS rows'], error)
   end subroutine test_lists_blocks_and_rows
 
+  !> Issue 25's rotated Cartesian systems: a rotated Cartesian system given four of its six axis components.
+  subroutine test_csys_axes_partial(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_axes_partial.dat', err_input, &
+                        [character(len=60) :: 'csys_axes_partial.dat:24:', &
+                         'field 11', &
+                         'the axes take all six of ax, ay, az, bx, by, bz'], error)
+  end subroutine test_csys_axes_partial
+
+  !> Issue 25's rotated Cartesian systems: a rotated Cartesian system with a zero x axis.
+  subroutine test_csys_axis_zero(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_axis_zero.dat', err_input, &
+                        [character(len=60) :: 'csys_axis_zero.dat:24:', &
+                         'field 7', &
+                         'the x axis (ax, ay, az) has zero length'], error)
+  end subroutine test_csys_axis_zero
+
+  !> Issue 25's rotated Cartesian systems: a rotated Cartesian system whose x-y vector is parallel to its x axis.
+  subroutine test_csys_axes_parallel(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_axes_parallel.dat', err_input, &
+                        [character(len=60) :: 'csys_axes_parallel.dat:24:', &
+                         'field 10', &
+                         'is zero or parallel to the x axis'], error)
+  end subroutine test_csys_axes_parallel
+
   subroutine test_unknown_keyword(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/unknown_keyword.dat', err_input, &
@@ -391,7 +421,7 @@ contains
   subroutine test_csys_extra_field(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/csys_extra_field.dat', err_input, &
-                        [character(len=40) :: 'csys_extra_field.dat:24:', 'field 7', 'one too many'], error)
+                        [character(len=40) :: 'csys_extra_field.dat:24:', 'field 13', 'one too many'], error)
   end subroutine test_csys_extra_field
 
   !> STEPS is in the syntax without brackets; it used to default to 1.

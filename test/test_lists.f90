@@ -23,7 +23,8 @@ contains
     type(unittest_t), allocatable, intent(out) :: tests(:)
     tests = [ &
       new_unittest('tables: the ids are kept', test_ids), &
-      new_unittest('tables: the displacements of the DATAIN deck', test_same_displacements)]
+      new_unittest('tables: the displacements of the DATAIN deck', test_same_displacements), &
+      new_unittest('a cube on rollers in a turned Cartesian system: uniaxial stress', test_rotated_rollers)]
   end subroutine collect_lists
 
   !> Node numbers index the mesh (the gaps are unused nodes); element ids are kept per group.
@@ -86,5 +87,39 @@ contains
       call check(error, worst, 0.0_dp, 'largest difference of a displacement', abs=1.0e-12_dp * scale)
     end associate
   end subroutine test_same_displacements
+
+  !> test/data/lists_rotated_cube.dat: a cube in CSYS 4 (turned 30 degrees about z, shifted),
+  !! on rollers in that system (a nodal system, as the cylindrical ones) and pulled along its
+  !! x' axis by s = 100 MPa: u' = (s x', -nu s y', -nu s z') / E exactly (hex8 holds a uniform
+  !! stress), turned back to global axes; 1e-12 of the largest displacement (measured 4.5e-15).
+  subroutine test_rotated_rollers(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    real(dp), parameter :: s = 100.0_dp, young = 200000.0_dp, nu = 0.3_dp
+    real(dp) :: axes(3, 3), local(3), expected(3), worst, scale
+    integer :: n
+    call read_deck('test/data/lists_rotated_cube.dat', model, error)
+    if (allocated(error)) return
+    ! the turned axes, independently of the deck reader
+    axes(:, 1) = [cos(30.0_dp * acos(-1.0_dp) / 180.0_dp), sin(30.0_dp * acos(-1.0_dp) / 180.0_dp), 0.0_dp]
+    axes(:, 2) = [-axes(2, 1), axes(1, 1), 0.0_dp]
+    axes(:, 3) = [0.0_dp, 0.0_dp, 1.0_dp]
+    call check(error, maxval(abs(model%systems(4)%axes - axes)), 0.0_dp, 'the axes of CSYS 4', abs=1.0e-15_dp)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    associate (u => obs%steps(size(obs%steps))%displacement)
+      scale = s * 10.0_dp / young
+      worst = 0.0_dp
+      do n = 1, model%nnode
+        local = matmul(transpose(axes), model%coords(:, n) - [100.0_dp, 50.0_dp, 0.0_dp])
+        expected = matmul(axes, [s * local(1), -nu * s * local(2), -nu * s * local(3)] / young)
+        worst = max(worst, maxval(abs(u(:, n) - expected)))
+      end do
+      call check(error, worst, 0.0_dp, 'largest difference from the closed form', abs=1.0e-12_dp * scale)
+    end associate
+  end subroutine test_rotated_rollers
 
 end module test_lists

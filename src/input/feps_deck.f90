@@ -258,7 +258,8 @@ contains
     end do
   end subroutine read_parameters
 
-  !> CSYS, id, CYLINDRICAL, x0, y0, z0, ax, ay, az [, rx, ry, rz]   or   CSYS, id, CARTESIAN, x0, y0, z0
+  !> CSYS, id, CYLINDRICAL, x0, y0, z0, ax, ay, az [, rx, ry, rz]   or
+  !! CSYS, id, CARTESIAN, x0, y0, z0 [, ax, ay, az, bx, by, bz]
   subroutine read_csys(rec, model, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
@@ -322,7 +323,7 @@ contains
     case ('CARTESIAN')
       call require_fields(rec, 6, error)
       if (allocated(error)) return
-      call forbid_extra_fields(rec, 6, error)
+      call forbid_extra_fields(rec, 12, error)
       if (allocated(error)) return
       do i = 1, 3
         call get_real(rec, 3 + i, v(i), error)
@@ -330,6 +331,21 @@ contains
       end do
       cs%kind = csys_cartesian
       cs%origin = v(1:3)
+      if (nfields(rec) > 6) then
+        ! a rotated system (Abaqus *TRANSFORM, TYPE=R): all six components or none
+        if (nfields(rec) < 12) then
+          call input_error(error, rec%file, field_line(rec, nfields(rec) + 1), &
+                           'the axes take all six of ax, ay, az, bx, by, bz (fields 7 to 12) or none; field ' // &
+                           str(nfields(rec) + 1) // ' is missing', nfields(rec) + 1)
+          return
+        end if
+        do i = 1, 6
+          call get_real(rec, 6 + i, v(3 + i), error)
+          if (allocated(error)) return
+        end do
+        call cartesian_axes(rec, v(4:6), v(7:9), cs%axes, error)
+        if (allocated(error)) return
+      end if
     case default
       call input_error(error, rec%file, field_line(rec, 3), 'unknown coordinate system kind "' // kind // &
                        '" (CARTESIAN or CYLINDRICAL)', 3)
@@ -338,6 +354,33 @@ contains
     tmp = [model%systems, cs]
     call move_alloc(tmp, model%systems)
   end subroutine read_csys
+
+  !> The axes of a rotated Cartesian system: x along `ax`, y the part of `bx` normal to it,
+  !! z = x cross y; a zero `ax` names field 7, a zero `bx` or one parallel to `ax` field 10.
+  subroutine cartesian_axes(rec, ax, bx, axes, error)
+    type(record_t), intent(in) :: rec
+    real(dp), intent(in) :: ax(3), bx(3)
+    real(dp), intent(out) :: axes(3, 3)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: e1(3), e2(3)
+    axes = 0.0_dp
+    if (norm2(ax) == 0.0_dp) then
+      call input_error(error, rec%file, field_line(rec, 7), 'the x axis (ax, ay, az) has zero length', 7)
+      return
+    end if
+    e1 = ax / norm2(ax)
+    e2 = bx - dot_product(bx, e1) * e1
+    ! the same test as the cylindrical theta reference's
+    if (norm2(bx) == 0.0_dp .or. norm2(e2) <= 1.0e-9_dp * norm2(bx)) then
+      call input_error(error, rec%file, field_line(rec, 10), 'the x-y plane''s vector (bx, by, bz) is zero or ' // &
+                       'parallel to the x axis, so it gives no y axis', 10)
+      return
+    end if
+    e2 = e2 / norm2(e2)
+    axes(:, 1) = e1
+    axes(:, 2) = e2
+    axes(:, 3) = [e1(2) * e2(3) - e1(3) * e2(2), e1(3) * e2(1) - e1(1) * e2(3), e1(1) * e2(2) - e1(2) * e2(1)]
+  end subroutine cartesian_axes
 
   !> INCLUDE, file: a DATAIN file (blocks and the closing E), path relative to the deck.
   subroutine read_include(rec, model, st, error)

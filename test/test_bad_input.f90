@@ -47,6 +47,9 @@ contains
       new_unittest('two STAGE records with one name', test_stage_twice), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
+      new_unittest('a FORCE, LIST row with an unknown DOF', test_force_list_bad_dof), &
+      new_unittest('a FORCE, LIST row on an undefined node', test_force_list_undefined_node), &
+      new_unittest('a DISPLACE, LIST row short of its value', test_displace_list_short_row), &
       new_unittest('a NODES table: a node number given twice', test_lists_duplicate_node), &
       new_unittest('ELEMENTS tables: an element id given twice', test_lists_duplicate_element), &
       new_unittest('an ELEMENTS row naming an undefined node', test_lists_undefined_node), &
@@ -369,6 +372,33 @@ contains
                          'field 10', &
                          'is zero or parallel to the x axis'], error)
   end subroutine test_csys_axes_parallel
+
+  !> Issue 25's loads per node: a FORCE, LIST row with an unknown DOF.
+  subroutine test_force_list_bad_dof(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/force_list_bad_dof.dat', err_input, &
+                        [character(len=60) :: 'force_list_bad_dof.dat:23:', &
+                         'field 4', &
+                         'unknown degree of freedom "W"'], error)
+  end subroutine test_force_list_bad_dof
+
+  !> Issue 25's loads per node: a FORCE, LIST row on an undefined node.
+  subroutine test_force_list_undefined_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/force_list_undefined_node.dat', err_input, &
+                        [character(len=60) :: 'force_list_undefined_node.dat:23:', &
+                         'field 3', &
+                         'node 99 is not defined'], error)
+  end subroutine test_force_list_undefined_node
+
+  !> Issue 25's loads per node: a DISPLACE, LIST row short of its value.
+  subroutine test_displace_list_short_row(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/displace_list_short_row.dat', err_input, &
+                        [character(len=60) :: 'displace_list_short_row.dat:23:', &
+                         'field 8', &
+                         'the last row is short of a field'], error)
+  end subroutine test_displace_list_short_row
 
   subroutine test_unknown_keyword(error)
     type(error_t), allocatable, intent(out) :: error

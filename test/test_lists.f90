@@ -24,7 +24,8 @@ contains
     tests = [ &
       new_unittest('tables: the ids are kept', test_ids), &
       new_unittest('tables: the displacements of the DATAIN deck', test_same_displacements), &
-      new_unittest('a cube on rollers in a turned Cartesian system: uniaxial stress', test_rotated_rollers)]
+      new_unittest('a cube on rollers in a turned Cartesian system: uniaxial stress', test_rotated_rollers), &
+      new_unittest('FORCE, LIST and DISPLACE, LIST rows: the loads on node sets', test_listed_loads)]
   end subroutine collect_lists
 
   !> Node numbers index the mesh (the gaps are unused nodes); element ids are kept per group.
@@ -121,5 +122,34 @@ contains
       call check(error, worst, 0.0_dp, 'largest difference from the closed form', abs=1.0e-12_dp * scale)
     end associate
   end subroutine test_rotated_rollers
+
+  !> test/data/lists_loads_rows.dat gives lists_loads_sets.dat's FORCE and DISPLACE on node sets
+  !! as rows per node (one node's force in two rows that add up): the same applied forces and
+  !! displacements (measured: equal to the last bit; held to 1e-14 of the largest), and the
+  !! prescribed corner at its value.
+  subroutine test_listed_loads(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: sets, rows
+    type(all_steps_t) :: obs_s, obs_r
+    type(analysis_summary_t) :: summary
+    call read_deck('test/data/lists_loads_sets.dat', sets, error)
+    if (allocated(error)) return
+    call read_deck('test/data/lists_loads_rows.dat', rows, error)
+    if (allocated(error)) return
+    call run_analysis(sets, 'cholmod', obs_s, summary, error)
+    if (allocated(error)) return
+    call run_analysis(rows, 'cholmod', obs_r, summary, error)
+    if (allocated(error)) return
+    associate (a => obs_s%steps(1), b => obs_r%steps(1))
+      call check(error, maxval(abs(a%applied_force - b%applied_force)), 0.0_dp, 'applied forces', abs=1.0e-14_dp * 100.0_dp)
+      if (allocated(error)) return
+      call check(error, sum(b%applied_force(3, :)), -900.0_dp, 'nine nodes of 100 N down', rel=1.0e-15_dp)
+      if (allocated(error)) return
+      call check(error, maxval(abs(a%displacement - b%displacement)), 0.0_dp, 'displacements', &
+                 abs=1.0e-14_dp * maxval(abs(a%displacement)))
+      if (allocated(error)) return
+      call check(error, b%displacement(1, 27), 0.001_dp, 'the corner''s prescribed x', rel=1.0e-15_dp)
+    end associate
+  end subroutine test_listed_loads
 
 end module test_lists

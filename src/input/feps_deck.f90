@@ -13,6 +13,7 @@ module feps_deck
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian, &
                                     csys_cylindrical
   use feps_model, only: model_t, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
+                        nodal_load_t, constraint_t, &
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, known_fields, line_search_refusal
   use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
@@ -54,6 +55,7 @@ module feps_deck
     integer, allocatable :: set_node(:)          !! NSET by a single node number (0: by region)
     character(len=name_len), allocatable :: set_group(:)  !! NSET restricted to a group's nodes ('' if not)
     type(record_t), allocatable :: set_records(:)
+    integer, allocatable :: set_field(:)         !! a LIST row's node field (set_node -2), else 0
     type(element_rows_t), allocatable :: element_tables(:)
     integer :: current_stage = 0                 !! stage that loads and displacements belong to
     logical :: fields_given = .false.            !! a FIELDS record came: only what it names
@@ -82,7 +84,7 @@ contains
     allocate (model%groups(0), model%materials(0), model%node_sets(0), model%face_sets(0))
     allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0), model%stages(0), model%reports(0))
     allocate (model%prestresses(0))
-    allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0), st%set_group(0))
+    allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0), st%set_group(0), st%set_field(0))
     allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0), st%element_tables(0), &
               st%explicit_field(0))
     st%mesh%nnode = 0
@@ -161,10 +163,19 @@ contains
       call read_fix(records(pos), model, st%current_stage, .false., error)
     case ('RELEASE')
       call read_fix(records(pos), model, st%current_stage, .true., error)
-    case ('DISPLACE')
-      call read_displace(records(pos), model, st%current_stage, error)
-    case ('FORCE')
-      call read_force(records(pos), model, st%current_stage, error)
+    case ('DISPLACE', 'FORCE')
+      if (nfields(records(pos)) >= 2) then
+        if (to_upper(field_text(records(pos), 2)) == 'LIST') then
+          call read_listed_values(records(pos), model, st, error)
+          pos = pos + 1
+          return
+        end if
+      end if
+      if (key == 'FORCE') then
+        call read_force(records(pos), model, st%current_stage, error)
+      else
+        call read_displace(records(pos), model, st%current_stage, error)
+      end if
     case ('PRESSURE', 'TRACTION')
       call read_face_load(records(pos), model, st%current_stage, error)
     case ('PRESTRESS')
@@ -517,6 +528,103 @@ contains
     call move_alloc(tmp, st%element_tables)
   end subroutine read_elements
 
+  !> FORCE, LIST [, CSYS=n] and DISPLACE, LIST [, CSYS=n], then rows `node, dof, value` (Abaqus
+  !! *CLOAD and *BOUNDARY): each row a force or a prescribed value on one node, in the stage of
+  !! the record (a reference before any STAGE), adding up as the records on sets do. A row's
+  !! node is a set of its own, not written to /sets (one a node, shared by all rows on it).
+  subroutine read_listed_values(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: head
+    type(node_set_t) :: s
+    type(node_set_t), allocatable :: stmp(:)
+    type(record_t), allocatable :: rtmp(:)
+    type(region_t) :: r
+    type(nodal_load_t) :: l
+    type(nodal_load_t), allocatable :: ltmp(:)
+    type(constraint_t) :: c
+    type(constraint_t), allocatable :: ctmp(:)
+    integer :: first, cs, nrow, j, i, node, dof, iset
+    real(dp) :: v
+    logical :: force
+
+    force = keyword(rec) == 'FORCE'
+    first = first_row_field(rec)
+    head%file = rec%file
+    head%line = rec%line
+    head%fields = rec%fields(1:first - 1)
+    call check_option_keys(head, 3, error, allowed=['CSYS'], expected='CSYS=n (the rows follow on lines of their own)')
+    if (allocated(error)) return
+    call get_csys_option(head, model, 'CSYS', csys_cartesian, cs, error)
+    if (allocated(error)) return
+    nrow = (nfields(rec) - first + 1) / 3
+    if (nfields(rec) < first) then
+      call input_error(error, rec%file, rec%line, keyword(rec) // ', LIST has no row (rows "node, dof, value" ' // &
+                       'follow on lines of their own)')
+      return
+    end if
+    if (mod(nfields(rec) - first + 1, 3) /= 0) then
+      call input_error(error, rec%file, field_line(rec, nfields(rec)), 'a ' // keyword(rec) // ' row is "node, ' // &
+                       'dof, value": the last row is short of a field', nfields(rec) + 1)
+      return
+    end if
+    do j = 1, nrow
+      i = first + 3 * (j - 1)
+      call get_int(rec, i, 1, max_mesh_nodes, node, error, 'node number')
+      if (allocated(error)) return
+      call dof_index(to_upper(field_text(rec, i + 1)), model%systems(cs)%kind, dof)
+      if (dof == 0) then
+        call input_error(error, rec%file, field_line(rec, i + 1), 'unknown degree of freedom "' // &
+                         field_text(rec, i + 1) // '" for this system (' // dof_names(model%systems(cs)%kind) // ')', &
+                         i + 1)
+        return
+      end if
+      call get_real(rec, i + 2, v, error)
+      if (allocated(error)) return
+      ! the node's own set ('/' is in no name a deck gives)
+      iset = model%find_node_set('LIST/node ' // str(node))
+      if (iset == 0) then
+        s%name = 'LIST/node ' // str(node)
+        s%nodes = [node]
+        s%listed = .true.
+        stmp = [model%node_sets, s]
+        call move_alloc(stmp, model%node_sets)
+        iset = size(model%node_sets)
+        st%set_group = [character(len=name_len) :: st%set_group, '']
+        st%set_regions = [st%set_regions, r]
+        st%set_node = [st%set_node, -2]
+        st%set_field = [st%set_field, i]
+        rtmp = [st%set_records, rec]
+        call move_alloc(rtmp, st%set_records)
+      end if
+      if (force) then
+        l%stage = st%current_stage
+        l%file = rec%file
+        l%line = field_line(rec, i)
+        l%field = i
+        l%node_set = iset
+        l%csys = cs
+        l%components = 0.0_dp
+        l%components(dof) = v
+        ltmp = [model%nodal_loads, l]
+        call move_alloc(ltmp, model%nodal_loads)
+      else
+        c%node_set = iset
+        c%csys = cs
+        c%dof = dof
+        c%value = v
+        c%stage = st%current_stage
+        c%prescribed = .true.
+        c%file = rec%file
+        c%line = field_line(rec, i)
+        ctmp = [model%constraints, c]
+        call move_alloc(ctmp, model%constraints)
+      end if
+    end do
+  end subroutine read_listed_values
+
   !> MATERIAL, name, kind, KEY=value, ...
   subroutine read_material(rec, model, error)
     type(record_t), intent(in) :: rec
@@ -704,6 +812,7 @@ contains
     st%set_group = [character(len=name_len) :: st%set_group, text]
     st%set_regions = [st%set_regions, r]
     st%set_node = [st%set_node, node]
+    st%set_field = [st%set_field, 0]
     rtmp = [st%set_records, rec]
     call move_alloc(rtmp, st%set_records)
   end subroutine read_nset
@@ -1020,7 +1129,8 @@ contains
         return
       end if
     end do
-    call resolve_node_sets(model, defined, st%set_regions, st%set_node, st%set_records, error, st%set_group)
+    call resolve_node_sets(model, defined, st%set_regions, st%set_node, st%set_records, error, st%set_group, &
+                           st%set_field)
     if (allocated(error)) return
     call check_loaded_nodes(model, error)
     if (allocated(error)) return
@@ -1282,7 +1392,7 @@ contains
           n = model%node_sets(l%node_set)%nodes(k)
           if (used(n)) cycle
           call input_error(error, l%file, l%line, 'FORCE on node set ' // model%node_sets(l%node_set)%name // &
-                           ': node ' // str(n) // ' belongs to no element, so the force would act on nothing', 2)
+                           ': node ' // str(n) // ' belongs to no element, so the force would act on nothing', l%field)
           return
         end do
       end associate
@@ -1291,23 +1401,41 @@ contains
 
   !> Fill each node set with the nodes in its region (or its one node); an empty set is an error.
   !! Only defined nodes are selected: NODE records may leave gaps in the numbering.
-  subroutine resolve_node_sets(model, defined, regions, single, records, error, groups)
+  subroutine resolve_node_sets(model, defined, regions, single, records, error, groups, fields)
     type(model_t), intent(inout) :: model
     logical, intent(in) :: defined(:)   !! given by a DATAIN block or a NODE record
     type(region_t), intent(in) :: regions(:)
-    integer, intent(in) :: single(:)   !! NSET NODE=n: n; NSET LIST: -1 (nodes listed); else 0
+    integer, intent(in) :: single(:)   !! NSET NODE=n: n; NSET LIST: -1 (nodes listed); a LIST row's node:
+                                       !! -2 (the node in the set, its field in `fields`); else 0
     type(record_t), intent(in) :: records(:)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: groups(:)   !! restrict to the nodes of a group
+    integer, intent(in), optional :: fields(:)            !! the field of a LIST row's node (single -2)
     integer :: s, n, g, ifield
     logical, allocatable :: inside(:), in_group(:)
     character(len=:), allocatable :: text
     logical :: found
     allocate (inside(model%nnode), in_group(model%nnode))
     do s = 1, size(model%node_sets)
-      if (single(s) < 0) then
+      if (single(s) == -1) then
         call check_listed_nodes(model%node_sets(s), records(s), defined, error)
         if (allocated(error)) return
+        cycle
+      end if
+      if (single(s) == -2) then
+        n = model%node_sets(s)%nodes(1)
+        ifield = 0
+        if (present(fields)) ifield = fields(s)
+        if (n > model%nnode) then
+          call input_error(error, records(s)%file, field_line(records(s), ifield), 'node ' // str(n) // &
+                           ' is not defined', ifield)
+          return
+        end if
+        if (.not. defined(n)) then
+          call input_error(error, records(s)%file, field_line(records(s), ifield), 'node ' // str(n) // &
+                           ' is not defined', ifield)
+          return
+        end if
         cycle
       end if
       if (single(s) > 0) then

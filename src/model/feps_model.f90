@@ -75,6 +75,7 @@ module feps_model
   type, public :: node_set_t
     character(len=:), allocatable :: name
     integer, allocatable :: nodes(:)
+    logical :: listed = .false.              !! the one node of FORCE/DISPLACE LIST rows (not written to /sets)
   end type node_set_t
 
   !> Element faces whose nodes all lie in a region, within one group (resolved by the
@@ -114,6 +115,7 @@ module feps_model
     real(dp) :: components(3) = 0.0_dp
     character(len=:), allocatable :: file    !! the FORCE record (for messages)
     integer :: line = 0
+    integer :: field = 2                     !! the field naming its nodes (the set; a LIST row's node)
   end type nodal_load_t
 
   !> Prestress of the bars of one group: an axial force, tension positive, added to every

@@ -47,6 +47,8 @@ contains
       new_unittest('two STAGE records with one name', test_stage_twice), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
+      new_unittest('MODE=TOTAL before any STAGE', test_mode_total_before_stage), &
+      new_unittest('MODE= of an unknown word', test_mode_unknown), &
       new_unittest('a FORCE, LIST row with an unknown DOF', test_force_list_bad_dof), &
       new_unittest('a FORCE, LIST row on an undefined node', test_force_list_undefined_node), &
       new_unittest('a DISPLACE, LIST row short of its value', test_displace_list_short_row), &
@@ -399,6 +401,24 @@ contains
                          'field 8', &
                          'the last row is short of a field'], error)
   end subroutine test_displace_list_short_row
+
+  !> Issue 25's MODE=: MODE=TOTAL before any STAGE.
+  subroutine test_mode_total_before_stage(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/mode_total_before_stage.dat', err_input, &
+                        [character(len=60) :: 'mode_total_before_stage.dat:24:', &
+                         'field 4', &
+                         'MODE=TOTAL needs a STAGE record before it'], error)
+  end subroutine test_mode_total_before_stage
+
+  !> Issue 25's MODE=: MODE= of an unknown word.
+  subroutine test_mode_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/mode_unknown.dat', err_input, &
+                        [character(len=60) :: 'mode_unknown.dat:29:', &
+                         'field 3', &
+                         'MODE takes INCREMENT or TOTAL, not "ABSOLUTE"'], error)
+  end subroutine test_mode_unknown
 
   subroutine test_unknown_keyword(error)
     type(error_t), allocatable, intent(out) :: error

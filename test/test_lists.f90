@@ -25,7 +25,8 @@ contains
       new_unittest('tables: the ids are kept', test_ids), &
       new_unittest('tables: the displacements of the DATAIN deck', test_same_displacements), &
       new_unittest('a cube on rollers in a turned Cartesian system: uniaxial stress', test_rotated_rollers), &
-      new_unittest('FORCE, LIST and DISPLACE, LIST rows: the loads on node sets', test_listed_loads)]
+      new_unittest('FORCE, LIST and DISPLACE, LIST rows: the loads on node sets', test_listed_loads), &
+      new_unittest('MODE=TOTAL: pulled to 0.1, then back to 0.05; 10 N, then 4 N', test_mode_total)]
   end subroutine collect_lists
 
   !> Node numbers index the mesh (the gaps are unused nodes); element ids are kept per group.
@@ -151,5 +152,42 @@ contains
       call check(error, b%displacement(1, 27), 0.001_dp, 'the corner''s prescribed x', rel=1.0e-15_dp)
     end associate
   end subroutine test_listed_loads
+
+  !> test/data/lists_mode_total.dat, by hand: the top nodes (z = 10) end stage one at uz = 0.1
+  !! and stage two, DISPLACE MODE=TOTAL 0.05, at 0.05 (its increment -0.05); node 27 carries
+  !! -10 N in x after stage one and, FORCE LIST MODE=TOTAL -4, -4 N after stage two, the other
+  !! eight side nodes still -10: -84 N in all. Rounding only: 1e-14 relative.
+  subroutine test_mode_total(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer :: n, top
+    call read_deck('test/data/lists_mode_total.dat', model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, size(obs%steps), 2, 'the last step of each stage')
+    if (allocated(error)) return
+    top = 0
+    do n = 1, model%nnode
+      if (model%coords(3, n) /= 10.0_dp) cycle
+      top = top + 1
+      call check(error, obs%steps(1)%displacement(3, n), 0.1_dp, 'uz at the end of stage one', rel=1.0e-14_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(2)%displacement(3, n), 0.05_dp, 'uz at the end of stage two (MODE=TOTAL)', &
+                 rel=1.0e-14_dp)
+      if (allocated(error)) return
+    end do
+    call check(error, top, 9, 'top nodes checked')
+    if (allocated(error)) return
+    call check(error, obs%steps(1)%applied_force(1, 27), -10.0_dp, 'node 27 after stage one', rel=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, obs%steps(2)%applied_force(1, 27), -4.0_dp, 'node 27 after stage two (MODE=TOTAL)', &
+               rel=1.0e-14_dp)
+    if (allocated(error)) return
+    call check(error, sum(obs%steps(2)%applied_force(1, :)), -84.0_dp, 'the side''s force after stage two', &
+               rel=1.0e-14_dp)
+  end subroutine test_mode_total
 
 end module test_lists

@@ -23,7 +23,7 @@ module feps_deck
                                   family_bar, bare_mesh_type
   use feps_material, only: material_t
   use feps_material_factory, only: new_material, material_of
-  use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load
+  use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load, read_mode
   use feps_deck_stages, only: read_stage, read_controls_record, read_report
   use feps_deck_tables, only: first_row_field, read_nodes_table, read_elements_table, read_id_list
   implicit none
@@ -548,16 +548,19 @@ contains
     type(constraint_t), allocatable :: ctmp(:)
     integer :: first, cs, nrow, j, i, node, dof, iset
     real(dp) :: v
-    logical :: force
+    logical :: force, total
 
     force = keyword(rec) == 'FORCE'
     first = first_row_field(rec)
     head%file = rec%file
     head%line = rec%line
     head%fields = rec%fields(1:first - 1)
-    call check_option_keys(head, 3, error, allowed=['CSYS'], expected='CSYS=n (the rows follow on lines of their own)')
+    call check_option_keys(head, 3, error, allowed=['CSYS', 'MODE'], &
+                           expected='CSYS=n or MODE= (the rows follow on lines of their own)')
     if (allocated(error)) return
     call get_csys_option(head, model, 'CSYS', csys_cartesian, cs, error)
+    if (allocated(error)) return
+    call read_mode(head, st%current_stage, total, error)
     if (allocated(error)) return
     nrow = (nfields(rec) - first + 1) / 3
     if (nfields(rec) < first) then
@@ -608,6 +611,9 @@ contains
         l%csys = cs
         l%components = 0.0_dp
         l%components(dof) = v
+        l%given = .false.
+        l%given(dof) = .true.
+        l%total = total
         ltmp = [model%nodal_loads, l]
         call move_alloc(ltmp, model%nodal_loads)
       else
@@ -617,6 +623,7 @@ contains
         c%value = v
         c%stage = st%current_stage
         c%prescribed = .true.
+        c%total = total
         c%file = rec%file
         c%line = field_line(rec, i)
         ctmp = [model%constraints, c]

@@ -103,6 +103,7 @@ module feps_model
     integer :: active_from = 1               !! held from this stage on (FIX after a STAGE record)
     logical :: release = .false.             !! RELEASE: free from stage active_from on
     logical :: prescribed = .false.          !! DISPLACE: held in every stage
+    logical :: total = .false.               !! DISPLACE MODE=TOTAL: value is the total at the stage's end
     character(len=:), allocatable :: file
     integer :: line = 0
   end type constraint_t
@@ -116,6 +117,8 @@ module feps_model
     character(len=:), allocatable :: file    !! the FORCE record (for messages)
     integer :: line = 0
     integer :: field = 2                     !! the field naming its nodes (the set; a LIST row's node)
+    logical :: total = .false.               !! MODE=TOTAL: the given components are totals at the stage's end
+    logical :: given(3) = .false.            !! the components the record gives
   end type nodal_load_t
 
   !> Prestress of the bars of one group: an axial force, tension positive, added to every

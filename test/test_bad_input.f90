@@ -47,6 +47,8 @@ contains
       new_unittest('two STAGE records with one name', test_stage_twice), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
+      new_unittest('an FSET LIST row with a face number the type has not', test_fset_list_face_number), &
+      new_unittest('an FSET LIST row naming an element of no group', test_fset_list_unknown_element), &
       new_unittest('MODE=TOTAL before any STAGE', test_mode_total_before_stage), &
       new_unittest('MODE= of an unknown word', test_mode_unknown), &
       new_unittest('a FORCE, LIST row with an unknown DOF', test_force_list_bad_dof), &
@@ -419,6 +421,24 @@ contains
                          'field 3', &
                          'MODE takes INCREMENT or TOTAL, not "ABSOLUTE"'], error)
   end subroutine test_mode_unknown
+
+  !> Issue 25's face sets by face number: an FSET LIST row with a face number the type has not.
+  subroutine test_fset_list_face_number(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fset_list_face_number.dat', err_input, &
+                        [character(len=60) :: 'fset_list_face_number.dat:44:', &
+                         'field 6', &
+                         'element 1 (tet10) has faces 1 to 4, not 5'], error)
+  end subroutine test_fset_list_face_number
+
+  !> Issue 25's face sets by face number: an FSET LIST row naming an element of no group.
+  subroutine test_fset_list_unknown_element(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fset_list_unknown_element.dat', err_input, &
+                        [character(len=60) :: 'fset_list_unknown_element.dat:45:', &
+                         'field 7', &
+                         'group wall has no element 999'], error)
+  end subroutine test_fset_list_unknown_element
 
   subroutine test_unknown_keyword(error)
     type(error_t), allocatable, intent(out) :: error

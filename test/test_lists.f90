@@ -11,6 +11,8 @@ module test_lists
   use feps_deck, only: read_deck
   use feps_incremental_analysis, only: run_analysis, analysis_summary_t
   use feps_test_observers, only: all_steps_t
+  use feps_element_catalog, only: new_solid_element
+  use feps_solid_element, only: solid_element_t
   implicit none
   private
 
@@ -26,7 +28,12 @@ contains
       new_unittest('tables: the displacements of the DATAIN deck', test_same_displacements), &
       new_unittest('a cube on rollers in a turned Cartesian system: uniaxial stress', test_rotated_rollers), &
       new_unittest('FORCE, LIST and DISPLACE, LIST rows: the loads on node sets', test_listed_loads), &
-      new_unittest('MODE=TOTAL: pulled to 0.1, then back to 0.05; 10 N, then 4 N', test_mode_total)]
+      new_unittest('MODE=TOTAL: pulled to 0.1, then back to 0.05; 10 N, then 4 N', test_mode_total), &
+      new_unittest('face numbers: the CalculiX faces of every solid', test_calculix_faces), &
+      new_unittest('FSET LIST (element, face): the forces of the box FSET, hex8', test_faces_hex8), &
+      new_unittest('FSET LIST (element, face): the forces of the box FSET, hex20', test_faces_hex20), &
+      new_unittest('FSET LIST (element, face): the forces of the box FSET, tet10', test_faces_tet10), &
+      new_unittest('FSET LIST (element, face): the forces of the box FSET, wedge15', test_faces_wedge15)]
   end subroutine collect_lists
 
   !> Node numbers index the mesh (the gaps are unused nodes); element ids are kept per group.
@@ -189,5 +196,97 @@ contains
     call check(error, sum(obs%steps(2)%applied_force(1, :)), -84.0_dp, 'the side''s force after stage two', &
                rel=1.0e-14_dp)
   end subroutine test_mode_total
+
+  !> FSET LIST's face numbers are the element files' (feps_hex8.f90 ...): they must be those of
+  !! the CalculiX manual (section 6.2, "element types"), written out here from it as corner
+  !! nodes: C3D8/C3D20 S1 = 1-2-3-4, S2 = 5-8-7-6, S3 = 1-5-6-2, S4 = 2-6-7-3, S5 = 3-7-8-4,
+  !! S6 = 4-8-5-1; C3D4/C3D10 S1 = 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1; C3D6/C3D15
+  !! S1 = 1-2-3, S2 = 4-5-6, S3 = 1-2-5-4, S4 = 2-3-6-5, S5 = 3-1-4-6; tri6 edges 1-2, 2-3, 3-1.
+  !! The same corners (as a set: feps winds every face outwards) for each face number.
+  subroutine test_calculix_faces(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: hex(4, 6) = reshape([1, 2, 3, 4, 5, 8, 7, 6, 1, 5, 6, 2, 2, 6, 7, 3, 3, 7, 8, 4, &
+                                               4, 8, 5, 1], [4, 6])
+    integer, parameter :: tet(4, 4) = reshape([1, 2, 3, 0, 1, 4, 2, 0, 2, 4, 3, 0, 3, 4, 1, 0], [4, 4])
+    integer, parameter :: wedge(4, 5) = reshape([1, 2, 3, 0, 4, 5, 6, 0, 1, 2, 5, 4, 2, 3, 6, 5, 3, 1, 4, 6], [4, 5])
+    integer, parameter :: tri(4, 3) = reshape([1, 2, 0, 0, 2, 3, 0, 0, 3, 1, 0, 0], [4, 3])
+    call compare('hex8', hex, error)
+    if (.not. allocated(error)) call compare('hex20', hex, error)
+    if (.not. allocated(error)) call compare('tet4', tet, error)
+    if (.not. allocated(error)) call compare('tet10', tet, error)
+    if (.not. allocated(error)) call compare('wedge6', wedge, error)
+    if (.not. allocated(error)) call compare('wedge15', wedge, error)
+    if (.not. allocated(error)) call compare('tri6', tri, error)
+  contains
+    subroutine compare(type_name, corners, error)
+      character(len=*), intent(in) :: type_name
+      integer, intent(in) :: corners(:, :)
+      type(error_t), allocatable, intent(out) :: error
+      class(solid_element_t), allocatable :: solid
+      integer, allocatable :: fn(:)
+      integer :: f, k, ncorner
+      call new_solid_element(type_name, solid, error)
+      if (allocated(error)) return
+      call check(error, solid%nfaces(), size(corners, 2), type_name // ': faces')
+      if (allocated(error)) return
+      do f = 1, size(corners, 2)
+        ncorner = count(corners(:, f) > 0)
+        fn = solid%face_nodes(f)
+        do k = 1, ncorner
+          if (.not. any(fn(1:ncorner) == corners(k, f))) then
+            call test_failed(error, type_name // ': face ' // char(48 + f) // ' is not CalculiX''s')
+            return
+          end if
+        end do
+      end do
+    end subroutine compare
+  end subroutine test_calculix_faces
+
+  subroutine test_faces_hex8(error)
+    type(error_t), allocatable, intent(out) :: error
+    call same_face_forces('hex8', error)
+  end subroutine test_faces_hex8
+
+  subroutine test_faces_hex20(error)
+    type(error_t), allocatable, intent(out) :: error
+    call same_face_forces('hex20', error)
+  end subroutine test_faces_hex20
+
+  subroutine test_faces_tet10(error)
+    type(error_t), allocatable, intent(out) :: error
+    call same_face_forces('tet10', error)
+  end subroutine test_faces_tet10
+
+  subroutine test_faces_wedge15(error)
+    type(error_t), allocatable, intent(out) :: error
+    call same_face_forces('wedge15', error)
+  end subroutine test_faces_wedge15
+
+  !> test/data/lists_faces_<type>.dat: lame_<type>.dat with its bore pressure on an FSET LIST
+  !! of (element, face) rows (make_lists_decks.py faces): the same faces, the same nodal
+  !! forces (measured equal to the last bit; held to 1e-14 of p a h) and displacements.
+  subroutine same_face_forces(type_name, error)
+    character(len=*), intent(in) :: type_name
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: box, rows
+    type(all_steps_t) :: obs_b, obs_r
+    type(analysis_summary_t) :: summary
+    call read_deck('test/data/lame_' // type_name // '.dat', box, error)
+    if (allocated(error)) return
+    call read_deck('test/data/lists_faces_' // type_name // '.dat', rows, error)
+    if (allocated(error)) return
+    call run_analysis(box, 'cholmod', obs_b, summary, error)
+    if (allocated(error)) return
+    call run_analysis(rows, 'cholmod', obs_r, summary, error)
+    if (allocated(error)) return
+    call check(error, all(box%face_sets(1)%element == rows%face_sets(1)%element) .and. &
+               all(box%face_sets(1)%face == rows%face_sets(1)%face), type_name // ': the same faces')
+    if (allocated(error)) return
+    call check(error, maxval(abs(obs_b%steps(1)%applied_force - obs_r%steps(1)%applied_force)), 0.0_dp, &
+               type_name // ': nodal forces', abs=1.0e-14_dp * 10.0_dp * 600.0_dp * 50.0_dp)
+    if (allocated(error)) return
+    call check(error, size(rows%face_sets(1)%face) > 0 .and. sum(abs(obs_r%steps(1)%applied_force)) > 0.0_dp, &
+               type_name // ': faces loaded')
+  end subroutine same_face_forces
 
 end module test_lists

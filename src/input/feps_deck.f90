@@ -632,6 +632,78 @@ contains
     end do
   end subroutine read_listed_values
 
+  !> The rows `element, face` of FSET, name, LIST, GROUP=g: element ids as the group numbers
+  !! them (finish_model maps them to the group's rows; the assembly checks the face numbers).
+  subroutine read_face_rows(rec, s, error)
+    type(record_t), intent(in) :: rec
+    type(face_set_t), intent(inout) :: s
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: head
+    integer :: first, nrow, j, i
+    first = first_row_field(rec)
+    head%file = rec%file
+    head%line = rec%line
+    head%fields = rec%fields(1:first - 1)
+    call check_option_keys(head, 4, error, allowed=['GROUP'], expected='GROUP=g (the rows follow on lines of their own)')
+    if (allocated(error)) return
+    if (nfields(rec) < first) then
+      call input_error(error, rec%file, rec%line, 'FSET, LIST has no row (rows "element, face" follow on lines ' // &
+                       'of their own)')
+      return
+    end if
+    if (mod(nfields(rec) - first + 1, 2) /= 0) then
+      call input_error(error, rec%file, field_line(rec, nfields(rec)), 'an FSET row is "element, face": the ' // &
+                       'last row is short of a field', nfields(rec) + 1)
+      return
+    end if
+    nrow = (nfields(rec) - first + 1) / 2
+    allocate (s%element(nrow), s%face(nrow), s%row_line(nrow), s%row_field(nrow))
+    do j = 1, nrow
+      i = first + 2 * (j - 1)
+      call get_int(rec, i, 1, max_mesh_elements, s%element(j), error, 'element number')
+      if (allocated(error)) return
+      call get_int(rec, i + 1, 1, 1000, s%face(j), error, 'face number')
+      if (allocated(error)) return
+      s%row_line(j) = field_line(rec, i)
+      s%row_field(j) = i + 1
+    end do
+    s%listed = .true.
+  end subroutine read_face_rows
+
+  !> The element ids of FSET LIST rows become rows of their group's connectivity: the ids of
+  !! its ELEMENTS tables, or 1, 2, ... in the order of its DATAIN blocks.
+  subroutine map_face_rows(model, error)
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: row_of(:)
+    integer :: s, j, g, e, nel
+    do s = 1, size(model%face_sets)
+      associate (fs => model%face_sets(s))
+        if (.not. fs%listed) cycle
+        g = fs%group
+        nel = size(model%groups(g)%connectivity, 2)
+        if (allocated(model%groups(g)%element_ids)) then
+          allocate (row_of(max(maxval(model%groups(g)%element_ids), maxval(fs%element))), source=0)
+          do e = 1, nel
+            row_of(model%groups(g)%element_ids(e)) = e
+          end do
+        else
+          allocate (row_of(max(nel, maxval(fs%element))), source=0)
+          row_of(1:nel) = [(e, e = 1, nel)]
+        end if
+        do j = 1, size(fs%element)
+          if (row_of(fs%element(j)) == 0) then
+            call input_error(error, fs%file, fs%row_line(j), 'face set ' // fs%name // ': group ' // &
+                             model%groups(g)%name // ' has no element ' // str(fs%element(j)), fs%row_field(j) - 1)
+            return
+          end if
+          fs%element(j) = row_of(fs%element(j))
+        end do
+        deallocate (row_of)
+      end associate
+    end do
+  end subroutine map_face_rows
+
   !> MATERIAL, name, kind, KEY=value, ...
   subroutine read_material(rec, model, error)
     type(record_t), intent(in) :: rec
@@ -849,6 +921,10 @@ contains
       call input_error(error, rec%file, rec%line, 'FSET needs GROUP=<element group>')
       return
     end if
+    if (to_upper(field_text(rec, 3)) == 'LIST') then
+      call read_face_rows(rec, s, error)
+      if (allocated(error)) return
+    end if
     s%group = model%find_group(text)
     if (s%group == 0) then
       call input_error(error, rec%file, field_line(rec, ifield), 'undefined element group "' // text // '"', ifield)
@@ -860,11 +936,13 @@ contains
                        '" holds interface elements', ifield)
       return
     end if
-    call read_region(rec, model, s%region, error)
-    if (allocated(error)) return
+    if (.not. s%listed) then
+      call read_region(rec, model, s%region, error)
+      if (allocated(error)) return
+      allocate (s%element(0), s%face(0))
+    end if
     s%file = rec%file
     s%line = rec%line
-    allocate (s%element(0), s%face(0))
     tmp = [model%face_sets, s]
     call move_alloc(tmp, model%face_sets)
   end subroutine read_fset
@@ -1138,6 +1216,8 @@ contains
     end do
     call resolve_node_sets(model, defined, st%set_regions, st%set_node, st%set_records, error, st%set_group, &
                            st%set_field)
+    if (allocated(error)) return
+    call map_face_rows(model, error)
     if (allocated(error)) return
     call check_loaded_nodes(model, error)
     if (allocated(error)) return

@@ -88,6 +88,9 @@ module feps_model
     integer, allocatable :: face(:)
     character(len=:), allocatable :: file
     integer :: line = 0
+    logical :: listed = .false.              !! FSET LIST: element and face given by rows
+    integer, allocatable :: row_line(:)      !! each row's line (FSET LIST)
+    integer, allocatable :: row_field(:)     !! each row's face-number field (the element's is one before)
   end type face_set_t
 
   !> Fixed (value 0) or prescribed displacement of one DOF of every node of a set, the DOF

@@ -42,5 +42,31 @@ def main(results, deck):
     out.append(TAIL)
     open(deck, "w").write("".join(out))
 
+
+
+def face_deck(results, box_deck, deck):
+    """Write DECK: BOX_DECK with its FSET bore (a coordinate box) given as FSET, bore, LIST rows
+    (element, face) read from the results of BOX_DECK (/sets/faces/bore). Usage:
+      feps test/data/lame_tet10.dat --output /tmp/t.h5
+      python3 test/data/make_lists_decks.py faces /tmp/t.h5 test/data/lame_tet10.dat test/data/lists_faces_tet10.dat"""
+    with h5py.File(results, "r") as f:
+        rows = f["sets/faces/bore"][...]
+    out = []
+    for line in open(box_deck):
+        if line.startswith("FSET, bore,"):
+            out.append("FSET, bore, LIST, GROUP=wall\n")
+            out.extend("%d, %d\n" % (e, k) for e, k in rows)
+        elif line.startswith("! ") and not out:
+            out.append("! " + box_deck.split("/")[-1] + " with its bore faces as FSET LIST rows (element, face),\n"
+                       "! written by make_lists_decks.py faces; test/test_lists.f90 holds the two to one another.\n")
+            out.append(line)
+        else:
+            out.append(line)
+    open(deck, "w").write("".join(out))
+
+
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    if sys.argv[1] == "faces":
+        face_deck(*sys.argv[2:])
+    else:
+        main(*sys.argv[1:])

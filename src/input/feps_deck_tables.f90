@@ -1,8 +1,10 @@
 !> Explicit lists in the deck (issue 25): the node table (NODES), element tables (ELEMENTS) and
 !! id lists (NSET, name, LIST). A table is its keyword line, then one row a line: the rows are
 !! continuation lines of the record (docs/input-format.md), so every field keeps its line and
-!! an error names the line and field at fault. Whether a node an element or a set names is
-!! defined is known only once every node is read: finish_model checks it (names the field).
+!! an error names the line and field at fault. Whether a node that an element or a set names
+!! is defined is known only once every node is read: finish_model checks it (names the field).
+!! The rows of FORCE/DISPLACE LIST and FSET LIST, which fill the model's loads and face sets,
+!! are read where those records are (feps_deck: read_listed_values, read_face_rows).
 module feps_deck_tables
   use feps_kinds, only: dp
   use feps_error, only: error_t, input_error, str

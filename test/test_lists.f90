@@ -33,7 +33,8 @@ contains
       new_unittest('FSET LIST (element, face): the forces of the box FSET, hex8', test_faces_hex8), &
       new_unittest('FSET LIST (element, face): the forces of the box FSET, hex20', test_faces_hex20), &
       new_unittest('FSET LIST (element, face): the forces of the box FSET, tet10', test_faces_tet10), &
-      new_unittest('FSET LIST (element, face): the forces of the box FSET, wedge15', test_faces_wedge15)]
+      new_unittest('FSET LIST (element, face): the forces of the box FSET, wedge15', test_faces_wedge15), &
+      new_unittest('FSET ELSET=, FACE=: the forces of the box FSET, hex8 cube', test_elset_faces)]
   end subroutine collect_lists
 
   !> Node numbers index the mesh (the gaps are unused nodes); element ids are kept per group.
@@ -288,5 +289,27 @@ contains
     call check(error, size(rows%face_sets(1)%face) > 0 .and. sum(abs(obs_r%steps(1)%applied_force)) > 0.0_dp, &
                type_name // ': faces loaded')
   end subroutine same_face_forces
+
+  !> test/data/lists_elset_cube.dat: cube.dat's top face set as face 2 of an ELSET of its upper
+  !! layer: the same faces, the same nodal forces to the last bit.
+  subroutine test_elset_faces(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: box, listed
+    type(all_steps_t) :: obs_b, obs_l
+    type(analysis_summary_t) :: summary
+    call read_deck('test/data/cube.dat', box, error)
+    if (allocated(error)) return
+    call read_deck('test/data/lists_elset_cube.dat', listed, error)
+    if (allocated(error)) return
+    call run_analysis(box, 'cholmod', obs_b, summary, error)
+    if (allocated(error)) return
+    call run_analysis(listed, 'cholmod', obs_l, summary, error)
+    if (allocated(error)) return
+    call check(error, all(listed%face_sets(1)%face == 2) .and. size(listed%face_sets(1)%face) == 4, &
+               'face 2 of four elements')
+    if (allocated(error)) return
+    call check(error, maxval(abs(obs_b%steps(1)%applied_force - obs_l%steps(1)%applied_force)), 0.0_dp, &
+               'nodal forces', abs=0.0_dp)
+  end subroutine test_elset_faces
 
 end module test_lists

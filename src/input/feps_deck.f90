@@ -41,8 +41,18 @@ module feps_deck
   end type element_rows_t
 
   !> What the reader keeps while it walks the records.
+  !> ELSET, name, LIST, GROUP=g: element ids of a group, as its tables (or its DATAIN blocks'
+  !! order) number them, with the line and field of each for messages; an FSET ELSET=
+  !! takes them with a face number.
+  type :: element_set_t
+    character(len=:), allocatable :: name
+    character(len=:), allocatable :: group
+    integer, allocatable :: ids(:), lines(:), fields(:)
+  end type element_set_t
+
   type :: deck_state_t
     type(datain_mesh_t) :: mesh
+    type(element_set_t), allocatable :: element_sets(:)
     integer, allocatable :: block_group(:)      !! group that took each element block
     integer :: current_group = 0                !! group taking the inline blocks that follow
     integer :: explicit_nodes = 0
@@ -158,7 +168,9 @@ contains
     case ('NSET')
       call read_nset(records(pos), model, st, error)
     case ('FSET')
-      call read_fset(records(pos), model, error)
+      call read_fset(records(pos), model, st, error)
+    case ('ELSET')
+      call read_elset(records(pos), st, error)
     case ('FIX')
       call read_fix(records(pos), model, st%current_stage, .false., error)
     case ('RELEASE')
@@ -897,15 +909,16 @@ contains
   end subroutine read_nset
 
   !> FSET, name, GROUP=g, [CSYS=n,] <coordinate>=a[:b] ..., [TOL=t]
-  subroutine read_fset(rec, model, error)
+  subroutine read_fset(rec, model, st, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(in) :: st
     type(error_t), allocatable, intent(out) :: error
     type(face_set_t) :: s
     type(face_set_t), allocatable :: tmp(:)
-    character(len=:), allocatable :: text
-    integer :: ifield
-    logical :: found
+    character(len=:), allocatable :: text, elset
+    integer :: ifield, efield, k, face
+    logical :: found, by_elset
 
     call require_fields(rec, 3, error)
     if (allocated(error)) return
@@ -916,12 +929,45 @@ contains
       call input_error(error, rec%file, field_line(rec, 2), 'face set "' // s%name // '" is defined twice', 2)
       return
     end if
+    call option_text(rec, 'ELSET', elset, efield, by_elset)
     call option_text(rec, 'GROUP', text, ifield, found)
-    if (.not. found) then
-      call input_error(error, rec%file, rec%line, 'FSET needs GROUP=<element group>')
+    if (by_elset) then
+      ! FSET, name, ELSET=e, FACE=k: face k of every element of the set (Abaqus *SURFACE's
+      ! "elset, Sk"); the group is the set's
+      call check_option_keys(rec, 3, error, allowed=[character(len=5) :: 'ELSET', 'FACE', 'GROUP'])
+      if (allocated(error)) return
+      k = 0
+      if (allocated(st%element_sets)) then
+        do k = size(st%element_sets), 1, -1
+          if (st%element_sets(k)%name == elset) exit
+        end do
+      end if
+      if (k == 0) then
+        call input_error(error, rec%file, field_line(rec, efield), 'undefined element set "' // elset // &
+                         '" (an ELSET record before this one defines it)', efield)
+        return
+      end if
+      if (found .and. text /= st%element_sets(k)%group) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'GROUP=' // text // ': element set ' // &
+                         elset // ' is of group ' // st%element_sets(k)%group, ifield)
+        return
+      end if
+      text = st%element_sets(k)%group
+      ifield = efield
+      call option_face(rec, face, error)
+      if (allocated(error)) return
+      associate (es => st%element_sets(k))
+        s%element = es%ids
+        s%face = [(face, k = 1, size(es%ids))]
+        s%row_line = es%lines
+        s%row_field = es%fields + 1        ! map_face_rows names field - 1: the element's
+      end associate
+      s%listed = .true.
+    else if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'FSET needs GROUP=<element group> (or ELSET=<element set>)')
       return
     end if
-    if (to_upper(field_text(rec, 3)) == 'LIST') then
+    if (.not. by_elset .and. to_upper(field_text(rec, 3)) == 'LIST') then
       call read_face_rows(rec, s, error)
       if (allocated(error)) return
     end if
@@ -946,6 +992,80 @@ contains
     tmp = [model%face_sets, s]
     call move_alloc(tmp, model%face_sets)
   end subroutine read_fset
+
+  !> FACE=k of an FSET ELSET= record: the face number, 1 to 6 (the element catalog's, which are
+  !! CalculiX's and Abaqus's; a face the element type lacks is refused when the faces are made).
+  subroutine option_face(rec, face, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(out) :: face
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    face = 0
+    call option_text(rec, 'FACE', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'FSET, ELSET= needs FACE=<face number>')
+      return
+    end if
+    call parse_int(text, 1, 6, face, error, rec, ifield, 'face number')
+  end subroutine option_face
+
+  !> ELSET, name, LIST, GROUP=g, then lines of element ids (several a line, `a:b` ranges), as
+  !! the group's ELEMENTS tables number its elements (1, 2, ... in the order of its DATAIN
+  !! blocks): for FSET, name, ELSET=, FACE=. The ids are checked against the group when the
+  !! face set is made.
+  subroutine read_elset(rec, st, error)
+    type(record_t), intent(in) :: rec
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: head
+    type(element_set_t) :: es
+    type(element_set_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: text
+    integer :: first, ifield, k
+    logical :: found
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    es%name = field_text(rec, 2)
+    call check_result_name(rec, 'element set', es%name, error)
+    if (allocated(error)) return
+    if (allocated(st%element_sets)) then
+      if (any([(st%element_sets(k)%name == es%name, k = 1, size(st%element_sets))])) then
+        call input_error(error, rec%file, field_line(rec, 2), 'element set "' // es%name // '" is defined twice', 2)
+        return
+      end if
+    end if
+    if (to_upper(field_text(rec, 3)) /= 'LIST') then
+      call input_error(error, rec%file, field_line(rec, 3), 'ELSET takes LIST, GROUP=g and lines of element ' // &
+                       'numbers, not "' // field_text(rec, 3) // '"', 3)
+      return
+    end if
+    first = first_row_field(rec)
+    head%file = rec%file
+    head%line = rec%line
+    head%fields = rec%fields(1:first - 1)
+    call check_option_keys(head, 4, error, allowed=['GROUP'], expected='GROUP=g (the element numbers follow on ' // &
+                           'lines of their own)')
+    if (allocated(error)) return
+    call option_text(head, 'GROUP', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'ELSET needs GROUP=<element group> (element numbers are a group''s)')
+      return
+    end if
+    es%group = text
+    if (nfields(rec) < first) then
+      call input_error(error, rec%file, rec%line, 'ELSET, LIST has no element number (they follow on lines of ' // &
+                       'their own)')
+      return
+    end if
+    call read_id_list(rec, first, max_mesh_elements, es%ids, es%fields, error)
+    if (allocated(error)) return
+    es%lines = [(field_line(rec, es%fields(k)), k = 1, size(es%fields))]
+    if (.not. allocated(st%element_sets)) allocate (st%element_sets(0))
+    tmp = [st%element_sets, es]
+    call move_alloc(tmp, st%element_sets)
+  end subroutine read_elset
 
   subroutine read_solver(rec, model, error)
     type(record_t), intent(in) :: rec

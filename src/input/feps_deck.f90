@@ -40,7 +40,6 @@ module feps_deck
     type(record_t) :: rec
   end type element_rows_t
 
-  !> What the reader keeps while it walks the records.
   !> ELSET, name, LIST, GROUP=g: element ids of a group, as its tables (or its DATAIN blocks'
   !! order) number them, with the line and field of each for messages; an FSET ELSET=
   !! takes them with a face number.
@@ -50,6 +49,7 @@ module feps_deck
     integer, allocatable :: ids(:), lines(:), fields(:)
   end type element_set_t
 
+  !> What the reader keeps while it walks the records.
   type :: deck_state_t
     type(datain_mesh_t) :: mesh
     type(element_set_t), allocatable :: element_sets(:)

@@ -11,6 +11,7 @@ program feps_main
   use feps_files, only: report_file_size_limit
   use feps_blas, only: blas_description
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
+  use feps_element_table, only: element_table_lines
   implicit none
 
   interface
@@ -28,6 +29,7 @@ program feps_main
   call report_file_size_limit()
   if (command_argument_count() >= 1) then
     if (argument(1) == 'joint') call c_exit(int(joint_command(), c_int))
+    if (argument(1) == 'elements') call c_exit(int(elements_command(), c_int))
   end if
   call parse_arguments(options, status)
   if (status >= 0) call c_exit(int(status, c_int))
@@ -64,6 +66,23 @@ contains
     write (output_unit, '(a)') line
     flush (output_unit)
   end subroutine print_line
+
+  !> `feps elements` (feps_element_table): the element catalog as JSON; returns the exit status.
+  integer function elements_command() result(status)
+    type(error_t), allocatable :: error
+    status = 2
+    if (command_argument_count() > 1) then
+      write (error_unit, '(a)') 'feps: error: elements takes no argument (given: "' // argument(2) // '")'
+      return
+    end if
+    call element_table_lines(print_line, error)
+    if (allocated(error)) then
+      write (error_unit, '(a)') 'feps: error: ' // error%message
+      status = 1
+      return
+    end if
+    status = 0
+  end function elements_command
 
   !> `feps joint ...` (feps_joint_command): the analytical joint models; returns the exit status.
   integer function joint_command() result(status)
@@ -285,6 +304,7 @@ contains
       '                 [--fields LIST] [--check] [--strict] [--quiet]', &
       '                 [--restart-every N] [--restart FILE [--step N]]', &
       '       feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--json] ...', &
+      '       feps elements', &
       '       feps --help | --version', &
       '', &
       '  DECK                 input deck (docs/input-format.md) or a file holding only a DATAIN mesh', &
@@ -316,6 +336,7 @@ contains
       '  -h, --help           this text', &
       '  -V, --version        the version', &
       '  joint                the analytical joint models of thesis chapter 7 (feps joint --help)', &
+      '  elements             the element catalog as JSON (names in Abaqus and meshio, faces)', &
       '', &
       'Each option is given at most once, and none takes an empty value.', &
       '', &

@@ -500,7 +500,7 @@ class Checker:
 # reaction_nodal, hex20), plane strain with line interfaces (contact_2d); and, for the XDMF
 # table, more element types: curved bars of 3, 4 and 5 nodes (Tables 2.2 and 2.3), and decks
 # with one type changed ("deck|OLD|NEW"): hex8b, hex20r, tri6-6 and -nodal interfaces.
-LAYOUT_DECKS = ["test/data/prestress_block.dat", "test/data/block_shear.dat", "test/data/lame_hex20.dat",
+LAYOUT_DECKS = ["test/data/prestress_block.dat", "test/data/block_shear.dat", "test/data/lame_hex20.dat", "test/data/lists_lame_hex20.dat",
                 "test/data/contact_2d.dat", "test/data/cube.dat", "input/verification/table2_2_bar3.dat",
                 "input/verification/table2_3_bar4.dat", "input/verification/table2_2_bar5.dat",
                 "test/data/lame_hex8.dat|TYPE=hex8,|TYPE=hex8b,", "test/data/cantilever_hex20.dat|TYPE=hex20,|TYPE=hex20r,",
@@ -545,7 +545,7 @@ def check_shape(f, name, ds, shape, content):
     nnode = f["mesh/coordinates"].shape[0]
     dims = [s.strip() for s in shape.split(" x ")]
     rows, cols = ds.shape
-    group = name.split("/")[-2] if name.endswith(("connectivity", "topology", "points")) else name.split("/")[-1]
+    group = name.split("/")[-2] if name.endswith(("connectivity", "topology", "points", "element_ids")) else name.split("/")[-1]
     conn = f[f"mesh/groups/{group}/connectivity"] if f"mesh/groups/{group}/connectivity" in f else None
     if dims[0] == "nnode":
         assert rows == nnode, f"{name}: {rows} rows, nnode = {nnode}"

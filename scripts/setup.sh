@@ -2,12 +2,16 @@
 # Idempotent set-up of everything feps needs on a fresh Debian bookworm machine (run as root).
 # Debian: compiler, BLAS/LAPACK, SuiteSparse (CHOLMOD), METIS, HDF5 with Fortran bindings.
 # PyPI: fpm (the Fortran package manager), numpy, h5py, matplotlib, vtk (only for
-# test/reference/check_xdmf_vtk.py: the XDMF files read as ParaView reads them) and meshio (5.3.5
-# checked; only for test/reference/check_meshio.py: the meshio file read by meshio's reader).
+# test/reference/check_xdmf_vtk.py: the XDMF files read as ParaView reads them), meshio (5.3.5
+# checked; test/reference/check_meshio.py reads the meshio file with it, and
+# scripts/import_mesh.py reads gmsh meshes through it) and gmsh (test/cli/check_import.py
+# meshes a pipe with it; its library needs the X and GLU libraries below).
+# Debian's calculix-ccx-test: CalculiX's published test examples, which check_import.py imports.
 set -euo pipefail
 
 debs=(gfortran libopenblas-dev liblapack-dev libsuitesparse-dev libmetis-dev
-      libhdf5-dev hdf5-tools pkg-config hyperfine)
+      libhdf5-dev hdf5-tools pkg-config hyperfine calculix-ccx-test
+      libglu1-mesa libxrender1 libxcursor1 libxft2 libxinerama1)
 
 missing=()
 for p in "${debs[@]}"; do
@@ -19,7 +23,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-py=(fpm numpy h5py matplotlib vtk meshio)
+py=(fpm numpy h5py matplotlib vtk meshio gmsh)
 need_py=()
 for p in "${py[@]}"; do
   python3 -m pip show -q "$p" >/dev/null 2>&1 || need_py+=("$p")

@@ -26,6 +26,7 @@ program tester
   use test_stress_recovery, only: collect_stress_recovery
   use test_lined_hole, only: collect_lined_hole
   use test_lame_solids, only: collect_lame_solids
+  use test_lists, only: collect_lists
   use test_result_schema, only: collect_result_schema
   use test_solid_elements, only: collect_solid_elements
   use test_collapse, only: collect_collapse
@@ -76,6 +77,7 @@ program tester
     new_testsuite('stress_recovery', collect_stress_recovery), &
     new_testsuite('lined_hole', collect_lined_hole), &
     new_testsuite('lame_solids', collect_lame_solids), &
+    new_testsuite('lists', collect_lists), &
     new_testsuite('result_schema', collect_result_schema), &
     new_testsuite('solid_elements', collect_solid_elements), &
     new_testsuite('collapse', collect_collapse), &

@@ -50,6 +50,21 @@ contains
       new_unittest('two STAGE records with one name', test_stage_twice), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
+      new_unittest('an FSET LIST row with a face number the type has not', test_fset_list_face_number), &
+      new_unittest('an FSET LIST row naming an element of no group', test_fset_list_unknown_element), &
+      new_unittest('MODE=TOTAL before any STAGE', test_mode_total_before_stage), &
+      new_unittest('MODE= of an unknown word', test_mode_unknown), &
+      new_unittest('a FORCE, LIST row with an unknown DOF', test_force_list_bad_dof), &
+      new_unittest('a FORCE, LIST row on an undefined node', test_force_list_undefined_node), &
+      new_unittest('a DISPLACE, LIST row short of its value', test_displace_list_short_row), &
+      new_unittest('a NODES table: a node number given twice', test_lists_duplicate_node), &
+      new_unittest('ELEMENTS tables: an element id given twice', test_lists_duplicate_element), &
+      new_unittest('an ELEMENTS row naming an undefined node', test_lists_undefined_node), &
+      new_unittest('an ELEMENTS row a node short', test_lists_short_row), &
+      new_unittest('a NODES row of five fields', test_lists_node_row_fields), &
+      new_unittest('ELEMENTS before its GROUP', test_lists_elements_unknown_group), &
+      new_unittest('an NSET LIST naming an undefined node', test_lists_nset_undefined_node), &
+      new_unittest('a group of DATAIN blocks and ELEMENTS rows', test_lists_blocks_and_rows), &
       new_unittest('non-positive Jacobian names the element', test_negative_jacobian), &
       new_unittest('a face set on a group of bars: no faces', test_face_set_on_bars), &
       new_unittest('undefined material', test_undefined_material), &
@@ -66,6 +81,9 @@ contains
       new_unittest('CSYS: theta reference along the axis', test_csys_reference_parallel), &
       new_unittest('CSYS: theta reference of two components', test_csys_reference_partial), &
       new_unittest('CSYS: a field too many', test_csys_extra_field), &
+      new_unittest('a rotated Cartesian system given four of its six axis components', test_csys_axes_partial), &
+      new_unittest('a rotated Cartesian system with a zero x axis', test_csys_axis_zero), &
+      new_unittest('a rotated Cartesian system whose x-y vector is parallel to its x axis', test_csys_axes_parallel), &
       new_unittest('STAGE without STEPS=', test_stage_without_steps), &
       new_unittest('an option given twice in one record', test_option_given_twice), &
       new_unittest('a direction given twice under two names', test_direction_given_twice), &
@@ -265,6 +283,167 @@ contains
     call remove_outputs()
   end subroutine test_valid
 
+  !> Issue 25's tables: a NODES table: a node number given twice.
+  subroutine test_lists_duplicate_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_duplicate_node.dat', err_input, &
+                        [character(len=60) :: 'lists_duplicate_node.dat:13:', &
+                         'field 34', &
+                         'duplicate node 3 (defined before, at line 7)'], error)
+  end subroutine test_lists_duplicate_node
+
+  !> Issue 25's tables: ELEMENTS tables: an element id given twice.
+  subroutine test_lists_duplicate_element(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_duplicate_element.dat', err_input, &
+                        [character(len=60) :: 'lists_duplicate_element.dat:16:', &
+                         'field 3', &
+                         'duplicate element 10 (defined before, at line 14)'], error)
+  end subroutine test_lists_duplicate_element
+
+  !> Issue 25's tables: an ELEMENTS row naming an undefined node.
+  subroutine test_lists_undefined_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_undefined_node.dat', err_input, &
+                        [character(len=60) :: 'lists_undefined_node.dat:14:', &
+                         'field 11', &
+                         'uses node 9, which is not defined'], error)
+  end subroutine test_lists_undefined_node
+
+  !> Issue 25's tables: an ELEMENTS row a node short.
+  subroutine test_lists_short_row(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_short_row.dat', err_input, &
+                        [character(len=60) :: 'lists_short_row.dat:15:', &
+                         'field 11', &
+                         'element 10 of group block has 7 nodes; its type hex8 has 8'], error)
+  end subroutine test_lists_short_row
+
+  !> Issue 25's tables: a NODES row of five fields.
+  subroutine test_lists_node_row_fields(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_node_row_fields.dat', err_input, &
+                        [character(len=60) :: 'lists_node_row_fields.dat:13:', &
+                         'field 38', &
+                         'this one has 5 fields'], error)
+  end subroutine test_lists_node_row_fields
+
+  !> Issue 25's tables: ELEMENTS before its GROUP.
+  subroutine test_lists_elements_unknown_group(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_elements_unknown_group.dat', err_input, &
+                        [character(len=60) :: 'lists_elements_unknown_group.dat:12:', &
+                         'field 2', &
+                         'undefined element group "block"'], error)
+  end subroutine test_lists_elements_unknown_group
+
+  !> Issue 25's tables: an NSET LIST naming an undefined node.
+  subroutine test_lists_nset_undefined_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_nset_undefined_node.dat', err_input, &
+                        [character(len=60) :: 'lists_nset_undefined_node.dat:16:', &
+                         'field 7', &
+                         'node set corners: node 12 is not defined'], error)
+  end subroutine test_lists_nset_undefined_node
+
+  !> Issue 25's tables: a group of DATAIN blocks and ELEMENTS rows.
+  subroutine test_lists_blocks_and_rows(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/lists_blocks_and_rows.dat', err_input, &
+                        [character(len=60) :: 'lists_blocks_and_rows.dat:3:', &
+                         'takes DATAIN element blocks and ELEMENTS rows'], error)
+  end subroutine test_lists_blocks_and_rows
+
+  !> Issue 25's rotated Cartesian systems: a rotated Cartesian system given four of its six axis components.
+  subroutine test_csys_axes_partial(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_axes_partial.dat', err_input, &
+                        [character(len=60) :: 'csys_axes_partial.dat:24:', &
+                         'field 11', &
+                         'the axes take all six of ax, ay, az, bx, by, bz'], error)
+  end subroutine test_csys_axes_partial
+
+  !> Issue 25's rotated Cartesian systems: a rotated Cartesian system with a zero x axis.
+  subroutine test_csys_axis_zero(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_axis_zero.dat', err_input, &
+                        [character(len=60) :: 'csys_axis_zero.dat:24:', &
+                         'field 7', &
+                         'the x axis (ax, ay, az) has zero length'], error)
+  end subroutine test_csys_axis_zero
+
+  !> Issue 25's rotated Cartesian systems: a rotated Cartesian system whose x-y vector is parallel to its x axis.
+  subroutine test_csys_axes_parallel(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/csys_axes_parallel.dat', err_input, &
+                        [character(len=60) :: 'csys_axes_parallel.dat:24:', &
+                         'field 10', &
+                         'is zero or parallel to the x axis'], error)
+  end subroutine test_csys_axes_parallel
+
+  !> Issue 25's loads per node: a FORCE, LIST row with an unknown DOF.
+  subroutine test_force_list_bad_dof(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/force_list_bad_dof.dat', err_input, &
+                        [character(len=60) :: 'force_list_bad_dof.dat:23:', &
+                         'field 4', &
+                         'unknown degree of freedom "W"'], error)
+  end subroutine test_force_list_bad_dof
+
+  !> Issue 25's loads per node: a FORCE, LIST row on an undefined node.
+  subroutine test_force_list_undefined_node(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/force_list_undefined_node.dat', err_input, &
+                        [character(len=60) :: 'force_list_undefined_node.dat:23:', &
+                         'field 3', &
+                         'node 99 is not defined'], error)
+  end subroutine test_force_list_undefined_node
+
+  !> Issue 25's loads per node: a DISPLACE, LIST row short of its value.
+  subroutine test_displace_list_short_row(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/displace_list_short_row.dat', err_input, &
+                        [character(len=60) :: 'displace_list_short_row.dat:23:', &
+                         'field 8', &
+                         'the last row is short of a field'], error)
+  end subroutine test_displace_list_short_row
+
+  !> Issue 25's MODE=: MODE=TOTAL before any STAGE.
+  subroutine test_mode_total_before_stage(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/mode_total_before_stage.dat', err_input, &
+                        [character(len=60) :: 'mode_total_before_stage.dat:24:', &
+                         'field 4', &
+                         'MODE=TOTAL needs a STAGE record before it'], error)
+  end subroutine test_mode_total_before_stage
+
+  !> Issue 25's MODE=: MODE= of an unknown word.
+  subroutine test_mode_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/mode_unknown.dat', err_input, &
+                        [character(len=60) :: 'mode_unknown.dat:29:', &
+                         'field 3', &
+                         'MODE takes INCREMENT or TOTAL, not "ABSOLUTE"'], error)
+  end subroutine test_mode_unknown
+
+  !> Issue 25's face sets by face number: an FSET LIST row with a face number the type has not.
+  subroutine test_fset_list_face_number(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fset_list_face_number.dat', err_input, &
+                        [character(len=60) :: 'fset_list_face_number.dat:44:', &
+                         'field 6', &
+                         'element 1 (tet10) has faces 1 to 4, not 5'], error)
+  end subroutine test_fset_list_face_number
+
+  !> Issue 25's face sets by face number: an FSET LIST row naming an element of no group.
+  subroutine test_fset_list_unknown_element(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/fset_list_unknown_element.dat', err_input, &
+                        [character(len=60) :: 'fset_list_unknown_element.dat:45:', &
+                         'field 7', &
+                         'group wall has no element 999'], error)
+  end subroutine test_fset_list_unknown_element
+
   subroutine test_unknown_keyword(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/unknown_keyword.dat', err_input, &
@@ -337,7 +516,7 @@ contains
   subroutine test_csys_extra_field(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/csys_extra_field.dat', err_input, &
-                        [character(len=40) :: 'csys_extra_field.dat:24:', 'field 7', 'one too many'], error)
+                        [character(len=40) :: 'csys_extra_field.dat:24:', 'field 13', 'one too many'], error)
   end subroutine test_csys_extra_field
 
   !> STEPS is in the syntax without brackets; it used to default to 1.

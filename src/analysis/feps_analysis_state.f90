@@ -408,6 +408,31 @@ contains
     end do
   end subroutine check_born_nodes
 
+  !> FORCE MODE=TOTAL: each given component is the total at the end of stage s, so the force the
+  !! node carried in that direction at the end of the stage before comes off the increment that
+  !! nodal_load_vector added (the component itself).
+  subroutine subtract_carried_forces(model, an, s, df)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: s
+    real(dp), intent(inout) :: df(:, :)
+    real(dp) :: basis(3, 3)
+    integer :: i, k, n, d
+    if (.not. allocated(an%path%f_applied)) return
+    do i = 1, size(model%nodal_loads)
+      associate (l => model%nodal_loads(i))
+        if (.not. l%total .or. l%stage /= s) cycle
+        do k = 1, size(model%node_sets(l%node_set)%nodes)
+          n = model%node_sets(l%node_set)%nodes(k)
+          basis = model%systems(l%csys)%local_basis(model%coords(:, n))
+          do d = 1, 3
+            if (l%given(d)) df(:, n) = df(:, n) - dot_product(basis(:, d), an%path%f_applied(:, n)) * basis(:, d)
+          end do
+        end do
+      end associate
+    end do
+  end subroutine subtract_carried_forces
+
   !> Increments of one whole stage: external forces (global) and constrained values (nodal).
   subroutine stage_increments(model, an, s, df, duc, dps, error)
     type(model_t), intent(in) :: model
@@ -421,6 +446,7 @@ contains
     dps = model%stage_prestress(s)
     call nodal_load_vector(model, an%kernels, df, error, stage=s)
     if (allocated(error)) return
+    call subtract_carried_forces(model, an, s, df)
     ! Post-tensioned bars, not yet bonded: their force pulls on their nodes as a load.
     call add_group_stress_forces(model, an, model%stage_prestress(s, after=.true.), -1.0_dp, df)
     frac = model%stages(s)%load_fraction
@@ -436,6 +462,9 @@ contains
           ! several records on one DOF); a FIX later in the deck holds the DOF where it is.
           if (.not. con%prescribed) then
             duc(con%dof, n) = 0.0_dp
+          else if (con%total) then
+            ! MODE=TOTAL: to the value at the stage's end from the value reached
+            duc(con%dof, n) = con%value - an%path%uc(con%dof, n)
           else if (con%stage == 0) then
             duc(con%dof, n) = duc(con%dof, n) + frac * con%value
           else

@@ -40,6 +40,21 @@ contains
                          model%groups(g)%element_type // ') has no faces; face sets take faces of solid elements')
         return
       end if
+      if (model%face_sets(s)%listed) then
+        ! FSET LIST: the faces are given; their numbers are the element's (CalculiX's for solids)
+        do k = 1, size(model%face_sets(s)%face)
+          if (model%face_sets(s)%face(k) > solid%nfaces()) then
+            e = model%face_sets(s)%element(k)
+            if (allocated(model%groups(g)%element_ids)) e = model%groups(g)%element_ids(e)
+            call input_error(error, model%face_sets(s)%file, model%face_sets(s)%row_line(k), 'face set ' // &
+                             model%face_sets(s)%name // ': element ' // str(e) // ' (' // &
+                             model%groups(g)%element_type // ') has faces 1 to ' // str(solid%nfaces()) // ', not ' // &
+                             str(model%face_sets(s)%face(k)), model%face_sets(s)%row_field(k))
+            return
+          end if
+        end do
+        cycle
+      end if
       allocate (elems(0), faces(0))
       nfound = 0
       do e = 1, size(model%groups(g)%connectivity, 2)

@@ -32,31 +32,38 @@ module feps_element_catalog
   private
 
   public :: element_info_t, element_info, is_element_type, new_element, new_solid_element, known_element_types
-  public :: family_name, bare_mesh_type, point_coordinates
+  public :: family_name, bare_mesh_type, point_coordinates, catalog_types
 
   !> Element families: how an element's points carry their results.
   integer, parameter, public :: family_solid = 1       !! 6 stress components per point
   integer, parameter, public :: family_interface = 2   !! tractions (2D: 2, 3D: 3) per point
   integer, parameter, public :: family_bar = 3         !! the axial force per point
 
-  !> One catalog row: the type's name, family, dimension (2: plane strain) and XDMF cell.
+  !> One catalog row: the type's name, family, dimension (2: plane strain), XDMF cell, and the
+  !! names of the same element elsewhere, for meshes made by other tools: the Abaqus/CalculiX
+  !! element type and the meshio cell type ('' where none is the same element). The node order
+  !! of every solid is that of Abaqus/CalculiX, which is also the order of meshio's cells read
+  !! from an .inp or a gmsh .msh (meshio puts gmsh's second-order nodes in that order), so a
+  !! mesh from either needs no reordering (test/cli/check_import.sh checks each against Lame).
   type :: catalog_row_t
     character(len=24) :: name
     integer :: family
     integer :: dimension
     character(len=16) :: xdmf_topology
+    character(len=8) :: abaqus_type = ''
+    character(len=16) :: meshio_type = ''
   end type catalog_row_t
 
   type(catalog_row_t), parameter :: catalog(*) = [ &
-    catalog_row_t('hex8', family_solid, 3, 'Hexahedron'), &
+    catalog_row_t('hex8', family_solid, 3, 'Hexahedron', 'C3D8', 'hexahedron'), &
     catalog_row_t('hex8b', family_solid, 3, 'Hexahedron'), &
-    catalog_row_t('hex20', family_solid, 3, 'Hexahedron_20'), &
-    catalog_row_t('hex20r', family_solid, 3, 'Hexahedron_20'), &
-    catalog_row_t('tet4', family_solid, 3, 'Tetrahedron'), &
-    catalog_row_t('tet10', family_solid, 3, 'Tetrahedron_10'), &
-    catalog_row_t('wedge6', family_solid, 3, 'Wedge'), &
-    catalog_row_t('wedge15', family_solid, 3, 'Wedge_15'), &
-    catalog_row_t('tri6', family_solid, 2, 'Triangle_6'), &
+    catalog_row_t('hex20', family_solid, 3, 'Hexahedron_20', 'C3D20', 'hexahedron20'), &
+    catalog_row_t('hex20r', family_solid, 3, 'Hexahedron_20', 'C3D20R', ''), &
+    catalog_row_t('tet4', family_solid, 3, 'Tetrahedron', 'C3D4', 'tetra'), &
+    catalog_row_t('tet10', family_solid, 3, 'Tetrahedron_10', 'C3D10', 'tetra10'), &
+    catalog_row_t('wedge6', family_solid, 3, 'Wedge', 'C3D6', 'wedge'), &
+    catalog_row_t('wedge15', family_solid, 3, 'Wedge_15', 'C3D15', 'wedge15'), &
+    catalog_row_t('tri6', family_solid, 2, 'Triangle_6', 'CPE6', 'triangle6'), &
     catalog_row_t('tri6-6', family_solid, 2, 'Triangle_6'), &
     catalog_row_t('interface-quad4', family_interface, 3, 'Quadrilateral'), &
     catalog_row_t('interface-quad4-nodal', family_interface, 3, 'Quadrilateral'), &
@@ -87,6 +94,8 @@ module feps_element_catalog
     character(len=:), allocatable :: strain_component_names  !! of its point strains ('' if none written)
     character(len=:), allocatable :: xdmf_topology    !! the XDMF TopologyType of its cell
     integer :: xdmf_cell_nodes = 0                    !! nodes of that cell (an interface: its lower layer)
+    character(len=:), allocatable :: abaqus_type      !! the same element in Abaqus/CalculiX ('' if none)
+    character(len=:), allocatable :: meshio_type      !! meshio's cell type read as this type ('' if none)
   end type element_info_t
 
 contains
@@ -108,6 +117,8 @@ contains
     info%family = catalog(row)%family
     info%dimension = catalog(row)%dimension
     info%xdmf_topology = trim(catalog(row)%xdmf_topology)
+    info%abaqus_type = trim(catalog(row)%abaqus_type)
+    info%meshio_type = trim(catalog(row)%meshio_type)
     call new_element(info%name, element, error)
     if (allocated(error)) return
     info%nnodes = element%nnodes()
@@ -239,6 +250,12 @@ contains
       names = names // trim(catalog(row)%name)
     end do
   end function known_element_types
+
+  !> Every type name of the catalog, in its order.
+  pure function catalog_types() result(names)
+    character(len=24), allocatable :: names(:)
+    names = catalog(:)%name
+  end function catalog_types
 
   !> The type a block of a bare DATAIN mesh (a file of DATAIN records only, checked and reported
   !! without a deck) is read as, from its nodes per element: the first hexahedron of the catalog

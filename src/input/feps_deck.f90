@@ -13,6 +13,7 @@ module feps_deck
   use feps_coordinate_system, only: coordinate_system_t, default_coordinate_systems, cylindrical_about, csys_cartesian, &
                                     csys_cylindrical
   use feps_model, only: model_t, max_total_steps, element_group_t, material_spec_t, text_material_keys, node_set_t, face_set_t, &
+                        nodal_load_t, constraint_t, &
                         region_t, in_region, name_len, method_euler, method_modified_euler, method_newton_raphson, &
                         method_full_newton_raphson, known_fields, line_search_refusal
   use feps_deck_fields, only: require_fields, forbid_extra_fields, get_real, get_int, parse_real, parse_int, parse_range_real, &
@@ -22,27 +23,51 @@ module feps_deck
                                   family_bar, bare_mesh_type
   use feps_material, only: material_t
   use feps_material_factory, only: new_material, material_of
-  use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity
+  use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity, &
+                             read_mode
   use feps_deck_stages, only: read_stage, read_controls_record, read_report
+  use feps_deck_tables, only: first_row_field, read_nodes_table, read_elements_table, read_id_list
   implicit none
   private
 
   public :: read_deck, resolve_node_sets
 
+  !> The rows of one ELEMENTS table (checked against the nodes once all are read).
+  type :: element_rows_t
+    integer :: group = 0
+    integer, allocatable :: ids(:)
+    integer, allocatable :: connectivity(:, :)
+    integer, allocatable :: id_field(:)          !! each row's id field (node i is field id_field + i)
+    type(record_t) :: rec
+  end type element_rows_t
+
+  !> ELSET, name, LIST, GROUP=g: element ids of a group, as its tables (or its DATAIN blocks'
+  !! order) number them, with the line and field of each for messages; an FSET ELSET=
+  !! takes them with a face number.
+  type :: element_set_t
+    character(len=:), allocatable :: name
+    character(len=:), allocatable :: group
+    integer, allocatable :: ids(:), lines(:), fields(:)
+  end type element_set_t
+
   !> What the reader keeps while it walks the records.
   type :: deck_state_t
     type(datain_mesh_t) :: mesh
+    type(element_set_t), allocatable :: element_sets(:)
     integer, allocatable :: block_group(:)      !! group that took each element block
     integer :: current_group = 0                !! group taking the inline blocks that follow
     integer :: explicit_nodes = 0
     real(dp), allocatable :: explicit_coords(:, :)
     integer, allocatable :: explicit_ids(:)
     integer, allocatable :: explicit_line(:)
+    integer, allocatable :: explicit_field(:)    !! the field of each explicit node's number
     character(len=:), allocatable :: explicit_file
     type(region_t), allocatable :: set_regions(:)
     integer, allocatable :: set_node(:)          !! NSET by a single node number (0: by region)
     character(len=name_len), allocatable :: set_group(:)  !! NSET restricted to a group's nodes ('' if not)
     type(record_t), allocatable :: set_records(:)
+    integer, allocatable :: set_field(:)         !! a LIST row's node field (set_node -2), else 0
+    type(element_rows_t), allocatable :: element_tables(:)
     integer :: current_stage = 0                 !! stage that loads and displacements belong to
     logical :: fields_given = .false.            !! a FIELDS record came: only what it names
     integer :: solver_line = 0                   !! line of the SOLVER record (0: none yet)
@@ -71,8 +96,9 @@ contains
     allocate (model%groups(0), model%materials(0), model%node_sets(0), model%face_sets(0))
     allocate (model%constraints(0), model%nodal_loads(0), model%face_loads(0), model%stages(0), model%reports(0))
     allocate (model%prestresses(0))
-    allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0), st%set_group(0))
-    allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0))
+    allocate (st%block_group(0), st%set_regions(0), st%set_node(0), st%set_records(0), st%set_group(0), st%set_field(0))
+    allocate (st%explicit_coords(3, 0), st%explicit_ids(0), st%explicit_line(0), st%element_tables(0), &
+              st%explicit_field(0))
     st%mesh%nnode = 0
     allocate (st%mesh%coords(3, 0), st%mesh%blocks(0))
 
@@ -133,6 +159,10 @@ contains
       call read_include(records(pos), model, st, error)
     case ('NODE')
       call read_node(records(pos), model, st, error)
+    case ('NODES')
+      call read_nodes(records(pos), model, st, error)
+    case ('ELEMENTS')
+      call read_elements(records(pos), model, st, error)
     case ('MATERIAL')
       call read_material(records(pos), model, error)
     case ('GROUP')
@@ -140,15 +170,26 @@ contains
     case ('NSET')
       call read_nset(records(pos), model, st, error)
     case ('FSET')
-      call read_fset(records(pos), model, error)
+      call read_fset(records(pos), model, st, error)
+    case ('ELSET')
+      call read_elset(records(pos), st, error)
     case ('FIX')
       call read_fix(records(pos), model, st%current_stage, .false., error)
     case ('RELEASE')
       call read_fix(records(pos), model, st%current_stage, .true., error)
-    case ('DISPLACE')
-      call read_displace(records(pos), model, st%current_stage, error)
-    case ('FORCE')
-      call read_force(records(pos), model, st%current_stage, error)
+    case ('DISPLACE', 'FORCE')
+      if (nfields(records(pos)) >= 2) then
+        if (to_upper(field_text(records(pos), 2)) == 'LIST') then
+          call read_listed_values(records(pos), model, st, error)
+          pos = pos + 1
+          return
+        end if
+      end if
+      if (key == 'FORCE') then
+        call read_force(records(pos), model, st%current_stage, error)
+      else
+        call read_displace(records(pos), model, st%current_stage, error)
+      end if
     case ('GRAVITY')
       call read_gravity(records(pos), model, st%current_stage, error)
     case ('PRESSURE', 'TRACTION')
@@ -246,7 +287,8 @@ contains
     end do
   end subroutine read_parameters
 
-  !> CSYS, id, CYLINDRICAL, x0, y0, z0, ax, ay, az [, rx, ry, rz]   or   CSYS, id, CARTESIAN, x0, y0, z0
+  !> CSYS, id, CYLINDRICAL, x0, y0, z0, ax, ay, az [, rx, ry, rz]   or
+  !! CSYS, id, CARTESIAN, x0, y0, z0 [, ax, ay, az, bx, by, bz]
   subroutine read_csys(rec, model, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
@@ -310,7 +352,7 @@ contains
     case ('CARTESIAN')
       call require_fields(rec, 6, error)
       if (allocated(error)) return
-      call forbid_extra_fields(rec, 6, error)
+      call forbid_extra_fields(rec, 12, error)
       if (allocated(error)) return
       do i = 1, 3
         call get_real(rec, 3 + i, v(i), error)
@@ -318,6 +360,21 @@ contains
       end do
       cs%kind = csys_cartesian
       cs%origin = v(1:3)
+      if (nfields(rec) > 6) then
+        ! a rotated system (Abaqus *TRANSFORM, TYPE=R): all six components or none
+        if (nfields(rec) < 12) then
+          call input_error(error, rec%file, field_line(rec, nfields(rec) + 1), &
+                           'the axes take all six of ax, ay, az, bx, by, bz (fields 7 to 12) or none; field ' // &
+                           str(nfields(rec) + 1) // ' is missing', nfields(rec) + 1)
+          return
+        end if
+        do i = 1, 6
+          call get_real(rec, 6 + i, v(3 + i), error)
+          if (allocated(error)) return
+        end do
+        call cartesian_axes(rec, v(4:6), v(7:9), cs%axes, error)
+        if (allocated(error)) return
+      end if
     case default
       call input_error(error, rec%file, field_line(rec, 3), 'unknown coordinate system kind "' // kind // &
                        '" (CARTESIAN or CYLINDRICAL)', 3)
@@ -326,6 +383,33 @@ contains
     tmp = [model%systems, cs]
     call move_alloc(tmp, model%systems)
   end subroutine read_csys
+
+  !> The axes of a rotated Cartesian system: x along `ax`, y the part of `bx` normal to it,
+  !! z = x cross y; a zero `ax` names field 7, a zero `bx` or one parallel to `ax` field 10.
+  subroutine cartesian_axes(rec, ax, bx, axes, error)
+    type(record_t), intent(in) :: rec
+    real(dp), intent(in) :: ax(3), bx(3)
+    real(dp), intent(out) :: axes(3, 3)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: e1(3), e2(3)
+    axes = 0.0_dp
+    if (norm2(ax) == 0.0_dp) then
+      call input_error(error, rec%file, field_line(rec, 7), 'the x axis (ax, ay, az) has zero length', 7)
+      return
+    end if
+    e1 = ax / norm2(ax)
+    e2 = bx - dot_product(bx, e1) * e1
+    ! the same test as the cylindrical theta reference's
+    if (norm2(bx) == 0.0_dp .or. norm2(e2) <= 1.0e-9_dp * norm2(bx)) then
+      call input_error(error, rec%file, field_line(rec, 10), 'the x-y plane''s vector (bx, by, bz) is zero or ' // &
+                       'parallel to the x axis, so it gives no y axis', 10)
+      return
+    end if
+    e2 = e2 / norm2(e2)
+    axes(:, 1) = e1
+    axes(:, 2) = e2
+    axes(:, 3) = [e1(2) * e2(3) - e1(3) * e2(2), e1(3) * e2(1) - e1(1) * e2(3), e1(1) * e2(2) - e1(2) * e2(1)]
+  end subroutine cartesian_axes
 
   !> INCLUDE, file: a DATAIN file (blocks and the closing E), path relative to the deck.
   subroutine read_include(rec, model, st, error)
@@ -414,11 +498,229 @@ contains
     end if
     st%explicit_ids = [st%explicit_ids, id]
     st%explicit_line = [st%explicit_line, rec%line]
+    st%explicit_field = [st%explicit_field, 2]
     st%explicit_file = rec%file
     st%explicit_coords = reshape([st%explicit_coords, model%systems(cs)%to_global(c)], &
                                  [3, st%explicit_nodes + 1])
     st%explicit_nodes = st%explicit_nodes + 1
   end subroutine read_node
+
+  !> NODES [, CSYS=n] and its rows: nodes given explicitly, as NODE records are (a number
+  !! given twice is found once all nodes are read, naming both lines).
+  subroutine read_nodes(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: ids(:), lines(:), fields(:)
+    real(dp), allocatable :: coords(:, :)
+    call read_nodes_table(rec, model, ids, coords, lines, fields, error)
+    if (allocated(error)) return
+    st%explicit_field = [st%explicit_field, fields]
+    st%explicit_ids = [st%explicit_ids, ids]
+    st%explicit_line = [st%explicit_line, lines]
+    st%explicit_file = rec%file
+    st%explicit_coords = reshape([st%explicit_coords, coords], [3, st%explicit_nodes + size(ids)])
+    st%explicit_nodes = st%explicit_nodes + size(ids)
+  end subroutine read_nodes
+
+  !> ELEMENTS, group and its rows: the group's elements, with their ids.
+  subroutine read_elements(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(element_rows_t) :: rows
+    type(element_rows_t), allocatable :: tmp(:)
+    integer :: g
+    call read_elements_table(rec, model, g, rows%ids, rows%connectivity, rows%id_field, error)
+    if (allocated(error)) return
+    if (size(model%groups(g)%blocks) > 0) then
+      call input_error(error, rec%file, rec%line, 'group ' // model%groups(g)%name // ' takes DATAIN element ' // &
+                       'blocks (BLOCKS=); its elements come from blocks or from ELEMENTS tables, not both', 2)
+      return
+    end if
+    rows%group = g
+    rows%rec = rec
+    tmp = [st%element_tables, rows]
+    call move_alloc(tmp, st%element_tables)
+  end subroutine read_elements
+
+  !> FORCE, LIST [, CSYS=n] and DISPLACE, LIST [, CSYS=n], then rows `node, dof, value` (Abaqus
+  !! *CLOAD and *BOUNDARY): each row a force or a prescribed value on one node, in the stage of
+  !! the record (a reference before any STAGE), adding up as the records on sets do. A row's
+  !! node is a set of its own, not written to /sets (one a node, shared by all rows on it).
+  subroutine read_listed_values(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: head
+    type(node_set_t) :: s
+    type(node_set_t), allocatable :: stmp(:)
+    type(record_t), allocatable :: rtmp(:)
+    type(region_t) :: r
+    type(nodal_load_t) :: l
+    type(nodal_load_t), allocatable :: ltmp(:)
+    type(constraint_t) :: c
+    type(constraint_t), allocatable :: ctmp(:)
+    integer :: first, cs, nrow, j, i, node, dof, iset
+    real(dp) :: v
+    logical :: force, total
+
+    force = keyword(rec) == 'FORCE'
+    first = first_row_field(rec)
+    head%file = rec%file
+    head%line = rec%line
+    head%fields = rec%fields(1:first - 1)
+    call check_option_keys(head, 3, error, allowed=['CSYS', 'MODE'], &
+                           expected='CSYS=n or MODE= (the rows follow on lines of their own)')
+    if (allocated(error)) return
+    call get_csys_option(head, model, 'CSYS', csys_cartesian, cs, error)
+    if (allocated(error)) return
+    call read_mode(head, st%current_stage, total, error)
+    if (allocated(error)) return
+    nrow = (nfields(rec) - first + 1) / 3
+    if (nfields(rec) < first) then
+      call input_error(error, rec%file, rec%line, keyword(rec) // ', LIST has no row (rows "node, dof, value" ' // &
+                       'follow on lines of their own)')
+      return
+    end if
+    if (mod(nfields(rec) - first + 1, 3) /= 0) then
+      call input_error(error, rec%file, field_line(rec, nfields(rec)), 'a ' // keyword(rec) // ' row is "node, ' // &
+                       'dof, value": the last row is short of a field', nfields(rec) + 1)
+      return
+    end if
+    do j = 1, nrow
+      i = first + 3 * (j - 1)
+      call get_int(rec, i, 1, max_mesh_nodes, node, error, 'node number')
+      if (allocated(error)) return
+      call dof_index(to_upper(field_text(rec, i + 1)), model%systems(cs)%kind, dof)
+      if (dof == 0) then
+        call input_error(error, rec%file, field_line(rec, i + 1), 'unknown degree of freedom "' // &
+                         field_text(rec, i + 1) // '" for this system (' // dof_names(model%systems(cs)%kind) // ')', &
+                         i + 1)
+        return
+      end if
+      call get_real(rec, i + 2, v, error)
+      if (allocated(error)) return
+      ! the node's own set ('/' is in no name a deck gives)
+      iset = model%find_node_set('LIST/node ' // str(node))
+      if (iset == 0) then
+        s%name = 'LIST/node ' // str(node)
+        s%nodes = [node]
+        s%listed = .true.
+        stmp = [model%node_sets, s]
+        call move_alloc(stmp, model%node_sets)
+        iset = size(model%node_sets)
+        st%set_group = [character(len=name_len) :: st%set_group, '']
+        st%set_regions = [st%set_regions, r]
+        st%set_node = [st%set_node, -2]
+        st%set_field = [st%set_field, i]
+        rtmp = [st%set_records, rec]
+        call move_alloc(rtmp, st%set_records)
+      end if
+      if (force) then
+        l%stage = st%current_stage
+        l%file = rec%file
+        l%line = field_line(rec, i)
+        l%field = i
+        l%node_set = iset
+        l%csys = cs
+        l%components = 0.0_dp
+        l%components(dof) = v
+        l%given = .false.
+        l%given(dof) = .true.
+        l%total = total
+        ltmp = [model%nodal_loads, l]
+        call move_alloc(ltmp, model%nodal_loads)
+      else
+        c%node_set = iset
+        c%csys = cs
+        c%dof = dof
+        c%value = v
+        c%stage = st%current_stage
+        c%prescribed = .true.
+        c%total = total
+        c%file = rec%file
+        c%line = field_line(rec, i)
+        ctmp = [model%constraints, c]
+        call move_alloc(ctmp, model%constraints)
+      end if
+    end do
+  end subroutine read_listed_values
+
+  !> The rows `element, face` of FSET, name, LIST, GROUP=g: element ids as the group numbers
+  !! them (finish_model maps them to the group's rows; the assembly checks the face numbers).
+  subroutine read_face_rows(rec, s, error)
+    type(record_t), intent(in) :: rec
+    type(face_set_t), intent(inout) :: s
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: head
+    integer :: first, nrow, j, i
+    first = first_row_field(rec)
+    head%file = rec%file
+    head%line = rec%line
+    head%fields = rec%fields(1:first - 1)
+    call check_option_keys(head, 4, error, allowed=['GROUP'], expected='GROUP=g (the rows follow on lines of their own)')
+    if (allocated(error)) return
+    if (nfields(rec) < first) then
+      call input_error(error, rec%file, rec%line, 'FSET, LIST has no row (rows "element, face" follow on lines ' // &
+                       'of their own)')
+      return
+    end if
+    if (mod(nfields(rec) - first + 1, 2) /= 0) then
+      call input_error(error, rec%file, field_line(rec, nfields(rec)), 'an FSET row is "element, face": the ' // &
+                       'last row is short of a field', nfields(rec) + 1)
+      return
+    end if
+    nrow = (nfields(rec) - first + 1) / 2
+    allocate (s%element(nrow), s%face(nrow), s%row_line(nrow), s%row_field(nrow))
+    do j = 1, nrow
+      i = first + 2 * (j - 1)
+      call get_int(rec, i, 1, max_mesh_elements, s%element(j), error, 'element number')
+      if (allocated(error)) return
+      call get_int(rec, i + 1, 1, 1000, s%face(j), error, 'face number')
+      if (allocated(error)) return
+      s%row_line(j) = field_line(rec, i)
+      s%row_field(j) = i + 1
+    end do
+    s%listed = .true.
+  end subroutine read_face_rows
+
+  !> The element ids of FSET LIST rows become rows of their group's connectivity: the ids of
+  !! its ELEMENTS tables, or 1, 2, ... in the order of its DATAIN blocks.
+  subroutine map_face_rows(model, error)
+    type(model_t), intent(inout) :: model
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: row_of(:)
+    integer :: s, j, g, e, nel
+    do s = 1, size(model%face_sets)
+      associate (fs => model%face_sets(s))
+        if (.not. fs%listed) cycle
+        g = fs%group
+        nel = size(model%groups(g)%connectivity, 2)
+        if (allocated(model%groups(g)%element_ids)) then
+          allocate (row_of(max(maxval(model%groups(g)%element_ids), maxval(fs%element))), source=0)
+          do e = 1, nel
+            row_of(model%groups(g)%element_ids(e)) = e
+          end do
+        else
+          allocate (row_of(max(nel, maxval(fs%element))), source=0)
+          row_of(1:nel) = [(e, e = 1, nel)]
+        end if
+        do j = 1, size(fs%element)
+          if (row_of(fs%element(j)) == 0) then
+            call input_error(error, fs%file, fs%row_line(j), 'face set ' // fs%name // ': group ' // &
+                             model%groups(g)%name // ' has no element ' // str(fs%element(j)), fs%row_field(j) - 1)
+            return
+          end if
+          fs%element(j) = row_of(fs%element(j))
+        end do
+        deallocate (row_of)
+      end associate
+    end do
+  end subroutine map_face_rows
 
   !> MATERIAL, name, kind, KEY=value, ...
   subroutine read_material(rec, model, error)
@@ -540,7 +842,8 @@ contains
     end if
   end subroutine read_group
 
-  !> NSET, name, [CSYS=n,] <coordinate>=a[:b] ..., [TOL=t]   or   NSET, name, NODE=n
+  !> NSET, name, [CSYS=n,] <coordinate>=a[:b] ..., [TOL=t]   or   NSET, name, NODE=n   or
+  !! NSET, name, LIST and lines of node ids (ranges a:b allowed)
   subroutine read_nset(rec, model, st, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
@@ -552,6 +855,7 @@ contains
     type(region_t) :: r
     character(len=:), allocatable :: text
     integer :: ifield, node
+    integer, allocatable :: fields(:)
     logical :: found
 
     call require_fields(rec, 3, error)
@@ -565,7 +869,21 @@ contains
     end if
     node = 0
     call option_text(rec, 'NODE', text, ifield, found)
-    if (found) then
+    if (to_upper(field_text(rec, 3)) == 'LIST') then
+      ! the ids are checked against the nodes once all are read (resolve_node_sets)
+      if (first_row_field(rec) /= 4) then
+        call input_error(error, rec%file, rec%line, 'NSET, name, LIST takes no option; its ids follow on ' // &
+                         'lines of their own', 4)
+        return
+      end if
+      call read_id_list(rec, 4, max_mesh_nodes, s%nodes, fields, error)
+      if (allocated(error)) return
+      if (size(s%nodes) == 0) then
+        call input_error(error, rec%file, rec%line, 'node set ' // s%name // ' lists no node')
+        return
+      end if
+      node = -1
+    else if (found) then
       if (nfields(rec) > 3) then
         call input_error(error, rec%file, field_line(rec, merge(4, 3, ifield == 3)), &
                          'NODE= selects one node and takes no other option', &
@@ -583,7 +901,7 @@ contains
       call read_region(rec, model, r, error)
       if (allocated(error)) return
     end if
-    allocate (s%nodes(0))
+    if (.not. allocated(s%nodes)) allocate (s%nodes(0))
     tmp = [model%node_sets, s]
     call move_alloc(tmp, model%node_sets)
     call option_text(rec, 'GROUP', text, ifield, found)
@@ -591,20 +909,22 @@ contains
     st%set_group = [character(len=name_len) :: st%set_group, text]
     st%set_regions = [st%set_regions, r]
     st%set_node = [st%set_node, node]
+    st%set_field = [st%set_field, 0]
     rtmp = [st%set_records, rec]
     call move_alloc(rtmp, st%set_records)
   end subroutine read_nset
 
   !> FSET, name, GROUP=g, [CSYS=n,] <coordinate>=a[:b] ..., [TOL=t]
-  subroutine read_fset(rec, model, error)
+  subroutine read_fset(rec, model, st, error)
     type(record_t), intent(in) :: rec
     type(model_t), intent(inout) :: model
+    type(deck_state_t), intent(in) :: st
     type(error_t), allocatable, intent(out) :: error
     type(face_set_t) :: s
     type(face_set_t), allocatable :: tmp(:)
-    character(len=:), allocatable :: text
-    integer :: ifield
-    logical :: found
+    character(len=:), allocatable :: text, elset
+    integer :: ifield, efield, k, face
+    logical :: found, by_elset
 
     call require_fields(rec, 3, error)
     if (allocated(error)) return
@@ -615,10 +935,47 @@ contains
       call input_error(error, rec%file, field_line(rec, 2), 'face set "' // s%name // '" is defined twice', 2)
       return
     end if
+    call option_text(rec, 'ELSET', elset, efield, by_elset)
     call option_text(rec, 'GROUP', text, ifield, found)
-    if (.not. found) then
-      call input_error(error, rec%file, rec%line, 'FSET needs GROUP=<element group>')
+    if (by_elset) then
+      ! FSET, name, ELSET=e, FACE=k: face k of every element of the set (Abaqus *SURFACE's
+      ! "elset, Sk"); the group is the set's
+      call check_option_keys(rec, 3, error, allowed=[character(len=5) :: 'ELSET', 'FACE', 'GROUP'])
+      if (allocated(error)) return
+      k = 0
+      if (allocated(st%element_sets)) then
+        do k = size(st%element_sets), 1, -1
+          if (st%element_sets(k)%name == elset) exit
+        end do
+      end if
+      if (k == 0) then
+        call input_error(error, rec%file, field_line(rec, efield), 'undefined element set "' // elset // &
+                         '" (an ELSET record before this one defines it)', efield)
+        return
+      end if
+      if (found .and. text /= st%element_sets(k)%group) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'GROUP=' // text // ': element set ' // &
+                         elset // ' is of group ' // st%element_sets(k)%group, ifield)
+        return
+      end if
+      text = st%element_sets(k)%group
+      ifield = efield
+      call option_face(rec, face, error)
+      if (allocated(error)) return
+      associate (es => st%element_sets(k))
+        s%element = es%ids
+        s%face = [(face, k = 1, size(es%ids))]
+        s%row_line = es%lines
+        s%row_field = es%fields + 1        ! map_face_rows names field - 1: the element's
+      end associate
+      s%listed = .true.
+    else if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'FSET needs GROUP=<element group> (or ELSET=<element set>)')
       return
+    end if
+    if (.not. by_elset .and. to_upper(field_text(rec, 3)) == 'LIST') then
+      call read_face_rows(rec, s, error)
+      if (allocated(error)) return
     end if
     s%group = model%find_group(text)
     if (s%group == 0) then
@@ -631,14 +988,90 @@ contains
                        '" holds interface elements', ifield)
       return
     end if
-    call read_region(rec, model, s%region, error)
-    if (allocated(error)) return
+    if (.not. s%listed) then
+      call read_region(rec, model, s%region, error)
+      if (allocated(error)) return
+      allocate (s%element(0), s%face(0))
+    end if
     s%file = rec%file
     s%line = rec%line
-    allocate (s%element(0), s%face(0))
     tmp = [model%face_sets, s]
     call move_alloc(tmp, model%face_sets)
   end subroutine read_fset
+
+  !> FACE=k of an FSET ELSET= record: the face number, 1 to 6 (the element catalog's, which are
+  !! CalculiX's and Abaqus's; a face the element type lacks is refused when the faces are made).
+  subroutine option_face(rec, face, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(out) :: face
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    face = 0
+    call option_text(rec, 'FACE', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'FSET, ELSET= needs FACE=<face number>')
+      return
+    end if
+    call parse_int(text, 1, 6, face, error, rec, ifield, 'face number')
+  end subroutine option_face
+
+  !> ELSET, name, LIST, GROUP=g, then lines of element ids (several a line, `a:b` ranges), as
+  !! the group's ELEMENTS tables number its elements (1, 2, ... in the order of its DATAIN
+  !! blocks): for FSET, name, ELSET=, FACE=. The ids are checked against the group when the
+  !! face set is made.
+  subroutine read_elset(rec, st, error)
+    type(record_t), intent(in) :: rec
+    type(deck_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: head
+    type(element_set_t) :: es
+    type(element_set_t), allocatable :: tmp(:)
+    character(len=:), allocatable :: text
+    integer :: first, ifield, k
+    logical :: found
+    call require_fields(rec, 3, error)
+    if (allocated(error)) return
+    es%name = field_text(rec, 2)
+    call check_result_name(rec, 'element set', es%name, error)
+    if (allocated(error)) return
+    if (allocated(st%element_sets)) then
+      if (any([(st%element_sets(k)%name == es%name, k = 1, size(st%element_sets))])) then
+        call input_error(error, rec%file, field_line(rec, 2), 'element set "' // es%name // '" is defined twice', 2)
+        return
+      end if
+    end if
+    if (to_upper(field_text(rec, 3)) /= 'LIST') then
+      call input_error(error, rec%file, field_line(rec, 3), 'ELSET takes LIST, GROUP=g and lines of element ' // &
+                       'numbers, not "' // field_text(rec, 3) // '"', 3)
+      return
+    end if
+    first = first_row_field(rec)
+    head%file = rec%file
+    head%line = rec%line
+    head%fields = rec%fields(1:first - 1)
+    call check_option_keys(head, 4, error, allowed=['GROUP'], expected='GROUP=g (the element numbers follow on ' // &
+                           'lines of their own)')
+    if (allocated(error)) return
+    call option_text(head, 'GROUP', text, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'ELSET needs GROUP=<element group> (element numbers are a group''s)')
+      return
+    end if
+    es%group = text
+    if (nfields(rec) < first) then
+      call input_error(error, rec%file, rec%line, 'ELSET, LIST has no element number (they follow on lines of ' // &
+                       'their own)')
+      return
+    end if
+    call read_id_list(rec, first, max_mesh_elements, es%ids, es%fields, error)
+    if (allocated(error)) return
+    es%lines = [(field_line(rec, es%fields(k)), k = 1, size(es%fields))]
+    if (.not. allocated(st%element_sets)) allocate (st%element_sets(0))
+    tmp = [st%element_sets, es]
+    call move_alloc(tmp, st%element_sets)
+  end subroutine read_elset
 
   subroutine read_solver(rec, model, error)
     type(record_t), intent(in) :: rec
@@ -763,9 +1196,10 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(error_t), allocatable, intent(out) :: error
     logical, allocatable :: defined(:)
+    integer, allocatable :: node_line(:)
     type(error_t), allocatable :: unknown
     class(material_t), allocatable :: material
-    integer :: nnode, i, g, b, nel, k, first, m
+    integer :: nnode, i, g, b, nel, k, first, m, ntab, t
 
     ! Nodes: DATAIN blocks first, explicit NODE records at their numbers.
     nnode = st%mesh%nnode
@@ -775,14 +1209,22 @@ contains
     allocate (defined(nnode), source=.false.)
     model%coords(:, 1:st%mesh%nnode) = st%mesh%coords(:, 1:st%mesh%nnode)
     defined(1:st%mesh%nnode) = .true.
+    allocate (node_line(nnode), source=0)
     do i = 1, st%explicit_nodes
+      if (node_line(st%explicit_ids(i)) > 0) then
+        call input_error(error, st%explicit_file, st%explicit_line(i), 'duplicate node ' // &
+                         str(st%explicit_ids(i)) // ' (defined before, at line ' // &
+                         str(node_line(st%explicit_ids(i))) // ')', st%explicit_field(i))
+        return
+      end if
       if (defined(st%explicit_ids(i))) then
         call input_error(error, st%explicit_file, st%explicit_line(i), 'duplicate node ' // &
-                         str(st%explicit_ids(i)) // ' (already generated by a DATAIN block)', 2)
+                         str(st%explicit_ids(i)) // ' (already generated by a DATAIN block)', st%explicit_field(i))
         return
       end if
       model%coords(:, st%explicit_ids(i)) = st%explicit_coords(:, i)
       defined(st%explicit_ids(i)) = .true.
+      node_line(st%explicit_ids(i)) = st%explicit_line(i)
     end do
     model%nnode = nnode
     if (nnode == 0) then
@@ -851,19 +1293,32 @@ contains
             return
           end if
         end do
-        if (nel == 0) then
+        ntab = 0
+        do t = 1, size(st%element_tables)
+          if (st%element_tables(t)%group == g) ntab = ntab + size(st%element_tables(t)%ids)
+        end do
+        if (nel > 0 .and. ntab > 0) then
+          call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
+                           ' takes DATAIN element blocks and ELEMENTS rows; its elements come from one or the other')
+          return
+        end if
+        if (nel == 0 .and. ntab == 0) then
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
                            ' has no elements')
           return
         end if
-        allocate (model%groups(g)%connectivity(model%groups(g)%element%nnodes, nel))
-        first = 0
-        do k = 1, size(model%groups(g)%blocks)
-          b = model%groups(g)%blocks(k)
-          nel = size(st%mesh%blocks(b)%connectivity, 2)
-          model%groups(g)%connectivity(:, first + 1:first + nel) = st%mesh%blocks(b)%connectivity
-          first = first + nel
-        end do
+        if (ntab > 0) then
+          call gather_element_tables(st%element_tables, g, model%groups(g))
+        else
+          allocate (model%groups(g)%connectivity(model%groups(g)%element%nnodes, nel))
+          first = 0
+          do k = 1, size(model%groups(g)%blocks)
+            b = model%groups(g)%blocks(k)
+            nel = size(st%mesh%blocks(b)%connectivity, 2)
+            model%groups(g)%connectivity(:, first + 1:first + nel) = st%mesh%blocks(b)%connectivity
+            first = first + nel
+          end do
+        end if
         model%groups(g)%material = model%find_material(model%groups(g)%material_name)
         if (model%groups(g)%material == 0) then
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'undefined material "' // &
@@ -886,6 +1341,8 @@ contains
         call note_unit_warning(model, model%materials(m), material)
         call move_alloc(material, model%materials(m)%params)
       end do
+      call check_element_tables(st%element_tables, model, defined, error)
+      if (allocated(error)) return
       do g = 1, size(model%groups)
         do k = 1, size(model%groups(g)%connectivity, 2)
           do i = 1, size(model%groups(g)%connectivity, 1)
@@ -912,7 +1369,10 @@ contains
         return
       end if
     end do
-    call resolve_node_sets(model, defined, st%set_regions, st%set_node, st%set_records, error, st%set_group)
+    call resolve_node_sets(model, defined, st%set_regions, st%set_node, st%set_records, error, st%set_group, &
+                           st%set_field)
+    if (allocated(error)) return
+    call map_face_rows(model, error)
     if (allocated(error)) return
     call check_loaded_nodes(model, error)
     if (allocated(error)) return
@@ -922,6 +1382,101 @@ contains
     call resolve_activations(model, error)
     if (.not. allocated(error)) call resolve_prestresses(model, error)
   end subroutine finish_model
+
+  !> A group's elements from its ELEMENTS tables, in reading order, with their ids.
+  subroutine gather_element_tables(tables, g, group)
+    type(element_rows_t), intent(in) :: tables(:)
+    integer, intent(in) :: g
+    type(element_group_t), intent(inout) :: group
+    integer :: t, n, first
+    n = 0
+    do t = 1, size(tables)
+      if (tables(t)%group == g) n = n + size(tables(t)%ids)
+    end do
+    allocate (group%connectivity(group%element%nnodes, n), group%element_ids(n))
+    first = 0
+    do t = 1, size(tables)
+      if (tables(t)%group /= g) cycle
+      n = size(tables(t)%ids)
+      group%connectivity(:, first + 1:first + n) = tables(t)%connectivity
+      group%element_ids(first + 1:first + n) = tables(t)%ids
+      first = first + n
+    end do
+  end subroutine gather_element_tables
+
+  !> Every node of an ELEMENTS row must be defined (the error names its line and field), and
+  !! an element id is given once over all tables.
+  subroutine check_element_tables(tables, model, defined, error)
+    type(element_rows_t), intent(in) :: tables(:)
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: defined(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: first_line(:)
+    integer :: t, j, i, node, id, f
+    id = 0
+    do t = 1, size(tables)
+      if (size(tables(t)%ids) > 0) id = max(id, maxval(tables(t)%ids))
+    end do
+    allocate (first_line(id), source=0)
+    do t = 1, size(tables)
+      associate (rec => tables(t)%rec)
+        do j = 1, size(tables(t)%ids)
+          id = tables(t)%ids(j)
+          f = tables(t)%id_field(j)
+          if (first_line(id) > 0) then
+            call input_error(error, rec%file, field_line(rec, f), 'duplicate element ' // str(id) // &
+                             ' (defined before, at line ' // str(first_line(id)) // ')', f)
+            return
+          end if
+          first_line(id) = field_line(rec, f)
+          do i = 1, size(tables(t)%connectivity, 1)
+            node = tables(t)%connectivity(i, j)
+            if (node > size(defined)) then
+              call input_error(error, rec%file, field_line(rec, f + i), 'element ' // str(id) // ' of group ' // &
+                               model%groups(tables(t)%group)%name // ' uses node ' // str(node) // &
+                               ', which is not defined', f + i)
+              return
+            end if
+            if (.not. defined(node)) then
+              call input_error(error, rec%file, field_line(rec, f + i), 'element ' // str(id) // ' of group ' // &
+                               model%groups(tables(t)%group)%name // ' uses node ' // str(node) // &
+                               ', which is not defined', f + i)
+              return
+            end if
+          end do
+        end do
+      end associate
+    end do
+  end subroutine check_element_tables
+
+  !> The ids of an NSET LIST must be defined nodes (the error names the field of the first
+  !! that is not); a node listed twice is kept once.
+  subroutine check_listed_nodes(set, rec, defined, error)
+    type(node_set_t), intent(inout) :: set
+    type(record_t), intent(in) :: rec
+    logical, intent(in) :: defined(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: ids(:), fields(:)
+    logical, allocatable :: seen(:)
+    integer :: i
+    call read_id_list(rec, 4, max_mesh_nodes, ids, fields, error)
+    if (allocated(error)) return
+    allocate (seen(size(defined)), source=.false.)
+    do i = 1, size(ids)
+      if (ids(i) > size(defined)) then
+        call input_error(error, rec%file, field_line(rec, fields(i)), 'node set ' // set%name // ': node ' // &
+                         str(ids(i)) // ' is not defined', fields(i))
+        return
+      end if
+      if (.not. defined(ids(i))) then
+        call input_error(error, rec%file, field_line(rec, fields(i)), 'node set ' // set%name // ': node ' // &
+                         str(ids(i)) // ' is not defined', fields(i))
+        return
+      end if
+      seen(ids(i)) = .true.
+    end do
+    set%nodes = pack([(i, i = 1, size(defined))], seen)
+  end subroutine check_listed_nodes
 
   !> STRESS= values become forces (times the bar material's area A). A post-tensioned
   !! (BOND=after) group is born at the start of the stage after its record's, which must exist.
@@ -1079,7 +1634,7 @@ contains
           n = model%node_sets(l%node_set)%nodes(k)
           if (used(n)) cycle
           call input_error(error, l%file, l%line, 'FORCE on node set ' // model%node_sets(l%node_set)%name // &
-                           ': node ' // str(n) // ' belongs to no element, so the force would act on nothing', 2)
+                           ': node ' // str(n) // ' belongs to no element, so the force would act on nothing', l%field)
           return
         end do
       end associate
@@ -1088,20 +1643,43 @@ contains
 
   !> Fill each node set with the nodes in its region (or its one node); an empty set is an error.
   !! Only defined nodes are selected: NODE records may leave gaps in the numbering.
-  subroutine resolve_node_sets(model, defined, regions, single, records, error, groups)
+  subroutine resolve_node_sets(model, defined, regions, single, records, error, groups, fields)
     type(model_t), intent(inout) :: model
     logical, intent(in) :: defined(:)   !! given by a DATAIN block or a NODE record
     type(region_t), intent(in) :: regions(:)
-    integer, intent(in) :: single(:)
+    integer, intent(in) :: single(:)   !! NSET NODE=n: n; NSET LIST: -1 (nodes listed); a LIST row's node:
+                                       !! -2 (the node in the set, its field in `fields`); else 0
     type(record_t), intent(in) :: records(:)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: groups(:)   !! restrict to the nodes of a group
+    integer, intent(in), optional :: fields(:)            !! the field of a LIST row's node (single -2)
     integer :: s, n, g, ifield
     logical, allocatable :: inside(:), in_group(:)
     character(len=:), allocatable :: text
     logical :: found
     allocate (inside(model%nnode), in_group(model%nnode))
     do s = 1, size(model%node_sets)
+      if (single(s) == -1) then
+        call check_listed_nodes(model%node_sets(s), records(s), defined, error)
+        if (allocated(error)) return
+        cycle
+      end if
+      if (single(s) == -2) then
+        n = model%node_sets(s)%nodes(1)
+        ifield = 0
+        if (present(fields)) ifield = fields(s)
+        if (n > model%nnode) then
+          call input_error(error, records(s)%file, field_line(records(s), ifield), 'node ' // str(n) // &
+                           ' is not defined', ifield)
+          return
+        end if
+        if (.not. defined(n)) then
+          call input_error(error, records(s)%file, field_line(records(s), ifield), 'node ' // str(n) // &
+                           ' is not defined', ifield)
+          return
+        end if
+        cycle
+      end if
       if (single(s) > 0) then
         call option_text(records(s), 'NODE', text, ifield, found)   ! the field to name
         if (single(s) > model%nnode) then

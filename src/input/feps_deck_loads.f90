@@ -14,7 +14,7 @@ module feps_deck_loads
   implicit none
   private
 
-  public :: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity
+  public :: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity, read_mode
 
 contains
 
@@ -90,6 +90,7 @@ contains
     integer :: iset, cs, i
     integer, allocatable :: dofs(:)
     real(dp), allocatable :: values(:)
+    logical :: total
 
     call require_fields(rec, 3, error)
     if (allocated(error)) return
@@ -99,9 +100,12 @@ contains
     if (allocated(error)) return
     call read_dof_values(rec, model%systems(cs)%kind, dofs, values, error)
     if (allocated(error)) return
+    call read_mode(rec, stage, total, error)
+    if (allocated(error)) return
     do i = 1, size(dofs)
       call add_constraint(model, rec, iset, cs, dofs(i), values(i), stage)
       model%constraints(size(model%constraints))%prescribed = .true.
+      model%constraints(size(model%constraints))%total = total
     end do
   end subroutine read_displace
 
@@ -127,7 +131,10 @@ contains
     if (allocated(error)) return
     call read_dof_values(rec, model%systems(l%csys)%kind, dofs, values, error)
     if (allocated(error)) return
+    call read_mode(rec, stage, l%total, error)
+    if (allocated(error)) return
     l%components(dofs) = values
+    l%given(dofs) = .true.
     tmp = [model%nodal_loads, l]
     call move_alloc(tmp, model%nodal_loads)
   end subroutine read_force
@@ -154,7 +161,7 @@ contains
     do i = start, nfields(rec)
       call key_value(rec, i, 'DOF=value', k, f, error)
       if (allocated(error)) return
-      if (k == 'CSYS') cycle
+      if (k == 'CSYS' .or. k == 'MODE') cycle
       call dof_index(k, kind, dof)
       if (dof == 0) then
         call input_error(error, rec%file, field_line(rec, i), 'unknown direction "' // k // '" for this system (' // &
@@ -210,6 +217,33 @@ contains
     model%gravity_file = rec%file
     model%gravity_line = rec%line
   end subroutine read_gravity
+  !> MODE=INCREMENT (the default) or MODE=TOTAL of a DISPLACE or FORCE record: with TOTAL its
+  !! values are the totals at the end of its stage, which must be a STAGE's own (a reference
+  !! value before any STAGE is scaled by each stage's LOAD= and has no total).
+  subroutine read_mode(rec, stage, total, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: stage
+    logical, intent(out) :: total
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    total = .false.
+    call option_text(rec, 'MODE', text, ifield, found)
+    if (.not. found) return
+    select case (to_upper(text))
+    case ('INCREMENT')
+    case ('TOTAL')
+      total = .true.
+      if (stage == 0) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'MODE=TOTAL needs a STAGE record before it: ' // &
+                         'before any STAGE a value is a reference, scaled by each stage''s LOAD=', ifield)
+      end if
+    case default
+      call input_error(error, rec%file, field_line(rec, ifield), 'MODE takes INCREMENT or TOTAL, not "' // text // &
+                       '"', ifield)
+    end select
+  end subroutine read_mode
 
   !> Field `i` of `rec` sets `dof`; another field that set it before (Z and UZ, say) is an error.
   subroutine claim_dof(rec, given, dof, i, error)

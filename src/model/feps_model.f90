@@ -55,6 +55,8 @@ module feps_model
     integer :: material = 0                         !! index into model%materials
     integer, allocatable :: connectivity(:, :)      !! (nodes per element, nelem), 1-based
     integer, allocatable :: blocks(:)               !! DATAIN element blocks it holds
+    integer, allocatable :: element_ids(:)          !! the deck's element ids (ELEMENTS tables); not
+                                                    !! allocated: the elements are numbered 1, 2, ...
     integer :: activate_stage = 0                   !! 0: active from the start; s: born in stage s
     character(len=:), allocatable :: file
     integer :: line = 0
@@ -73,6 +75,7 @@ module feps_model
   type, public :: node_set_t
     character(len=:), allocatable :: name
     integer, allocatable :: nodes(:)
+    logical :: listed = .false.              !! the one node of FORCE/DISPLACE LIST rows (not written to /sets)
   end type node_set_t
 
   !> Element faces whose nodes all lie in a region, within one group (resolved by the
@@ -85,6 +88,9 @@ module feps_model
     integer, allocatable :: face(:)
     character(len=:), allocatable :: file
     integer :: line = 0
+    logical :: listed = .false.              !! FSET LIST: element and face given by rows
+    integer, allocatable :: row_line(:)      !! each row's line (FSET LIST)
+    integer, allocatable :: row_field(:)     !! each row's face-number field (the element's is one before)
   end type face_set_t
 
   !> Fixed (value 0) or prescribed displacement of one DOF of every node of a set, the DOF
@@ -100,6 +106,7 @@ module feps_model
     integer :: active_from = 1               !! held from this stage on (FIX after a STAGE record)
     logical :: release = .false.             !! RELEASE: free from stage active_from on
     logical :: prescribed = .false.          !! DISPLACE: held in every stage
+    logical :: total = .false.               !! DISPLACE MODE=TOTAL: value is the total at the stage's end
     character(len=:), allocatable :: file
     integer :: line = 0
   end type constraint_t
@@ -112,6 +119,9 @@ module feps_model
     real(dp) :: components(3) = 0.0_dp
     character(len=:), allocatable :: file    !! the FORCE record (for messages)
     integer :: line = 0
+    integer :: field = 2                     !! the field naming its nodes (the set; a LIST row's node)
+    logical :: total = .false.               !! MODE=TOTAL: the given components are totals at the stage's end
+    logical :: given(3) = .false.            !! the components the record gives
   end type nodal_load_t
 
   !> Prestress of the bars of one group: an axial force, tension positive, added to every

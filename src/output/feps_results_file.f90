@@ -180,7 +180,7 @@ contains
   !! interface element). Given the mesh `coordinates`, also `/mesh/groups/<name>/points`: the
   !! global coordinates of its integration points, in the rows of its point datasets. An untyped
   !! block of a bare DATAIN mesh (`nodes<k>`) has none of these.
-  subroutine write_group(self, name, element_type, connectivity, error, material, coordinates)
+  subroutine write_group(self, name, element_type, connectivity, error, material, coordinates, element_ids)
     class(results_file_t), intent(inout) :: self
     character(len=*), intent(in) :: name
     character(len=*), intent(in) :: element_type
@@ -189,6 +189,8 @@ contains
     character(len=*), intent(in), optional :: material   !! its material's name (attribute `material`)
     real(dp), intent(in), optional :: coordinates(:, :)  !! (3, nnode) the mesh: with it a catalog type's
                                                          !! integration points go to `points`
+    integer, intent(in), optional :: element_ids(:)      !! the deck's element ids: written to `element_ids`
+                                                         !! (nelem x 1) unless they are 1, 2, ..., nelem
     integer(hid_t) :: group_id, dataset_id
     integer :: hdferr, cell_nodes
     type(xdmf_group_t), allocatable :: grown(:)
@@ -219,6 +221,13 @@ contains
     if (allocated(error)) return
     call write_int_dataset(self, '/mesh/groups/' // name // '/connectivity', connectivity, error)
     if (allocated(error)) return
+    if (present(element_ids)) then
+      if (any(element_ids /= [(hdferr, hdferr = 1, size(element_ids))])) then
+        call write_int_dataset(self, '/mesh/groups/' // name // '/element_ids', &
+                               reshape(element_ids, [1, size(element_ids)]), error)
+        if (allocated(error)) return
+      end if
+    end if
     cell_nodes = size(connectivity, 1)
     if (allocated(unknown)) then
       info%xdmf_topology = ''

@@ -61,8 +61,14 @@ contains
     call h5%write_mesh(model%coords, error)
     if (allocated(error)) return
     do g = 1, size(model%groups)
-      call h5%write_group(model%groups(g)%name, model%groups(g)%element_type, model%groups(g)%connectivity, error, &
-                          material=model%groups(g)%material_name, coordinates=model%coords)
+      if (allocated(model%groups(g)%element_ids)) then
+        call h5%write_group(model%groups(g)%name, model%groups(g)%element_type, model%groups(g)%connectivity, error, &
+                            material=model%groups(g)%material_name, coordinates=model%coords, &
+                            element_ids=model%groups(g)%element_ids)
+      else
+        call h5%write_group(model%groups(g)%name, model%groups(g)%element_type, model%groups(g)%connectivity, error, &
+                            material=model%groups(g)%material_name, coordinates=model%coords)
+      end if
       if (allocated(error)) return
     end do
   end subroutine write_mesh

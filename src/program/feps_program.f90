@@ -492,6 +492,7 @@ contains
     integer, allocatable :: members(:, :)
     integer :: k
     do k = 1, size(model%node_sets)
+      if (model%node_sets(k)%listed) cycle
       associate (set => model%node_sets(k))
         members = reshape(set%nodes, [1, size(set%nodes)])
         call h5%write_set('nodes', set%name, members, error)

@@ -254,12 +254,7 @@ contains
                              allowed=[character(len=9) :: 'NAME', 'GROUP', 'R', 'Z', 'FROM', 'TO', 'REFERENCE'])
     end if
     if (allocated(error)) return
-    r%file = rec%file
-    r%line = rec%line
-    call option_text(rec, 'NAME', text, ifield, found)
-    r%name = r%kind
-    if (found) r%name = text
-    call refuse_duplicate_name(rec, model, r%name, merge(ifield, 2, found), error)
+    call name_report(rec, model, r, error)
     if (allocated(error)) return
     call option_text(rec, 'GROUP', text, ifield, found)
     if (.not. found) then
@@ -307,6 +302,24 @@ contains
     call move_alloc(tmp, model%reports)
   end subroutine read_report
 
+  !> A REPORT's record (for its messages) and name: NAME= or, by default, its kind; a name an
+  !! earlier REPORT took is an error (refuse_duplicate_name).
+  subroutine name_report(rec, model, r, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(report_t), intent(inout) :: r
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: ifield
+    logical :: found
+    r%file = rec%file
+    r%line = rec%line
+    call option_text(rec, 'NAME', text, ifield, found)
+    r%name = r%kind
+    if (found) r%name = text
+    call refuse_duplicate_name(rec, model, r%name, merge(ifield, 2, found), error)
+  end subroutine name_report
+
   !> The options of REPORT, SECTION: NAME= (default 'section'), Z= (the section plane, required),
   !! GROUP= (default: every group) and X0=, Y0= (the point on the plane moments are taken about,
   !! default the z axis).
@@ -320,12 +333,7 @@ contains
     logical :: found
     call check_option_keys(rec, 3, error, allowed=[character(len=5) :: 'NAME', 'GROUP', 'Z', 'X0', 'Y0'])
     if (allocated(error)) return
-    r%file = rec%file
-    r%line = rec%line
-    call option_text(rec, 'NAME', text, ifield, found)
-    r%name = r%kind
-    if (found) r%name = text
-    call refuse_duplicate_name(rec, model, r%name, merge(ifield, 2, found), error)
+    call name_report(rec, model, r, error)
     if (allocated(error)) return
     call option_text(rec, 'GROUP', text, ifield, found)
     if (found) then
@@ -357,12 +365,7 @@ contains
     logical :: found
     call check_option_keys(rec, 3, error, allowed=[character(len=4) :: 'NAME', 'NSET'])
     if (allocated(error)) return
-    r%file = rec%file
-    r%line = rec%line
-    call option_text(rec, 'NAME', text, ifield, found)
-    r%name = r%kind
-    if (found) r%name = text
-    call refuse_duplicate_name(rec, model, r%name, merge(ifield, 2, found), error)
+    call name_report(rec, model, r, error)
     if (allocated(error)) return
     call option_text(rec, 'NSET', text, ifield, found)
     if (.not. found) then

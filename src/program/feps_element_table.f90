@@ -8,17 +8,11 @@ module feps_element_table
   use feps_element_catalog, only: element_info_t, element_info, catalog_types, family_name, &
                                   new_solid_element, family_solid
   use feps_solid_element, only: solid_element_t
+  use feps_results_observer, only: line_sink
   implicit none
   private
 
   public :: element_table_lines
-
-  !> Receives each line of output.
-  abstract interface
-    subroutine line_sink(line)
-      character(len=*), intent(in) :: line
-    end subroutine line_sink
-  end interface
 
 contains
 

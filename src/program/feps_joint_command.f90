@@ -11,6 +11,7 @@ module feps_joint_command
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_input
   use feps_records, only: real_from_text
+  use feps_results_observer, only: line_sink
   use feps_joint_models, only: joint_t, joint_solution_t, australian, haslem, joint_load_factor, &
                                joint_moment_factor
   implicit none
@@ -26,13 +27,6 @@ module feps_joint_command
     logical :: has_thickness = .false., has_packing_modulus = .false.
     logical :: json = .false.
   end type joint_request_t
-
-  !> Receives each line of output.
-  abstract interface
-    subroutine line_sink(line)
-      character(len=*), intent(in) :: line
-    end subroutine line_sink
-  end interface
 
   character(len=*), parameter :: joint_usage = &
     'usage: feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--L MM] [--Ec MPa] [--R MM] [--r MM] [--json]'
@@ -151,26 +145,21 @@ contains
     subroutine solve(model, solution)
       integer, intent(in) :: model
       type(joint_solution_t), intent(out) :: solution
+      procedure(australian), pointer :: joint_model
       if (model == 1) then
-        if (request%has_beta .and. request%has_load) then
-          call australian(request%joint, solution, error, beta=request%beta, load=request%load)
-        else if (request%has_beta) then
-          call australian(request%joint, solution, error, beta=request%beta)
-        else if (request%has_load) then
-          call australian(request%joint, solution, error, z=request%z, load=request%load)
-        else
-          call australian(request%joint, solution, error, z=request%z)
-        end if
+        joint_model => australian
       else
-        if (request%has_beta .and. request%has_load) then
-          call haslem(request%joint, solution, error, beta=request%beta, load=request%load)
-        else if (request%has_beta) then
-          call haslem(request%joint, solution, error, beta=request%beta)
-        else if (request%has_load) then
-          call haslem(request%joint, solution, error, z=request%z, load=request%load)
-        else
-          call haslem(request%joint, solution, error, z=request%z)
-        end if
+        joint_model => haslem
+      end if
+      ! the given pair of (beta or Z) and, optionally, P
+      if (request%has_beta .and. request%has_load) then
+        call joint_model(request%joint, solution, error, beta=request%beta, load=request%load)
+      else if (request%has_beta) then
+        call joint_model(request%joint, solution, error, beta=request%beta)
+      else if (request%has_load) then
+        call joint_model(request%joint, solution, error, z=request%z, load=request%load)
+      else
+        call joint_model(request%joint, solution, error, z=request%z)
       end if
     end subroutine solve
 

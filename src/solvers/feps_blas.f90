@@ -20,7 +20,7 @@ contains
   !> 'OpenBLAS 0.3.21, SkylakeX kernels, 2 threads (solves on 1)', or 'not OpenBLAS (...)'.
   function blas_description() result(text)
     character(len=:), allocatable :: text
-    character(kind=c_char) :: buf(200)
+    character(kind=c_char) :: buf(400)
     integer :: n
     buf = c_null_char
     call feps_blas_describe(buf, size(buf, kind=c_int))

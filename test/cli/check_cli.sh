@@ -31,6 +31,23 @@ grep -q "^feps [0-9]" "$tmp/out" && ok "--version prints the version" || bad "--
 # issue 28: the BLAS, the kernels it chose for this CPU and its threads (solves on one thread)
 grep -Eq "^blas (OpenBLAS [0-9.]+, [A-Za-z0-9]+ kernels, [0-9]+ threads? \(solves on 1\)|not OpenBLAS)" "$tmp/out" \
   && ok "--version names the BLAS, its kernels and threads: $(sed -n 2p "$tmp/out")" || bad "--version's BLAS line: $(cat "$tmp/out")"
+# An OpenBLAS that takes this CPU for an old one (forced here to Prescott) is named with the
+# kernels the CPU runs, from its flags as /proc/cpuinfo lists them.
+want=$(awk '/^flags/ {for (i = 2; i <= NF; i++) f[$i] = 1; exit} END {
+  if (f["avx512f"] && f["avx512bw"] && f["avx512vl"] && f["avx512dq"] && f["avx512cd"]) print "SkylakeX";
+  else if (f["avx2"] && f["fma"]) print "Haswell"; else print "none" }' /proc/cpuinfo)
+line=$(OPENBLAS_CORETYPE=Prescott "$feps" --version | sed -n 2p)
+case $line in
+  "blas not OpenBLAS"*) ok "--version with another BLAS: nothing to advise" ;;
+  *) if [ "$want" = none ]; then
+       echo "$line" | grep -q "OPENBLAS_CORETYPE=" && bad "--version advises kernels this CPU lacks: $line" \
+         || ok "--version: Prescott kernels are right for this CPU"
+     else
+       echo "$line" | grep -q "Prescott kernels, .*this CPU runs $want kernels: OPENBLAS_CORETYPE=$want" \
+         && ok "--version names the $want kernels an OpenBLAS taking this CPU for a Prescott misses" \
+         || bad "--version with OPENBLAS_CORETYPE=Prescott (this CPU: $want): $line"
+     fi ;;
+esac
 OPENBLAS_NUM_THREADS=1 "$feps" --version | grep -Eq "^blas (OpenBLAS .*, 1 thread \(|not OpenBLAS)" \
   && ok "--version counts the BLAS threads OPENBLAS_NUM_THREADS sets" || bad "--version with OPENBLAS_NUM_THREADS=1: $(OPENBLAS_NUM_THREADS=1 "$feps" --version)"
 expect_status "no deck" 2 "$feps"

@@ -180,11 +180,11 @@ contains
         call put(pad // '  <Topology TopologyType="' // topology // '" NumberOfElements="' // &
                  str(groups(g)%element_count) // '">')
       end if
-      call put(pad // '    ' // data_item(groups(g)%element_count, groups(g)%nodes_per_element, &
+      call put(pad // '    ' // data_item(h5, groups(g)%element_count, groups(g)%nodes_per_element, &
                'Int', '4', xdmf_topology_path(escape(groups(g)%name))))
       call put(pad // '  </Topology>')
       call put(pad // '  <Geometry GeometryType="XYZ">')
-      call put(pad // '    ' // data_item(node_count, 3, 'Float', '8', '/mesh/coordinates'))
+      call put(pad // '    ' // data_item(h5, node_count, 3, 'Float', '8', '/mesh/coordinates'))
       call put(pad // '  </Geometry>')
       if (istep == 0) then
         call put(pad // '</Grid>')
@@ -234,19 +234,9 @@ contains
       end if
       call put(pad // '<Attribute Name="' // escape(field%name) // '" AttributeType="' // kind // &
                '" Center="' // center // '">')
-      call put(pad // '  ' // data_item(field%rows, field%columns, 'Float', '8', escape(field%dataset)))
+      call put(pad // '  ' // data_item(h5, field%rows, field%columns, 'Float', '8', escape(field%dataset)))
       call put(pad // '</Attribute>')
     end subroutine put_attribute
-
-    !> A DataItem pointing into the HDF5 file; rows x columns as h5py sees the dataset.
-    function data_item(rows, columns, number_type, precision, dataset) result(line)
-      integer, intent(in) :: rows, columns
-      character(len=*), intent(in) :: number_type, precision, dataset
-      character(len=:), allocatable :: line
-      line = '<DataItem Dimensions="' // str(rows) // ' ' // str(columns) // '" NumberType="' // &
-             number_type // '" Precision="' // precision // '" Format="HDF">' // h5 // ':' // &
-             dataset // '</DataItem>'
-    end function data_item
 
   end subroutine write_xdmf
 
@@ -284,12 +274,12 @@ contains
         call file%write('      <Topology TopologyType="' // groups(g)%topology // '" NumberOfElements="' // &
                         str(groups(g)%element_count) // '" NodesPerElement="' // &
                         str(groups(g)%nodes_per_element) // '">')
-        call file%write('        ' // item(groups(g)%element_count, groups(g)%nodes_per_element, 'Int', '4', &
+        call file%write('        ' // data_item(h5, groups(g)%element_count, groups(g)%nodes_per_element, 'Int', '4', &
                         xdmf_topology_path(escape(groups(g)%name))))
         call file%write('      </Topology>')
       end do
       call file%write('      <Geometry GeometryType="XYZ">')
-      call file%write('        ' // item(node_count, 3, 'Float', '8', '/mesh/coordinates'))
+      call file%write('        ' // data_item(h5, node_count, 3, 'Float', '8', '/mesh/coordinates'))
       call file%write('      </Geometry>')
       call file%write('    </Grid>')
     end if
@@ -329,19 +319,9 @@ contains
       type(xdmf_field_t), intent(in) :: field
       call file%write('        <Attribute Name="' // escape(attribute) // '" AttributeType="' // &
                       merge('Scalar', 'Matrix', field%columns == 1) // '" Center="' // center // '">')
-      call file%write('          ' // item(field%rows, field%columns, 'Float', '8', escape(field%dataset)))
+      call file%write('          ' // data_item(h5, field%rows, field%columns, 'Float', '8', escape(field%dataset)))
       call file%write('        </Attribute>')
     end subroutine put_whole
-
-    !> A DataItem pointing into the HDF5 file; rows x columns as h5py sees the dataset.
-    function item(rows, columns, number_type, precision, dataset) result(line)
-      integer, intent(in) :: rows, columns
-      character(len=*), intent(in) :: number_type, precision, dataset
-      character(len=:), allocatable :: line
-      line = '<DataItem Dimensions="' // str(rows) // ' ' // str(columns) // '" NumberType="' // &
-             number_type // '" Precision="' // precision // '" Format="HDF">' // h5 // ':' // &
-             dataset // '</DataItem>'
-    end function item
 
   end subroutine write_meshio_xdmf
 
@@ -391,5 +371,17 @@ contains
       end select
     end do
   end function escape
+
+  !> A DataItem pointing into the HDF5 file `h5` (its name, XML-escaped); rows x columns as
+  !! h5py sees the dataset. Both XDMF files, ParaView's and meshio's, point with it.
+  pure function data_item(h5, rows, columns, number_type, precision, dataset) result(line)
+    character(len=*), intent(in) :: h5
+    integer, intent(in) :: rows, columns
+    character(len=*), intent(in) :: number_type, precision, dataset
+    character(len=:), allocatable :: line
+    line = '<DataItem Dimensions="' // str(rows) // ' ' // str(columns) // '" NumberType="' // &
+           number_type // '" Precision="' // precision // '" Format="HDF">' // h5 // ':' // &
+           dataset // '</DataItem>'
+  end function data_item
 
 end module feps_xdmf

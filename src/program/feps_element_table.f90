@@ -4,7 +4,7 @@
 !! points, the Abaqus/CalculiX and meshio names of the same element, and (solids) the local
 !! nodes of each face, face k being the deck's face number k (FSET ..., FACE=k).
 module feps_element_table
-  use feps_error, only: error_t
+  use feps_error, only: error_t, str
   use feps_element_catalog, only: element_info_t, element_info, catalog_types, family_name, &
                                   new_solid_element, family_solid
   use feps_solid_element, only: solid_element_t
@@ -32,8 +32,8 @@ contains
       call element_info(names(t), info, error)
       if (allocated(error)) return
       line = '  {"name": "' // info%name // '", "family": "' // family_name(info%family) // &
-             '", "dimension": ' // int_text(info%dimension) // ', "nodes": ' // int_text(info%nnodes) // &
-             ', "points": ' // int_text(info%npoints) // ', "abaqus": "' // info%abaqus_type // &
+             '", "dimension": ' // str(info%dimension) // ', "nodes": ' // str(info%nnodes) // &
+             ', "points": ' // str(info%npoints) // ', "abaqus": "' // info%abaqus_type // &
              '", "meshio": "' // info%meshio_type // '", "faces": ['
       if (info%family == family_solid) then
         call new_solid_element(info%name, solid, error)
@@ -50,14 +50,6 @@ contains
     call emit(']')
   end subroutine element_table_lines
 
-  pure function int_text(i) result(text)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: text
-    character(len=12) :: buffer
-    write (buffer, '(i0)') i
-    text = trim(buffer)
-  end function int_text
-
   pure function int_list(values) result(text)
     integer, intent(in) :: values(:)
     character(len=:), allocatable :: text
@@ -65,7 +57,7 @@ contains
     text = '['
     do i = 1, size(values)
       if (i > 1) text = text // ', '
-      text = text // int_text(values(i))
+      text = text // str(values(i))
     end do
     text = text // ']'
   end function int_list

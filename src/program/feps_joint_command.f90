@@ -11,6 +11,7 @@ module feps_joint_command
   use feps_kinds, only: dp
   use feps_error, only: error_t, fatal_error, err_input
   use feps_records, only: real_from_text
+  use feps_strings, only: sci
   use feps_results_observer, only: line_sink
   use feps_joint_models, only: joint_t, joint_solution_t, australian, haslem, joint_load_factor, &
                                joint_moment_factor
@@ -131,10 +132,10 @@ contains
     do k = 1, 2
       associate (s => solutions(k), r => request%joint)
         call emit('  "' // trim(names(k)) // '": {"model": "' // trim(names(k)) // '", ' // &
-                  '"Z": ' // exact(s%contact_width) // ', "sigma_max": ' // exact(s%sigma_max) // &
-                  ', "beta": ' // exact(s%beta) // ', "P": ' // exact(s%load) // ', "M": ' // exact(s%moment) // &
-                  ', "p_factor": ' // exact(joint_load_factor(s%contact_width, r%outer_radius, r%inner_radius)) // &
-                  ', "m_factor": ' // exact(joint_moment_factor(s%contact_width, r%outer_radius, r%inner_radius)) // &
+                  '"Z": ' // sci(s%contact_width, 16, 0) // ', "sigma_max": ' // sci(s%sigma_max, 16, 0) // &
+                  ', "beta": ' // sci(s%beta, 16, 0) // ', "P": ' // sci(s%load, 16, 0) // ', "M": ' // sci(s%moment, 16, 0) // &
+                  ', "p_factor": ' // sci(joint_load_factor(s%contact_width, r%outer_radius, r%inner_radius), 16, 0) // &
+                  ', "m_factor": ' // sci(joint_moment_factor(s%contact_width, r%outer_radius, r%inner_radius), 16, 0) // &
                   '}' // trim(merge(',', ' ', k == 1)))
       end associate
     end do
@@ -176,14 +177,5 @@ contains
     write (buffer, form) x
     text = trim(adjustl(buffer))
   end function fixed
-
-  !> x to 17 significant digits as a JSON number: read back, it is the same double.
-  pure function exact(x) result(text)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: text
-    character(len=32) :: buffer
-    write (buffer, '(es26.16e3)') x
-    text = trim(adjustl(buffer))
-  end function exact
 
 end module feps_joint_command

@@ -34,6 +34,7 @@ program tester
   use test_progress, only: collect_progress
   use test_element_contract, only: collect_element_contract
   use test_gravity, only: collect_gravity
+  use test_geostatic, only: collect_geostatic
   use test_section_report, only: collect_section_report
   use test_restart, only: collect_restart
   implicit none
@@ -85,6 +86,7 @@ program tester
     new_testsuite('progress', collect_progress), &
     new_testsuite('element_contract', collect_element_contract), &
     new_testsuite('gravity', collect_gravity), &
+    new_testsuite('geostatic', collect_geostatic), &
     new_testsuite('section_report', collect_section_report), &
     new_testsuite('restart', collect_restart) &
     ]

@@ -215,13 +215,13 @@ contains
     type(counting_material_t) :: mat
     call store%init(mat, 1, 2)
     call store%set_stress(10.0_dp)
-    call store%impose([3.0_dp])
+    call store%impose(3.0_dp)
     call store%update(mat, 1, [1.0_dp])
     call check(error, store%sig_t(1, 1), 14.0_dp, 'committed 10 + imposed 3 + deps 1')
     if (allocated(error)) return
     call check(error, store%sig(1, 1), 10.0_dp, 'the committed stress is not changed')
     if (allocated(error)) return
-    call store%impose([0.0_dp])
+    call store%impose(0.0_dp)
     call store%update(mat, 1, [1.0_dp])
     call check(error, store%sig_t(1, 1), 11.0_dp, 'nothing imposed: committed 10 + deps 1')
   end subroutine test_store_impose

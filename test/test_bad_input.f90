@@ -963,7 +963,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/tension_on_elastic.dat', err_input, &
                         [character(len=60) :: 'tension_on_elastic.dat:14: field 6:', 'material concrete', &
-                         'unknown parameter TENSION', '(expected E, NU, G, GAMMA)'], error)
+                         'unknown parameter TENSION', '(expected E, NU, G, GAMMA, K0)'], error)
   end subroutine test_tension_on_elastic
 
   !> E and G together used to keep E and ignore G. The second of the two (G) is named.
@@ -1027,7 +1027,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call expect_failure('test/data/bad/elastic_unknown_key.dat', err_input, &
                         [character(len=60) :: 'elastic_unknown_key.dat:15: field 6:', 'material steel', &
-                         'unknown parameter PHI (expected E, NU, G, GAMMA)'], error)
+                         'unknown parameter PHI (expected E, NU, G, GAMMA, K0)'], error)
   end subroutine test_elastic_unknown_key
 
   subroutine test_material_kind_unknown(error)

@@ -86,7 +86,7 @@ contains
     type(model_t), intent(in) :: model
     type(material_slot_t), intent(in) :: materials(:)
     integer :: m
-    is_linear_model = .not. model%has_interfaces()
+    is_linear_model = .not. model%has_interfaces() .and. model%geostatic_stage == 0
     do m = 1, size(materials)
       if (.not. materials(m)%m%is_linear()) is_linear_model = .false.
     end do
@@ -242,8 +242,10 @@ contains
       np = an%kernels(g)%npoints * size(model%groups(g)%connectivity, 2)
       nc = an%kernels(g)%ncomp
       associate (s => an%states(g))
+        ! A GEOSTATIC stage resets the displacements after it: every stress must be a point's own.
         s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear() .or. &
-                      model%groups(g)%activate_stage > 1 .or. model%is_prestressed(g)
+                      model%groups(g)%activate_stage > 1 .or. model%is_prestressed(g) .or. &
+                      model%geostatic_stage > 0
         if (.not. s%nonlinear) then
           an%lin%present = .true.
           cycle
@@ -444,6 +446,10 @@ contains
     integer :: c, k, n
     real(dp) :: frac
     dps = model%stage_prestress(s)
+    ! GEOSTATIC: the in-situ stress of each point (its pattern), grown over the stage's steps
+    do c = 1, size(an%states)
+      if (allocated(an%states(c)%pattern)) dps(c) = 1.0_dp
+    end do
     call nodal_load_vector(model, an%kernels, df, error, stage=s)
     if (allocated(error)) return
     call subtract_carried_forces(model, an, s, df)
@@ -591,7 +597,7 @@ contains
       allocate (xe(3, nn), due(3 * nn), deps(nc, np), fe(3 * nn))
       associate (s => an%states(g), mat => an%materials(model%groups(g)%material)%m, &
                  conn => model%groups(g)%connectivity)
-        call s%impose(spread(dps(g), 1, nc))
+        call s%impose(dps(g))
         do e = 1, size(conn, 2)
           xe = model%coords(:, conn(:, e))
           due = reshape(an%path%u_t(:, conn(:, e)) - an%path%u(:, conn(:, e)), [3 * nn])

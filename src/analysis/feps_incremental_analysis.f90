@@ -19,6 +19,7 @@ module feps_incremental_analysis
   use feps_loads, only: nodal_load_vector
   use feps_observer, only: observer_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
+  use feps_geostatic, only: in_situ_field_t, build_in_situ_field, set_in_situ_stress, end_geostatic_stage
   use feps_analysis_state, only: analysis_t, is_linear_model, set_up, &
                                  init_states, state_bytes, change_supports, activate_groups, check_born_nodes, &
                                  stage_increments, set_trial, add_free, update_points, residual, &
@@ -75,6 +76,8 @@ contains
     end if
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
+    call check_in_situ_field(model, an, error)
+    if (allocated(error)) return
     allocate (an%path%f_ref(3, model%nnode), an%path%f_applied(3, model%nnode))
     call nodal_load_vector(model, an%kernels, an%path%f_ref, error, stage=0)
     if (allocated(error)) return
@@ -171,6 +174,8 @@ contains
     summary%linear = is_linear_model(model, an%materials)
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
+    call check_in_situ_field(model, an, error)
+    if (allocated(error)) return
     allocate (an%path%f_ref(3, model%nnode), df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)))
     call nodal_load_vector(model, an%kernels, an%path%f_ref, error, stage=0)
     if (allocated(error)) return
@@ -423,6 +428,10 @@ contains
             if (s > 1) f%rel_prev = huge(1.0_dp)
           end if
         end if
+        if (s == model%geostatic_stage) then
+          call set_in_situ_stress(model, an, error)
+          if (allocated(error)) return
+        end if
         call stage_increments(model, an, s, df, duc, dps, error)
         if (allocated(error)) return
         call observer%progress('stage ' // st%name // ': ' // str(st%steps) // ' steps, method ' // &
@@ -513,6 +522,11 @@ contains
                              f%rel_prev, error)
             if (allocated(error)) return
           end if
+          if (s == model%geostatic_stage .and. k == st%steps) then
+            call end_geostatic_stage(an)
+            call observer%progress('stage ' // st%name // ': in-situ stress set (GEOSTATIC); displacements ' // &
+                                   'count from zero from here on')
+          end if
           if (model%restart_every > 0) then
             if (mod(step, model%restart_every) == 0) then
               call checkpoint(an, observer, summary, f, fingerprint, step, s, k, fully_open, run_notes, error)
@@ -543,6 +557,16 @@ contains
                                                'the nearest symmetric positive semi-definite matrix was ' // &
                                                'factorized and the exact residual iterated on')
   end subroutine run_nonlinear_stages
+
+  !> The layers of a GEOSTATIC stage's in-situ stress, checked before anything is solved (an
+  !! input error names the record).
+  subroutine check_in_situ_field(model, an, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    type(error_t), allocatable, intent(out) :: error
+    type(in_situ_field_t) :: field
+    if (model%geostatic_stage > 0) call build_in_situ_field(model, an, field, error)
+  end subroutine check_in_situ_field
 
   !> Hand the restart data of the end of step `step` (step k of stage s) to the observer:
   !! the analysis state, the factor state, the totals so far and the run's notes.

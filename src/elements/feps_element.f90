@@ -36,6 +36,7 @@ module feps_element
     procedure(jacobian_interface), deferred :: min_jacobian !! mesh check: <= 0 rejects the element
     procedure :: jacobian_message
     procedure :: body_force => element_body_force   !! consistent nodal forces of a uniform body force
+    procedure :: stresses_of_tensors => element_stresses_of_tensors  !! point stresses of a given stress field
   end type element_t
 
   abstract interface
@@ -121,5 +122,19 @@ contains
     real(dp), intent(out) :: fe(:)       !! (3 nnodes)
     fe = 0.0_dp
   end subroutine element_body_force
+
+  !> The point stresses `sig(ncomp, npoints)` (the family's own components and frame) of the
+  !! Cartesian stress tensors `tensors(3, 3, npoints)` given at its points (an in-situ stress
+  !! field); `taken` is false, and sig zero, for a family whose stress is not a continuum's (a
+  !! bar's axial force): such an element starts unstressed. This default is that case.
+  pure subroutine element_stresses_of_tensors(self, xe, tensors, sig, taken)
+    class(element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)          !! (3, nnodes)
+    real(dp), intent(in) :: tensors(:, :, :)  !! (3, 3, npoints)
+    real(dp), intent(out) :: sig(:, :)        !! (ncomp, npoints)
+    logical, intent(out) :: taken
+    sig = 0.0_dp
+    taken = .false.
+  end subroutine element_stresses_of_tensors
 
 end module feps_element

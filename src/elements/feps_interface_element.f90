@@ -102,6 +102,7 @@ module feps_interface_element
     procedure :: point_coordinates
     procedure :: min_jacobian
     procedure :: jacobian_message => interface_jacobian_message
+    procedure :: stresses_of_tensors => interface_stresses_of_tensors
     ! the interface family, in the element's own dimension (ndim coordinates and DOFs per node)
     procedure :: npairs
     procedure :: ngauss
@@ -657,6 +658,29 @@ contains
       call point_coordinates_nd(self, xe(1:2, :), xg(1:2, :))
     end if
   end subroutine point_coordinates
+
+  !> The tractions of the Cartesian stress tensors `tensors(3, 3, ngauss)` given at the points on
+  !! the interface's plane, in its local frame: e_i . sigma . n for every row e_i of the frame
+  !! (3D [tau1, tau2, sigma_n], 2D [tau, sigma_n]; tension positive, as the tractions).
+  pure subroutine interface_stresses_of_tensors(self, xe, tensors, sig, taken)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)          !! (3, nnodes)
+    real(dp), intent(in) :: tensors(:, :, :)  !! (3, 3, ngauss)
+    real(dp), intent(out) :: sig(:, :)        !! (ncomp, ngauss)
+    logical, intent(out) :: taken
+    real(dp) :: s(2, max_interface_points), w(max_interface_points)
+    real(dp) :: n(max_interface_pairs), dn(2, max_interface_pairs), nstar(3), jac, frame(3, 3)
+    integer :: p, nd, g
+    p = self%npairs()
+    nd = self%ndim()
+    call self%integration_rule(s, w)
+    do g = 1, self%ngauss()
+      call self%shape(s(:, g), n, dn)
+      call local_frame(nd, p, xe(1:nd, :), dn, frame, jac, nstar)
+      sig(1:nd, g) = matmul(frame(1:nd, 1:nd), matmul(tensors(1:nd, 1:nd, g), frame(nd, 1:nd)))
+    end do
+    taken = .true.
+  end subroutine interface_stresses_of_tensors
 
   !> min_jacobian_nd from `xe(3, nnodes)` (a 2D element: from its x-y coordinates).
   pure real(dp) function min_jacobian(self, xe)

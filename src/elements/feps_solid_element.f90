@@ -54,6 +54,7 @@ module feps_solid_element
     procedure :: face_integration
     procedure :: volume
     procedure :: body_force => solid_body_force
+    procedure :: stresses_of_tensors => solid_stresses_of_tensors
   end type solid_element_t
 
   abstract interface
@@ -444,5 +445,20 @@ contains
     end do
     if (self%ndim() == 2) fe(3::3) = 0.0_dp   ! plane strain: uz is held
   end subroutine solid_body_force
+
+  !> Voigt stresses [xx yy zz yz xz xy] of the Cartesian tensors given at the Gauss points.
+  pure subroutine solid_stresses_of_tensors(self, xe, tensors, sig, taken)
+    class(solid_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)          !! (3, nen)
+    real(dp), intent(in) :: tensors(:, :, :)  !! (3, 3, ngauss)
+    real(dp), intent(out) :: sig(:, :)        !! (6, ngauss)
+    logical, intent(out) :: taken
+    integer :: g
+    do g = 1, size(sig, 2)
+      sig(:, g) = [tensors(1, 1, g), tensors(2, 2, g), tensors(3, 3, g), tensors(2, 3, g), tensors(1, 3, g), &
+                   tensors(1, 2, g)]
+    end do
+    taken = .true.
+  end subroutine solid_stresses_of_tensors
 
 end module feps_solid_element

@@ -23,7 +23,7 @@ module feps_deck
                                   family_bar, bare_mesh_type
   use feps_material, only: material_t
   use feps_material_factory, only: new_material, material_of
-  use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity, &
+  use feps_deck_loads, only: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity, read_geostatic, &
                              read_mode
   use feps_deck_stages, only: read_stage, read_controls_record, read_report
   use feps_deck_tables, only: first_row_field, read_nodes_table, read_elements_table, read_id_list
@@ -192,6 +192,8 @@ contains
       end if
     case ('GRAVITY')
       call read_gravity(records(pos), model, st%current_stage, error)
+    case ('GEOSTATIC')
+      call read_geostatic(records(pos), model, st%current_stage, error)
     case ('PRESSURE', 'TRACTION')
       call read_face_load(records(pos), model, st%current_stage, error)
     case ('PRESTRESS')
@@ -1381,7 +1383,19 @@ contains
     if (allocated(error)) return
     call resolve_activations(model, error)
     if (.not. allocated(error)) call resolve_prestresses(model, error)
+    if (.not. allocated(error)) call check_geostatic(model, error)
   end subroutine finish_model
+
+  !> A GEOSTATIC stage needs gravity acting in it: the in-situ stress is the weight's, and the
+  !! stage applies that weight while the stress is set, so the two stay in balance.
+  subroutine check_geostatic(model, error)
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: error
+    if (model%geostatic_stage == 0) return
+    if (model%gravity_stage /= model%geostatic_stage) &
+      call input_error(error, model%geostatic_file, model%geostatic_line, 'GEOSTATIC needs GRAVITY in ' // &
+                       'the same stage (the in-situ stress is the weight of the ground, applied with it)', 1)
+  end subroutine check_geostatic
 
   !> A group's elements from its ELEMENTS tables, in reading order, with their ids.
   subroutine gather_element_tables(tables, g, group)

@@ -9,12 +9,12 @@ module feps_deck_loads
   use feps_coordinate_system, only: csys_cartesian, csys_cylindrical
   use feps_element_catalog, only: family_bar
   use feps_model, only: model_t, constraint_t, nodal_load_t, face_load_t, load_pressure, load_traction, prestress_t
-  use feps_deck_fields, only: key_value, check_option_keys, dof_index, dof_names, get_csys_option, option_text, &
+  use feps_deck_fields, only: key_value, check_option_keys, option_real, dof_index, dof_names, get_csys_option, option_text, &
                               require_fields, parse_real
   implicit none
   private
 
-  public :: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity, read_mode
+  public :: read_fix, read_displace, read_force, read_prestress, read_face_load, read_gravity, read_geostatic, read_mode
 
 contains
 
@@ -217,6 +217,36 @@ contains
     model%gravity_file = rec%file
     model%gravity_line = rec%line
   end subroutine read_gravity
+
+  !> GEOSTATIC, SURFACE=h: the stage it is in (the first when it comes before any STAGE record)
+  !! sets the in-situ stress of the ground, the materials with K0: at height h' below the
+  !! surface h (heights measured against gravity) the vertical stress is the weight of the ground
+  !! above and the horizontal one K0 times it. Once per deck; the stage must hold the GRAVITY
+  !! record too (checked when the deck is complete).
+  subroutine read_geostatic(rec, model, stage, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: stage
+    type(error_t), allocatable, intent(out) :: error
+    logical :: found
+    if (model%geostatic_line > 0) then
+      call input_error(error, rec%file, rec%line, 'GEOSTATIC is given twice (first at line ' // &
+                       str(model%geostatic_line) // '): the in-situ stress is set once', 1)
+      return
+    end if
+    call check_option_keys(rec, 2, error, allowed=['SURFACE'])
+    if (allocated(error)) return
+    call option_real(rec, 'SURFACE', model%geostatic_surface, found, error)
+    if (allocated(error)) return
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'GEOSTATIC needs SURFACE=h, the height of the ground ' // &
+                       'surface measured against gravity (e.g. its z when GRAVITY is Z=-1.)', 1)
+      return
+    end if
+    model%geostatic_stage = max(stage, 1)
+    model%geostatic_file = rec%file
+    model%geostatic_line = rec%line
+  end subroutine read_geostatic
   !> MODE=INCREMENT (the default) or MODE=TOTAL of a DISPLACE or FORCE record: with TOTAL its
   !! values are the totals at the end of its stage, which must be a STAGE's own (a reference
   !! value before any STAGE is scaled by each stage's LOAD= and has no total).

@@ -24,6 +24,9 @@ module feps_material
   type, abstract, extends(material_params_t), public :: material_t
     character(len=:), allocatable :: name
     real(dp) :: unit_weight = 0.0_dp     !! GAMMA (N/mm3): weight per volume (a bar's: times its area)
+    !> K0: the ratio of horizontal to vertical in-situ stress; negative when not given (the
+    !! material is not ground: a GEOSTATIC stage leaves its points unstressed).
+    real(dp) :: k0 = -1.0_dp
   contains
     procedure(elastic_tangent_interface), deferred :: elastic_tangent
     procedure(update_interface), deferred :: update
@@ -33,6 +36,7 @@ module feps_material
     procedure :: state_size => material_state_size
     procedure :: section_area => material_section_area
     procedure :: unit_warning => material_unit_warning
+    procedure :: is_ground => material_is_ground
   end type material_t
 
   abstract interface
@@ -120,6 +124,13 @@ contains
     warning = ''
     key = ''
   end subroutine material_unit_warning
+
+  !> True when the material is ground: its K0 is given, so a GEOSTATIC stage sets its in-situ
+  !! stress.
+  elemental logical function material_is_ground(self)
+    class(material_t), intent(in) :: self
+    material_is_ground = self%k0 >= 0.0_dp
+  end function material_is_ground
 
   !> The unit warning about a Young's modulus e outside plausible_modulus (empty inside it).
   pure function modulus_warning(e) result(warning)

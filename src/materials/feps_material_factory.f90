@@ -4,7 +4,7 @@ module feps_material_factory
   use feps_error, only: error_t, str
   use feps_model, only: material_spec_t
   use feps_material_params, only: check_known_keys, material_error, material_conflict, material_error_at, &
-                                  get_unit_weight
+                                  get_unit_weight, get_k0
   use feps_material, only: material_t
   use feps_linear_elastic, only: linear_elastic_t
   use feps_interface_mohr_coulomb, only: new_interface_mohr_coulomb
@@ -61,9 +61,9 @@ contains
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: error
-    real(dp) :: e, nu, g, gamma
+    real(dp) :: e, nu, g, gamma, k0
     logical :: has_e, has_nu, has_g
-    call check_known_keys(spec, ['e    ', 'nu   ', 'g    ', 'gamma'], error)
+    call check_known_keys(spec, ['e    ', 'nu   ', 'g    ', 'gamma', 'k0   '], error)
     if (allocated(error)) return
     call spec%get('e', e, has_e)
     call spec%get('nu', nu, has_nu)
@@ -104,8 +104,9 @@ contains
       return
     end if
     call get_unit_weight(spec, gamma, error)
+    if (.not. allocated(error)) call get_k0(spec, k0, error)
     if (allocated(error)) return
-    allocate (material, source=linear_elastic_t(name=spec%name, e=e, nu=nu, unit_weight=gamma))
+    allocate (material, source=linear_elastic_t(name=spec%name, e=e, nu=nu, unit_weight=gamma, k0=k0))
   end subroutine new_linear_elastic
 
 end module feps_material_factory

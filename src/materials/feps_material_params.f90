@@ -8,7 +8,7 @@ module feps_material_params
   implicit none
   private
 
-  public :: check_known_keys, get_parameter, get_unit_weight, material_error, material_conflict, material_error_at
+  public :: check_known_keys, get_parameter, get_unit_weight, get_k0, material_error, material_conflict, material_error_at
 
 contains
 
@@ -111,5 +111,24 @@ contains
       call material_error(error, spec, 'GAMMA = ' // str(gamma) // ' must be zero or positive and finite ' // &
                           '(a unit weight, N/mm3)', 'gamma')
   end subroutine get_unit_weight
+
+  !> K0, the ratio of horizontal to vertical in-situ stress of a ground material (-1 when not
+  !! given: not ground); positive and at most `max_k0`, else an error naming its field.
+  subroutine get_k0(spec, k0, error)
+    type(material_spec_t), intent(in) :: spec
+    real(dp), intent(out) :: k0
+    type(error_t), allocatable, intent(out) :: error
+    ! Heavily overconsolidated clays reach K0 of 3 at most; beyond 10 it is a slip of the pen.
+    real(dp), parameter :: max_k0 = 10.0_dp
+    logical :: found
+    call spec%get('k0', k0, found)
+    if (.not. found) then
+      k0 = -1.0_dp
+      return
+    end if
+    if (.not. (k0 > 0.0_dp .and. k0 <= max_k0)) &
+      call material_error(error, spec, 'K0 = ' // str(k0) // ' must lie in (0, 10] (the ratio of horizontal ' // &
+                          'to vertical in-situ stress)', 'k0')
+  end subroutine get_k0
 
 end module feps_material_params

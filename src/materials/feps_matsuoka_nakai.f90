@@ -73,7 +73,7 @@ module feps_matsuoka_nakai
   use feps_error, only: error_t, input_error, str
   use feps_model, only: material_spec_t
   use feps_material_params, only: check_known_keys, get_parameter, material_error, material_conflict, &
-                                  get_unit_weight
+                                  get_unit_weight, get_k0
   use feps_material, only: material_t, state_elastic, state_plastic, state_tension, modulus_warning
   use feps_elastic, only: elastic_matrix
   use feps_strings, only: sci
@@ -616,9 +616,9 @@ contains
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: error
-    character(len=*), parameter :: known(8) = ['e      ', 'nu     ', 'phi    ', 'psi    ', 'ft     ', &
-                                               'c      ', 'tension', 'gamma  ']
-    real(dp) :: e, nu, phi, psi, ft, c, m, gamma
+    character(len=*), parameter :: known(9) = ['e      ', 'nu     ', 'phi    ', 'psi    ', 'ft     ', &
+                                               'c      ', 'tension', 'gamma  ', 'k0     ']
+    real(dp) :: e, nu, phi, psi, ft, c, m, gamma, k0
     logical :: has_ft, has_c, has_tension
     character(len=:), allocatable :: rule
     integer :: tension
@@ -683,9 +683,10 @@ contains
       end select
     end if
     call get_unit_weight(spec, gamma, error)
+    if (.not. allocated(error)) call get_k0(spec, k0, error)
     if (allocated(error)) return
     allocate (material, source=matsuoka_nakai_t(name=spec%name, e=e, nu=nu, phi=phi, psi=psi, apex=m, &
-                                                tension=tension, unit_weight=gamma))
+                                                tension=tension, unit_weight=gamma, k0=k0))
 
 
   end subroutine new_matsuoka_nakai

@@ -4,8 +4,9 @@
 !! group; the analysis updates the trial from the committed state and then commits or restores.
 !!
 !! The start of a step is the committed state plus an imposed stress increment, zero unless the
-!! stage imposes one on the group (a prestress: the bars' axial force added over the stage's
-!! steps), so a prestressed point is updated like any other.
+!! stage imposes one on the group: a prestress (the bars' axial force added over the stage's
+!! steps, the same at every point) or an in-situ stress (GEOSTATIC: a stress of its own at each
+!! point, the `pattern`, added over the stage's steps), so such a point is updated like any other.
 module feps_point_state_store
   use feps_kinds, only: dp, i8
   use feps_material, only: material_t, state_elastic
@@ -25,9 +26,11 @@ module feps_point_state_store
     integer, allocatable :: state_t(:)
     real(dp), allocatable :: vars_t(:, :)
     real(dp), allocatable :: dtan_t(:, :, :)
-    !> Stress increment imposed at the start of the step on every point (see `impose`).
-    real(dp), allocatable :: imposed(:)
+    !> Stress increment imposed at the start of the step (see `impose`): `imposed` on every
+    !! component of every point, or `imposed` times the point's `pattern` where one is set.
+    real(dp) :: imposed = 0.0_dp
     logical :: imposing = .false.
+    real(dp), allocatable :: pattern(:, :)                     !! (ncomp, npoints) or unallocated
   contains
     procedure :: init => store_init
     procedure :: impose => store_impose
@@ -63,18 +66,18 @@ contains
     self%state_t = self%state
     self%vars_t = self%vars
     self%dtan_t = self%dtan
-    allocate (self%imposed(ncomp))
     self%imposed = 0.0_dp
     self%imposing = .false.
   end subroutine store_init
 
   !> The stress increment imposed on every point at the start of the steps updated from now
-  !! on (the same components as the stress; zero: none).
+  !! on: `dsig` on every component, or `dsig` times the point's pattern where one is set (zero:
+  !! none).
   pure subroutine store_impose(self, dsig)
     class(point_state_store_t), intent(inout) :: self
-    real(dp), intent(in) :: dsig(:)
+    real(dp), intent(in) :: dsig
     self%imposed = dsig
-    self%imposing = any(dsig /= 0.0_dp)
+    self%imposing = dsig /= 0.0_dp
   end subroutine store_impose
 
   !> The trial state of point q: the material's update from the committed state (plus the
@@ -84,7 +87,10 @@ contains
     class(material_t), intent(in) :: material
     integer, intent(in) :: q
     real(dp), intent(in) :: deps(:)
-    if (self%imposing) then
+    if (self%imposing .and. allocated(self%pattern)) then
+      call material%update(self%sig(:, q) + self%imposed * self%pattern(:, q), self%eps(:, q), deps, self%state(q), &
+                           self%sig_t(:, q), self%state_t(q), self%dtan_t(:, :, q), self%vars(:, q), self%vars_t(:, q))
+    else if (self%imposing) then
       call material%update(self%sig(:, q) + self%imposed, self%eps(:, q), deps, self%state(q), &
                            self%sig_t(:, q), self%state_t(q), self%dtan_t(:, :, q), self%vars(:, q), self%vars_t(:, q))
     else

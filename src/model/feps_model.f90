@@ -286,6 +286,12 @@ module feps_model
     integer :: gravity_stage = 0
     character(len=:), allocatable :: gravity_file
     integer :: gravity_line = 0
+    !> GEOSTATIC, SURFACE=h: the stage that sets the in-situ stress of the ground (0: none), the
+    !! height of the ground surface against gravity, and its record.
+    integer :: geostatic_stage = 0
+    real(dp) :: geostatic_surface = 0.0_dp
+    character(len=:), allocatable :: geostatic_file
+    integer :: geostatic_line = 0
     !> What the deck reader found doubtful but not wrong (a value far outside the physical
     !! range in N, mm and MPa), each naming file, line and field: the command prints them.
     character(len=600), allocatable :: warnings(:)

@@ -180,7 +180,7 @@ contains
     if (hdferr >= 0) call put_real(fid, g // '/vars_t', reshape(s%vars_t, [size(s%vars_t)]), shape(s%vars_t), hdferr)
     if (hdferr >= 0) call put_real(fid, g // '/dtan_t', reshape(s%dtan_t, [size(s%dtan_t)]), shape(s%dtan_t), hdferr)
     if (hdferr >= 0) call put_int(fid, g // '/state_t', s%state_t, shape(s%state_t), hdferr)
-    if (hdferr >= 0) call put_real(fid, g // '/imposed', s%imposed, shape(s%imposed), hdferr)
+    if (hdferr >= 0) call put_real(fid, g // '/imposed', [s%imposed], [1], hdferr)
   end subroutine write_store
 
   !> The steps the checkpoint file `path` holds restart data of (an input error when it is
@@ -346,7 +346,8 @@ contains
     if (hdferr >= 0) call get_real(fid, g // '/dtan_t', x, shp, hdferr)
     if (hdferr >= 0) s%dtan_t = reshape(x, [int(shp(1)), int(shp(2)), int(shp(3))])
     if (hdferr >= 0) call get_int(fid, g // '/state_t', s%state_t, shp, hdferr)
-    if (hdferr >= 0) call get_real(fid, g // '/imposed', s%imposed, shp, hdferr)
+    if (hdferr >= 0) call get_real(fid, g // '/imposed', x, shp, hdferr)
+    if (hdferr >= 0 .and. size(x) > 0) s%imposed = x(1)
   end subroutine read_store
 
   ! ---------------------------------------------------------------------------------------

@@ -4,7 +4,8 @@
 !! closure d0, so that eps_n = -d0 - t x and sigma_n = Kn eps_n where closed, 0 where open.
 !! Then Z = R + d0 / t, the opening is largest at the point of least x, the compression at the
 !! point of largest x, the faces turn by atan(t), and with no gap the load is Kn d0 times the
-!! (polygonal) annulus, and both models reduce to closed forms (M = sigma_max I / Z).
+!! (polygonal) annulus, and both models reduce to closed forms (M = sigma_max I / Z). The pipes'
+!! hoop and axial stresses against Lame on test/data/joint_lame.dat.
 module test_joint_report
   use feps_kinds, only: dp, pi, rad2deg, deg2rad
   use feps_testing, only: error_t, unittest_t, new_unittest, check
@@ -28,7 +29,8 @@ contains
   subroutine collect_joint_report(tests)
     type(unittest_t), allocatable, intent(out) :: tests(:)
     tests = [new_unittest('closed joint: Z, load, compression, opening, angle, models', test_closed), &
-             new_unittest('joint with a gap: Z from the gap front, opening, angle', test_gap)]
+             new_unittest('joint with a gap: Z from the gap front, opening, angle', test_gap), &
+             new_unittest('pressurised pipe joint: hoop and axial stresses against Lame', test_lame)]
   end subroutine collect_joint_report
 
   subroutine solve(deck, js, error)
@@ -123,5 +125,33 @@ contains
     if (allocated(error)) return
     call check(error, js%opening > 0.0_dp, 'the far side is open')
   end subroutine test_gap
+
+  !> test/data/joint_lame.dat: generalized plane strain of a thick cylinder under internal
+  !! pressure p and an axial strain eps_z, across a stiff elastic joint.
+  subroutine test_lame(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: p = 10.0_dp, e = 40000.0_dp, nu = 0.2_dp, eps_z = -0.05_dp / 100.0_dp
+    type(joint_summary_t) :: js
+    real(dp) :: lame_a, szz, polygon
+    call solve('test/data/joint_lame.dat', js, error)
+    if (allocated(error)) return
+    lame_a = p * inner**2 / (outer**2 - inner**2)
+    call check(error, js%hoop_at(1) < inner + 0.5_dp * 14.375_dp, 'largest hoop tension in the bore''s elements')
+    if (allocated(error)) return
+    call check(error, js%hoop_max, lame_a * (1.0_dp + outer**2 / js%hoop_at(1)**2), &
+               'hoop tension: Lame at the point''s radius', rel=1.0e-2_dp)
+    if (allocated(error)) return
+    szz = e * eps_z + 2.0_dp * nu * lame_a
+    call check(error, js%axial_min, szz, 'axial stress min: E eps_z + 2 nu p a^2 / (b^2 - a^2)', rel=2.0e-2_dp)
+    if (allocated(error)) return
+    ! 36 straight-sided 5 deg segments of the half annulus, twice: the whole joint
+    polygon = 0.5_dp * (outer**2 - inner**2) * 36.0_dp * sin(5.0_dp * deg2rad)
+    call check(error, js%load, -2.0_dp * szz * polygon, 'load: the axial stress over the whole annulus', &
+               rel=1.0e-3_dp)
+    if (allocated(error)) return
+    call check(error, js%deflection, 0.0_dp, 'no relative rotation', abs=1.0e-9_dp)
+    if (allocated(error)) return
+    call check(error, .not. js%has_models, 'no PACKING=: no models')
+  end subroutine test_lame
 
 end module test_joint_report

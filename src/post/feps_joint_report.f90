@@ -79,16 +79,17 @@ contains
     type(error_t), allocatable, intent(out) :: error
     class(element_t), allocatable :: element
     real(dp), allocatable :: xg(:, :), sig(:, :), fe(:), radius(:)
-    integer, allocatable :: order(:)
+    integer, allocatable :: order(:), nodes(:)
     real(dp) :: c(3), ratio, extent, tol, edge_dir(2)
     integer :: e, p, q, np, npairs, k
     geo%system = model%systems(merge(r%csys, model%fields%csys, r%csys /= 0))
     geo%edge = r%edge
     associate (group => model%groups(r%interface_group), conn => model%groups(r%interface_group)%connectivity)
+      nodes = pack(conn, .true.)
       geo%outer_radius = 0.0_dp
       geo%inner_radius = huge(1.0_dp)
-      do k = 1, size(conn)
-        c = geo%system%from_global(model%coords(:, conn(mod(k - 1, size(conn, 1)) + 1, (k - 1) / size(conn, 1) + 1)))
+      do k = 1, size(nodes)
+        c = geo%system%from_global(model%coords(:, nodes(k)))
         geo%outer_radius = max(geo%outer_radius, c(1))
         geo%inner_radius = min(geo%inner_radius, c(1))
       end do
@@ -177,19 +178,9 @@ contains
     !> The span of a group's nodes along the system's axis.
     real(dp) function axial_extent(g)
       integer, intent(in) :: g
-      real(dp) :: lo, hi, z
-      integer :: k
-      lo = huge(1.0_dp)
-      hi = -huge(1.0_dp)
-      associate (conn => model%groups(g)%connectivity)
-        do k = 1, size(conn)
-          z = dot_product(geo%system%axes(:, 3), &
-                          model%coords(:, conn(mod(k - 1, size(conn, 1)) + 1, (k - 1) / size(conn, 1) + 1)))
-          lo = min(lo, z)
-          hi = max(hi, z)
-        end do
-      end associate
-      axial_extent = hi - lo
+      real(dp), allocatable :: z(:)
+      z = matmul(geo%system%axes(:, 3), model%coords(:, pack(model%groups(g)%connectivity, .true.)))
+      axial_extent = maxval(z) - minval(z)
     end function axial_extent
   end subroutine joint_geometry
 

@@ -500,14 +500,20 @@ contains
       write (line, '(a,es12.4,a,2(a,f0.1))') '  joint compression max ', js%sigma_max, ' MPa', ' at r = ', &
         js%sigma_max_at(1), ', theta = ', js%sigma_max_at(2)
       call add(line)
-      write (line, '(a,f12.1,a,i0,a)') '  contact width Z       ', js%contact_width, ' mm (mean over ', geo%rings, &
-        ' rings of points)'
+      if (abs(js%contact_width) < 1.0e7_dp) then
+        write (line, '(a,f12.1,a,i0,a)') '  contact width Z       ', js%contact_width, ' mm (mean over ', geo%rings, &
+          ' rings of points)'
+      else
+        ! no gap and sigma_n nearly uniform: the fitted lines' zeros lie far away
+        write (line, '(a,es12.4,a,i0,a)') '  contact width Z       ', js%contact_width, ' mm (mean over ', geo%rings, &
+          ' rings of points: no gap, nearly uniform compression)'
+      end if
       call add(line)
       write (line, '(a,es12.4,a,2(a,f0.1))') '  joint opening max     ', js%opening, ' mm', ' at r = ', &
         js%opening_at(1), ', theta = ', js%opening_at(2)
       call add(line)
       if (js%has_deflection) then
-        write (line, '(a,f12.6,a,2(f0.1,a))') '  deflection angle      ', js%deflection, ' deg (end faces z = ', &
+        write (line, '(a,es12.4,a,2(f0.1,a))') '  deflection angle      ', js%deflection, ' deg (end faces z = ', &
           js%face_z(1), ' and ', js%face_z(2), ')'
         call add(line)
       end if

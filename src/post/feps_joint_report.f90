@@ -239,6 +239,11 @@ contains
 
       ! the interface: compression, opening, load and contact width
       associate (res => groups(r%interface_group))
+        if (.not. (allocated(res%stress) .and. allocated(res%strain) .and. allocated(res%state))) then
+          call input_error(error, r%file, r%line, 'REPORT ' // r%name // ': the interface group ' // &
+                           model%groups(r%interface_group)%name // ' has no results in the last step written')
+          return
+        end if
         p = minloc(res%stress(3, :), dim=1)
         js%sigma_max = -res%stress(3, p)
         js%sigma_max_at = geo%at(:, p)

@@ -36,6 +36,7 @@ program tester
   use test_gravity, only: collect_gravity
   use test_geostatic, only: collect_geostatic
   use test_section_report, only: collect_section_report
+  use test_joint_report, only: collect_joint_report
   use test_restart, only: collect_restart
   implicit none
 
@@ -88,6 +89,7 @@ program tester
     new_testsuite('gravity', collect_gravity), &
     new_testsuite('geostatic', collect_geostatic), &
     new_testsuite('section_report', collect_section_report), &
+    new_testsuite('joint_report', collect_joint_report), &
     new_testsuite('restart', collect_restart) &
     ]
   nfail = run_testsuites(suites, only)

@@ -7,7 +7,10 @@ module feps_deck_stages
   use feps_records, only: record_t, nfields, field_text, field_line
   use feps_model, only: model_t, name_len, stage_t, controls_t, method_names, report_t, max_total_steps, &
                         max_iterations_limit, max_cutbacks_limit
-  use feps_deck_fields, only: key_value, check_option_keys, option_real, option_text, require_fields, parse_real, parse_int
+  use feps_deck_fields, only: key_value, check_option_keys, option_real, option_text, require_fields, parse_real, &
+                              parse_int, get_csys_option
+  use feps_element_catalog, only: family_solid, family_interface
+  use feps_coordinate_system, only: csys_cylindrical
   implicit none
   private
 
@@ -227,12 +230,20 @@ contains
     call require_fields(rec, 2, error)
     if (allocated(error)) return
     r%kind = to_lower(field_text(rec, 2))
-    if (r%kind /= 'rotation' .and. r%kind /= 'tilt' .and. r%kind /= 'reaction' .and. r%kind /= 'section') then
+    if (r%kind /= 'rotation' .and. r%kind /= 'tilt' .and. r%kind /= 'reaction' .and. r%kind /= 'section' .and. &
+        r%kind /= 'joint') then
       call input_error(error, rec%file, field_line(rec, 2), 'unknown REPORT "' // field_text(rec, 2) // &
-                       '" (ROTATION, TILT, REACTION, SECTION)', 2)
+                       '" (ROTATION, TILT, REACTION, SECTION, JOINT)', 2)
       return
     end if
     kind = to_upper(r%kind)
+    if (r%kind == 'joint') then
+      call read_joint_report(rec, model, r, error)
+      if (allocated(error)) return
+      tmp = [model%reports, r]
+      call move_alloc(tmp, model%reports)
+      return
+    end if
     if (r%kind == 'section') then
       call read_section_report(rec, model, r, error)
       if (allocated(error)) return
@@ -352,6 +363,126 @@ contains
     call option_real(rec, 'X0', r%about(1), found, error)
     if (.not. allocated(error)) call option_real(rec, 'Y0', r%about(2), found, error)
   end subroutine read_section_report
+
+  !> The options of REPORT, JOINT: NAME= (default 'joint'), INTERFACE= (the joint's interface
+  !! group), PIPE=g1[:g2] (the pipes beside it, solid groups), PACKING= (a solid group, for the
+  !! analytical models), CSYS= (a cylindrical system about the pipe axis; default FIELDS CSYS=),
+  !! EDGE= (theta of the loaded edge, deg), A=, L= and P= (packing thickness, pipe length and
+  !! joint load in place of what the model gives), NEAR= (how far from the joint the pipes'
+  !! points count).
+  subroutine read_joint_report(rec, model, r, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(report_t), intent(inout) :: r
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text, names
+    integer :: ifield, g, colon
+    logical :: found
+    call check_option_keys(rec, 3, error, allowed=[character(len=9) :: 'NAME', 'INTERFACE', 'PIPE', 'PACKING', &
+                                                    'CSYS', 'EDGE', 'A', 'L', 'P', 'NEAR'])
+    if (allocated(error)) return
+    call name_report(rec, model, r, error)
+    if (allocated(error)) return
+    call joint_group('INTERFACE', family_interface, 'an interface group', r%interface_group)
+    if (allocated(error)) return
+    if (model%groups(r%interface_group)%element%dimension /= 3) then
+      call input_error(error, rec%file, field_line(rec, ifield), 'REPORT, JOINT: group "' // text // &
+                       '" is a 2D (plane strain) interface; the joint is an annulus in 3D', ifield)
+      return
+    end if
+    call option_text(rec, 'PIPE', names, ifield, found)
+    if (.not. found) then
+      call input_error(error, rec%file, rec%line, 'REPORT, JOINT needs PIPE=<the pipe group>[:<the other pipe>]')
+      return
+    end if
+    allocate (r%pipe_groups(0))
+    do
+      colon = index(names, ':')
+      if (colon == 0) colon = len(names) + 1
+      text = names(:colon - 1)
+      g = model%find_group(text)
+      if (g == 0) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'undefined element group "' // text // '"', ifield)
+        return
+      end if
+      if (model%groups(g)%element%family /= family_solid) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'REPORT, JOINT: PIPE= group "' // text // &
+                         '" is not a solid group (its type is ' // model%groups(g)%element_type // ')', ifield)
+        return
+      end if
+      if (any(r%pipe_groups == g)) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'REPORT, JOINT: PIPE= names group "' // text // &
+                         '" twice', ifield)
+        return
+      end if
+      r%pipe_groups = [r%pipe_groups, g]
+      if (colon > len(names)) exit
+      names = names(colon + 1:)
+    end do
+    if (size(r%pipe_groups) > 2) then
+      call input_error(error, rec%file, field_line(rec, ifield), 'REPORT, JOINT: PIPE= takes one or two groups ' // &
+                       '(the pipes on either side of the joint)', ifield)
+      return
+    end if
+    call option_text(rec, 'PACKING', text, ifield, found)
+    if (found) then
+      call joint_group('PACKING', family_solid, 'a solid group', r%packing_group)
+      if (allocated(error)) return
+    end if
+    call get_csys_option(rec, model, 'CSYS', 0, r%csys, error)
+    if (allocated(error)) return
+    if (r%csys /= 0) then
+      if (model%systems(r%csys)%kind /= csys_cylindrical) then
+        call option_text(rec, 'CSYS', text, ifield, found)
+        call input_error(error, rec%file, field_line(rec, ifield), 'REPORT, JOINT: coordinate system ' // &
+                         str(r%csys) // ' is not cylindrical (the joint''s hoop stress and radii are about its axis)', &
+                         ifield)
+        return
+      end if
+    end if
+    call option_real(rec, 'EDGE', r%edge, found, error)
+    if (.not. allocated(error)) call positive_option('A', r%packing_thickness, r%has_a)
+    if (.not. allocated(error)) call positive_option('L', r%pipe_length, r%has_l)
+    if (.not. allocated(error)) call positive_option('P', r%load, r%has_p)
+    if (.not. allocated(error)) call positive_option('NEAR', r%near, found)
+  contains
+    !> The group named by KEY=, which must be of `family`.
+    subroutine joint_group(key, family, what, g)
+      character(len=*), intent(in) :: key, what
+      integer, intent(in) :: family
+      integer, intent(out) :: g
+      call option_text(rec, key, text, ifield, found)
+      g = 0
+      if (.not. found) then
+        call input_error(error, rec%file, rec%line, 'REPORT, JOINT needs ' // key // '=<' // what // '>')
+        return
+      end if
+      g = model%find_group(text)
+      if (g == 0) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'undefined element group "' // text // '"', ifield)
+        return
+      end if
+      if (model%groups(g)%element%family /= family) then
+        call input_error(error, rec%file, field_line(rec, ifield), 'REPORT, JOINT: ' // key // '= group "' // &
+                         text // '" is not ' // what // ' (its type is ' // model%groups(g)%element_type // ')', ifield)
+        g = 0
+      end if
+    end subroutine joint_group
+
+    !> KEY=value, which must be positive when given.
+    subroutine positive_option(key, value, given)
+      character(len=*), intent(in) :: key
+      real(dp), intent(inout) :: value
+      logical, intent(out) :: given
+      call option_real(rec, key, value, given, error)
+      if (allocated(error) .or. .not. given) return
+      if (.not. value > 0.0_dp) then
+        call option_text(rec, key, text, ifield, found)
+        call input_error(error, rec%file, field_line(rec, ifield), 'REPORT, JOINT: ' // key // '= must be ' // &
+                         'positive, got ' // text, ifield)
+      end if
+    end subroutine positive_option
+  end subroutine read_joint_report
 
   !> The options of REPORT, REACTION: NAME= (default 'reaction') and NSET=, a node set defined
   !! before the record.

@@ -223,7 +223,8 @@ module feps_model
   !> A quantity computed after the run (thesis post-processing): 'rotation' is the rotation
   !! of the section z = const of a pipe from the axial displacements of its nodes on r = R at
   !! theta = 180 and 0 deg; 'tilt' the tilt of a group's axis between two sections; 'reaction'
-  !! the resultant of the support reactions on a node set.
+  !! the resultant of the support reactions on a node set; 'section' the forces through a
+  !! section; 'joint' the design summary of a pipe joint.
   type, public :: report_t
     character(len=:), allocatable :: name
     character(len=:), allocatable :: kind
@@ -237,6 +238,20 @@ module feps_model
     logical :: has_reference = .false.
     real(dp) :: reference = 0.0_dp
     real(dp) :: about(2) = 0.0_dp            !! 'section': X0=, Y0= of the point moments are taken about
+    !> 'joint': the interface group across the joint, the pipe groups (PIPE=g1:g2, the one below
+    !! the joint first), the packing group (0: none), the cylindrical system (0: FIELDS CSYS=),
+    !! the loaded edge's theta (deg) and the keys that override what the model gives:
+    !! A= packing thickness, L= pipe length, P= the joint load (each with its has_ flag).
+    integer :: interface_group = 0
+    integer, allocatable :: pipe_groups(:)
+    integer :: packing_group = 0
+    integer :: csys = 0
+    real(dp) :: edge = 0.0_dp
+    logical :: has_a = .false., has_l = .false., has_p = .false.
+    real(dp) :: packing_thickness = 0.0_dp
+    real(dp) :: pipe_length = 0.0_dp
+    real(dp) :: load = 0.0_dp
+    real(dp) :: near = 0.0_dp                !! 'joint': NEAR=, the pipe points within this axial distance (0: 2R)
     character(len=:), allocatable :: file
     integer :: line = 0
   end type report_t

@@ -22,6 +22,7 @@ module feps_program
   use feps_results_file, only: results_file_t
   use feps_results_observer, only: results_observer_t, line_sink
   use feps_reports, only: section_rotation, axis_tilt, section_forces
+  use feps_joint_report, only: joint_geometry_t, joint_summary_t, joint_geometry, joint_summary
   use feps_observer, only: group_result_t
   use feps_version, only: feps_release
   use feps_mesh_only, only: mesh_jacobians, write_mesh_only, write_mesh
@@ -359,13 +360,16 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: u(:, :)
     type(group_result_t) :: no_stress(0)
+    type(joint_geometry_t) :: joint
     real(dp) :: angle, force(3), moment(3)
     integer :: k, count
     allocate (u(3, model%nnode))
     u = 0.0_dp
     do k = 1, size(model%reports)
       if (model%reports(k)%kind == 'reaction') cycle      ! its node set was checked when read
-      if (model%reports(k)%kind == 'section') then
+      if (model%reports(k)%kind == 'joint') then
+        call joint_geometry(model, model%reports(k), joint, error)
+      else if (model%reports(k)%kind == 'section') then
         call section_forces(model, model%reports(k), no_stress, force, moment, count, error)
       else if (model%reports(k)%kind == 'tilt') then
         call axis_tilt(model, model%reports(k), u, angle, error)
@@ -390,19 +394,26 @@ contains
     integer :: k
     real(dp) :: angle
     character(len=200) :: line
-    allocate (summary%reports(size(model%reports)))
+    character(len=200), allocatable :: block(:)
+    allocate (summary%reports(0))
     do k = 1, size(model%reports)
       associate (r => model%reports(k))
         if (r%kind == 'reaction') then
           call reaction_resultant(model, r, reaction, line, h5, error)
           if (allocated(error)) return
-          summary%reports(k) = line
+          summary%reports = [character(len=200) :: summary%reports, line]
           cycle
         end if
         if (r%kind == 'section') then
           call section_report(model, r, groups, line, h5, error)
           if (allocated(error)) return
-          summary%reports(k) = line
+          summary%reports = [character(len=200) :: summary%reports, line]
+          cycle
+        end if
+        if (r%kind == 'joint') then
+          call joint_report(model, r, u, groups, block, h5, error)
+          if (allocated(error)) return
+          summary%reports = [character(len=200) :: summary%reports, block]
           cycle
         end if
         if (r%kind == 'tilt') then
@@ -418,7 +429,7 @@ contains
         end if
         if (r%has_reference) write (line, '(a,a,f10.6,a,f0.1,a)') trim(line), '; thesis ', r%reference, &
           ' deg (', 100.0_dp * (angle - r%reference) / r%reference, '%)'
-        summary%reports(k) = line
+        summary%reports = [character(len=200) :: summary%reports, line]
         call h5%write_summary_real('rotation_' // r%name // '_deg', angle, error)
         if (allocated(error)) return
       end associate
@@ -449,6 +460,144 @@ contains
       if (allocated(error)) return
     end do
   end subroutine section_report
+
+  !> REPORT, JOINT: the design summary of a pipe joint (feps_joint_report's joint_summary),
+  !! printed as a block of lines and written to /summary as joint_<name>_<quantity>
+  !! (docs/output-format.md).
+  subroutine joint_report(model, r, u, groups, block, h5, error)
+    type(model_t), intent(in) :: model
+    type(report_t), intent(in) :: r
+    real(dp), intent(in) :: u(:, :)
+    type(group_result_t), intent(in) :: groups(:)
+    character(len=200), allocatable, intent(out) :: block(:)
+    type(results_file_t), intent(inout) :: h5
+    type(error_t), allocatable, intent(out) :: error
+    type(joint_summary_t) :: js
+    character(len=200) :: line
+    character(len=:), allocatable :: pipes
+    integer :: k
+    call joint_summary(model, r, u, groups, js, error)
+    if (allocated(error)) return
+    pipes = model%groups(r%pipe_groups(1))%name
+    do k = 2, size(r%pipe_groups)
+      pipes = pipes // ', ' // model%groups(r%pipe_groups(k))%name
+    end do
+    associate (geo => js%geometry)
+      allocate (block(0))
+      write (line, '(a,f0.1,a,f0.1,a)') 'joint ' // r%name // ' (interface ' // model%groups(r%interface_group)%name // &
+        ', pipes ' // pipes // '; R = ', geo%outer_radius, ', r = ', geo%inner_radius, ' mm):'
+      call add(line)
+      if (js%hoop_group /= 0) then
+        write (line, '(a,es12.4,a,3(a,f0.1),a)') '  hoop tension max      ', js%hoop_max, ' MPa', ' at r = ', &
+          js%hoop_at(1), ', theta = ', js%hoop_at(2), ', z = ', js%hoop_at(3), ' (' // &
+          model%groups(js%hoop_group)%name // ', points within ' // str(js%reach) // ' mm of the joint)'
+        call add(line)
+        write (line, '(a,es12.4,a,3(a,f0.1),a)') '  axial stress min      ', js%axial_min, ' MPa', ' at r = ', &
+          js%axial_at(1), ', theta = ', js%axial_at(2), ', z = ', js%axial_at(3), ' (' // &
+          model%groups(js%axial_group)%name // ')'
+        call add(line)
+      end if
+      write (line, '(a,es12.4,a,2(a,f0.1))') '  joint compression max ', js%sigma_max, ' MPa', ' at r = ', &
+        js%sigma_max_at(1), ', theta = ', js%sigma_max_at(2)
+      call add(line)
+      if (abs(js%contact_width) < 1.0e7_dp) then
+        write (line, '(a,f12.1,a,i0,a)') '  contact width Z       ', js%contact_width, ' mm (mean over ', geo%rings, &
+          ' rings of points)'
+      else
+        ! no gap and sigma_n nearly uniform: the fitted lines' zeros lie far away
+        write (line, '(a,es12.4,a,i0,a)') '  contact width Z       ', js%contact_width, ' mm (mean over ', geo%rings, &
+          ' rings of points: no gap, nearly uniform compression)'
+      end if
+      call add(line)
+      write (line, '(a,es12.4,a,2(a,f0.1))') '  joint opening max     ', js%opening, ' mm', ' at r = ', &
+        js%opening_at(1), ', theta = ', js%opening_at(2)
+      call add(line)
+      if (js%has_deflection) then
+        write (line, '(a,es12.4,a,2(f0.1,a))') '  deflection angle      ', js%deflection, ' deg (end faces z = ', &
+          js%face_z(1), ' and ', js%face_z(2), ')'
+        call add(line)
+      end if
+      if (r%has_p) then
+        write (line, '(a,es12.4,a)') '  joint load P          ', js%load, ' N (P=)'
+      else
+        write (line, '(a,es12.4,a,i0,a)') '  joint load P          ', js%load, ' N (', geo%copies, &
+          ' x the interface''s normal force)'
+      end if
+      call add(line)
+      if (js%has_models) then
+        write (line, '(a,f0.2,a,f0.1,a,f0.1,a,f0.1,a)') '  models at this P and Z (a = ', geo%packing_thickness, &
+          ', L = ', geo%pipe_length, ' mm, E_c = ', geo%concrete_modulus, ', E_p = ', geo%packing_modulus, ' MPa):'
+        call add(line)
+        write (line, '(a,es12.4,a,es12.4,a)') '  australian sigma_max  ', js%australian%sigma_max, ' MPa, beta ', &
+          js%australian%beta, ' deg'
+        call add(line)
+        write (line, '(a,es12.4,a,es12.4,a)') '  haslem     sigma_max  ', js%haslem%sigma_max, ' MPa, beta ', &
+          js%haslem%beta, ' deg'
+        call add(line)
+      else
+        call add('  models not evaluated: ' // js%models_note)
+      end if
+    end associate
+    call write_joint_values(h5, 'joint_' // r%name // '_', js, error)
+  contains
+    subroutine add(text)
+      character(len=*), intent(in) :: text
+      block = [character(len=200) :: block, text]
+    end subroutine add
+
+  end subroutine joint_report
+
+  !> The /summary attributes of REPORT, JOINT, each named `prefix` // quantity.
+  subroutine write_joint_values(h5, prefix, js, error)
+    type(results_file_t), intent(inout) :: h5
+    character(len=*), intent(in) :: prefix
+    type(joint_summary_t), intent(in) :: js
+    type(error_t), allocatable, intent(out) :: error
+    associate (geo => js%geometry)
+      if (js%hoop_group /= 0) then
+        call put('hoop_max', js%hoop_max)
+        call put_at('hoop', js%hoop_at)
+        call put('axial_min', js%axial_min)
+        call put_at('axial', js%axial_at)
+      end if
+      call put('sigma_max', js%sigma_max)
+      call put_at('sigma_max', js%sigma_max_at(1:2))
+      call put('contact_width', js%contact_width)
+      call put('opening', js%opening)
+      call put_at('opening', js%opening_at(1:2))
+      if (js%has_deflection) call put('deflection_deg', js%deflection)
+      call put('load', js%load)
+      call put('outer_radius', geo%outer_radius)
+      call put('inner_radius', geo%inner_radius)
+      if (js%has_models) then
+        call put('packing_thickness', geo%packing_thickness)
+        call put('pipe_length', geo%pipe_length)
+        call put('concrete_modulus', geo%concrete_modulus)
+        call put('packing_modulus', geo%packing_modulus)
+        call put('australian_sigma_max', js%australian%sigma_max)
+        call put('australian_beta_deg', js%australian%beta)
+        call put('haslem_sigma_max', js%haslem%sigma_max)
+        call put('haslem_beta_deg', js%haslem%beta)
+      end if
+    end associate
+  contains
+    subroutine put(name, value)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: value
+      if (allocated(error)) return
+      call h5%write_summary_real(prefix // name, value, error)
+    end subroutine put
+
+    subroutine put_at(name, at)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: at(:)
+      character(len=5), parameter :: coordinate(3) = ['r    ', 'theta', 'z    ']
+      integer :: d
+      do d = 1, size(at)
+        call put(name // '_' // trim(coordinate(d)), at(d))
+      end do
+    end subroutine put_at
+  end subroutine write_joint_values
 
   !> REPORT, REACTION: the sum of the support reactions (global x, y, z) over the nodes of the
   !! report's node set, printed as one line and written to /summary as reaction_<name>_fx, _fy

@@ -130,9 +130,14 @@ class Ground:
         out = []
         for r0, r1 in zip(radii, radii[1:]):
             edges = [sum(thetas[:j]) for j in range(len(thetas) + 1)]
-            x = [0.5 * (r0 + r1) * math.cos(math.radians(0.5 * (a + b))) for a, b in zip(edges, edges[1:])]
+            x = [0.25 * (r0 + r1) * (math.cos(math.radians(a)) + math.cos(math.radians(b)))
+                 for a, b in zip(edges, edges[1:])]                # the mean of the corners' x
             out.append(len(thetas) if self.water is None else sum(1 for v in x if v > self.water))
         return out
+
+    def layers(self, dry, n):
+        """The soil groups' wet flags: (False,) when dry, else those that get elements."""
+        return (False,) if self.water is None else tuple(w for w in (False, True) if any((n - k if w else k) for k in dry))
 
     def stage(self):
         """The geostatic stage's records, before the load stages."""
@@ -292,7 +297,9 @@ def half_pipe_deck(kind, load, es, ks, kn, phi, psi, r_soil=R_SOIL, refine=1, el
     out += [f"TITLE, Model B {case}: {title}, E_s = {es:g} MPa, {'edge' if edge else 'diagonal'} load "
             f"P = {total / 1000.0:g} kN",
             "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
-            params + p.parameters(), "", "! --- nodes: r fastest, then theta (28), then z (25) ---"]
+            params + p.parameters() + ("" if p.thesis and math.isclose(total, 1.0e6, rel_tol=1e-12) else
+                                         f", q={total / (0.5 * math.pi * (ro ** 2 - ri ** 2)):.6g}"),
+            "", "! --- nodes: r fastest, then theta (28), then z (25) ---"]
 
     def inc(v):
         text = f"{v / m:.10g}"
@@ -371,7 +378,7 @@ def half_pipe_deck(kind, load, es, ks, kn, phi, psi, r_soil=R_SOIL, refine=1, el
         # theta runs from 0 (x = +r, the top) to 180: each soil element layer's dry elements first
         radii = [ro + sum(layers[:i // refine]) + (i % refine) * layers[i // refine] / refine for i in range(4 * refine)]
         dry = g.dry_columns(radii + [r_soil], [d / refine for n, d, _ in B_THETA for _ in range(n * refine)])
-        for wet in (False, True):
+        for wet in g.layers(dry, 27 * refine):
             out += ["", f"GROUP, soil{'_wet' if wet else ''}, TYPE={element}, MATERIAL=soil{'_wet' if wet else ''}"]
             for i, k in enumerate(dry):
                 base, count = first_soil + i * step + (k * step * nr if wet else 0), 27 * refine - k if wet else k
@@ -388,7 +395,7 @@ def half_pipe_deck(kind, load, es, ks, kn, phi, psi, r_soil=R_SOIL, refine=1, el
                 f"GROUP, contact, TYPE=interface-quad{8 if quadratic else 4}, MATERIAL=pipe_soil"]
         out += element_block(lo + up, around)
     out += ["E,", "", "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2"]
-    for wet in (False, True) if g.water is not None else (False,):
+    for wet in g.layers(dry, 27 * refine) if g.water is not None else (False,):
         name = "soil_wet" if wet else "soil"
         if kind == "P":
             out.append(f"MATERIAL, {name}, MATSUOKA, E={es:g}, NU={nu_s:g}, PHI={num(phi)}, PSI={num(psi)}, "
@@ -609,7 +616,8 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         f"TITLE, Model C {name}: packing G_p = {G:g}, nu_p = {nu:g}, beta = {beta:g} deg, q = {q:.10g} MPa",
         "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
         f"PARAMETERS, G_p={G:g}, nu_p={nu:g}, beta={beta:g}, E_s={soil_E:g}" +
-        ("" if psi == PSI_JOINT else f", psi_joint={psi:g}") + p.parameters(),
+        ("" if psi == PSI_JOINT else f", psi_joint={psi:g}") + p.parameters()
+        + ("" if math.isclose(q, Q, rel_tol=1e-12) else f", q={q:.6g}") + ("" if kn == KN_JOINT else f", Kn={kn:g}"),
         "",
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
         f"A, 3, {num(ri)}, 0., 0.,",
@@ -634,7 +642,7 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
 
     soil_groups = []
     dry = g.dry_columns(m.r_bottom[wall:], thetas)
-    for wet in (False, True) if g.water is not None else (False,):
+    for wet in g.layers(dry, ntheta):
         soil_groups += [f"GROUP, soil{'_wet' if wet else ''}, TYPE=hex8, MATERIAL=soil{'_wet' if wet else ''}"]
         if g.water is None:
             soil_groups += [hex_record(m.bottom, 0, wall, 0), f"%, {ntheta}, *, 8, 1,",
@@ -667,7 +675,7 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {m.nt},", "E,",
             "E,", "",
             "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2"]
-    out += [soil_material(wet) for wet in ((False, True) if g.water is not None else (False,))]
+    out += [soil_material(wet) for wet in g.layers(dry, ntheta)]
     out += [f"MATERIAL, packing, ELASTIC, G={G:g}, NU={nu:g}",
             f"MATERIAL, pipe_packing, INTERFACE, KN={num(kn)}, KS={num(ks)}, PHI={num(phi_j)}, "
             f"PSI={psi:g}{'.' if float(psi).is_integer() else ''}, C={c_j:g}",
@@ -718,3 +726,112 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             "FIELDS, all, nodal_interface"]
     out += ["", "SOLVER, cholmod", f"OUTPUT, {name}.h5", ""]
     return "\n".join(out)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("-o", "--output", required=True, metavar="DECK", help="the deck to write (its results: DECK's "
+                    "name with .h5)")
+    pipe = ap.add_argument_group("pipe and joint (mm, MPa, deg; default: the thesis's)")
+    pipe.add_argument("--inner-diameter", type=positive, default=2 * R_IN, help=f"default {2 * R_IN:g}")
+    pipe.add_argument("--wall", type=positive, default=R_OUT - R_IN, help=f"wall thickness (default {R_OUT - R_IN:g})")
+    pipe.add_argument("--pipe-length", type=positive, default=L_PIPE, help=f"default {L_PIPE:g}")
+    pipe.add_argument("--packing", type=finite, default=PACKING,
+                      help=f"packing thickness a (default {PACKING:g}); 0: one pipe in soil loaded on its ends (model B)")
+    pipe.add_argument("--packing-G", type=positive, help=f"packing shear modulus (default {G_PACKING:g})")
+    pipe.add_argument("--packing-E", type=positive, help="packing Young's modulus (instead of --packing-G)")
+    pipe.add_argument("--packing-nu", type=finite, default=NU_PACKING, help=f"default {NU_PACKING:g}")
+    pipe.add_argument("--joint-kn", type=positive, default=KN_JOINT, help=f"MPa/mm (default {KN_JOINT:g})")
+    pipe.add_argument("--joint-ks", type=positive, default=KS_JOINT, help=f"MPa/mm (default {KS_JOINT:g})")
+    pipe.add_argument("--joint-phi", type=positive, default=PHI_JOINT, help=f"default {PHI_JOINT:g}")
+    pipe.add_argument("--joint-psi", type=finite, default=PSI_JOINT, help=f"default {PSI_JOINT:g}")
+    pipe.add_argument("--joint-c", type=finite, default=C_JOINT, help=f"default {C_JOINT:g}")
+    load = ap.add_argument_group("misalignment and load")
+    load.add_argument("--misalignment", choices=("edge", "diagonal"), default="edge",
+                      help="edge (the joint closes on one side: quarter model) or diagonal (the ends loaded on "
+                           "opposite sides: --packing 0 only, half model)")
+    load.add_argument("--angle", type=positive, default=BETA, help=f"misalignment beta (deg, default {BETA:g})")
+    force = load.add_mutually_exclusive_group()
+    force.add_argument("--jacking-stress", type=positive, help=f"mean stress on the pipe's end (default {Q:g})")
+    force.add_argument("--jacking-force", type=positive, help="force on the whole pipe's end (N; --packing 0 "
+                       "default 2.0e6, the thesis's 1000 kN on the half model)")
+    load.add_argument("--steps", type=positive_int, help="load steps (model C's stage 2; default by the angle)")
+    soil = ap.add_argument_group("soil and ground")
+    soil.add_argument("--soil-E", type=positive, default=144.0, help="default 144")
+    soil.add_argument("--soil-nu", type=finite, default=0.2, help="default 0.2")
+    soil.add_argument("--soil-phi", type=positive, help="friction angle: Matsuoka-Nakai soil (default: elastic); "
+                      "with --interface frictional the pipe/soil interface's")
+    soil.add_argument("--soil-psi", type=finite, help="dilation angle (default: phi)")
+    soil.add_argument("--soil-c", type=finite, default=0.05, help="cohesion (default 0.05)")
+    soil.add_argument("--interface", choices=("bonded", "frictional"), default="bonded",
+                      help="pipe/soil: shared nodes, or (--packing 0) Mohr-Coulomb interfaces with Ks = 50 E_s / 144, "
+                           "Kn = 2 Ks (the thesis's)")
+    soil.add_argument("--gamma", type=positive, help="the soil's unit weight (N/mm3; 2.0e-5 = 20 kN/m3): gravity and "
+                      "the K0 stress field")
+    soil.add_argument("--k0", type=positive, help="K0 (default 1 - sin(phi), Jaky)")
+    soil.add_argument("--cover", type=positive, help="depth of the pipe's crown below the surface (mm; with --gamma)")
+    soil.add_argument("--water-table", type=finite, help="depth of the water table below the surface (mm)")
+    mesh = ap.add_argument_group("mesh")
+    mesh.add_argument("--soil-radius", type=positive, help="the soil's outer radius (default 2000 r_o / 715)")
+    mesh.add_argument("--theta-step", type=positive, default=THETA_STEP, help="element size (deg) beyond theta = 12 "
+                      "(model C; it must divide 168)")
+    mesh.add_argument("--wall-elements", type=positive_int, default=WALL_ELEMENTS, help="model C (default 2)")
+    mesh.add_argument("--z-refine", type=positive_int, default=1, help="model C: cut every z element in this many")
+    mesh.add_argument("--refine", type=positive_int, default=1, help="model B: every element in refine^3")
+    mesh.add_argument("--element", choices=ELEMENTS, default="hex8", help="model B's element")
+    a = ap.parse_args(argv)
+    try:
+        text = deck_of(a)
+    except ValueError as exc:
+        ap.error(str(exc))
+    with open(a.output, "w") as f:
+        f.write(text)
+    print(f"wrote {a.output}")
+
+
+def deck_of(a):
+    """The deck of the command line's options; ValueError naming the option that is wrong."""
+    p = Pipe(a.inner_diameter / 2, a.inner_diameter / 2 + a.wall, a.pipe_length, a.packing)
+    r_soil = a.soil_radius or p.default_soil_radius()
+    name = os.path.splitext(os.path.basename(a.output))[0]
+    psi = a.soil_phi if a.soil_psi is None else a.soil_psi
+    if a.gamma is None and any(v is not None for v in (a.k0, a.cover, a.water_table)):
+        raise ValueError("--k0, --cover and --water-table need --gamma (the soil's weight)")
+    ground = Ground()
+    if a.gamma is not None:
+        if a.cover is None:
+            raise ValueError("--gamma needs --cover (the crown's depth, mm)")
+        if r_soil > p.r_out + a.cover:
+            raise ValueError(f"--cover {a.cover:g}: the soil's mesh reaches r = {r_soil:g} above the axis, beyond the "
+                             f"surface at {p.r_out + a.cover:g}; give a --soil-radius of at most r_o + cover")
+        if a.water_table is not None and a.water_table < 0.0:
+            raise ValueError(f"--water-table {a.water_table:g}: a depth below the surface (>= 0)")
+        surface = p.r_out + a.cover
+        ground = Ground(a.gamma, a.k0, a.soil_phi, surface, None if a.water_table is None else surface - a.water_table)
+    if a.packing == 0.0:
+        kind = "F" if a.interface == "frictional" else ("P" if a.soil_phi else "S")
+        phi = a.soil_phi or 15.0
+        force = a.jacking_force or (a.jacking_stress * math.pi * (p.r_out ** 2 - p.r_in ** 2) if a.jacking_stress
+                                    else 2.0e6)
+        ks = 50.0 * a.soil_E / 144.0
+        return half_pipe_deck(kind, "E" if a.misalignment == "edge" else "D", a.soil_E, ks, 2.0 * ks, phi,
+                              phi if psi is None else psi, r_soil, a.refine, a.element, pipe=p, case=name,
+                              soil_name=f"E_s = {a.soil_E:g} MPa", output=name, total=force / 2.0, steps=a.steps,
+                              nu_s=a.soil_nu, c=a.soil_c, ground=ground)
+    if a.misalignment == "diagonal" or a.interface == "frictional":
+        raise ValueError("two pipes and the packing (--packing > 0) are written for the edge misalignment with the "
+                         "bottom pipe bonded to the soil; --misalignment diagonal and --interface frictional need "
+                         "--packing 0")
+    if not -1.0 < a.packing_nu < 0.5 or not 0.0 <= a.joint_psi <= a.joint_phi:
+        raise ValueError(f"--packing-nu {a.packing_nu:g} must lie in (-1, 0.5), --joint-psi {a.joint_psi:g} in "
+                         f"[0, --joint-phi {a.joint_phi:g}]")
+    G = a.packing_G or (a.packing_E / (2.0 * (1.0 + a.packing_nu)) if a.packing_E else G_PACKING)
+    q = a.jacking_stress or (a.jacking_force / (math.pi * (p.r_out ** 2 - p.r_in ** 2)) if a.jacking_force else Q)
+    return joint_deck(G, a.packing_nu, a.angle, r_soil, a.steps or default_steps(a.angle), a.theta_step, a.soil_E,
+                      a.wall_elements, a.z_refine, a.joint_psi, name=name, pipe=p, q=q,
+                      joint=(a.joint_kn, a.joint_ks, a.joint_phi, a.joint_c),
+                      soil=(a.soil_nu, a.soil_phi, psi, a.soil_c), ground=ground)
+
+
+if __name__ == "__main__":
+    main()

@@ -4,7 +4,9 @@
     python3 scripts/postprocess_model_c.py results/modelC/C_G300_nu0.1_b0.09/C_G300_nu0.1_b0.09.h5
     python3 scripts/postprocess_model_c.py --table results/modelC      # every case, thesis beside
 
-From the last step of a model C run (decks by scripts/make_model_c.py):
+From the last step of a model C run (decks by scripts/make_model_c.py; those of make_pipe_joint.py
+for another pipe name its r_i, r_o, L, a and Kn in /summary, and the positions below, given for
+the thesis's pipe, are that pipe's, x = 250 scaled by r_o / 715):
 
 - beta* (eq. 7.4.2): tan(beta*) = (delta - delta_b) / L, L = 2500, delta the x displacement of the
   top end (read from the result), delta_b the x displacement of "the centre of the bottom end of
@@ -397,9 +399,10 @@ def postprocess(h5path, verbose=True):
               f"{res['residual']:.2e}; interface points open {100 * res['open_fraction']:.1f}%, sliding "
               f"{100 * res['sliding_fraction']:.1f}%")
         print(f"beta_star  {res['beta_star']:.4f} deg   (delta {res['delta']:.4f}, delta_b {res['delta_b']:.4f} mm "
-              f"area-weighted over z = 1265; with delta_b at x = 0: {res['beta_star_x0']:.4f} deg)")
-        print(f"beta_bar   {res['beta_bar']:.4f} deg   (least squares over x >= 250 on r = 715 of w at A-A less "
-              f"the interface's elastic closure sigma_n / Kn; secant 250..715: {res['beta_bar_secant']:.4f}; "
+              f"area-weighted over z = {geo.z_top_bottom:g}; with delta_b at x = 0: {res['beta_star_x0']:.4f} deg)")
+        print(f"beta_bar   {res['beta_bar']:.4f} deg   (least squares over x >= {geo.x_region:g} on r = {geo.r_out:g} "
+              f"of w at A-A less the interface's elastic closure sigma_n / Kn; secant {geo.x_region:g}..{geo.r_out:g}: "
+              f"{res['beta_bar_secant']:.4f}; "
               f"wall-averaged: {res['beta_bar_wall_mean']:.4f}; nothing taken out: {res['beta_bar_raw']:.4f}; its "
               f"whole relative displacement taken out: {res['beta_bar_whole_jump']:.4f}; A-A's mean rotation: "
               f"{res['rotation_AA']:.4f})")
@@ -407,8 +410,8 @@ def postprocess(h5path, verbose=True):
               ", ".join(f"{z:.0f}" for z in res["Z_lines"]) + f"; {res['Z_kinds'][0]}; from element-centre "
               f"stresses: {res['Z_centres']:.1f})")
         print(f"sigma_max  {res['sigma_max']:.2f} MPa  (szz at the centres of the {res['n_edge_elements']} packing "
-              f"elements with theta < {EDGE_THETA:g} deg, line in x to x = 715; the same from the interface's "
-              f"normal stress: {res['sigma_max_interface']:.2f})")
+              f"elements with theta < {EDGE_THETA:g} deg, line in x to x = {geo.r_out:g}; the same from the "
+              f"interface's normal stress: {res['sigma_max_interface']:.2f})")
         if "s2_beta_star" in res:
             print(f"end of stage 2 (residual {res['s2_residual']:.2e}): beta_star {res['s2_beta_star']:.4f}, "
                   f"beta_bar {res['s2_beta_bar']:.4f}, Z {res['s2_Z']:.1f}, sigma_max {res['s2_sigma_max']:.2f}")

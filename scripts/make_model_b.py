@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Write the decks of thesis model B (chapter 5): input/modelB/<case>.dat for the 18 cases
 SE1-3, SD1-3 (elastic soil), FE1-3, FD1-3 (interfaces pipe/soil), PE1-3, PD1-3 (Matsuoka soil),
-and input/modelB.dat (= FE1, the README's main job).
+and input/modelB.dat (= FE1, the README's main job). A preset of scripts/make_pipe_joint.py (one
+pipe in soil, --packing 0), which writes the decks; this script holds the thesis's cases.
 
     python3 scripts/make_model_b.py [--soil-radius 2000] [--outdir input/modelB] [--cases SE1,FD2,...]
 

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Write the decks of thesis model C (chapter 6): input/modelC/<case>.dat for the 12 cases
 C_G<G_p>_nu<nu_p>_b<beta> (G_p = 300, 900 MPa; nu_p = 0.1, 0.4, -0.3; beta = 0.09, 0.27 deg).
+A preset of scripts/make_pipe_joint.py (any pipe), which writes the decks; this script holds the
+thesis's cases and their names.
 
     python3 scripts/make_model_c.py [--outdir input/modelC] [--cases C_G300_nu0.1_b0.09,...]
                                     [--steps N] [--soil-radius 2000] [--theta-step 3]

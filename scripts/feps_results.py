@@ -177,7 +177,8 @@ def summary(f):
 
 
 # The mean end pressure q (MPa) that normalises the thesis's stress contours, by model, known
-# from the /summary parameters its decks write (scripts/make_model_b.py, make_model_c.py):
+# from the /summary parameters its decks write (scripts/make_model_b.py, make_model_c.py; a q
+# parameter where make_pipe_joint.py's pipe or load is another):
 # model B: P = 1000 kN over the half annulus (thesis 5.3); model C: 10 MPa on the top end (6.2).
 MEAN_PRESSURE = {"model B": ("parameter_kind", 4.21), "model C": ("parameter_G_p", 10.0)}
 
@@ -189,6 +190,7 @@ def mean_pressure(f):
     attrs = summary(f)
     for model, (key, q) in MEAN_PRESSURE.items():
         if key in attrs:
-            return q, model
+            # make_pipe_joint.py's decks of another pipe or load name their q
+            return float(attrs.get("parameter_q", q)), model
     return None, None
 

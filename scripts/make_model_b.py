@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Write the decks of thesis model B (chapter 5): input/modelB/<case>.dat for the 18 cases
 SE1-3, SD1-3 (elastic soil), FE1-3, FD1-3 (interfaces pipe/soil), PE1-3, PD1-3 (Matsuoka soil),
-and input/modelB.dat (= FE1, the README's main job).
+and input/modelB.dat (= FE1, the README's main job). A preset of scripts/make_pipe_joint.py (one
+pipe in soil, --packing 0), which writes the decks; this script holds the thesis's cases.
 
     python3 scripts/make_model_b.py [--soil-radius 2000] [--outdir input/modelB] [--cases SE1,FD2,...]
 
@@ -31,57 +32,14 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-# the same list syntax and soil radius (the pipes are the same: r = 600 .. 715) for both writers
-from make_model_c import check_soil_radius, number_list, radius_text, soil_radius_arg  # noqa: E402
+# the pipe-joint generator writes the deck; this preset holds the thesis's cases
+from make_pipe_joint import ELEMENTS, half_pipe_deck, mesh_suffix, number_list, soil_radius_arg  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 SOILS = {1: ("typical", 144.0, 50.0, 100.0), 2: ("soft", 14.4, 5.0, 10.0), 3: ("stiff", 1440.0, 500.0, 1000.0)}
 THESIS_EDGE_ANGLE = {1: 0.0502, 2: 0.0544, 3: 0.0370}          # Table 7.1, FE cases
 THESIS_DIAGONAL = {1: (0.2521, 0.2080), 2: (2.116, 2.071), 3: (0.0587, 0.0238)}  # Table 7.2, FD cases
-
-
-def soil_layers(r_soil):
-    """Four soil element layers from r = 715, growing outwards (715, 865, 1115, 1465, 2000 for
-    r_soil = 2000: increments 150, 250, 350, 535 scaled to the soil extent)."""
-    check_soil_radius(r_soil)
-    base = [150.0, 250.0, 350.0, 535.0]
-    scale = (r_soil - 715.0) / sum(base)
-    return [b * scale for b in base]
-
-
-def node_block(interfaces, r_soil, m=1):
-    """The node block: r fastest, then theta, then z. m > 1 puts m lattice intervals in every
-    interval of the decks' mesh (refinement, and the mid-side nodes of hex20 at m = 2 x refine)."""
-    def inc(v):
-        text = f"{v / m:.10g}"
-        return text if "." in text or "e" in text else text + "."
-
-    def row(count, dr=0.0, dt=0.0, dz=0.0, comment="", soil=False):
-        # the decks' soil layers are written to 4 decimals; a refined layer to 10 digits
-        body = f"%, {count}, {f'{dr:.4f}' if soil and m == 1 else inc(dr)}, {inc(dt)}, {inc(dz)},"
-        return f"{body:<29}! {comment}" if comment else body
-
-    def first(n):                       # a new direction's node count, n nodes on the decks' mesh
-        return (n - 1) * m + 1
-
-    lines = ["A, 3, 600., 0., 0.,", row(first(3), dr=57.5, comment="pipe wall: r = 600, 657.5, 715")]
-    if interfaces:
-        lines.append(row(-1, comment="r = 715 again: the soil's face (coincident nodes)"))
-    lines += [row(-m, dr=d, soil=True) for d in soil_layers(r_soil)]
-    lines += [row(first(7), dt=10.0, comment="theta = 0 .. 60"),
-              row(-6 * m, dt=7.5, comment="theta = 105"),
-              row(-15 * m, dt=5.0, comment="theta = 180"),
-              row(first(5), dz=50.0, comment="z = 0 .. 200"),
-              row(-3 * m, dz=100.0, comment="z = 500"),
-              row(-5 * m, dz=150.0, comment="z = 1250"),
-              row(-5 * m, dz=150.0, comment="z = 2000"),
-              row(-3 * m, dz=100.0, comment="z = 2300"),
-              row(-4 * m, dz=50.0, comment="z = 2500"),
-              "E,"]
-    return lines
-
-
 PHI = 15.0                 # deg: friction and dilation angles of the pipe-soil interface and the Matsuoka soil
 
 
@@ -119,11 +77,6 @@ def parse_case(case):
     return kind, load, None, es, ks, 2.0 * ks, phi, psi
 
 
-def num(v):
-    """A deck number: 15 -> '15.', 12.5 -> '12.5'."""
-    return f"{v:g}" + ("." if float(v).is_integer() and "e" not in f"{v:g}" else "")
-
-
 def parametric_name(kind, load, es, phi, psi):
     name = f"{kind}{load}_Es{es:g}"
     if kind != "S":
@@ -140,219 +93,14 @@ def check_parameters(es, phi, psi):
         raise ValueError(f"psi = {psi:g}: the dilation angle must lie in [0, phi] deg")
 
 
-ELEMENTS = ("hex8", "hex20", "wedge6", "wedge15")
-
-
-def mesh_suffix(refine, element):
-    """'' for the decks' mesh (hex8, refine 1), else e.g. '_hex20_r2' (deck and result names)."""
-    return "" if (refine, element) == (1, "hex8") else f"_{element}_r{refine}"
-
-
 def deck(case, r_soil=2000.0, refine=1, element="hex8"):
-    """The deck of `case`. `refine` splits every element of the decks' mesh into refine^3 and
-    `element` = 'hex20' uses 20-node hexahedra and 8-pair interfaces on that mesh (the mesh
-    convergence study, docs/verification.md); 'wedge6' and 'wedge15' cut each hexahedron into two
-    wedges along its (r, theta) diagonal, so the faces at r = const (the interfaces) stay
-    quadrilaterals and the pipe's ends become triangles; the defaults give the thesis decks."""
+    """The deck of `case` (make_pipe_joint.half_pipe_deck with the thesis's pipe); `refine` and
+    `element` as there: the defaults give the thesis decks."""
     kind, load, number, es, ks, kn, phi, psi = parse_case(case)
-    if element not in ELEMENTS or refine < 1:
-        raise ValueError(f"element {element!r}, refine {refine}: one of {', '.join(ELEMENTS)}, refine >= 1")
-    name = SOILS[number][0] if number else f"E_s = {es:g} MPa"
-    interfaces = kind == "F"
-    quadratic = element in ("hex20", "wedge15")
-    wedges = element.startswith("wedge")
-    m = refine * (2 if quadratic else 1)        # lattice intervals per interval of the decks' mesh
-    step = 2 if quadratic else 1                # lattice intervals per element
-    nr = 2 * m + 1 + 4 * m + (1 if interfaces else 0)   # nodes along r
-    layer = nr * (27 * m + 1)                   # nodes in one z layer
-    first_soil = 2 * m + 1 + (1 if interfaces else 0)   # r index + 1 of the soil's inner face
-    suffix = mesh_suffix(refine, element)
-    edge = load == "E"
-    title = {"S": "elastic soil", "F": "interfaces pipe/soil, elastic soil", "P": "Matsuoka soil"}[kind]
-    out = [
-        f"! feps deck: numerical model B (thesis chapter 5), case {case} ({title}, {name} soil,",
-        f"! {'edge' if edge else 'diagonal'} load). Written by scripts/make_model_b.py.",
-        "! Half pipe (theta 0..180 deg, symmetry plane y = 0): r_i = 600, r_o = 715, length 2500;",
-        f"! soil from r = 715 to {r_soil:.0f} mm in 4 element layers (the thesis gives no soil extent:",
-        "! docs/verification.md shows the sensitivity). Mesh: hex8, 2 elements through the wall, theta",
-        "! 6 x 10, 6 x 7.5, 15 x 5 deg (finer on the loaded side, theta = 180), z graded 50/100/150 mm",
-        "! from each end.",
-    ]
-    if suffix:
-        out += [f"! Mesh convergence study (make_model_b.py --refine {refine} --element {element}): every element",
-                f"! of that mesh split into {refine} x {refine} x {refine}"
-                + (", 20-node hexahedra and 8-pair interfaces (unused face- and body-centre" if quadratic else "."),
-                ] + (["! lattice nodes belong to no element and carry no unknowns)."] if quadratic else [])
-    if not edge:
-        # the diagonal problem is symmetric under (x, z) -> (-x, 2500 - z); the mesh is not
-        out += ["! The diagonal load's lower end (x = 220..715, theta 0..72 deg) lies on the 10 deg elements;",
-                "! the two loaded corners are alike by symmetry, and in SD1 the largest most tensile stress",
-                "! in the lower half of the pipe comes out 2.3% below that in the upper half (mesh)."]
-    if interfaces:
-        if phi == psi == PHI:
-            out += [f"! Pipe and soil meet through quadrilateral interfaces (Ks = {ks:g}, Kn = {kn:g} MPa/mm,",
-                    "! phi = psi = 15 deg, c = 0.05 MPa, thesis 5.4); their nodes coincide at r = 715."]
-        else:
-            out += [f"! Pipe and soil meet through quadrilateral interfaces (Ks = {ks:g}, Kn = {kn:g} MPa/mm,",
-                    f"! phi = {phi:g}, psi = {psi:g} deg, c = 0.05 MPa; thesis 5.4: phi = psi = 15); their nodes",
-                    "! coincide at r = 715."]
-    elif kind == "P":
-        if phi == psi == PHI:
-            out += ["! Soil: modified Matsuoka-Nakai, phi = psi = 15 deg, c = 0.05 MPa (thesis 5.5), bonded to the pipe."]
-        else:
-            out += [f"! Soil: modified Matsuoka-Nakai, phi = {phi:g}, psi = {psi:g} deg, c = 0.05 MPa (thesis 5.5:",
-                    "! phi = psi = 15), bonded to the pipe."]
-    else:
-        out += ["! Pipe and soil share their nodes at r = 715 (bonded)."]
-    params = f"PARAMETERS, kind={kind}, load={'edge' if edge else 'diagonal'}, E_s={es:g}"
-    if kind != "S":
-        params += f", phi={phi:g}, psi={psi:g}"
-    out += [f"TITLE, Model B {case}: {title}, E_s = {es:g} MPa, {'edge' if edge else 'diagonal'} load P = 1000 kN",
-            "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
-            params,
-            "", "! --- nodes: r fastest, then theta (28), then z (25) ---"]
-    out += node_block(interfaces, r_soil, m)
-
-    def node(i, j, k, base=1):
-        """Node number at lattice offsets (r, theta, z) from node `base`."""
-        return base + i + j * nr + k * layer
-
-    def solid(base):
-        """The first element's nodes: hex8 corners (bottom face counter-clockwise, then the top),
-        and for hex20 the mid-edges (bottom 1-2, 2-3, 3-4, 4-1, the top, then the verticals)."""
-        s = step
-        corners = [(0, 0, 0), (s, 0, 0), (s, s, 0), (0, s, 0)]
-        nodes = [node(i, j, 0, base) for i, j, _ in corners] + [node(i, j, s, base) for i, j, _ in corners]
-        if quadratic:
-            mids = [(1, 0), (2, 1), (1, 2), (0, 1)]
-            nodes += [node(i, j, 0, base) for i, j in mids] + [node(i, j, 2, base) for i, j in mids]
-            nodes += [node(i, j, 1, base) for i, j, _ in corners]
-        return nodes
-
-    def wedge_pair(base):
-        """The first cell's two wedges (C3D6 / C3D15 order), cut along the cell's (r, theta)
-        diagonal: each base triangle counter-clockwise seen from above as hex8's bottom face,
-        then its top; wedge15's mid-edges bottom 1-2, 2-3, 3-1, top, then the verticals."""
-        s = step
-        pair = []
-        for tri in ([(0, 0), (s, 0), (s, s)], [(0, 0), (s, s), (0, s)]):
-            nodes = [node(i, j, 0, base) for i, j in tri] + [node(i, j, s, base) for i, j in tri]
-            if quadratic:
-                mids = [((tri[a][0] + tri[b][0]) // 2, (tri[a][1] + tri[b][1]) // 2) for a, b in ((0, 1), (1, 2), (2, 0))]
-                nodes += [node(i, j, 0, base) for i, j in mids] + [node(i, j, 2, base) for i, j in mids]
-                nodes += [node(i, j, 1, base) for i, j in tri]
-            pair.append(nodes)
-        return pair
-
-    def element_block(nodes, copies):
-        first = ", ".join(str(n) for n in nodes)
-        k = len(nodes)
-        return [f"A, {k}, {first},"] + [f"%, {n}, *, {k}, {inc}," for n, inc in copies] + ["E,"]
-
-    def solid_blocks(base, through):
-        copies = [(through, step)] + around
-        if not wedges:
-            return element_block(solid(base), copies)
-        return [line for nodes in wedge_pair(base) for line in element_block(nodes, copies)]
-
-    solid_type = element
-    around = [(27 * refine, step * nr), (24 * refine, step * layer)]
-    out += ["", f"GROUP, pipe, TYPE={solid_type}, MATERIAL=concrete"]
-    out += solid_blocks(1, 2 * refine)
-    out += ["", f"GROUP, soil, TYPE={solid_type}, MATERIAL=soil"]
-    out += solid_blocks(first_soil, 4 * refine)
-    if interfaces:
-        # lower layer: the pipe's outer face (theta then z: normal +r, towards the soil)
-        o = 2 * m + 1
-        corners = [(0, 0), (step, 0), (step, step), (0, step)]
-        lo = [node(0, j, k, o) for j, k in corners]
-        if quadratic:
-            lo += [node(0, j, k, o) for j, k in [(1, 0), (2, 1), (1, 2), (0, 1)]]
-        up = [n + 1 for n in lo]
-        out += ["", "! lower layer = the pipe's outer face, upper = the soil's inner face",
-                f"GROUP, contact, TYPE=interface-quad{8 if quadratic else 4}, MATERIAL=pipe_soil"]
-        out += element_block(lo + up, around)
-    out += ["E,", "", "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2"]
-    if kind == "P":
-        out.append(f"MATERIAL, soil, MATSUOKA, E={es:g}, NU=0.2, PHI={num(phi)}, PSI={num(psi)}, C=0.05")
-    else:
-        out.append(f"MATERIAL, soil, ELASTIC, E={es:g}, NU=0.2")
-    if interfaces:
-        out.append(f"MATERIAL, pipe_soil, INTERFACE, KN={kn:g}, KS={ks:g}, PHI={num(phi)}, PSI={num(psi)}, C=0.05")
-    out += ["", "! --- supports ---",
-            f"NSET, soil_outer, CSYS=3, R={radius_text(r_soil)}, TOL=0.01",
-            "NSET, symmetry, CSYS=2, Y=0., TOL=0.01",
-            "! The end loads are self-equilibrated in z: one soil node on the mid-plane holds the free",
-            "! z translation (its reaction comes out zero).",
-            f"NSET, anchor, CSYS=3, R={radius_text(r_soil)}, THETA=0., Z=1250., TOL=0.01",
-            "FIX, soil_outer, X, Y", "FIX, symmetry, Y", "FIX, anchor, Z", "",
-            "! --- loads: P = 1000 kN on each end of the half model, linear in x from zero at 220 mm",
-            "! from the axis to its peak at the outer edge (SPEC section 8; thesis Fig. 5.2) ---",
-            "FSET, end_low, GROUP=pipe, CSYS=2, Z=0., TOL=0.01",
-            "FSET, end_high, GROUP=pipe, CSYS=2, Z=2500., TOL=0.01",
-            "PRESSURE, end_high, TOTAL=1.0e6, VARY=X, ZERO=-220., PEAK=-715."]
-    if edge:
-        out.append("PRESSURE, end_low, TOTAL=1.0e6, VARY=X, ZERO=-220., PEAK=-715.")
-    else:
-        out.append("! diagonal: the lower end's load is the upper one's rotated by 180 deg about the axis")
-        out.append("PRESSURE, end_low, TOTAL=1.0e6, VARY=X, ZERO=220., PEAK=715.")
-    steps = 400 if edge else 500
-    if kind == "S":
-        out += ["", "STAGE, load, STEPS=1"]
-    elif kind == "F" and not edge:
-        # docs/verification.md, "The diagonal model B cases with interfaces": the tension side of
-        # the interface unzips at 17% of the load (brittle tension cut-off); the thesis's methods
-        # do not converge through it (full Newton does, given 75-108 iterations), and the thesis carries the
-        # unbalanced force (2.6.3).
-        out += ["", "! initial stiffness, at most 10 iterations per step (thesis 5.4, 5.5). At 17% of the load",
-                "! the tension side of the interface unzips (each point that reaches the apex of the",
-                "! Mohr-Coulomb cone drops c / tan phi = 0.19 MPa at once) and the unbalanced force reaches",
-                "! 5-15% of |P|; as in the thesis (2.6.3) it is carried into the next steps and decays",
-                "! (1-4% at the end). DIVERGENCE=1 (feps's default 1e-2 is not in the thesis) lets it be",
-                "! carried; docs/verification.md shows the residual history and the sensitivity, and the",
-                "! converged answers (METHOD=full-newton-raphson, MAXIT=400: 6-21% larger angles).",
-                f"STAGE, load, STEPS={steps}, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4, DIVERGENCE=1"]
-    elif kind == "F":
-        # docs/verification.md, "Model B": with the stiff soil (FE3) the sliding interface leaves
-        # about 1e-2 of |P| unbalanced after 10 initial-stiffness iterations from 30% of the load,
-        # right at feps's default DIVERGENCE; the thesis carries it (2.6.3).
-        out += ["", "! initial stiffness, at most 10 iterations per step (thesis 5.4, 5.5). Where the interface",
-                "! slides the 10 iterations leave an unbalanced force (FE3, stiff soil: about 1e-2 of |P| from",
-                "! 30% of the load, 2.6e-2 at the end); as in the thesis (2.6.3) it is carried into the next",
-                "! steps. DIVERGENCE=1 (feps's default 1e-2 is not in the thesis) lets it be carried;",
-                "! docs/verification.md compares with the converged full Newton-Raphson answer.",
-                f"STAGE, load, STEPS={steps}, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4, DIVERGENCE=1"]
-    else:
-        out += ["", "! initial stiffness, at most 10 iterations per step (thesis 5.4, 5.5)",
-                f"STAGE, load, STEPS={steps}, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4"]
-    out += ["", "! --- post-processing (thesis 7.3): the deflection angle at the pipe end is the slope of the",
-            "! axial displacement w along r = 715 over the loaded region (x from -220 to -715), the slope",
-            "! the Australian model's linear compression has (thesis 7.4.2: 'as discussed in Section 7.3,",
-            "! the actual misalignment angle ... can be obtained from the total deformation in the high",
-            "! compression region (loaded region)'), for the edge and the diagonal load alike. The rigid",
-            "! rotation (diagonal load) is the tilt of the pipe's axis between its ends (the mean ux of the",
-            "! end sections): the rigid-body rotation of the pipe in the soil. The slope over the whole",
-            "! diameter and the mid-length section's rotation (which adds the pipe's shear deformation)",
-            "! are reported beside them; docs/verification.md compares all four with Table 7.2 ---"]
-    if kind == "F" and edge:
-        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715."
-                   + (f", REFERENCE={THESIS_EDGE_ANGLE[number]}" if number else ""))
-    elif kind == "F":
-        tot, rig = THESIS_DIAGONAL[number] if number else (None, None)
-        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715."
-                   + (f", REFERENCE={tot}" if number else ""))
-        out.append("REPORT, TILT, NAME=rigid, GROUP=pipe, FROM=0., TO=2500." + (f", REFERENCE={rig}" if number else ""))
-        out.append("REPORT, ROTATION, NAME=deflection_diameter, GROUP=pipe, R=715., Z=2500.")
-        out.append("REPORT, ROTATION, NAME=rigid_section, GROUP=pipe, R=715., Z=1250.")
-    elif edge:
-        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500., FROM=-220., TO=-715.")
-    else:
-        out.append("REPORT, ROTATION, NAME=deflection, GROUP=pipe, R=715., Z=2500.")
-    out += ["! the anchor's z reaction: zero, as the self-equilibrated end loads require (SPEC 8); its x and",
-            "! y reactions are those of the soil's outer support at that node",
-            "REPORT, REACTION, NAME=anchor, NSET=anchor"]
-    out += ["", "SOLVER, cholmod", f"OUTPUT, modelB_{case}{suffix}.h5", ""]
-    return "\n".join(out)
+    refs = ((THESIS_EDGE_ANGLE[number],) if load == "E" else THESIS_DIAGONAL[number]) if number else ()
+    return half_pipe_deck(kind, load, es, ks, kn, phi, psi, r_soil, refine, element, case=case,
+                          soil_name=SOILS[number][0] if number else f"E_s = {es:g} MPa", refs=refs,
+                          output=f"modelB_{case}{mesh_suffix(refine, element)}", writer="make_model_b.py")
 
 
 def main():

@@ -4,7 +4,9 @@
     python3 scripts/postprocess_model_c.py results/modelC/C_G300_nu0.1_b0.09/C_G300_nu0.1_b0.09.h5
     python3 scripts/postprocess_model_c.py --table results/modelC      # every case, thesis beside
 
-From the last step of a model C run (decks by scripts/make_model_c.py):
+From the last step of a model C run (decks by scripts/make_model_c.py; those of make_pipe_joint.py
+for another pipe name its r_i, r_o, L, a and Kn in /summary, and the positions below, given for
+the thesis's pipe, are that pipe's, x = 250 scaled by r_o / 715):
 
 - beta* (eq. 7.4.2): tan(beta*) = (delta - delta_b) / L, L = 2500, delta the x displacement of the
   top end (read from the result), delta_b the x displacement of "the centre of the bottom end of
@@ -57,6 +59,7 @@ import csv
 import math
 import os
 import sys
+from collections import namedtuple
 
 import h5py
 import numpy as np
@@ -76,6 +79,38 @@ X_REGION = 250.0      # beta_bar from the deformation in x > 250 mm (thesis 7.4.
 EDGE_THETA = 6.0      # sigma_max from the elements with theta < 6 deg (thesis 7.4.3)
 PACKING_A = 15.0      # mm: the packing thickness the analytical models take (SPEC section 8)
 TOL = 1e-3
+KN_INTERFACE = 800.0   # MPa/mm, the model C interface's normal stiffness (thesis 6.2, SPEC section 8)
+
+
+class Geometry(namedtuple("Geometry", "r_in r_out length packing kn")):
+    """The pipes of a model C result (mm) and the joint interface's Kn (MPa/mm)."""
+
+    @property
+    def z_top_bottom(self):
+        return self.length / 2.0 + self.packing
+
+    @property
+    def z_section_aa(self):
+        return self.z_top_bottom + self.length / 2.0
+
+    @property
+    def z_top_end(self):
+        return self.z_top_bottom + self.length
+
+    @property
+    def x_region(self):
+        """beta_bar's region x >= 250 mm at the thesis's size, scaled with r_o (make_pipe_joint.py)."""
+        return round(X_REGION * self.r_out / R_OUT, 1)
+
+
+THESIS = Geometry(R_IN, R_OUT, L_PIPE, PACKING_A, KN_INTERFACE)
+
+
+def geometry(f):
+    """The pipes of result file f: the /summary parameters r_i, r_o, L, a and Kn that
+    make_pipe_joint.py's decks write for pipes off the thesis's, else the thesis's (THESIS)."""
+    attrs = f["summary"].attrs if "summary" in f else {}
+    return Geometry(*(float(attrs.get("parameter_" + k, v)) for k, v in zip(("r_i", "r_o", "L", "a", "Kn"), THESIS)))
 
 
 def last_step(f):
@@ -88,14 +123,14 @@ def _lsq_line(x, y):
     return a, b
 
 
-def beta_star(coords, conn_top, u):
+def beta_star(coords, conn_top, u, geo=THESIS):
     """beta* of eq. 7.4.2 (deg), delta, delta_b (area-weighted) and the x = 0 variant."""
-    top_end = np.abs(coords[:, 2] - Z_TOP_END) < TOL
+    top_end = np.abs(coords[:, 2] - geo.z_top_end) < TOL
     delta = float(u[top_end, 0].mean())
     weights = np.zeros(len(coords))
     for elem in conn_top - 1:
         face = elem[:4]                          # hex8 bottom face (counter-clockwise)
-        if not np.all(np.abs(coords[face, 2] - Z_TOP_BOTTOM) < TOL):
+        if not np.all(np.abs(coords[face, 2] - geo.z_top_bottom) < TOL):
             continue
         p = coords[face, :2]
         d1, d2 = p[2] - p[0], p[3] - p[1]
@@ -106,8 +141,8 @@ def beta_star(coords, conn_top, u):
     axis_nodes = on_face & (np.abs(coords[:, 0]) < TOL)
     # a mesh with no node on x = 0 (theta steps that miss 90 deg) has no such variant
     delta_b_x0 = float(u[axis_nodes, 0].mean()) if axis_nodes.any() else float("nan")
-    beta = math.degrees(math.atan((delta - delta_b) / L_PIPE))
-    beta_x0 = math.degrees(math.atan((delta - delta_b_x0) / L_PIPE))
+    beta = math.degrees(math.atan((delta - delta_b) / geo.length))
+    beta_x0 = math.degrees(math.atan((delta - delta_b_x0) / geo.length))
     return beta, delta, delta_b, beta_x0, float(np.sum(weights))
 
 
@@ -130,10 +165,9 @@ def joint_pairs(conn_joint):
 
 
 TAKE_OUT = ("elastic", "whole", "none")
-KN_INTERFACE = 800.0   # MPa/mm, the model C interface's normal stiffness (thesis 6.2, SPEC section 8)
 
 
-def joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n=None, take_out="elastic"):
+def joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n=None, take_out="elastic", geo=THESIS):
     """x and the total joint deformation D = -(w_AA - jump) (mm, compression positive) along r = radius,
     where jump is what is taken out of w_AA as the interface's deformation:
     'elastic': its elastic closure sigma_n / Kn (the tabulated beta_bar; sigma_n: the nodal
@@ -145,11 +179,11 @@ def joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n=None, tak
         raise ValueError(f"take_out {take_out!r} is not one of {TAKE_OUT}")
     radii = np.hypot(coords[:, 0], coords[:, 1])
     top_nodes = np.unique(conn_top - 1)
-    aa = top_nodes[(np.abs(radii[top_nodes] - radius) < TOL) & (np.abs(coords[top_nodes, 2] - Z_SECTION_AA) < TOL)]
+    aa = top_nodes[(np.abs(radii[top_nodes] - radius) < TOL) & (np.abs(coords[top_nodes, 2] - geo.z_section_aa) < TOL)]
     pairs = joint_pairs(conn_joint)
     lower = np.array([n for n in pairs if abs(radii[n] - radius) < TOL])
     if take_out == "elastic":
-        jumps = sigma_n[lower] / KN_INTERFACE
+        jumps = sigma_n[lower] / geo.kn
     elif take_out == "whole":
         jumps = np.array([u[pairs[n], 2] - u[n, 2] for n in lower])
     else:
@@ -164,36 +198,37 @@ def joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n=None, tak
     return np.array(xs)[order], np.array(ds)[order]
 
 
-def _slope_deg(x, d):
-    """The angle (deg) of the least-squares slope of d over x >= 250 mm."""
-    sel = x >= X_REGION - TOL
+def _slope_deg(x, d, geo=THESIS):
+    """The angle (deg) of the least-squares slope of d over x >= 250 mm (geo.x_region)."""
+    sel = x >= geo.x_region - TOL
     return math.degrees(math.atan(_lsq_line(x[sel], d[sel])[1]))
 
 
-def beta_bar(coords, conn_top, conn_joint, u, sigma_n):
+def beta_bar(coords, conn_top, conn_joint, u, sigma_n, geo=THESIS):
     """beta_bar (deg): least-squares slope over x >= 250 on r = 715 of D, w_AA less the interface's
     elastic closure (sigma_n: the interface's normal stress at the nodes, feps's nodal_interface);
     with the variants (a dict: secant, wall-averaged, nothing taken out, the whole relative
     displacement taken out) and the curve (x, D)."""
-    x, d = joint_deformation(coords, conn_top, conn_joint, u, R_OUT, sigma_n)
-    secant = (np.interp(R_OUT, x, d) - np.interp(X_REGION, x, d)) / (R_OUT - X_REGION)
+    x, d = joint_deformation(coords, conn_top, conn_joint, u, geo.r_out, sigma_n, geo=geo)
+    secant = (np.interp(geo.r_out, x, d) - np.interp(geo.x_region, x, d)) / (geo.r_out - geo.x_region)
     # every node radius of the wall (600, 657.5, 715 with the decks' 2 elements through it):
     # D(theta) averaged over r, x taken on the mid radius
     radii = np.hypot(coords[:, 0], coords[:, 1])
-    wall_radii = sorted(set(np.round(radii[(radii > R_IN - TOL) & (radii < R_OUT + TOL)], 6)))
+    wall_radii = sorted(set(np.round(radii[(radii > geo.r_in - TOL) & (radii < geo.r_out + TOL)], 6)))
     ds = []
     for radius in wall_radii:
-        xr, dr = joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n)
+        xr, dr = joint_deformation(coords, conn_top, conn_joint, u, radius, sigma_n, geo=geo)
         ds.append((xr / radius, dr))
     d_mean = np.mean([dr for _, dr in ds], axis=0)
-    x_mid = ds[0][0] * 0.5 * (R_IN + R_OUT)
-    variants = {"secant": math.degrees(math.atan(secant)), "wall_mean": _slope_deg(x_mid, d_mean)}
+    x_mid = ds[0][0] * 0.5 * (geo.r_in + geo.r_out)
+    variants = {"secant": math.degrees(math.atan(secant)), "wall_mean": _slope_deg(x_mid, d_mean, geo)}
     for take_out, key in (("none", "raw"), ("whole", "whole_jump")):
-        variants[key] = _slope_deg(*joint_deformation(coords, conn_top, conn_joint, u, R_OUT, take_out=take_out))
-    return _slope_deg(x, d), variants, x, d
+        variants[key] = _slope_deg(*joint_deformation(coords, conn_top, conn_joint, u, geo.r_out, take_out=take_out,
+                                                      geo=geo), geo)
+    return _slope_deg(x, d, geo), variants, x, d
 
 
-def contact_width(coords, conn_joint, traction, xg):
+def contact_width(coords, conn_joint, traction, xg, r_out=R_OUT):
     """Z (mm, thesis 7.4.3) and the per-line zero positions / kinds; `xg` (nelem*4, 3) are the
     interface's Gauss points on its lower layer, as feps wrote them (/mesh/groups/joint/points)."""
     sn = traction[:, 2]
@@ -226,11 +261,11 @@ def contact_width(coords, conn_joint, traction, xg):
         else:
             xz = x[k - 1] + s[k - 1] / (s[k - 1] - s[k]) * (x[k] - x[k - 1])
             zeros.append((xz, "gap front (interpolated)"))
-    z_lines = [R_OUT - xz for xz, _ in zeros]
+    z_lines = [r_out - xz for xz, _ in zeros]
     return float(np.mean(z_lines)), lines, zeros
 
 
-def contact_width_centres(coords, conn_joint, traction):
+def contact_width_centres(coords, conn_joint, traction, r_out=R_OUT):
     """Variant of Z from element-centre stresses (the mean of each interface element's 4 Gauss
     points, the stresses the thesis reads sigma_max from): on each ring of elements across the
     wall, linear interpolation of sigma_n to zero between the last compressive element centre
@@ -248,15 +283,15 @@ def contact_width_centres(coords, conn_joint, traction):
         nonneg = np.nonzero(s >= 0.0)[0]
         if len(nonneg) == 0:
             a, b = _lsq_line(x, s)
-            widths.append(R_OUT + a / b)
+            widths.append(r_out + a / b)
             continue
         k = nonneg[0]
         xz = x[k - 1] + s[k - 1] / (s[k - 1] - s[k]) * (x[k] - x[k - 1]) if k > 0 else x[0]
-        widths.append(R_OUT - xz)
+        widths.append(r_out - xz)
     return float(np.mean(widths))
 
 
-def _edge_line(coords, conn, nodes, values):
+def _edge_line(coords, conn, nodes, values, r_out=R_OUT):
     """Least-squares line in x through (element centre x, value) of the elements whose corner
     nodes all lie at theta <= 6 deg, evaluated at x = 715 and returned as a positive compression
     (values are stresses, compression negative); with the number of elements used."""
@@ -267,34 +302,34 @@ def _edge_line(coords, conn, nodes, values):
             xs.append(p[:, 0].mean())
             ss.append(values[e])
     a, b = _lsq_line(xs, ss)
-    return float(-(a + b * R_OUT)), len(xs)
+    return float(-(a + b * r_out)), len(xs)
 
 
-def edge_stress(coords, conn_joint, traction):
+def edge_stress(coords, conn_joint, traction, r_out=R_OUT):
     """sigma_max (MPa, compression positive) at x = 715 from the interface's normal stress: the
     element-centre values (mean of each quad's 4 Gauss points) of the elements with theta < 6 deg."""
-    return _edge_line(coords, conn_joint, 4, traction[:, 2].reshape(-1, 4).mean(axis=1))
+    return _edge_line(coords, conn_joint, 4, traction[:, 2].reshape(-1, 4).mean(axis=1), r_out)
 
 
-def edge_stress_packing(coords, conn_packing, cell_stress):
+def edge_stress_packing(coords, conn_packing, cell_stress, r_out=R_OUT):
     """sigma_max (MPa, compression positive) at x = 715 from the centre stresses szz (element
     averages of the Gauss points, /steps/N/cell/stress/packing) of the packing elements with
     theta < 6 deg: least-squares line in the element centres' x, evaluated at x = 715."""
-    return _edge_line(coords, conn_packing, 8, cell_stress[:, 2])
+    return _edge_line(coords, conn_packing, 8, cell_stress[:, 2], r_out)
 
 
-def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells, xg, sigma_n):
-    bstar, delta, delta_b, bstar_x0, _ = beta_star(coords, conn_top, u)
-    bbar, variants, _, _ = beta_bar(coords, conn_top, conn_joint, u, sigma_n)
-    z, _, zeros = contact_width(coords, conn_joint, traction, xg)
-    z_centres = contact_width_centres(coords, conn_joint, traction)
-    smax_interface, _ = edge_stress(coords, conn_joint, traction)
-    smax, nedge = edge_stress_packing(coords, conn_packing, packing_cells)
+def _quantities(coords, conn_top, conn_joint, u, traction, conn_packing, packing_cells, xg, sigma_n, geo):
+    bstar, delta, delta_b, bstar_x0, _ = beta_star(coords, conn_top, u, geo)
+    bbar, variants, _, _ = beta_bar(coords, conn_top, conn_joint, u, sigma_n, geo)
+    z, _, zeros = contact_width(coords, conn_joint, traction, xg, geo.r_out)
+    z_centres = contact_width_centres(coords, conn_joint, traction, geo.r_out)
+    smax_interface, _ = edge_stress(coords, conn_joint, traction, geo.r_out)
+    smax, nedge = edge_stress_packing(coords, conn_packing, packing_cells, geo.r_out)
     return {"beta_star": bstar, "beta_bar": bbar, "Z": z, "sigma_max": smax, "delta": delta, "delta_b": delta_b,
             "sigma_max_interface": smax_interface, "beta_star_x0": bstar_x0,
             **{"beta_bar_" + k: v for k, v in variants.items()},
-            "rotation_AA": section_rotation(coords, conn_top, u, Z_SECTION_AA), "Z_centres": z_centres,
-            "Z_lines": [R_OUT - xz for xz, _ in zeros],
+            "rotation_AA": section_rotation(coords, conn_top, u, geo.z_section_aa), "Z_centres": z_centres,
+            "Z_lines": [geo.r_out - xz for xz, _ in zeros],
             "Z_kinds": [k for _, k in zeros], "n_edge_elements": nedge,
             "open_fraction": float(np.mean(traction[:, 3] >= 2)),
             "sliding_fraction": float(np.mean(traction[:, 3] == 1))}
@@ -338,12 +373,13 @@ def postprocess(h5path, verbose=True):
                             "the interface's stresses at its points and nodes and the packing's element stresses: "
                             "make_model_c.py's decks ask for them with FIELDS, all, nodal_interface)")
         xg = fr.gauss_points(f, "joint", step["interface/joint"])
+        geo = geometry(f)
         normal = fr.components(step["nodal_interface/joint"]).index("sigma_n")
 
         def quantities(st):
             return _quantities(coords, conn_top, conn_joint, st["displacement"][...], st["interface/joint"][...],
                                conn_packing, st["cell/stress/packing"][...], xg,
-                               st["nodal_interface/joint"][:, normal])
+                               st["nodal_interface/joint"][:, normal], geo)
         res = quantities(step)
         res["load_factor"] = float(step.attrs["load_factor"])
         res["residual"] = float(step.attrs["residual"])
@@ -363,9 +399,10 @@ def postprocess(h5path, verbose=True):
               f"{res['residual']:.2e}; interface points open {100 * res['open_fraction']:.1f}%, sliding "
               f"{100 * res['sliding_fraction']:.1f}%")
         print(f"beta_star  {res['beta_star']:.4f} deg   (delta {res['delta']:.4f}, delta_b {res['delta_b']:.4f} mm "
-              f"area-weighted over z = 1265; with delta_b at x = 0: {res['beta_star_x0']:.4f} deg)")
-        print(f"beta_bar   {res['beta_bar']:.4f} deg   (least squares over x >= 250 on r = 715 of w at A-A less "
-              f"the interface's elastic closure sigma_n / Kn; secant 250..715: {res['beta_bar_secant']:.4f}; "
+              f"area-weighted over z = {geo.z_top_bottom:g}; with delta_b at x = 0: {res['beta_star_x0']:.4f} deg)")
+        print(f"beta_bar   {res['beta_bar']:.4f} deg   (least squares over x >= {geo.x_region:g} on r = {geo.r_out:g} "
+              f"of w at A-A less the interface's elastic closure sigma_n / Kn; secant {geo.x_region:g}..{geo.r_out:g}: "
+              f"{res['beta_bar_secant']:.4f}; "
               f"wall-averaged: {res['beta_bar_wall_mean']:.4f}; nothing taken out: {res['beta_bar_raw']:.4f}; its "
               f"whole relative displacement taken out: {res['beta_bar_whole_jump']:.4f}; A-A's mean rotation: "
               f"{res['rotation_AA']:.4f})")
@@ -373,8 +410,8 @@ def postprocess(h5path, verbose=True):
               ", ".join(f"{z:.0f}" for z in res["Z_lines"]) + f"; {res['Z_kinds'][0]}; from element-centre "
               f"stresses: {res['Z_centres']:.1f})")
         print(f"sigma_max  {res['sigma_max']:.2f} MPa  (szz at the centres of the {res['n_edge_elements']} packing "
-              f"elements with theta < {EDGE_THETA:g} deg, line in x to x = 715; the same from the interface's "
-              f"normal stress: {res['sigma_max_interface']:.2f})")
+              f"elements with theta < {EDGE_THETA:g} deg, line in x to x = {geo.r_out:g}; the same from the "
+              f"interface's normal stress: {res['sigma_max_interface']:.2f})")
         if "s2_beta_star" in res:
             print(f"end of stage 2 (residual {res['s2_residual']:.2e}): beta_star {res['s2_beta_star']:.4f}, "
                   f"beta_bar {res['s2_beta_bar']:.4f}, Z {res['s2_Z']:.1f}, sigma_max {res['s2_sigma_max']:.2f}")

@@ -635,6 +635,13 @@ python3 scripts/make_model_b.py --outdir "$tmp/mb" >/dev/null && diff -r input/m
 sys.exit(m.deck("FE1").replace("OUTPUT, modelB_FE1.h5", "OUTPUT, modelB.h5") != open("input/modelB.dat").read())' \
   && ok "make_model_b.py's defaults = input/modelB and input/modelB.dat" \
   || bad "make_model_b.py's defaults = input/modelB and input/modelB.dat"
+# make_pipe_joint.py, the generator make_model_b.py and make_model_c.py are presets of (issue 26
+# item 4): the presets write the decks of the generators before the merge byte for byte (every
+# thesis case, the mesh-study and grid options), the generator's command line writes the thesis's
+# models, a DN 2400 deck runs on the pipe's mesh, the --gamma records (test/cli/check_pipe_joint.py).
+python3 test/cli/check_pipe_joint.py --feps "$feps" --tmp "$tmp/pj" >"$tmp/out" 2>&1 \
+  && ok "check_pipe_joint.py: $(grep -c '^  ok' "$tmp/out") checks of make_pipe_joint.py and its presets" \
+  || bad "check_pipe_joint.py: $(grep -v '^  ok' "$tmp/out" | head -c 600)"
 # The model B mesh study's decks (make_model_b.py --refine, --element): a lattice of
 # (4k + 1 + 1 + 8k) r x (54k + 1) theta x (48k + 1) z nodes for hex20:k with interfaces, the same
 # lattice as hex8:2k; both pass --check.

@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+"""Checks of scripts/make_pipe_joint.py and its presets make_model_b.py and make_model_c.py (issue
+26 item 4), run by test/cli/check_cli.sh:
+
+- the presets write byte for byte the decks that the generators before the merge wrote (commit
+  OLD, read with git show): every thesis case of models B and C and the mesh-study and grid
+  options. Byte-identical decks give bit-identical results;
+- the generator's own command line with the thesis's values writes the presets' model (every
+  record but comments, TITLE, OUTPUT and REPORT);
+- a DN 2400 deck (another radius, wall, length and packing) runs, and its mesh is the pipe's;
+- --gamma decks hold the gravity, GEOSTATIC, GAMMA and K0 records with their computed values; the
+  soil below --water-table is the group soil_wet (checked element by element on the run's mesh);
+- bad options stop with exit status 2 naming the option.
+
+    python3 test/cli/check_pipe_joint.py --feps FEPS --tmp FOLDER
+
+Prints one line per check ('  ok   ...' or '  FAIL ...'); exit status 1 when any failed.
+"""
+import argparse
+import filecmp
+import math
+import os
+import re
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+OLD = "8e0eca4b1eaabb8ee0304d4f3d0102f0bb2c89a7"   # main before the merge: the two generators of their own
+GEN = os.path.join(ROOT, "scripts", "make_pipe_joint.py")
+FAILED = []
+
+
+def check(name, good, detail=""):
+    print(f"  {'ok  ' if good else 'FAIL'} {name}" + ("" if good else f": {detail}"))
+    if not good:
+        FAILED.append(name)
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, capture_output=True, text=True, **kw)
+
+
+def model_lines(path):
+    """The deck's records but comments, TITLE, OUTPUT and REPORT (names and thesis references)."""
+    with open(path) as f:
+        return [ln for ln in f if not re.match(r"!|TITLE|OUTPUT|REPORT", ln)]
+
+
+def identity(tmp):
+    """The presets against the generators of commit OLD, on every case and option set."""
+    old = os.path.join(tmp, "old", "scripts")
+    os.makedirs(old, exist_ok=True)
+    for name in ("make_model_b.py", "make_model_c.py", "feps_cli.py"):
+        got = run(["git", "-C", ROOT, "show", f"{OLD}:scripts/{name}"])
+        if got.returncode != 0:
+            check(f"git show {OLD[:7]}:scripts/{name}", False, got.stderr.strip())
+            return
+        with open(os.path.join(old, name), "w") as f:
+            f.write(got.stdout)
+    env = dict(os.environ, FEPS_BENCHMARKS=os.environ.get("FEPS_BENCHMARKS")
+               or os.path.join(ROOT, "..", "shared", "benchmarks"))
+    sets = [("make_model_b.py", []), ("make_model_b.py", ["--refine", "2", "--element", "hex20", "--cases", "FE1,FD2"]),
+            ("make_model_b.py", ["--element", "wedge6", "--cases", "PE3,SD1,FE2"]),
+            ("make_model_b.py", ["--element", "wedge15", "--cases", "FD3"]),
+            ("make_model_b.py", ["--soil-radius", "2345.67", "--cases", "FE1,SD2"]),
+            ("make_model_b.py", ["--kinds", "S,F,P", "--loads", "E,D", "--soil-E", "50", "--phi", "25", "--psi", "5"]),
+            ("make_model_c.py", []), ("make_model_c.py", ["--theta-step", "6", "--wall-elements", "3", "--z-refine", "2",
+                                                          "--cases", "C_G300_nu0.1_b0.09,C_G900_nu-0.3_b0.27"]),
+            ("make_model_c.py", ["--soil-radius", "3000", "--steps", "7", "--theta-step", "1.5"]),
+            ("make_model_c.py", ["--Gp", "600", "--nup", "-0.3", "--beta", "0.18", "--soil-E", "1440", "--psi", "0,10"])]
+    decks = 0
+    for i, (script, args) in enumerate(sets):
+        dirs = [os.path.join(tmp, f"id{i}_{w}") for w in ("old", "new")]
+        for d, folder in zip(dirs, (old, os.path.join(ROOT, "scripts"))):
+            got = run([sys.executable, os.path.join(folder, script), "--outdir", d] + args, env=env)
+            if got.returncode != 0:
+                check(f"{script} {' '.join(args)} ({d})", False, got.stderr.strip()[-300:])
+                return
+        names = sorted(os.listdir(dirs[0]))
+        same = names == sorted(os.listdir(dirs[1])) and all(
+            filecmp.cmp(os.path.join(dirs[0], n), os.path.join(dirs[1], n), shallow=False) for n in names)
+        check(f"{script} {' '.join(args) or '(the thesis cases)'}: {len(names)} decks byte for byte as at {OLD[:7]}",
+              same and names, f"{names[:3]}...")
+        decks += len(names)
+    print(f"       ({decks} decks compared)")
+
+
+def generic(tmp, feps):
+    """The generator's command line: the thesis's model, a DN 2400 run, gravity, bad options."""
+    def gen(name, *args):
+        out = os.path.join(tmp, name)
+        got = run([sys.executable, GEN, "-o", out] + list(args))
+        return out if got.returncode == 0 else None
+
+    pairs = [("thesis.dat", [], "input/modelC/C_G300_nu0.1_b0.09.dat"),
+             ("thesisE.dat", ["--packing-E", "660", "--jacking-force", str(10.0 * math.pi * (715.0 ** 2 - 600.0 ** 2))],
+              "input/modelC/C_G300_nu0.1_b0.09.dat"),
+             ("fe1.dat", ["--packing", "0", "--interface", "frictional"], "input/modelB/FE1.dat"),
+             ("pd3.dat", ["--packing", "0", "--misalignment", "diagonal", "--soil-phi", "15", "--soil-E", "1440"],
+              "input/modelB/PD3.dat"),
+             ("se2.dat", ["--packing", "0", "--soil-E", "14.4", "--jacking-force", "2e6"], "input/modelB/SE2.dat")]
+    for name, args, ref in pairs:
+        out = gen(name, *args)
+        check(f"make_pipe_joint.py {' '.join(args) or '(defaults)'}: the model of {os.path.basename(ref)}",
+              out and model_lines(out) == model_lines(os.path.join(ROOT, ref)))
+    # DN 2400: radius, wall, length and packing all off the thesis's; a coarse mesh and 2 steps
+    out = gen("dn2400.dat", "--inner-diameter", "2400", "--wall", "200", "--pipe-length", "3000", "--packing", "25",
+              "--angle", "0.2", "--theta-step", "24", "--steps", "2")
+    text = open(out).read().replace("STAGE, s3, STEPS=100,", "STAGE, s3, STEPS=1,") if out else ""
+    h5 = os.path.join(tmp, "dn2400.h5")
+    with open(os.path.join(tmp, "dn2400.dat"), "w") as f:
+        f.write(text)
+    got = run([feps, os.path.join(tmp, "dn2400.dat"), "--quiet", "--output", h5, "--method", "full-newton-raphson",
+               "--maxit", "100"])
+    check("a DN 2400 deck (r 1200..1400, L 3000, a 25) runs", got.returncode == 0, got.stderr[-300:])
+    if got.returncode == 0:
+        sys.path.insert(0, os.path.join(ROOT, "scripts"))
+        import postprocess_model_c as pmc
+        with h5py.File(h5) as f:
+            x = f["mesh/coordinates"][...]
+            geo = pmc.geometry(f)
+            top = np.unique(f["mesh/groups/top_pipe/connectivity"][...]) - 1
+        r = np.hypot(x[:, 0], x[:, 1])
+        want = (1200.0, 1400.0, 3000.0, 25.0, 800.0)
+        check("... its mesh is the pipe's: r 1200..1400 in the pipes, soil to 2000 x 1400 / 715 = 3916.1, "
+              "z to 1500 + 25 + 3000; /summary names the pipe",
+              tuple(geo) == want and abs(r[top].min() - 1200) < 1e-6 and abs(r[top].max() - 1400) < 1e-6
+              and abs(r.max() - 3916.1) < 1e-6 and abs(x[:, 2].max() - 4525.0) < 1e-6, f"{geo}, {r.max()}")
+        res = pmc.postprocess(h5, verbose=False)
+        # delta: the mean ux of the top end (z = 4525) is the prescribed L tan(beta), L = 3000 (4 decimals)
+        delta = 3000.0 * math.tan(math.radians(0.2))
+        check(f"... postprocess_model_c.py reads it with its geometry: Z = {res['Z']:.0f} mm in (0, 2800], "
+              f"delta = {res['delta']:.4f} mm = 3000 tan(0.2 deg) = {delta:.4f}",
+              0.0 < res["Z"] <= 2800.0 and abs(res["delta"] - delta) < 1e-4, f"{res['Z']}, {res['delta']}")
+    gravity(tmp, feps, gen)
+    for args, words in ((["--gamma", "2e-5", "--soil-phi", "30"], "--gamma needs --cover"),
+                        (["--gamma", "2e-5", "--soil-phi", "30", "--cover", "500"], "--cover 500"),
+                        (["--gamma", "2e-5", "--cover", "5000"], "--gamma needs --k0"),
+                        (["--k0", "0.5"], "need --gamma"),
+                        (["--misalignment", "diagonal"], "--misalignment diagonal"),
+                        (["--theta-step", "5"], "must divide 168"),
+                        (["--wall", "-3"], "argument --wall")):
+        got = run([sys.executable, GEN, "-o", os.path.join(tmp, "bad.dat")] + args)
+        check(f"make_pipe_joint.py {' '.join(args)}: exit 2 naming '{words}'",
+              got.returncode == 2 and words in got.stderr and not os.path.exists(os.path.join(tmp, "bad.dat")),
+              f"exit {got.returncode}: {got.stderr[-200:]}")
+
+
+def gravity(tmp, feps, gen):
+    """--gamma: the records and their values; the wet soil by its elements' centres."""
+    args = ["--inner-diameter", "1000", "--wall", "100", "--theta-step", "24", "--steps", "1", "--gamma", "2e-5",
+            "--soil-phi", "30", "--cover", "1500", "--water-table", "800"]
+    out = gen("wet.dat", *args)
+    text = open(out).read() if out else ""
+    # surface 600 + 1500 = 2100, water table 2100 - 800 = 1300; K0 = 1 - sin 30 = 0.5; 2e-5 - 9.81e-6
+    want = ["STAGE, geostatic, STEPS=1, LOAD=0\nGRAVITY, X=-1.\nGEOSTATIC, SURFACE=2100.\n",
+            "MATERIAL, soil, MATSUOKA, E=144, NU=0.2, PHI=30., PSI=30., C=0.05, GAMMA=2e-05, K0=0.5\n",
+            "MATERIAL, soil_wet, MATSUOKA, E=144, NU=0.2, PHI=30., PSI=30., C=0.05, GAMMA=1.019e-05, K0=0.5\n",
+            "NSET, soil_end1, CSYS=3, R=601.:1678.3, Z=1250., TOL=0.01\nFIX, soil_end1, Z\n"]
+    check("--gamma 2e-5 --soil-phi 30 --cover 1500 --water-table 800: GRAVITY, GEOSTATIC (SURFACE = 600 + 1500), "
+          "GAMMA, submerged GAMMA, K0 = 1 - sin 30, rollers", all(w in text for w in want),
+          str([w for w in want if w not in text]))
+    # until GEOSTATIC and K0= are feps's (issue 26 item 2) the deck runs without them (elastic soil:
+    # gravity without the in-situ stress would make the Matsuoka soil yield)
+    out = gen("wet_elastic.dat", *[a for a in args if a not in ("--soil-phi", "30")], "--k0", "0.5")
+    text = open(out).read() if out else ""
+    runnable = re.sub(r", K0=[0-9.e+-]+", "", text.replace("GEOSTATIC, SURFACE=2100.\n", ""))
+    deck, h5 = os.path.join(tmp, "wet_run.dat"), os.path.join(tmp, "wet_run.h5")
+    with open(deck, "w") as f:
+        f.write(runnable.replace("STAGE, s3, STEPS=100,", "STAGE, s3, STEPS=1,"))
+    got = run([feps, deck, "--quiet", "--output", h5])
+    check("... with GEOSTATIC and K0 taken out it runs (gravity with the soil's two unit weights)",
+          got.returncode == 0, got.stderr[-300:])
+    if got.returncode == 0:
+        with h5py.File(h5) as f:
+            x = f["mesh/coordinates"][...]
+            cx = {g: x[f[f"mesh/groups/{g}/connectivity"][...] - 1, 0].mean(axis=1) for g in ("soil", "soil_wet")}
+            applied = f["summary"].attrs["applied_force"] if "applied_force" in f["summary"].attrs else None
+        check(f"... {len(cx['soil'])} soil elements centred above x = 1300, {len(cx['soil_wet'])} below",
+              cx["soil"].min() > 1300.0 and cx["soil_wet"].max() < 1300.0 and len(cx["soil_wet"]) > 0,
+              f"{cx['soil'].min()}, {cx['soil_wet'].max()}, applied {applied}")
+    out = gen("b_wet.dat", "--packing", "0", "--interface", "frictional", "--gamma", "2e-5", "--k0", "0.6",
+              "--cover", "2000", "--water-table", "1000", "--soil-c", "0")
+    text = open(out).read() if out else ""
+    check("--packing 0 (model B) --gamma: a geostatic stage before the load, K0 = 0.6, both ends on rollers",
+          "STAGE, geostatic, STEPS=1, LOAD=0\nGRAVITY, X=-1.\nGEOSTATIC, SURFACE=2715.\n" in text
+          and "GAMMA=1.019e-05, K0=0.6" in text and "FIX, soil_end2, Z" in text and ", LOAD=1, DIVERGENCE=1" in text)
+    runnable = re.sub(r", K0=[0-9.e+-]+", "", text.replace("GEOSTATIC, SURFACE=2715.\n", ""))
+    with open(deck, "w") as f:
+        f.write(runnable)
+    got = run([feps, deck, "--check"])
+    check("... and passes feps --check without GEOSTATIC and K0", got.returncode == 0, got.stderr[-300:])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--feps", required=True)
+    ap.add_argument("--tmp", required=True)
+    a = ap.parse_args()
+    os.makedirs(a.tmp, exist_ok=True)
+    identity(a.tmp)
+    generic(a.tmp, os.path.abspath(a.feps))
+    print(f"check_pipe_joint: {len(FAILED)} failed")
+    return 1 if FAILED else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

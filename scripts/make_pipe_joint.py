@@ -146,7 +146,10 @@ class Ground:
         return ["! --- in-situ stress: the soil's weight along -x (gravity in the symmetry plane y = 0) and",
                 f"! the K0 stress field (K0 = {self.k0:.4g}) from the ground surface at x = {self.surface:g}"
                 + ("" if self.water is None else f"; soil below the water table x = {self.water:g}") + " ---",
-                "STAGE, geostatic, STEPS=1, LOAD=0", "GRAVITY, X=-1.", f"GEOSTATIC, SURFACE={num(self.surface)}"]
+                "! (full Newton-Raphson: the pipe settles in the ground and the soil's points may yield)",
+                "STAGE, geostatic, STEPS=4, LOAD=0, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-6, "
+                "LINESEARCH=energy", "GRAVITY, X=-1.", f"GEOSTATIC, SURFACE={num(self.surface)}"
+                + ("" if self.water is None else f", WATER={num(self.water)}")]
 
     def rollers(self, pipe, r_soil, faces):
         """Rollers in z on the soil's end faces z in `faces` (not its inner edge, the pipe's)."""
@@ -554,7 +557,8 @@ def hex_record(node, it, ir, iz):
 
 def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, soil_E=144.0, wall=WALL_ELEMENTS,
                z_refine=1, psi=PSI_JOINT, name="", reference=None, writer="make_pipe_joint.py", pipe=None, q=Q,
-               joint=(KN_JOINT, KS_JOINT, PHI_JOINT, C_JOINT), soil=(0.2, None, None, None), ground=None):
+               joint=(KN_JOINT, KS_JOINT, PHI_JOINT, C_JOINT), soil=(0.2, None, None, None), ground=None,
+               design=False):
     """Model C's deck: packing G_p, nu_p, misalignment beta (deg); theta_step the element size (deg)
     beyond theta = 12, wall the elements through the pipe wall, z_refine the number of parts each z
     element is cut into, psi the joint interface's dilation angle (deg), joint its (Kn, Ks, phi, c),
@@ -722,6 +726,10 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     out += ["! the force the imposed top-end displacement needs (fx: H = P e / L, the moment of the joint's",
             "! eccentric contact resultant; postprocess_model_c.py --statics drives beam theory with it)",
             "REPORT, REACTION, NAME=top_end, NSET=top_end_nodes"]
+    if design:
+        out += ["! the design summary of the joint (hoop tension, compression, contact width, opening, deflection,",
+                "! the Australian and Haslem models beside them): /summary joint_design_*",
+                "REPORT, JOINT, NAME=design, INTERFACE=joint, PIPE=bottom_pipe:top_pipe, PACKING=packing"]
     out += ["! postprocess_model_c.py reads the interface's normal stress at the nodes, feps's nodal_interface",
             "FIELDS, all, nodal_interface"]
     out += ["", "SOLVER, cholmod", f"OUTPUT, {name}.h5", ""]
@@ -830,7 +838,7 @@ def deck_of(a):
     return joint_deck(G, a.packing_nu, a.angle, r_soil, a.steps or default_steps(a.angle), a.theta_step, a.soil_E,
                       a.wall_elements, a.z_refine, a.joint_psi, name=name, pipe=p, q=q,
                       joint=(a.joint_kn, a.joint_ks, a.joint_phi, a.joint_c),
-                      soil=(a.soil_nu, a.soil_phi, psi, a.soil_c), ground=ground)
+                      soil=(a.soil_nu, a.soil_phi, psi, a.soil_c), ground=ground, design=True)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,11 @@
 !! step after *INITIAL CONDITIONS, TYPE=STRESS, GEOSTATIC). The ground is horizontal layers,
 !! one per ground material (a material with K0): a layer spans the heights of its elements'
 !! nodes, heights measured against gravity, and the top layer reaches up to the ground surface
-!! (SURFACE=). At height h the vertical stress is the weight of the ground above,
+!! (SURFACE=). Two layers meet where their spans touch, or, when a water table is given (WATER=),
+!! at the table where the lower layer's elements lie below it and the upper one's above it (by
+!! their centres; a mesh need not follow the table: an element it cuts is wholly one or the
+!! other, and the stage's balance iterations take up the difference).
+!! At height h the vertical stress is the weight of the ground above,
 !! sigma_v = sum over the layers of gamma |g| times their thickness between h and the surface,
 !! and the horizontal stresses are K0 sigma_v (compression negative):
 !!
@@ -112,6 +116,7 @@ contains
     type(in_situ_field_t), intent(out) :: field
     type(error_t), allocatable, intent(out) :: error
     real(dp) :: lo(size(model%materials)), hi(size(model%materials)), h, tol, span
+    real(dp) :: clo(size(model%materials)), chi(size(model%materials)), centre
     logical :: used(size(model%materials))
     integer :: g, m, n, i, k
     integer, allocatable :: order(:)
@@ -120,18 +125,25 @@ contains
     used = .false.
     lo = huge(1.0_dp)
     hi = -huge(1.0_dp)
+    clo = huge(1.0_dp)
+    chi = -huge(1.0_dp)
     do g = 1, size(model%groups)
       m = model%groups(g)%material
       if (an%kernels(g)%family /= family_solid .or. .not. active_in_stage(model, g)) cycle
       if (.not. an%materials(m)%m%is_ground()) cycle
       used(m) = .true.
       do k = 1, size(model%groups(g)%connectivity, 2)
+        centre = 0.0_dp
         do i = 1, size(model%groups(g)%connectivity, 1)
           n = model%groups(g)%connectivity(i, k)
           h = field%height(model%coords(:, n))
           lo(m) = min(lo(m), h)
           hi(m) = max(hi(m), h)
+          centre = centre + h
         end do
+        centre = centre / size(model%groups(g)%connectivity, 1)
+        clo(m) = min(clo(m), centre)
+        chi(m) = max(chi(m), centre)
       end do
     end do
     if (.not. any(used)) then
@@ -139,12 +151,12 @@ contains
                            'whose in-situ stress it sets)')
       return
     end if
-    ! layers bottom up
+    ! layers bottom up, by their elements' centres
     order = pack([(m, m = 1, size(used))], used)
     do i = 2, size(order)
       k = i
       do while (k > 1)
-        if (lo(order(k - 1)) <= lo(order(k))) exit
+        if (clo(order(k - 1)) <= clo(order(k))) exit
         order([k - 1, k]) = order([k, k - 1])
         k = k - 1
       end do
@@ -159,12 +171,18 @@ contains
     tol = 1.0e-9_dp * span
     do i = 2, size(order)
       associate (below => field%layers(i - 1), above => field%layers(i))
-        if (abs(above%bottom - below%top) > tol) then
+        if (chi(below%material) < model%geostatic_water .and. model%geostatic_water < clo(above%material) .and. &
+            above%bottom <= model%geostatic_water + tol .and. model%geostatic_water <= below%top + tol) then
+          ! a submerged layer below the water table, a dry one above: they meet at the table
+          below%top = model%geostatic_water
+          above%bottom = model%geostatic_water
+        else if (abs(above%bottom - below%top) > tol) then
           call geostatic_error(error, model, 'the ground must be horizontal layers, one per material with K0=: ' // &
                                'material ' // model%materials(below%material)%name // ' reaches height ' // &
                                str(below%top) // ' and material ' // model%materials(above%material)%name // &
                                ' starts at ' // str(above%bottom) // trim(merge(' (they overlap)', ' (a gap)       ', &
-                               above%bottom < below%top)))
+                               above%bottom < below%top)) // '; a submerged layer meets a dry one at the ' // &
+                               'water table WATER=')
           return
         end if
         above%bottom = below%top   ! no sliver of round-off between them

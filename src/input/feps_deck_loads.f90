@@ -218,10 +218,11 @@ contains
     model%gravity_line = rec%line
   end subroutine read_gravity
 
-  !> GEOSTATIC, SURFACE=h: the stage it is in (the first when it comes before any STAGE record)
+  !> GEOSTATIC, SURFACE=h [, WATER=w]: the stage it is in (the first when it comes before any STAGE record)
   !! sets the in-situ stress of the ground, the materials with K0: at height h' below the
   !! surface h (heights measured against gravity) the vertical stress is the weight of the ground
-  !! above and the horizontal one K0 times it. Once per deck; the stage must hold the GRAVITY
+  !! above and the horizontal one K0 times it; WATER= is the height where a material of submerged
+  !! unit weight below meets one above (see feps_geostatic). Once per deck; the stage must hold the GRAVITY
   !! record too (checked when the deck is complete).
   subroutine read_geostatic(rec, model, stage, error)
     type(record_t), intent(in) :: rec
@@ -234,7 +235,9 @@ contains
                        str(model%geostatic_line) // '): the in-situ stress is set once', 1)
       return
     end if
-    call check_option_keys(rec, 2, error, allowed=['SURFACE'])
+    call check_option_keys(rec, 2, error, allowed=['SURFACE', 'WATER  '])
+    if (allocated(error)) return
+    call option_real(rec, 'WATER', model%geostatic_water, found, error)
     if (allocated(error)) return
     call option_real(rec, 'SURFACE', model%geostatic_surface, found, error)
     if (allocated(error)) return

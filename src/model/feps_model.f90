@@ -305,6 +305,9 @@ module feps_model
     !! height of the ground surface against gravity, and its record.
     integer :: geostatic_stage = 0
     real(dp) :: geostatic_surface = 0.0_dp
+    !> WATER=: the water table's height, where a ground material whose elements lie below it
+    !! (by their centres) meets one above; huge when not given
+    real(dp) :: geostatic_water = huge(1.0_dp)
     character(len=:), allocatable :: geostatic_file
     integer :: geostatic_line = 0
     !> What the deck reader found doubtful but not wrong (a value far outside the physical

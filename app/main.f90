@@ -12,6 +12,7 @@ program feps_main
   use feps_blas, only: blas_description
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
   use feps_element_table, only: element_table_lines
+  use omp_lib, only: omp_set_num_threads
   implicit none
 
   interface
@@ -25,6 +26,7 @@ program feps_main
   type(run_summary_t) :: summary
   type(error_t), allocatable :: error
   integer :: status
+  integer :: threads = 0           !! --threads N: element-loop threads (0: not given)
 
   call report_file_size_limit()
   if (command_argument_count() >= 1) then
@@ -33,6 +35,7 @@ program feps_main
   end if
   call parse_arguments(options, status)
   if (status >= 0) call c_exit(int(status, c_int))
+  call set_threads()
 
   if (options%quiet) then
     call run_feps(options, summary, error)
@@ -149,7 +152,7 @@ contains
         status = 0
         return
       case ('-q', '--quiet', '--check', '--strict', '-o', '--output', '--solver', '--method', '--maxit', '--fields', &
-            '--restart', '--step', '--restart-every', '--stop-after-step')
+            '--restart', '--step', '--restart-every', '--stop-after-step', '--threads')
         name = arg
         if (arg == '-q') name = '--quiet'
         if (arg == '-o') name = '--output'
@@ -200,6 +203,14 @@ contains
           if (name == '--step') options%restart_step = whole_number(value)
           if (name == '--restart-every') options%restart_every = whole_number(value)
           if (name == '--stop-after-step') options%stop_after_step = whole_number(value)
+        case ('--threads')
+          threads = whole_number(value)
+          if (threads < 1 .or. threads > 4096) then
+            write (error_unit, '(a)') 'feps: error: --threads takes a whole number from 1 to 4096, not "' // &
+              value // '"'
+            status = 2
+            return
+          end if
         case ('--maxit')
           options%max_iterations = whole_number(value)
           if (options%max_iterations < 1 .or. options%max_iterations > max_iterations_limit) then
@@ -272,10 +283,25 @@ contains
       text = 'a checkpoint file name'
     case ('--step', '--restart-every', '--stop-after-step')
       text = 'a whole number of steps'
+    case ('--threads')
+      text = 'a whole number of threads'
     case default
       text = 'a list of result fields, e.g. all,nodal_principal'
     end select
   end function value_kind
+
+  !> Threads of the element loops (OpenMP): --threads N; else OMP_NUM_THREADS when set; else one.
+  !! One by default because two threads measured slower than one on the shared 2-core machines
+  !! this project runs on (docs/performance.md); the results are the same for any number.
+  subroutine set_threads()
+    integer :: length
+    if (threads == 0) then
+      call get_environment_variable('OMP_NUM_THREADS', length=length)
+      if (length > 0) return
+      threads = 1
+    end if
+    call omp_set_num_threads(threads)
+  end subroutine set_threads
 
   !> The value of a whole number argument, or 0 when it is not one.
   integer function whole_number(text)
@@ -302,7 +328,7 @@ contains
       '', &
       'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N]', &
       '                 [--fields LIST] [--check] [--strict] [--quiet]', &
-      '                 [--restart-every N] [--restart FILE [--step N]]', &
+      '                 [--restart-every N] [--restart FILE [--step N]] [--threads N]', &
       '       feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--json] ...', &
       '       feps elements', &
       '       feps --help | --version', &
@@ -332,6 +358,8 @@ contains
       '                       file of the same model) instead of from zero', &
       '      --step N         the restart point of step N (default: the last one in FILE)', &
       '      --stop-after-step K  a test aid: stop after step K as a run that dies would (exit 1)', &
+      '      --threads N      threads of the element loops (OpenMP; default OMP_NUM_THREADS, else 1);', &
+      '                       the results are bit-identical for any N', &
       '  -q, --quiet          print nothing but errors (no progress lines, no summary)', &
       '  -h, --help           this text', &
       '  -V, --version        the version', &

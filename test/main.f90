@@ -35,6 +35,7 @@ program tester
   use test_element_contract, only: collect_element_contract
   use test_gravity, only: collect_gravity
   use test_geostatic, only: collect_geostatic
+  use test_threads, only: collect_threads
   use test_section_report, only: collect_section_report
   use test_joint_report, only: collect_joint_report
   use test_restart, only: collect_restart
@@ -88,6 +89,7 @@ program tester
     new_testsuite('element_contract', collect_element_contract), &
     new_testsuite('gravity', collect_gravity), &
     new_testsuite('geostatic', collect_geostatic), &
+    new_testsuite('threads', collect_threads), &
     new_testsuite('section_report', collect_section_report), &
     new_testsuite('joint_report', collect_joint_report), &
     new_testsuite('restart', collect_restart) &

@@ -73,6 +73,10 @@ module feps_analysis_state
     type(load_path_t) :: path
   end type analysis_t
 
+  !> Elements per chunk of the threaded element loops: their matrices (or forces) are made in
+  !! parallel and then added in element order.
+  integer, parameter :: element_chunk = 256
+
   public :: is_linear_model, set_up, init_states, state_bytes
   public :: change_supports, activate_groups, check_born_nodes, stage_increments
   public :: set_trial, add_free, update_points, residual, committed_residual, commit, restore
@@ -581,12 +585,16 @@ contains
   !! internal forces of the trial state. The points of group g start from their committed
   !! state plus the stress increment dps(g) imposed on every component (a prestress: the
   !! bars' axial force).
+  !!
+  !! Threaded (OpenMP) over the elements of a chunk: each element updates its own points and
+  !! writes its forces to its own column; the forces are then summed in element order, so the
+  !! result is bit-identical for any number of threads.
   subroutine update_points(model, an, dps)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     real(dp), intent(in) :: dps(:)
-    integer :: g, e, q, q0, np, nn, nc
-    real(dp), allocatable :: xe(:, :), due(:), deps(:, :), fe(:)
+    integer :: g, e, e0, e1, np, nn, nc
+    real(dp), allocatable :: fe(:, :)
     an%path%fint = 0.0_dp
     call add_linear_forces(an, an%path%u_t, an%path%fint)
     do g = 1, size(model%groups)
@@ -594,24 +602,43 @@ contains
       np = an%kernels(g)%npoints
       nn = an%kernels(g)%nnodes
       nc = an%kernels(g)%ncomp
-      allocate (xe(3, nn), due(3 * nn), deps(nc, np), fe(3 * nn))
-      associate (s => an%states(g), mat => an%materials(model%groups(g)%material)%m, &
-                 conn => model%groups(g)%connectivity)
+      allocate (fe(3 * nn, element_chunk))
+      associate (s => an%states(g), conn => model%groups(g)%connectivity)
         call s%impose(dps(g))
-        do e = 1, size(conn, 2)
-          xe = model%coords(:, conn(:, e))
-          due = reshape(an%path%u_t(:, conn(:, e)) - an%path%u(:, conn(:, e)), [3 * nn])
-          call element_strains(an%kernels(g), xe, due, deps)
-          q0 = (e - 1) * np
-          do q = 1, np
-            call s%update(mat, q0 + q, deps(:, q))
+        do e0 = 1, size(conn, 2), element_chunk
+          e1 = min(size(conn, 2), e0 + element_chunk - 1)
+          !$omp parallel do schedule(static)
+          do e = e0, e1
+            call update_element(g, e, fe(:, e - e0 + 1))
           end do
-          call element_internal_force(an%kernels(g), xe, s%sig_t(:, q0 + 1:q0 + np), fe)
-          an%path%fint(:, conn(:, e)) = an%path%fint(:, conn(:, e)) + reshape(fe, [3, nn])
+          !$omp end parallel do
+          do e = e0, e1
+            an%path%fint(:, conn(:, e)) = an%path%fint(:, conn(:, e)) + reshape(fe(:, e - e0 + 1), [3, nn])
+          end do
         end do
       end associate
-      deallocate (xe, due, deps, fe)
+      deallocate (fe)
     end do
+  contains
+    !> Element e of group g: its points' trial states and its internal forces fe.
+    subroutine update_element(g, e, fe)
+      integer, intent(in) :: g, e
+      real(dp), intent(out) :: fe(:)
+      real(dp) :: xe(3, an%kernels(g)%nnodes), due(3 * an%kernels(g)%nnodes)
+      real(dp) :: deps(an%kernels(g)%ncomp, an%kernels(g)%npoints)
+      integer :: q, q0, np
+      np = an%kernels(g)%npoints
+      associate (conn => model%groups(g)%connectivity)
+        xe = model%coords(:, conn(:, e))
+        due = reshape(an%path%u_t(:, conn(:, e)) - an%path%u(:, conn(:, e)), [size(due)])
+        call element_strains(an%kernels(g), xe, due, deps)
+        q0 = (e - 1) * np
+        do q = 1, np
+          call an%states(g)%update(an%materials(model%groups(g)%material)%m, q0 + q, deps(:, q))
+        end do
+        call element_internal_force(an%kernels(g), xe, an%states(g)%sig_t(:, q0 + 1:q0 + np), fe)
+      end associate
+    end subroutine update_element
   end subroutine update_points
 
   !> R = P - F_int on the free equations; |R| and the reference |P| (the larger of the applied
@@ -782,9 +809,10 @@ contains
     logical, intent(in) :: elastic, use_trial, exact
     type(csr_matrix_t), intent(inout) :: a
     logical, intent(out) :: nonsymmetric
-    integer :: g, e, q, np, nn, nc, q0
-    real(dp), allocatable :: ke(:, :), d(:, :, :)
-    integer, allocatable :: dofs(:)
+    integer :: g, e, e0, e1, q, np, nn, nc
+    real(dp), allocatable :: ke(:, :, :), d(:, :, :)
+    integer, allocatable :: dofs(:, :)
+    logical :: from_states, found
     nonsymmetric = .false.
     a%val = 0.0_dp
     do g = 1, size(model%groups)
@@ -792,36 +820,67 @@ contains
       np = an%kernels(g)%npoints
       nn = an%kernels(g)%nnodes
       nc = an%kernels(g)%ncomp
-      allocate (ke(3 * nn, 3 * nn), d(nc, nc, np), dofs(3 * nn))
+      allocate (ke(3 * nn, 3 * nn, element_chunk), d(nc, nc, np), dofs(3 * nn, element_chunk))
       associate (s => an%states(g), conn => model%groups(g)%connectivity)
-        if (elastic .or. .not. s%nonlinear) then
+        from_states = .not. (elastic .or. .not. s%nonlinear)
+        if (.not. from_states) then
           do q = 1, np
             call an%materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, q))
           end do
         end if
-        do e = 1, size(conn, 2)
-          if (.not. (elastic .or. .not. s%nonlinear)) then
-            q0 = (e - 1) * np
-            do q = 1, np
-              if (use_trial) then
-                d(:, :, q) = s%dtan_t(:, :, q0 + q)
-              else
-                d(:, :, q) = s%dtan(:, :, q0 + q)
-              end if
-              if (is_nonsymmetric(d(:, :, q))) then
-                nonsymmetric = .true.
-                if (.not. exact) call nearest_symmetric_psd(d(:, :, q))
-              end if
-            end do
-          end if
-          call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
-          if (an%eq%map%has_rotations()) call rotate_matrix(an%eq%map, conn(:, e), ke)
-          call element_dofs(an%eq%map, conn(:, e), dofs)
-          call scatter_element_matrix(dofs, ke, a, both_triangles=exact)
+        ! Element matrices of a chunk in parallel (threads), then added in element order: the
+        ! matrix is bit-identical for any number of threads.
+        do e0 = 1, size(conn, 2), element_chunk
+          e1 = min(size(conn, 2), e0 + element_chunk - 1)
+          found = .false.
+          !$omp parallel do schedule(static) reduction(.or.:found)
+          do e = e0, e1
+            call element_matrix(g, e, from_states, d, ke(:, :, e - e0 + 1), dofs(:, e - e0 + 1), found)
+          end do
+          !$omp end parallel do
+          nonsymmetric = nonsymmetric .or. found
+          do e = e0, e1
+            call scatter_element_matrix(dofs(:, e - e0 + 1), ke(:, :, e - e0 + 1), a, both_triangles=exact)
+          end do
         end do
       end associate
       deallocate (ke, d, dofs)
     end do
+  contains
+    !> Element e's matrix (in the nodal systems) and DOFs: from the elastic point matrices d, or
+    !! (from_states) its points' tangents; found is set when one of them is non-symmetric.
+    subroutine element_matrix(g, e, from_states, d_elastic, ke, dofs, found)
+      integer, intent(in) :: g, e
+      logical, intent(in) :: from_states
+      real(dp), intent(in) :: d_elastic(:, :, :)
+      real(dp), intent(out) :: ke(:, :)
+      integer, intent(out) :: dofs(:)
+      logical, intent(inout) :: found
+      real(dp) :: d(size(d_elastic, 1), size(d_elastic, 2), size(d_elastic, 3))
+      integer :: q, q0, np
+      np = size(d_elastic, 3)
+      associate (s => an%states(g), conn => model%groups(g)%connectivity)
+        if (from_states) then
+          q0 = (e - 1) * np
+          do q = 1, np
+            if (use_trial) then
+              d(:, :, q) = s%dtan_t(:, :, q0 + q)
+            else
+              d(:, :, q) = s%dtan(:, :, q0 + q)
+            end if
+            if (is_nonsymmetric(d(:, :, q))) then
+              found = .true.
+              if (.not. exact) call nearest_symmetric_psd(d(:, :, q))
+            end if
+          end do
+        else
+          d = d_elastic
+        end if
+        call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
+        if (an%eq%map%has_rotations()) call rotate_matrix(an%eq%map, conn(:, e), ke)
+        call element_dofs(an%eq%map, conn(:, e), dofs)
+      end associate
+    end subroutine element_matrix
   end subroutine assemble_tangent
 
   !> The support reaction at node `n` (global Cartesian): the internal less the applied force,

@@ -174,6 +174,19 @@ for opt in --output -o; do
 done
 expect_status "bad --maxit" 2 "$feps" test/data/cube.dat --maxit many
 grep -q "\-\-maxit takes a whole number" "$tmp/err" && ok "bad --maxit says what it takes" || bad "bad --maxit says what it takes"
+expect_status "bad --threads" 2 "$feps" test/data/cube.dat --threads 0
+grep -q "\-\-threads takes a whole number from 1" "$tmp/err" && ok "bad --threads says what it takes" \
+  || bad "bad --threads says what it takes: $(cat "$tmp/err")"
+# --threads 2 gives the bits of one thread (issue 28 item 3; fpm test's threads suite checks it too)
+"$feps" test/data/friction_pull.dat --quiet --threads 1 --output "$tmp/t1.h5" \
+  && "$feps" test/data/friction_pull.dat --quiet --threads 2 --output "$tmp/t2.h5" \
+  && python3 -c "
+import sys, h5py
+a, b = h5py.File(sys.argv[1]), h5py.File(sys.argv[2])
+names = []
+a.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+assert names and all(a[n][...].tobytes() == b[n][...].tobytes() for n in names)
+" "$tmp/t1.h5" "$tmp/t2.h5" && ok "--threads 2: every dataset bit-identical to one thread's" || bad "--threads 2 differs from one thread"
 # --fields replaces the deck's FIELDS; a misspelt name is one line, exit 2, no result file.
 expect_status "bad --fields" 2 "$feps" test/data/cube.dat --fields displacement,stresses --output "$tmp/f.h5"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q -- '--fields: unknown field "stresses"' "$tmp/err" && [ ! -e "$tmp/f.h5" ] \

@@ -1,0 +1,73 @@
+!> Threaded element loops (issue 28 item 3): the point updates, internal forces and tangents are
+!! made in parallel over the elements of a chunk and added in element order, so a run gives the
+!! same bits with one thread and with two. Decks: test/data/friction_pull.dat (interfaces sliding,
+!! full Newton-Raphson: the tangent of every iterate) and beam_tension_cap.dat (Matsuoka-Nakai
+!! points yielding and reaching the tension cap).
+module test_threads
+  use omp_lib, only: omp_set_num_threads, omp_get_max_threads
+  use feps_testing, only: error_t, unittest_t, new_unittest, check
+  use feps_model, only: model_t
+  use feps_deck, only: read_deck
+  use feps_incremental_analysis, only: run_analysis, analysis_summary_t
+  use feps_test_observers, only: all_steps_t
+  implicit none
+  private
+
+  public :: collect_threads
+
+contains
+
+  !> Collect the suite.
+  subroutine collect_threads(tests)
+    type(unittest_t), allocatable, intent(out) :: tests(:)
+    tests = [ &
+      new_unittest('sliding interfaces: 1 and 2 threads give the same bits', test_friction), &
+      new_unittest('yielding soil: 1 and 2 threads give the same bits', test_collapse)]
+  end subroutine collect_threads
+
+  subroutine test_friction(error)
+    type(error_t), allocatable, intent(out) :: error
+    call same_bits('test/data/friction_pull.dat', error)
+  end subroutine test_friction
+
+  subroutine test_collapse(error)
+    type(error_t), allocatable, intent(out) :: error
+    call same_bits('test/data/beam_tension_cap.dat', error)
+  end subroutine test_collapse
+
+  !> Run `deck` with one thread and with two: every step's displacements, reactions and point
+  !! stresses must be equal bit for bit.
+  subroutine same_bits(deck, error)
+    character(len=*), intent(in) :: deck
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: one, two
+    type(analysis_summary_t) :: summary
+    integer :: threads, k, g
+    logical :: same
+    threads = omp_get_max_threads()
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    call omp_set_num_threads(1)
+    call run_analysis(model, 'cholmod', one, summary, error)
+    if (.not. allocated(error)) then
+      call omp_set_num_threads(2)
+      call run_analysis(model, 'cholmod', two, summary, error)
+    end if
+    call omp_set_num_threads(threads)
+    if (allocated(error)) return
+    call check(error, size(two%steps), size(one%steps), 'as many steps')
+    if (allocated(error)) return
+    same = .true.
+    do k = 1, size(one%steps)
+      same = same .and. all(one%steps(k)%displacement == two%steps(k)%displacement) .and. &
+             all(one%steps(k)%reaction == two%steps(k)%reaction)
+      do g = 1, size(one%steps(k)%groups)
+        if (allocated(one%steps(k)%groups(g)%stress)) &
+          same = same .and. all(one%steps(k)%groups(g)%stress == two%steps(k)%groups(g)%stress)
+      end do
+    end do
+    call check(error, same, 'every step''s displacements, reactions and stresses bit-identical')
+  end subroutine same_bits
+
+end module test_threads

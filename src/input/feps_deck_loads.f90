@@ -250,6 +250,7 @@ contains
     model%geostatic_file = rec%file
     model%geostatic_line = rec%line
   end subroutine read_geostatic
+
   !> MODE=INCREMENT (the default) or MODE=TOTAL of a DISPLACE or FORCE record: with TOTAL its
   !! values are the totals at the end of its stage, which must be a STAGE's own (a reference
   !! value before any STAGE is scaled by each stage's LOAD= and has no total).

@@ -25,6 +25,7 @@ module feps_path_following
 
   public :: path_t, start_path, path_substep
 
+  !> The constraint of a (sub)step: the arc length, the followed displacement, or a fixed load factor.
   integer, parameter, public :: constrain_arc = 1, constrain_displacement = 2, constrain_load = 3
 
   !> A stage's path: its reference load, the load factor reached, the arc length and the

@@ -30,6 +30,7 @@ program tester
   use test_result_schema, only: collect_result_schema
   use test_solid_elements, only: collect_solid_elements
   use test_collapse, only: collect_collapse
+  use test_path_following, only: collect_path_following
   use test_interface_orientation, only: collect_interface_orientation
   use test_progress, only: collect_progress
   use test_element_contract, only: collect_element_contract
@@ -84,6 +85,7 @@ program tester
     new_testsuite('result_schema', collect_result_schema), &
     new_testsuite('solid_elements', collect_solid_elements), &
     new_testsuite('collapse', collect_collapse), &
+    new_testsuite('path_following', collect_path_following), &
     new_testsuite('interface_orientation', collect_interface_orientation), &
     new_testsuite('progress', collect_progress), &
     new_testsuite('element_contract', collect_element_contract), &

@@ -48,6 +48,7 @@ contains
       new_unittest('the XDMF name an existing directory: refused before the run, kept', test_xdmf_is_directory), &
       new_unittest('results in a missing folder: refused before the run', test_output_folder_missing), &
       new_unittest('two STAGE records with one name', test_stage_twice), &
+      new_unittest('STAGE PATH= (arc-length, displacement control): each bad key or combination', test_path_keys), &
       new_unittest('node number out of range', test_node_out_of_range), &
       new_unittest('duplicate node', test_duplicate_node), &
       new_unittest('an FSET LIST row with a face number the type has not', test_fset_list_face_number), &
@@ -407,6 +408,38 @@ contains
                          'field 8', &
                          'the last row is short of a field'], error)
   end subroutine test_displace_list_short_row
+
+  !> Issue 27's STAGE PATH=: each bad key, value or combination (read from the record, or found
+  !! when the stage starts, before its first step, and by --check alike) is named with its line.
+  subroutine test_path_keys(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: dir = 'test/data/bad/'
+    integer, parameter :: n = 13
+    character(len=40), parameter :: decks(n) = [character(len=40) :: 'path_unknown', 'path_arc_zero', &
+      'path_arc_without_arc_length', 'path_displacement_incomplete', 'path_nset_undefined', 'path_dof_unknown', &
+      'path_value_zero', 'path_nset_without_displacement', 'path_euler', 'path_with_displace', 'path_no_load', &
+      'path_dof_held', 'path_restart']
+    character(len=60), parameter :: where(n) = [character(len=60) :: ':13: field 4:', ':13: field 5:', &
+      ':13: field 4:', ':13: field 4:', ':13: field 5:', ':13: field 6:', ':13: field 7:', ':13: field 5:', &
+      ':13: field 4:', ':13: PATH=ARC-LENGTH', ':13: PATH=ARC-LENGTH', ':13: PATH=DISPLACEMENT', ':14: field 4:']
+    character(len=60), parameter :: what(n) = [character(len=60) :: 'unknown PATH "SPIRAL"', &
+      'ARC (the arc length) must be positive', 'ARC is the arc length of PATH=ARC-LENGTH', &
+      'PATH=DISPLACEMENT needs NSET=<set>, DOF=', 'undefined node set "tip"', 'DOF takes X, Y or Z, got "W"', &
+      'VALUE (the displacement increment of the stage) must not be', 'NSET goes with PATH=DISPLACEMENT', &
+      'METHOD=euler takes one pass per step', 'it moves no DOF by DISPLACE', 'has no load to scale', &
+      'node 2 of set pulled is held in Y', 'which restart data do not carry']
+    character(len=80) :: pieces(2)
+    integer :: i, j
+    ! each deck twice: a run, then --check (odd i, even i)
+    do i = 1, 2 * n
+      j = (i + 1) / 2
+      pieces(1) = trim(decks(j)) // '.dat' // where(j)
+      pieces(2) = what(j)
+      call expect_failure(dir // trim(decks(j)) // '.dat', err_input, pieces, error, check_only=mod(i, 2) == 0, &
+                          before_first_step=.true.)
+      if (allocated(error)) return
+    end do
+  end subroutine test_path_keys
 
   !> Issue 25's MODE=: MODE=TOTAL before any STAGE.
   subroutine test_mode_total_before_stage(error)

@@ -13,9 +13,10 @@
 module feps_incremental_analysis
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use feps_kinds, only: dp, i8
-  use feps_error, only: error_t, fatal_error, err_solver, err_model, err_input, str
+  use feps_error, only: error_t, fatal_error, input_error, err_solver, err_model, err_input, str
   use feps_clock, only: wall_clock
-  use feps_model, only: model_t, stage_t, controls_t, method_names
+  use feps_strings, only: to_upper
+  use feps_model, only: model_t, stage_t, controls_t, method_names, path_load, path_arc_length, path_names
   use feps_loads, only: nodal_load_vector
   use feps_observer, only: observer_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
@@ -28,6 +29,8 @@ module feps_incremental_analysis
   use feps_restart_data, only: restart_data_t, model_fingerprint, set_summary_scalars, summary_reals, summary_ints
   use feps_solution_method, only: solution_method_t, factor_state_t
   use feps_solution_methods, only: new_solution_method
+  use feps_path_following, only: path_t, start_path, path_substep, constrain_arc, constrain_displacement, &
+                                 constrain_load
   use feps_bfgs, only: bfgs_t
   use feps_line_search, only: line_search_t, line_search_begin, line_search_next, line_search_eta, &
                               line_search_s_min, line_search_max_evaluations
@@ -74,6 +77,8 @@ contains
         return
       end if
     end if
+    call check_path_restart(model, present(resume), error)
+    if (allocated(error)) return
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
     call check_in_situ_field(model, an, error)
@@ -84,7 +89,8 @@ contains
     an%path%f_applied = 0.0_dp
     summary%time_assembly = wall_clock() - t0
 
-    summary%linear = is_linear_model(model, an%materials)
+    ! a path-following stage finds its load factor by iteration, also in a linear model
+    summary%linear = is_linear_model(model, an%materials) .and. all(model%stages%path == path_load)
     if (summary%linear) then
       if (present(resume)) then
         call fatal_error(error, err_input, resume%source // ': a linear model is solved in one solve per ' // &
@@ -147,6 +153,26 @@ contains
     if (scale > 0.0_dp) magnitude = scale * norm2(v / scale)
   end function magnitude
 
+  !> A run with restart data (RESTART, --restart-every, or continued from them) takes no
+  !! path-following stage: the arc length and the previous increment that steer its steps are
+  !! not in the restart data. An input error naming the first such STAGE record.
+  subroutine check_path_restart(model, resuming, error)
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: resuming
+    type(error_t), allocatable, intent(out) :: error
+    integer :: s
+    if (model%restart_every == 0 .and. .not. resuming) return
+    do s = 1, size(model%stages)
+      associate (st => model%stages(s))
+        if (st%path == path_load) cycle
+        call input_error(error, st%file, st%line, 'PATH=' // to_upper(trim(path_names(st%path))) // ' (stage ' // st%name // &
+                         ') steers its steps by an arc length and the previous increment, which restart data do ' // &
+                         'not carry: run it without restart data (RESTART, --restart-every, --restart)', st%path_field)
+        return
+      end associate
+    end do
+  end subroutine check_path_restart
+
   !> Everything a run checks before it takes a step, without taking one: elements and their
   !! Jacobians, materials, face sets, DOF numbering, the sparse pattern, the solver's analysis,
   !! and, stage by stage, the loads, the prescribed displacements, the nodes of elements born
@@ -167,11 +193,14 @@ contains
     logical :: changed
     character(len=:), allocatable :: line
     character(len=40) :: buf
+    type(path_t) :: pt
 
     t0 = wall_clock()
     call set_up(model, solver_name, an, summary, error)
     if (allocated(error)) return
-    summary%linear = is_linear_model(model, an%materials)
+    summary%linear = is_linear_model(model, an%materials) .and. all(model%stages%path == path_load)
+    call check_path_restart(model, .false., error)
+    if (allocated(error)) return
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
     call check_in_situ_field(model, an, error)
@@ -189,6 +218,11 @@ contains
       if (allocated(error)) return
       call stage_increments(model, an, s, df, duc, dps, error)
       if (allocated(error)) return
+      if (model%stages(s)%path /= path_load) then
+        ! the path's own checks (loads only, the followed DOF free), as a run makes them
+        call start_path(model, an, model%stages(s), df, duc, dps, pt, error)
+        if (allocated(error)) return
+      end if
       summary%steps = summary%steps + model%stages(s)%steps
       f = sum(df, dim=2)
       summary%applied_force = summary%applied_force + f
@@ -375,7 +409,9 @@ contains
     class(solution_method_t), allocatable :: method
     logical, allocatable :: fully_open(:)
     integer :: s_first, k_first, k_start
-    logical :: mid_stage
+    logical :: mid_stage, stage_done
+    real(dp) :: lf
+    type(path_t) :: pt
 
     allocate (df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)), r(an%eq%map%neq), &
               fully_open(size(model%groups)))
@@ -437,6 +473,13 @@ contains
         call observer%progress('stage ' // st%name // ': ' // str(st%steps) // ' steps, method ' // &
                                trim(method_names(c%method)) // ', at most ' // str(c%max_iterations) // &
                                ' iterations per step')
+        if (st%path /= path_load) then
+          call observer%progress('stage ' // st%name // ': PATH=' // trim(path_names(st%path)) // &
+                                 ', the load factor of the stage''s loads follows the path')
+          call start_path(model, an, st, df, duc, dps, pt, error)
+          if (allocated(error)) return
+        end if
+        stage_done = .false.
         do k = k_start, st%steps
           step = step + 1
           done = 0.0_dp
@@ -446,6 +489,12 @@ contains
           nfact0 = summary%factorizations
           step_unconverged = .false.
           step_notes = ''
+          if (st%path /= path_load) then
+            call path_step(model, an, method, observer, st, s, k, f, pt, r, rnorm, pnorm, iters_step, summary, &
+                           step_notes, run_notes, stage_done, error)
+            if (allocated(error)) return
+            done = 1.0_dp
+          end if
           do while (done < 1.0_dp - 1.0e-12_dp)
             h = min(h, 1.0_dp - done)
             ! Which stiffness: the method decides (thesis 2.6.3).
@@ -507,19 +556,20 @@ contains
           end do
           summary%steps = step
           summary%iterations = summary%iterations + iters_step
+          lf = s - 1 + real(k, dp) / st%steps
+          if (st%path /= path_load) lf = s - 1 + pt%lam
           if (step_unconverged) summary%unconverged_steps = summary%unconverged_steps + 1
           ! A stage that ends out of balance: the run says so (and --strict refuses it).
           if (k == st%steps .and. .not. (f%rel_prev < c%delta1 .or. f%abs_prev < c%delta2)) &
             call note_unbalanced(an, st, real(s, dp), r, f%rel_prev, summary)
-          call observer%progress(progress_line(s, k, st%steps, s - 1 + real(k, dp) / st%steps, iters_step, &
+          call observer%progress(progress_line(s, k, st%steps, lf, iters_step, &
                                                f%rel_prev, summary%factorizations, summary%factorizations - nfact0) &
                                  // trim(merge('  (not converged: carried) ', '                           ', &
                                                 step_unconverged)) // &
                                  time_text(wall_clock() - t_start, step, total_steps))
           call report_open_interfaces(model, an, observer, fully_open)
-          if (writes_step(st, k)) then
-            call report_step(model, an, observer, step, s, k, s - 1 + real(k, dp) / st%steps, iters_step, &
-                             f%rel_prev, error)
+          if (writes_step(st, k) .or. stage_done) then
+            call report_step(model, an, observer, step, s, k, lf, iters_step, f%rel_prev, error)
             if (allocated(error)) return
           end if
           if (s == model%geostatic_stage .and. k == st%steps) then
@@ -540,7 +590,18 @@ contains
               return
             end if
           end if
+          if (stage_done) exit
         end do
+        if (st%path == path_arc_length) then
+          if (stage_done) then
+            call observer%progress('stage ' // st%name // ': PATH=arc-length reached the stage''s full load ' // &
+                                   '(load factor ' // str(real(s, dp)) // ') in ' // str(k) // ' steps')
+          else
+            call observer%progress('stage ' // st%name // ': PATH=arc-length ended after its ' // str(st%steps) // &
+                                   ' steps at load factor ' // str(s - 1 + pt%lam) // ' (' // str(pt%lam) // &
+                                   ' of the stage''s load; its full load not reached)')
+          end if
+        end if
       end associate
     end do
     if (summary%lu_factorizations > 0) call observer%progress('note: ' // str(summary%lu_factorizations) // &
@@ -799,6 +860,126 @@ contains
     ! unbalanced force (thesis 2.6.3), unless it exceeds the divergence limit.
     ok = method%step_accepted(rel, rnorm, c)
   end subroutine substep
+
+  !> One step of a path-following stage (PATH=ARC-LENGTH or DISPLACEMENT, feps_path_following)
+  !! from the committed state, with cut-backs: a step that does not converge is tried again
+  !! with half the arc length (arc-length) or half the displacement (displacement control, the
+  !! rest of the step following in further substeps). An arc that would pass the stage's full
+  !! load is replaced by a step to exactly that load (stage_done). The stiffness is the
+  !! method's; where its tangent is singular (at a limit point, on a plateau) the elastic
+  !! stiffness is factorized instead, the constraint equation keeping the system regular.
+  subroutine path_step(model, an, method, observer, st, s, k, f, pt, r, rnorm, pnorm, iters_step, summary, &
+                       notes, run_notes, stage_done, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    class(solution_method_t), intent(in) :: method
+    class(observer_t), intent(inout) :: observer
+    type(stage_t), intent(in) :: st
+    integer, intent(in) :: s, k
+    type(factor_state_t), intent(inout) :: f
+    type(path_t), intent(inout) :: pt
+    real(dp), intent(inout) :: r(:)
+    real(dp), intent(out) :: rnorm, pnorm
+    integer, intent(out) :: iters_step
+    type(analysis_summary_t), intent(inout) :: summary
+    character(len=:), allocatable, intent(inout) :: notes, run_notes
+    logical, intent(out) :: stage_done
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: du(:)
+    real(dp) :: h, done, target, dlam
+    integer :: cut, iters, mode, mechanism
+    logical :: ok
+    stage_done = .false.
+    iters_step = 0
+    h = 1.0_dp
+    done = 0.0_dp
+    cut = 0
+    mode = constrain_displacement
+    if (st%path == path_arc_length) mode = constrain_arc
+    associate (c => st%controls)
+      do while (done < 1.0_dp - 1.0e-12_dp)
+        h = min(h, 1.0_dp - done)
+        if (method%needs_factor(f, c)) then
+          f%factor_elastic = method%factorizes_elastic(f)
+          call factorize_tangent(model, an, f%factor_elastic, summary, error, exact=method%exact_tangent())
+          if (allocated(error) .and. .not. f%factor_elastic) then
+            deallocate (error)
+            f%factor_elastic = .true.
+            call factorize_tangent(model, an, .true., summary, error)
+          end if
+          if (allocated(error)) then
+            call explain_failed_factorization(model, an, st, k, s - 1 + pt%lam, s - 1 + pt%lam, last_state(f, c), &
+                                              summary, error)
+            return
+          end if
+          f%have_factor = .true.
+          f%elastic_retry = .false.
+        end if
+        select case (mode)
+        case (constrain_arc)
+          target = pt%arc
+        case (constrain_displacement)
+          target = h * st%path_value / st%steps
+        case default
+          target = 1.0_dp - pt%lam
+        end select
+        call path_substep(model, an, c, method%exact_tangent(), pt, mode, target, dlam, du, r, rnorm, pnorm, iters, &
+                          ok, summary, error, notes)
+        if (allocated(error)) then
+          call explain_failed_factorization(model, an, st, k, s - 1 + pt%lam, s - 1 + pt%lam + dlam, &
+                                            last_state(f, c), summary, error)
+          return
+        end if
+        iters_step = iters_step + iters
+        if (ok .and. mode == constrain_arc .and. pt%lam < 1.0_dp .and. pt%lam + dlam > 1.0_dp - 1.0e-9_dp) then
+          ! the arc passes (or all but reaches) the stage's full load: a step to exactly that load instead
+          call restore(an)
+          mode = constrain_load
+          cycle
+        end if
+        if (ok) then
+          call commit(an)
+          call collect_point_notes(model, an, .false., run_notes)
+          pt%lam = pt%lam + dlam
+          an%path%f_applied = pt%f0 + pt%lam * pt%df
+          pt%du_prev = du
+          f%rel_prev = rnorm / pnorm
+          f%abs_prev = rnorm
+          if (mode == constrain_displacement) then
+            done = done + h
+          else
+            done = 1.0_dp
+          end if
+          stage_done = mode == constrain_load
+          ! an arc cut back grows again (doubling) after steps that converge easily
+          if (mode == constrain_arc .and. cut == 0 .and. 2 * iters <= c%max_iterations) &
+            pt%arc = min(pt%arc0, 2.0_dp * pt%arc)
+        else
+          cut = cut + 1
+          summary%cutbacks = summary%cutbacks + 1
+          if (cut > c%max_cutbacks) then
+            mechanism = 0
+            if (rnorm <= huge(rnorm)) call find_mechanism(model, an, .true., summary, mechanism)
+            call restore(an)
+            if (.not. abs(dlam) < huge(dlam)) dlam = 0.0_dp
+            call stop_error(model, an, r, st, k, s - 1 + pt%lam + dlam, s - 1 + pt%lam, last_state(f, c), &
+                            rnorm / pnorm, .true., newly_open_points(an), notes, error, mechanism)
+            return
+          end if
+          call restore(an)
+          if (mode == constrain_displacement) then
+            h = h / 2.0_dp
+            call observer%progress('  step ' // str(k) // ' diverged: cut back to ' // str(h) // ' of a step')
+          else
+            mode = constrain_arc
+            pt%arc = pt%arc / 2.0_dp
+            call observer%progress('  step ' // str(k) // ' diverged: arc length halved to ' // str(pt%arc))
+          end if
+          call method%after_cutback(f)
+        end if
+      end do
+    end associate
+  end subroutine path_step
 
   !> LINESEARCH=energy after an iteration whose full correction du (from u_base) left the
   !! residual r: where the correction overshoots (feps_line_search), the residual is evaluated

@@ -6,7 +6,8 @@ module feps_deck_stages
   use feps_error, only: error_t, input_error, str
   use feps_records, only: record_t, nfields, field_text, field_line
   use feps_model, only: model_t, name_len, stage_t, controls_t, method_names, report_t, max_total_steps, &
-                        max_iterations_limit, max_cutbacks_limit
+                        max_iterations_limit, max_cutbacks_limit, path_load, path_arc_length, path_displacement, &
+                        path_names, method_euler, method_modified_euler
   use feps_deck_fields, only: key_value, check_option_keys, option_real, option_text, require_fields, parse_real, &
                               parse_int, get_csys_option
   use feps_element_catalog, only: family_solid, family_interface
@@ -89,21 +90,113 @@ contains
           if (colon > len(names)) exit
           names = names(colon + 1:)
         end do
+      case ('PATH', 'ARC', 'NSET', 'DOF', 'VALUE')
+        call read_path_option(rec, i, k, v, model, st, error)
+        if (allocated(error)) return
       case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE', 'ACCELERATION', &
             'LINESEARCH')
       case default
         call input_error(error, rec%file, field_line(rec, i), &
                          'unknown STAGE option "' // k // '" (STEPS, LOAD, OUTPUT, ' // &
-                         'ACTIVATE, METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, DIVERGENCE, CUTBACKS, ' // &
-                         'ACCELERATION, LINESEARCH)', i)
+                         'ACTIVATE, PATH, ARC, NSET, DOF, VALUE, METHOD, MAXIT, DELTA1, DELTA2, DELTA3, DELTA4, ' // &
+                         'DIVERGENCE, CUTBACKS, ACCELERATION, LINESEARCH)', i)
         return
       end select
     end do
     call read_controls(rec, 3, st%controls, error)
     if (allocated(error)) return
+    call check_path_options(rec, model, st, error)
+    if (allocated(error)) return
     tmp = [model%stages, st]
     call move_alloc(tmp, model%stages)
   end subroutine read_stage
+
+  !> One of the path-following options of a STAGE record (field i, key k, value v): PATH=
+  !! (LOAD, ARC-LENGTH, DISPLACEMENT), ARC= (> 0), NSET= (a node set defined before the STAGE),
+  !! DOF= (X, Y or Z) and VALUE= (not zero). Which keys go with which PATH is check_path_options'.
+  subroutine read_path_option(rec, i, k, v, model, st, error)
+    type(record_t), intent(in) :: rec
+    integer, intent(in) :: i
+    character(len=*), intent(in) :: k, v
+    type(model_t), intent(in) :: model
+    type(stage_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    integer :: p
+    select case (k)
+    case ('PATH')
+      st%path = -1
+      do p = lbound(path_names, 1), ubound(path_names, 1)
+        if (to_lower(v) == trim(path_names(p))) st%path = p
+      end do
+      st%path_field = i
+      if (st%path < 0) call input_error(error, rec%file, field_line(rec, i), 'unknown PATH "' // v // &
+                                        '" (LOAD, ARC-LENGTH, DISPLACEMENT)', i)
+    case ('ARC')
+      call parse_real(v, st%arc, error, rec, i)
+      if (allocated(error)) return
+      if (.not. (st%arc > 0.0_dp)) call input_error(error, rec%file, field_line(rec, i), &
+                                                    'ARC (the arc length) must be positive', i)
+    case ('NSET')
+      st%path_set = model%find_node_set(v)
+      if (st%path_set == 0) call input_error(error, rec%file, field_line(rec, i), 'undefined node set "' // v // &
+                                             '" (PATH=DISPLACEMENT follows a set defined before its STAGE)', i)
+    case ('DOF')
+      st%path_dof = index('XYZ', to_upper(v))
+      if (len(v) /= 1 .or. st%path_dof == 0) then
+        st%path_dof = 0
+        call input_error(error, rec%file, field_line(rec, i), 'DOF takes X, Y or Z, got "' // v // '"', i)
+      end if
+    case ('VALUE')
+      call parse_real(v, st%path_value, error, rec, i)
+      if (allocated(error)) return
+      if (st%path_value == 0.0_dp) call input_error(error, rec%file, field_line(rec, i), &
+                                                    'VALUE (the displacement increment of the stage) must not be zero', i)
+    end select
+  end subroutine read_path_option
+
+  !> The path-following keys of a STAGE record fit together: ARC= only with PATH=ARC-LENGTH;
+  !! NSET=, DOF= and VALUE= all three with PATH=DISPLACEMENT and only there; a path that
+  !! iterates to equilibrium takes no Euler method (one pass per step).
+  subroutine check_path_options(rec, model, st, error)
+    type(record_t), intent(in) :: rec
+    type(model_t), intent(in) :: model
+    type(stage_t), intent(in) :: st
+    type(error_t), allocatable, intent(out) :: error
+    character(len=:), allocatable :: v
+    integer :: i
+    logical :: found
+    call option_text(rec, 'ARC', v, i, found)
+    if (found .and. st%path /= path_arc_length) then
+      call input_error(error, rec%file, field_line(rec, i), 'ARC is the arc length of PATH=ARC-LENGTH; ' // &
+                       'this stage follows PATH=' // to_upper(trim(path_names(st%path))), i)
+      return
+    end if
+    if (st%path == path_displacement) then
+      if (st%path_set == 0 .or. st%path_dof == 0 .or. st%path_value == 0.0_dp) then
+        call input_error(error, rec%file, field_line(rec, st%path_field), 'PATH=DISPLACEMENT needs NSET=<set>, ' // &
+                         'DOF=<X, Y or Z> and VALUE=<the displacement increment of the stage>', st%path_field)
+        return
+      end if
+    else
+      do i = 3, nfields(rec)
+        v = to_upper(field_text(rec, i))
+        if (index(v, 'NSET=') == 1 .or. index(v, 'DOF=') == 1 .or. index(v, 'VALUE=') == 1) then
+          call input_error(error, rec%file, field_line(rec, i), v(:index(v, '=') - 1) // ' goes with ' // &
+                           'PATH=DISPLACEMENT (the DOF it follows); this stage follows PATH=' // &
+                           to_upper(trim(path_names(st%path))), i)
+          return
+        end if
+      end do
+    end if
+    if (st%path /= path_load .and. (st%controls%method == method_euler .or. &
+                                    st%controls%method == method_modified_euler)) then
+      call input_error(error, rec%file, field_line(rec, st%path_field), 'PATH=' // to_upper(trim(path_names(st%path))) // &
+                       ' iterates each step to equilibrium; METHOD=' // trim(method_names(st%controls%method)) // &
+                       ' takes one pass per step (use newton-raphson, modified-newton-raphson, initial-stiffness ' // &
+                       'or full-newton-raphson)', st%path_field)
+      return
+    end if
+  end subroutine check_path_options
 
   !> The CONTROLS record: the default controls of the STAGE records after it. Each stage takes
   !! its copy when its STAGE record is read, so a CONTROLS after a STAGE would change nothing

@@ -177,6 +177,11 @@ module feps_model
   character(len=23), parameter, public :: method_names(6) = [character(len=23) :: 'euler', 'modified-euler', &
     'newton-raphson', 'modified-newton-raphson', 'initial-stiffness', 'full-newton-raphson']
 
+  !> How a stage follows its load path (STAGE PATH=).
+  integer, parameter, public :: path_load = 0, path_arc_length = 1, path_displacement = 2
+  character(len=12), parameter, public :: path_names(0:2) = [character(len=12) :: 'load', 'arc-length', &
+    'displacement']
+
   !> Limits of the controls, checked where the deck (or the command line) gives them, before
   !! any arithmetic: steps are numbered over all stages in default integers; MAXIT sizes the
   !! BFGS history (two vectors of the DOFs per iteration); a step halved more than 50 times is
@@ -214,6 +219,15 @@ module feps_model
     logical :: load_given = .false.          !! LOAD= was given (else the default of the deck)
     integer :: output_every = 0              !! write every k steps (0: the stage's last step)
     type(controls_t) :: controls
+    !> PATH=: load control (the stage's loads in equal steps), arc-length (Crisfield's
+    !! cylindrical constraint on the stage's load factor) or displacement control (the load
+    !! factor set so that a node set's mean displacement follows VALUE= in equal steps)
+    integer :: path = path_load
+    integer :: path_field = 0                !! the PATH= field (for messages)
+    real(dp) :: arc = 0.0_dp                 !! ARC=: the first step's arc length (0: from the first predictor)
+    integer :: path_set = 0                  !! PATH=DISPLACEMENT: NSET= (index into model%node_sets)
+    integer :: path_dof = 0                  !! DOF= (1..3, global x, y, z)
+    real(dp) :: path_value = 0.0_dp          !! VALUE=: the set's mean displacement increment over the stage
     character(len=name_len), allocatable :: activate(:)  !! groups born at the start of this stage
     integer, allocatable :: activate_field(:)            !! their fields in the STAGE record
     character(len=:), allocatable :: file

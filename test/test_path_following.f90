@@ -1,0 +1,159 @@
+!> Path following (issue 27, STAGE PATH=): arc-length and displacement control against closed
+!! forms. A block on a Mohr-Coulomb interface (test/data/block_arc.dat, block_displacement.dat)
+!! pushed past its capacity (c + sigma_n tan phi) A = 250.940108 N: load control stops at that
+!! limit load (test_collapse); both paths go through it and along the plateau beyond. A linear
+!! bar (test/data/path_bar.dat) gives the load factor read back and the arc's steps exactly.
+module test_path_following
+  use feps_kinds, only: dp
+  use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_error, only: str
+  use feps_model, only: model_t
+  use feps_deck, only: read_deck
+  use feps_incremental_analysis, only: run_analysis, analysis_summary_t
+  use feps_test_observers, only: all_steps_t
+  implicit none
+  private
+
+  public :: collect_path_following
+
+  !> The block's capacity: c A + tan(phi) N with c = 0.05, A = 400 mm^2, N = 400 N, phi = 30 deg.
+  real(dp), parameter :: capacity = 0.05_dp * 400.0_dp + 400.0_dp * 0.57735026918962576_dp
+  real(dp), parameter :: push = 360.0_dp       !! the stage's load: 9 nodes x 40 N
+
+contains
+
+  subroutine collect_path_following(testsuite)
+    type(unittest_t), allocatable, intent(out) :: testsuite(:)
+    testsuite = [ &
+      new_unittest('arc-length: the block''s peak is (c + sigma_n tan phi) A to 1e-6, then a plateau', &
+                   test_arc_peak), &
+      new_unittest('displacement control: the set follows VALUE, the load read back reaches the capacity', &
+                   test_displacement_peak), &
+      new_unittest('linear bar: load factor read back k u / F; arc-length in equal steps to the full load', &
+                   test_bar) &
+      ]
+  end subroutine collect_path_following
+
+  !> Run deck `deck`, keeping every step written.
+  subroutine run_deck(deck, model, obs, summary, error)
+    character(len=*), intent(in) :: deck
+    type(model_t), intent(out) :: model
+    type(all_steps_t), intent(out) :: obs
+    type(analysis_summary_t), intent(out) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    call read_deck(deck, model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+  end subroutine run_deck
+
+  !> The mean x displacement of node set `name` at step i of obs.
+  real(dp) function mean_ux(model, obs, name, i)
+    type(model_t), intent(in) :: model
+    type(all_steps_t), intent(in) :: obs
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: i
+    associate (nodes => model%node_sets(model%find_node_set(name))%nodes)
+      mean_ux = sum(obs%steps(i)%displacement(1, nodes)) / size(nodes)
+    end associate
+  end function mean_ux
+
+  !> The block under PATH=ARC-LENGTH: the largest load of the path is the capacity to 1e-6;
+  !! at least 10 steps lie on the plateau (the load within 1e-6 of it) with the block sliding
+  !! further at each; the load applied equals the load factor times the stage's load, and the
+  !! reactions balance it.
+  subroutine test_arc_peak(error)
+    type(error_t), allocatable, intent(out) :: error
+    call check_peak('test/data/block_arc.dat', 30, error)
+  end subroutine test_arc_peak
+
+  !> The block under PATH=DISPLACEMENT (0.5 mm in 20 steps): the set's mean displacement is
+  !! k / 20 of 0.5 at step k, and the load read back reaches the capacity to 1e-6 and stays.
+  subroutine test_displacement_peak(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer :: k
+    call check_peak('test/data/block_displacement.dat', 20, error)
+    if (allocated(error)) return
+    call run_deck('test/data/block_displacement.dat', model, obs, summary, error)
+    if (allocated(error)) return
+    do k = 1, 20
+      call check(error, mean_ux(model, obs, 'push', k + 1), 0.5_dp * k / 20, 'the set''s mean ux at step ' // &
+                 str(k), abs=1.0e-9_dp)
+      if (allocated(error)) return
+    end do
+  end subroutine test_displacement_peak
+
+  !> The checks of the block's path common to both controls (`n` steps in stage 2).
+  subroutine check_peak(deck, n, error)
+    character(len=*), intent(in) :: deck
+    integer, intent(in) :: n
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    real(dp) :: lam(n), peak, ux_prev
+    integer :: k, on_plateau
+    call run_deck(deck, model, obs, summary, error)
+    if (allocated(error)) return
+    call check(error, size(obs%steps), n + 1, deck // ': every step written')
+    if (allocated(error)) return
+    do k = 1, n
+      lam(k) = obs%steps(k + 1)%load_factor - 1.0_dp
+      associate (st => obs%steps(k + 1))
+        call check(error, sum(st%applied_force(1, :)), lam(k) * push, deck // ': the load applied is the ' // &
+                   'load factor times the stage''s load, step ' // str(k), rel=1.0e-12_dp)
+        if (allocated(error)) return
+        call check(error, sum(st%reaction(1, :)), -lam(k) * push, deck // ': the reactions balance it, step ' // &
+                   str(k), rel=1.0e-8_dp)
+        if (allocated(error)) return
+      end associate
+    end do
+    peak = maxval(lam) * push
+    call check(error, peak, capacity, deck // ': the peak load is (c + sigma_n tan phi) A', rel=1.0e-6_dp)
+    if (allocated(error)) return
+    on_plateau = 0
+    ux_prev = -huge(1.0_dp)
+    do k = 1, n
+      if (abs(lam(k) * push - capacity) > 1.0e-6_dp * capacity) cycle
+      on_plateau = on_plateau + 1
+      if (.not. mean_ux(model, obs, 'push', k + 1) > ux_prev) then
+        call test_failed(error, deck // ': on the plateau the block slides further at each step (step ' // &
+                         str(k) // ')')
+        return
+      end if
+      ux_prev = mean_ux(model, obs, 'push', k + 1)
+    end do
+    call check(error, on_plateau >= 10, deck // ': at least 10 steps on the plateau, got ' // str(on_plateau))
+  end subroutine check_peak
+
+  !> test/data/path_bar.dat: displacement control reads back the load factor 2 u (k = 100 N/mm,
+  !! F = 50 N) at u = 0.25, 0.5, 0.75, 1; the arc-length stage takes ten steps of 0.1 of its
+  !! load (a linear path: every arc the same) and ends on its full load at u = -2 mm.
+  subroutine test_bar(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    integer :: k
+    call run_deck('test/data/path_bar.dat', model, obs, summary, error)
+    if (allocated(error)) return
+    call check(error, size(obs%steps), 14, 'every step written')
+    if (allocated(error)) return
+    do k = 1, 4
+      call check(error, obs%steps(k)%displacement(1, 2), 0.25_dp * k, 'u at step ' // str(k), abs=1.0e-14_dp)
+      if (allocated(error)) return
+      call check(error, obs%steps(k)%load_factor, 2.0_dp * 0.25_dp * k, 'the load factor read back k u / F, ' // &
+                 'step ' // str(k), rel=1.0e-12_dp)
+      if (allocated(error)) return
+    end do
+    do k = 1, 10
+      call check(error, obs%steps(4 + k)%load_factor, 1.0_dp + 0.1_dp * k, 'arc-length: step ' // str(k) // &
+                 ' is 0.1 of the load', rel=1.0e-12_dp)
+      if (allocated(error)) return
+    end do
+    call check(error, obs%steps(14)%displacement(1, 2), -2.0_dp, 'u at the end, (100 - 300) / k', rel=1.0e-12_dp)
+  end subroutine test_bar
+
+end module test_path_following

@@ -17,6 +17,7 @@ program tester
   use test_tri6, only: collect_tri6
   use test_bars, only: collect_bars
   use test_matsuoka, only: collect_matsuoka
+  use test_concrete, only: collect_concrete
   use test_joint_models, only: collect_joint_models
   use test_activation, only: collect_activation
   use test_prestress, only: collect_prestress
@@ -72,6 +73,7 @@ program tester
     new_testsuite('tri6', collect_tri6), &
     new_testsuite('bars', collect_bars), &
     new_testsuite('matsuoka', collect_matsuoka), &
+    new_testsuite('concrete', collect_concrete), &
     new_testsuite('joint_models', collect_joint_models), &
     new_testsuite('activation', collect_activation), &
     new_testsuite('prestress', collect_prestress), &

@@ -139,6 +139,10 @@ contains
       new_unittest('ELASTIC with G near huge() and NU near -1 is accepted (E does not overflow)', &
                    test_elastic_g_large_nu_negative), &
       new_unittest('ELASTIC with an unknown key names its field', test_elastic_unknown_key), &
+      new_unittest('CONCRETE with a negative GF names its field', test_concrete_gf_negative), &
+      new_unittest('CONCRETE with an unknown SOFTENING law names its field', test_concrete_softening_unknown), &
+      new_unittest('CONCRETE in elements longer than its crack band allows (snap-back) names GF', &
+                   test_concrete_band_too_large), &
       new_unittest('an unknown material kind names its field', test_material_kind_unknown), &
       new_unittest('MATSUOKA with FT and C names the second', test_matsuoka_ft_and_c), &
       new_unittest('MATSUOKA with PSI above PHI names PSI''s field', test_matsuoka_psi_above_phi), &
@@ -1031,6 +1035,29 @@ contains
                         [character(len=60) :: 'elastic_g_negative.dat:15: field 4:', 'material steel', &
                          'G = -5.00000 must be positive and finite'], error, absent=['E = '])
   end subroutine test_elastic_g_negative
+
+  subroutine test_concrete_gf_negative(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_gf_negative.dat', err_input, &
+                        [character(len=60) :: 'concrete_gf_negative.dat:15: field 7:', 'material concrete', &
+                         'GF = -0.100000 must be positive and finite'], error)
+  end subroutine test_concrete_gf_negative
+
+  subroutine test_concrete_softening_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_softening_unknown.dat', err_input, &
+                        [character(len=60) :: 'concrete_softening_unknown.dat:15: field 8:', 'material concrete', &
+                         'SOFTENING = "bilinear"', 'LINEAR (the default) or EXPONENTIAL'], error)
+  end subroutine test_concrete_softening_unknown
+
+  !> 5 mm elements where the crack band may be at most 2 E GF / FT^2 = 0.667 mm: refused before
+  !! the first step, at GF's field, naming the element and group (--check too: check_cli.sh).
+  subroutine test_concrete_band_too_large(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_band_too_large.dat', err_input, &
+                        [character(len=60) :: 'concrete_band_too_large.dat:15: field 7:', 'material concrete', &
+                         'element 1 of group block is 5.00000 mm long', '0.666667 mm allows'], error)
+  end subroutine test_concrete_band_too_large
 
   subroutine test_elastic_g_overflow(error)
     type(error_t), allocatable, intent(out) :: error

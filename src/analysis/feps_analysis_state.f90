@@ -21,6 +21,8 @@ module feps_analysis_state
   use feps_interface_orientation, only: check_interface_orientation
   use feps_loads, only: resolve_face_sets, nodal_load_vector, to_equations
   use feps_material, only: material_slot_t
+  use feps_material_params, only: material_error
+  use feps_solid_element, only: solid_element_t
   use feps_point_state_store, only: point_state_store_t
   use feps_tangent_symmetry, only: nearest_symmetric_psd
   use feps_solver_factory, only: new_linear_solver
@@ -80,7 +82,7 @@ module feps_analysis_state
   integer, parameter :: element_chunk = 256
   integer, parameter :: force_chunk = 8192
 
-  public :: is_linear_model, set_up, init_states, state_bytes
+  public :: is_linear_model, set_up, init_states, set_crack_bands, state_bytes
   public :: change_supports, activate_groups, check_born_nodes, stage_increments
   public :: set_trial, add_free, update_points, residual, committed_residual, commit, restore
   public :: factorize_tangent, support_reaction, support_reaction_nodal
@@ -290,6 +292,45 @@ contains
     allocate (an%path%release_force(3, model%nnode))
     an%path%release_force = 0.0_dp
   end subroutine init_states
+
+  !> Every point of a material that asks for its crack band (`band_slot`) gets its element's
+  !! length: volume^(1/3) in 3D, area^(1/2) in plane strain (the element's volume per unit
+  !! thickness). An element longer than the material's `max_band` is an input error at the
+  !! MATERIAL record, naming the group and element: the band would snap back.
+  subroutine set_crack_bands(model, an, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    type(error_t), allocatable, intent(out) :: error
+    integer :: g, e, slot, np, m
+    real(dp) :: h, hmax
+    do g = 1, size(model%groups)
+      m = model%groups(g)%material
+      slot = an%materials(m)%m%band_slot()
+      if (slot == 0 .or. .not. an%states(g)%kept()) cycle
+      hmax = an%materials(m)%m%max_band()
+      np = an%kernels(g)%npoints
+      select type (el => an%kernels(g)%element)
+      class is (solid_element_t)
+        do e = 1, size(model%groups(g)%connectivity, 2)
+          h = el%volume(model%coords(:, model%groups(g)%connectivity(:, e)))
+          if (el%ndim() == 2) then
+            h = sqrt(h)
+          else
+            h = h**(1.0_dp / 3.0_dp)
+          end if
+          if (h > hmax) then
+            call material_error(error, model%materials(m), 'element ' // str(e) // ' of group ' // &
+                                model%groups(g)%name // ' is ' // str(h) // ' mm long (its volume^(1/3)), more ' // &
+                                'than the crack band 2 E GF / FT^2 = ' // str(hmax) // ' mm allows (its ' // &
+                                'softening would snap back): refine the mesh or raise GF', 'gf')
+            return
+          end if
+          an%states(g)%vars(slot, (e - 1) * np + 1:e * np) = h
+          an%states(g)%vars_t(slot, (e - 1) * np + 1:e * np) = h
+        end do
+      end select
+    end do
+  end subroutine set_crack_bands
 
   !> Memory held per group for point states (stresses, strains, flags, internal variables,
   !! tangents; committed and trial), to show that elastic groups keep none.

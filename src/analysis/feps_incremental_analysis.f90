@@ -22,7 +22,7 @@ module feps_incremental_analysis
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
   use feps_geostatic, only: in_situ_field_t, build_in_situ_field, set_in_situ_stress, end_geostatic_stage
   use feps_analysis_state, only: analysis_t, is_linear_model, set_up, &
-                                 init_states, state_bytes, change_supports, activate_groups, check_born_nodes, &
+                                 init_states, set_crack_bands, state_bytes, change_supports, activate_groups, check_born_nodes, &
                                  stage_increments, set_trial, add_free, update_points, residual, &
                                  committed_residual, commit, restore, factorize_tangent, support_reaction, &
                                  save_state, restore_state
@@ -81,6 +81,8 @@ contains
     if (allocated(error)) return
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
+    call set_crack_bands(model, an, error)
+    if (allocated(error)) return
     call check_in_situ_field(model, an, error)
     if (allocated(error)) return
     allocate (an%path%f_ref(3, model%nnode), an%path%f_applied(3, model%nnode))
@@ -203,6 +205,8 @@ contains
     if (allocated(error)) return
     call init_states(model, an)
     summary%state_bytes = state_bytes(an%states)
+    call set_crack_bands(model, an, error)
+    if (allocated(error)) return
     call check_in_situ_field(model, an, error)
     if (allocated(error)) return
     allocate (an%path%f_ref(3, model%nnode), df(3, model%nnode), duc(3, model%nnode), dps(size(model%groups)))

@@ -1331,7 +1331,7 @@ contains
           call input_error(error, model%groups(g)%file, model%groups(g)%line, 'group ' // model%groups(g)%name // &
                            ' (' // model%groups(g)%element_type // ') cannot use material ' // &
                            model%groups(g)%material_name // ' (' // model%materials(model%groups(g)%material)%kind // &
-                           '): interface elements take INTERFACE materials, bars BAR, solids ELASTIC or MATSUOKA')
+                           '): interface elements take INTERFACE materials, bars BAR, solids ELASTIC, MATSUOKA or CONCRETE')
           return
         end if
       end do

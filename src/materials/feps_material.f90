@@ -16,6 +16,7 @@ module feps_material
   integer, parameter, public :: state_plastic = 1   !! on the yield surface (interfaces: sliding)
   integer, parameter, public :: state_open = 2      !! interface gap: open
   integer, parameter, public :: state_tension = 3   !! tension zone (apex) of a solid material
+  integer, parameter, public :: state_cracked = 4   !! cracked (damaged in tension) concrete
 
   !> A material is its own typed parameter record (extending the model's material_params_t):
   !! the deck reader builds and checks it once and keeps it with the MATERIAL record. What a
@@ -37,6 +38,8 @@ module feps_material
     procedure :: section_area => material_section_area
     procedure :: unit_warning => material_unit_warning
     procedure :: is_ground => material_is_ground
+    procedure :: band_slot => material_band_slot
+    procedure :: max_band => material_max_band
   end type material_t
 
   abstract interface
@@ -107,6 +110,21 @@ contains
     class(material_t), intent(in) :: self
     n = 0
   end function material_state_size
+
+  !> The internal variable (1 to `state_size()`) in which the material wants its point's crack
+  !! band, the length of its element (volume^(1/3)), set once by the analysis before the first
+  !! step; 0 (the default): it needs none.
+  pure integer function material_band_slot(self) result(slot)
+    class(material_t), intent(in) :: self
+    slot = 0
+  end function material_band_slot
+
+  !> The largest crack band the material takes (mm; a larger element is refused before the
+  !! run); huge by default.
+  pure real(dp) function material_max_band(self) result(h)
+    class(material_t), intent(in) :: self
+    h = huge(1.0_dp)
+  end function material_max_band
 
   !> The cross-section area of a material whose stress is a force (bars: A, so that a
   !! PRESTRESS given as STRESS= is the axial force STRESS A); 0 for a material without one.

@@ -10,6 +10,7 @@ module feps_material_factory
   use feps_interface_mohr_coulomb, only: new_interface_mohr_coulomb
   use feps_elastic_bar, only: new_elastic_bar
   use feps_matsuoka_nakai, only: new_matsuoka_nakai
+  use feps_concrete_damage, only: new_concrete_damage
   implicit none
   private
 
@@ -32,9 +33,11 @@ contains
       call new_elastic_bar(spec, material, error)
     case ('matsuoka')
       call new_matsuoka_nakai(spec, material, error)
+    case ('concrete')
+      call new_concrete_damage(spec, material, error)
     case default
       call material_error_at(error, spec, 'unknown material kind "' // spec%kind // &
-                             '" (ELASTIC, MATSUOKA, INTERFACE, BAR)', spec%kind_field)
+                             '" (ELASTIC, MATSUOKA, CONCRETE, INTERFACE, BAR)', spec%kind_field)
     end select
   end subroutine new_material
 

@@ -1,0 +1,215 @@
+!> Cracking concrete: an isotropic damage model driven by the Rankine (most tensile principal)
+!! effective stress, with linear or exponential tension softening regularised by the fracture
+!! energy G_f over the crack band h of the point's element (Bazant and Oh 1983; the Rankine
+!! damage model of Jirasek and Bazant, Inelastic Analysis of Structures, 2002, section 25.1).
+!!
+!! Components: 6 Voigt stresses [xx yy zz yz xz xy] and strains with engineering shears,
+!! tension positive. sigma = (1 - d) sigma_eff, sigma_eff = D eps (E, nu isotropic).
+!!
+!! Why isotropic damage and not a fixed or rotating smeared crack: one scalar history variable
+!! (kappa), a secant stiffness (1 - d) D that is symmetric and positive definite at every
+!! iterate (the symmetric solvers and every solution method take it), and exactly the crack
+!! band energy in uniaxial tension, which is what the crack band theory regularises. What it
+!! does not do: it softens the compressive and shear stiffness of a cracked point with the
+!! tensile one (a smeared crack would keep them), and it is elastic in compression (no
+!! Matsuoka-Nakai surface: the two do not share a cap cleanly, see docs/input-format.md).
+!!
+!! History: kappa, the largest equivalent strain reached, eps_eq = max(sigma_eff_1, 0) / E;
+!! damage starts at kappa = eps_0 = f_t / E. Softening of the uniaxial stress after the peak:
+!!  - LINEAR: sigma = f_t (eps_u - kappa) / (eps_u - eps_0), eps_u = 2 G_f / (h f_t);
+!!  - EXPONENTIAL: sigma = f_t exp(-(kappa - eps_0) / eps_f), eps_f = G_f / (h f_t) - eps_0 / 2;
+!! both dissipate G_f / h per unit volume, G_f per unit crack area over a band h. Both need
+!! h < 2 E G_f / f_t^2 (twice Hillerborg's characteristic length), else the band snaps back.
+!! The damage is capped at max_damage so a fully cracked point keeps a tiny stiffness and the
+!! stiffness matrix stays regular.
+!!
+!! The update is incremental in the effective stress, sigma_eff = sig0 / (1 - d(kappa0)) +
+!! D deps, so a stress imposed at the start of a step (prestress, in-situ) enters it. Internal
+!! variables: 1 kappa, 2 h (the crack band, set once per point by the analysis from its
+!! element: `band_slot`). Tangent: the secant (1 - d) D.
+module feps_concrete_damage
+  use feps_kinds, only: dp
+  use feps_error, only: error_t, str
+  use feps_model, only: material_spec_t
+  use feps_material_params, only: check_known_keys, get_parameter, material_error, get_unit_weight, get_k0
+  use feps_material, only: material_t, state_elastic, state_cracked, modulus_warning
+  use feps_elastic, only: elastic_matrix
+  use feps_principal, only: principal_values
+  implicit none
+  private
+
+  public :: new_concrete_damage
+
+  !> Softening laws (MATERIAL key SOFTENING=LINEAR | EXPONENTIAL).
+  integer, parameter, public :: softening_linear = 1, softening_exponential = 2
+
+  !> The largest damage: a fully cracked point keeps 1e-6 of its stiffness.
+  real(dp), parameter, public :: max_damage = 1.0_dp - 1.0e-6_dp
+
+  integer, parameter :: var_kappa = 1, var_band = 2
+
+  !> Cracking concrete (isotropic Rankine damage): E, nu, tensile strength ft (MPa), fracture
+  !! energy gf (N/mm) and the softening law.
+  type, extends(material_t), public :: concrete_damage_t
+    real(dp) :: e = 0.0_dp
+    real(dp) :: nu = 0.0_dp
+    real(dp) :: ft = 0.0_dp
+    real(dp) :: gf = 0.0_dp
+    integer :: softening = softening_linear
+  contains
+    procedure :: elastic_tangent => cd_elastic_tangent
+    procedure :: update => cd_update
+    procedure :: is_linear => cd_is_linear
+    procedure :: state_size => cd_state_size
+    procedure :: band_slot => cd_band_slot
+    procedure :: max_band => cd_max_band
+    procedure :: damage => cd_damage
+    procedure :: unit_warning => cd_unit_warning
+  end type concrete_damage_t
+
+contains
+
+  pure subroutine cd_elastic_tangent(self, d)
+    class(concrete_damage_t), intent(in) :: self
+    real(dp), intent(out) :: d(:, :)
+    d = elastic_matrix(self%e, self%nu)
+  end subroutine cd_elastic_tangent
+
+  pure logical function cd_is_linear(self)
+    class(concrete_damage_t), intent(in) :: self
+    cd_is_linear = .false.
+  end function cd_is_linear
+
+  !> kappa and the crack band h.
+  pure integer function cd_state_size(self) result(n)
+    class(concrete_damage_t), intent(in) :: self
+    n = 2
+  end function cd_state_size
+
+  !> The internal variable that holds the point's crack band.
+  pure integer function cd_band_slot(self) result(slot)
+    class(concrete_damage_t), intent(in) :: self
+    slot = var_band
+  end function cd_band_slot
+
+  !> The largest crack band without snap-back of the band: 2 E G_f / f_t^2.
+  pure real(dp) function cd_max_band(self) result(h)
+    class(concrete_damage_t), intent(in) :: self
+    h = 2.0_dp * self%e * self%gf / self%ft**2
+  end function cd_max_band
+
+  !> The damage at history kappa in a band h (0 before the peak, at most max_damage).
+  pure real(dp) function cd_damage(self, kappa, h) result(d)
+    class(concrete_damage_t), intent(in) :: self
+    real(dp), intent(in) :: kappa, h
+    real(dp) :: eps0, epsu, epsf
+    eps0 = self%ft / self%e
+    d = 0.0_dp
+    if (.not. (kappa > eps0)) return
+    select case (self%softening)
+    case (softening_exponential)
+      epsf = self%gf / (h * self%ft) - 0.5_dp * eps0
+      d = 1.0_dp - eps0 / kappa * exp(-(kappa - eps0) / epsf)
+    case default
+      epsu = 2.0_dp * self%gf / (h * self%ft)
+      if (kappa >= epsu) then
+        d = 1.0_dp
+      else
+        d = 1.0_dp - eps0 * (epsu - kappa) / (kappa * (epsu - eps0))
+      end if
+    end select
+    d = min(d, max_damage)
+  end function cd_damage
+
+  !> Stress update over a step (see the module description); state_cracked once the point has
+  !! damaged. Without a crack band (h = 0: not set) the point stays elastic.
+  pure subroutine cd_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
+    class(concrete_damage_t), intent(in) :: self
+    real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
+    integer, intent(in) :: state0
+    real(dp), intent(out) :: sig(:)
+    integer, intent(out) :: state
+    real(dp), intent(out) :: dtan(:, :)
+    real(dp), intent(in), optional :: var0(:)
+    real(dp), intent(out), optional :: var(:)
+    real(dp) :: d(6, 6), kappa0, kappa, h, dmg0, dmg, sig_eff(6), p(3)
+    d = elastic_matrix(self%e, self%nu)
+    kappa0 = 0.0_dp
+    h = 0.0_dp
+    if (present(var0)) then
+      kappa0 = var0(var_kappa)
+      h = var0(var_band)
+    end if
+    dmg0 = 0.0_dp
+    if (h > 0.0_dp) dmg0 = self%damage(kappa0, h)
+    sig_eff = sig0(1:6) / (1.0_dp - dmg0) + matmul(d, deps(1:6))
+    p = principal_values(sig_eff)
+    kappa = max(kappa0, max(p(1), 0.0_dp) / self%e)
+    dmg = 0.0_dp
+    if (h > 0.0_dp) dmg = self%damage(kappa, h)
+    sig(1:6) = (1.0_dp - dmg) * sig_eff
+    dtan(1:6, 1:6) = (1.0_dp - dmg) * d
+    state = state_elastic
+    if (dmg > 0.0_dp) state = state_cracked
+    if (present(var)) then
+      var(var_kappa) = kappa
+      var(var_band) = h
+    end if
+  end subroutine cd_update
+
+  !> A Young's modulus far outside the physical range in N, mm and MPa.
+  pure subroutine cd_unit_warning(self, warning, key)
+    class(concrete_damage_t), intent(in) :: self
+    character(len=:), allocatable, intent(out) :: warning, key
+    key = 'e'
+    warning = modulus_warning(self%e)
+  end subroutine cd_unit_warning
+
+  !> A cracking concrete material from MATERIAL parameters E, NU, FT (tensile strength, MPa),
+  !! GF (fracture energy, N/mm), SOFTENING (LINEAR, the default, or EXPONENTIAL), GAMMA, K0.
+  !! Checks E > 0, -1 < nu < 0.5, FT > 0, GF > 0 and rejects unknown keys and laws; errors name
+  !! the record's file and line and the parameter's field.
+  subroutine new_concrete_damage(spec, material, error)
+    type(material_spec_t), intent(in) :: spec
+    class(material_t), allocatable, intent(out) :: material
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: known(7) = ['e        ', 'nu       ', 'ft       ', 'gf       ', &
+                                               'softening', 'gamma    ', 'k0       ']
+    real(dp) :: e, nu, ft, gf, gamma, k0
+    character(len=:), allocatable :: law
+    logical :: has_law
+    integer :: softening
+    call check_known_keys(spec, known, error)
+    if (.not. allocated(error)) call get_parameter(spec, 'e', e, error, positive=.true.)
+    if (.not. allocated(error)) call get_parameter(spec, 'nu', nu, error)
+    if (allocated(error)) return
+    if (.not. (nu > -1.0_dp .and. nu < 0.5_dp)) then
+      call material_error(error, spec, 'NU = ' // str(nu) // &
+                          ' is outside (-1, 0.5): the material would not be positive definite', 'nu')
+      return
+    end if
+    call get_parameter(spec, 'ft', ft, error, positive=.true.)
+    if (.not. allocated(error)) call get_parameter(spec, 'gf', gf, error, positive=.true.)
+    if (allocated(error)) return
+    softening = softening_linear
+    call spec%get_text('softening', law, has_law)
+    if (has_law) then
+      select case (law)
+      case ('linear')
+        softening = softening_linear
+      case ('exponential')
+        softening = softening_exponential
+      case default
+        call material_error(error, spec, 'SOFTENING = "' // law // '": it must be LINEAR (the default) or ' // &
+                            'EXPONENTIAL', 'softening')
+        return
+      end select
+    end if
+    call get_unit_weight(spec, gamma, error)
+    if (.not. allocated(error)) call get_k0(spec, k0, error)
+    if (allocated(error)) return
+    allocate (material, source=concrete_damage_t(name=spec%name, e=e, nu=nu, ft=ft, gf=gf, softening=softening, &
+                                                 unit_weight=gamma, k0=k0))
+  end subroutine new_concrete_damage
+
+end module feps_concrete_damage

@@ -2,7 +2,8 @@
 !! made in parallel over the elements of a chunk and added in element order, so a run gives the
 !! same bits with one thread and with two. Decks: test/data/friction_pull.dat (interfaces sliding,
 !! full Newton-Raphson: the tangent of every iterate) and beam_tension_cap.dat (Matsuoka-Nakai
-!! points yielding and reaching the tension cap).
+!! points yielding and reaching the tension cap), lame_hex20.dat (a linear model: the stress
+!! recovery of its steps).
 module test_threads
   use omp_lib, only: omp_set_num_threads, omp_get_max_threads
   use feps_testing, only: error_t, unittest_t, new_unittest, check
@@ -22,7 +23,8 @@ contains
     type(unittest_t), allocatable, intent(out) :: tests(:)
     tests = [ &
       new_unittest('sliding interfaces: 1 and 2 threads give the same bits', test_friction), &
-      new_unittest('yielding soil: 1 and 2 threads give the same bits', test_collapse)]
+      new_unittest('yielding soil: 1 and 2 threads give the same bits', test_collapse), &
+      new_unittest('linear model''s stress recovery: 1 and 2 threads give the same bits', test_linear)]
   end subroutine collect_threads
 
   subroutine test_friction(error)
@@ -34,6 +36,11 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call same_bits('test/data/beam_tension_cap.dat', error)
   end subroutine test_collapse
+
+  subroutine test_linear(error)
+    type(error_t), allocatable, intent(out) :: error
+    call same_bits('test/data/lame_hex20.dat', error)
+  end subroutine test_linear
 
   !> Run `deck` with one thread and with two: every step's displacements, reactions and point
   !! stresses must be equal bit for bit.

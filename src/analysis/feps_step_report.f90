@@ -336,24 +336,34 @@ contains
     type(analysis_t), intent(in) :: an
     integer, intent(in) :: g
     type(group_result_t), intent(inout) :: gr
-    integer :: e, q, np, nn, nc, q0
-    real(dp), allocatable :: d(:, :), ue(:)
+    integer :: e, np, nc
+    real(dp), allocatable :: d(:, :)
     np = an%kernels(g)%npoints
-    nn = an%kernels(g)%nnodes
     nc = an%kernels(g)%ncomp
     allocate (gr%stress(nc, np * size(model%groups(g)%connectivity, 2)), gr%strain(nc, size(gr%stress, 2)))
-    allocate (gr%state(size(gr%stress, 2)), d(nc, nc), ue(3 * nn))
+    allocate (gr%state(size(gr%stress, 2)), d(nc, nc))
     gr%state = 0
     call an%materials(model%groups(g)%material)%m%elastic_tangent(d)
+    ! each element writes its own points: threads (OpenMP) give the same bits as one
+    !$omp parallel do schedule(static)
     do e = 1, size(model%groups(g)%connectivity, 2)
+      call element_results(e)
+    end do
+    !$omp end parallel do
+  contains
+    !> Strains and stresses of element e's points.
+    subroutine element_results(e)
+      integer, intent(in) :: e
+      real(dp) :: ue(3 * an%kernels(g)%nnodes)
+      integer :: q, q0
       q0 = (e - 1) * np
-      ue = reshape(an%path%u(:, model%groups(g)%connectivity(:, e)), [3 * nn])
+      ue = reshape(an%path%u(:, model%groups(g)%connectivity(:, e)), [size(ue)])
       call element_strains(an%kernels(g), model%coords(:, model%groups(g)%connectivity(:, e)), ue, &
                            gr%strain(:, q0 + 1:q0 + np))
       do q = 1, np
         gr%stress(:, q0 + q) = matmul(d, gr%strain(:, q0 + q))
       end do
-    end do
+    end subroutine element_results
   end subroutine linear_group_results
 
 end module feps_step_report

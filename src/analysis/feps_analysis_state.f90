@@ -243,9 +243,9 @@ contains
   subroutine init_states(model, an)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
-    integer :: g, np, nc, q, e
-    real(dp), allocatable :: ke(:, :), d(:, :, :)
-    integer, allocatable :: dofs(:)
+    integer :: g, np, nc, nn, q, e, e0, e1
+    real(dp), allocatable :: ke(:, :, :), d(:, :, :)
+    integer, allocatable :: dofs(:, :)
     allocate (an%states(size(model%groups)))
     do g = 1, size(model%groups)
       np = an%kernels(g)%npoints * size(model%groups(g)%connectivity, 2)
@@ -270,15 +270,27 @@ contains
         if (an%states(g)%nonlinear) cycle
         np = an%kernels(g)%npoints
         nc = an%kernels(g)%ncomp
-        allocate (ke(3 * an%kernels(g)%nnodes, 3 * an%kernels(g)%nnodes), d(nc, nc, np), dofs(3 * an%kernels(g)%nnodes))
+        nn = an%kernels(g)%nnodes
+        allocate (ke(3 * nn, 3 * nn, element_chunk), d(nc, nc, np), dofs(3 * nn, element_chunk))
         do q = 1, np
           call an%materials(model%groups(g)%material)%m%elastic_tangent(d(:, :, q))
         end do
-        do e = 1, size(model%groups(g)%connectivity, 2)
-          call element_stiffness(an%kernels(g), model%coords(:, model%groups(g)%connectivity(:, e)), d, ke)
-          call element_dofs(an%lin%map, model%groups(g)%connectivity(:, e), dofs)
-          call scatter_element_matrix(dofs, ke, an%lin%k)
-        end do
+        ! element matrices of a chunk in parallel, added in element order (bit-identical for any
+        ! number of threads)
+        associate (conn => model%groups(g)%connectivity)
+          do e0 = 1, size(conn, 2), element_chunk
+            e1 = min(size(conn, 2), e0 + element_chunk - 1)
+            !$omp parallel do schedule(static)
+            do e = e0, e1
+              call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke(:, :, e - e0 + 1))
+              call element_dofs(an%lin%map, conn(:, e), dofs(:, e - e0 + 1))
+            end do
+            !$omp end parallel do
+            do e = e0, e1
+              call scatter_element_matrix(dofs(:, e - e0 + 1), ke(:, :, e - e0 + 1), an%lin%k)
+            end do
+          end do
+        end associate
         deallocate (ke, d, dofs)
       end do
     end if

@@ -2,7 +2,9 @@
 !! forms. A block on a Mohr-Coulomb interface (test/data/block_arc.dat, block_displacement.dat)
 !! pushed past its capacity (c + sigma_n tan phi) A = 250.940108 N: load control stops at that
 !! limit load (test_collapse); both paths go through it and along the plateau beyond. A linear
-!! bar (test/data/path_bar.dat) gives the load factor read back and the arc's steps exactly.
+!! bar (test/data/path_bar.dat) gives the load factor read back and the arc's steps exactly. A
+!! softening bar of cracking concrete (test/data/crack_bar_arc.dat) under a force: arc-length
+!! follows its falling branch, F = A f_t (uu - u) / (uu - u0), where load control must stop.
 module test_path_following
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
@@ -30,7 +32,9 @@ contains
       new_unittest('displacement control: the set follows VALUE, the load read back reaches the capacity', &
                    test_displacement_peak), &
       new_unittest('linear bar: load factor read back k u / F; arc-length in equal steps to the full load', &
-                   test_bar) &
+                   test_bar), &
+      new_unittest('softening bar: arc-length through the peak and down the closed-form softening line', &
+                   test_softening_bar) &
       ]
   end subroutine collect_path_following
 
@@ -155,5 +159,44 @@ contains
     end do
     call check(error, obs%steps(14)%displacement(1, 2), -2.0_dp, 'u at the end, (100 - 300) / k', rel=1.0e-12_dp)
   end subroutine test_bar
+
+  !> test/data/crack_bar_arc.dat: every step's (u, F) on the closed form, the elastic line up to
+  !! the peak A f_t and the linear softening line beyond it (to 1e-9 of the peak), most steps past
+  !! the peak, and the load falling.
+  subroutine test_softening_bar(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, area = 1.0e4_dp, length = 100.0_dp, ft = 2.97_dp, gf = 0.1_dp, &
+                           reference = 4.0_dp * 10000.0_dp
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    real(dp) :: u0, uu, u, force, expected, worst
+    integer :: i, past
+    call run_deck('test/data/crack_bar_arc.dat', model, obs, summary, error)
+    if (allocated(error)) return
+    u0 = ft * length / e
+    uu = 2.0_dp * gf / ft
+    worst = 0.0_dp
+    past = 0
+    associate (nodes => model%node_sets(model%find_node_set('top'))%nodes)
+      do i = 1, size(obs%steps)
+        u = sum(obs%steps(i)%displacement(3, nodes)) / size(nodes)
+        force = obs%steps(i)%load_factor * reference
+        if (u <= u0) then
+          expected = e * area * u / length
+        else
+          expected = area * ft * (uu - u) / (uu - u0)
+          past = past + 1
+        end if
+        worst = max(worst, abs(force - expected) / (area * ft))
+      end do
+    end associate
+    call check(error, worst, 0.0_dp, 'every step on the closed-form path', abs=1.0e-9_dp)
+    if (allocated(error)) return
+    call check(error, past >= 20, 'at least 20 steps down the softening branch (' // str(past) // ')')
+    if (allocated(error)) return
+    call check(error, obs%steps(size(obs%steps))%load_factor * reference < 0.2_dp * area * ft, &
+               'the load falls below a fifth of the peak')
+  end subroutine test_softening_bar
 
 end module test_path_following

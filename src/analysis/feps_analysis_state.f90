@@ -916,7 +916,9 @@ contains
       integer :: q, q0, np
       np = size(d_elastic, 3)
       associate (s => an%states(g), conn => model%groups(g)%connectivity)
-        if (from_states) then
+        if (.not. from_states) then
+          call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d_elastic, ke)
+        else
           q0 = (e - 1) * np
           do q = 1, np
             if (use_trial) then
@@ -929,10 +931,8 @@ contains
               if (.not. exact) call nearest_symmetric_psd(d(:, :, q))
             end if
           end do
-        else
-          d = d_elastic
+          call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
         end if
-        call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)
         if (an%eq%map%has_rotations()) call rotate_matrix(an%eq%map, conn(:, e), ke)
         call element_dofs(an%eq%map, conn(:, e), dofs)
       end associate

@@ -330,22 +330,16 @@ contains
       return
     end if
     kind = to_upper(r%kind)
-    if (r%kind == 'joint') then
-      call read_joint_report(rec, model, r, error)
-      if (allocated(error)) return
-      tmp = [model%reports, r]
-      call move_alloc(tmp, model%reports)
-      return
-    end if
-    if (r%kind == 'section') then
-      call read_section_report(rec, model, r, error)
-      if (allocated(error)) return
-      tmp = [model%reports, r]
-      call move_alloc(tmp, model%reports)
-      return
-    end if
-    if (r%kind == 'reaction') then
-      call read_reaction_report(rec, model, r, error)
+    ! the kinds with a reader of their own
+    if (r%kind == 'joint' .or. r%kind == 'section' .or. r%kind == 'reaction') then
+      select case (r%kind)
+      case ('joint')
+        call read_joint_report(rec, model, r, error)
+      case ('section')
+        call read_section_report(rec, model, r, error)
+      case default
+        call read_reaction_report(rec, model, r, error)
+      end select
       if (allocated(error)) return
       tmp = [model%reports, r]
       call move_alloc(tmp, model%reports)

@@ -9,10 +9,10 @@ program feps_main
   use feps_paths, only: is_xdmf_name
   use feps_model, only: max_iterations_limit, max_total_steps
   use feps_files, only: report_file_size_limit
-  use feps_blas, only: blas_description
+  use feps_blas, only: blas_description, choose_blas_kernels, factorization_threads, set_blas_threads
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
   use feps_element_table, only: element_table_lines
-  use omp_lib, only: omp_set_num_threads
+  use omp_lib, only: omp_set_num_threads, omp_get_num_procs, omp_get_max_threads
   implicit none
 
   interface
@@ -28,6 +28,8 @@ program feps_main
   integer :: status
   integer :: threads = 0           !! --threads N: element-loop threads (0: not given)
 
+  call choose_blas_kernels()
+  call set_threads()
   call report_file_size_limit()
   if (command_argument_count() >= 1) then
     if (argument(1) == 'joint') call c_exit(int(joint_command(), c_int))
@@ -290,18 +292,35 @@ contains
     end select
   end function value_kind
 
-  !> Threads of the element loops (OpenMP): --threads N; else OMP_NUM_THREADS when set; else one.
-  !! One by default because two threads measured slower than one on the shared 2-core machines
-  !! this project runs on (docs/performance.md); the results are the same for any number.
+  !> Threads of the element loops (OpenMP) and of the factorization (OpenBLAS).
+  !! Element loops: --threads N; else OMP_NUM_THREADS when set; else one. One by default because
+  !! more measured no faster on FE1 on 16 cores and slower on the shared 2-core machines
+  !! (docs/performance.md); the results are the same for any number.
+  !! Factorization: at most factorization_threads(cores) (three quarters of a machine above 4
+  !! cores: all 16 of 16 measured 10x slower than 12), and no more than --threads N or
+  !! OMP_NUM_THREADS; OPENBLAS_NUM_THREADS or GOTO_NUM_THREADS, when set, stand as set. The
+  !! BLAS threads change the factorization at round-off; the element threads change nothing.
   subroutine set_threads()
-    integer :: length
-    if (threads == 0) then
-      call get_environment_variable('OMP_NUM_THREADS', length=length)
-      if (length > 0) return
-      threads = 1
+    integer :: blas
+    blas = factorization_threads(omp_get_num_procs())
+    if (threads > 0) then
+      call omp_set_num_threads(threads)
+      blas = min(blas, threads)
+    else if (is_set('OMP_NUM_THREADS')) then
+      blas = min(blas, omp_get_max_threads())
+    else
+      call omp_set_num_threads(1)
     end if
-    call omp_set_num_threads(threads)
+    if (.not. (is_set('OPENBLAS_NUM_THREADS') .or. is_set('GOTO_NUM_THREADS'))) call set_blas_threads(blas)
   end subroutine set_threads
+
+  !> Whether an environment variable is set to something.
+  logical function is_set(name)
+    character(len=*), intent(in) :: name
+    integer :: length
+    call get_environment_variable(name, length=length)
+    is_set = length > 0
+  end function is_set
 
   !> The value of a whole number argument, or 0 when it is not one.
   integer function whole_number(text)

@@ -5,7 +5,8 @@
 !! points yielding and reaching the tension cap), lame_hex20.dat (a linear model: the stress
 !! recovery of its steps).
 module test_threads
-  use omp_lib, only: omp_set_num_threads, omp_get_max_threads
+  use omp_lib, only: omp_set_num_threads, omp_get_max_threads, omp_get_num_procs
+  use feps_blas, only: factorization_threads, set_blas_threads
   use feps_testing, only: error_t, unittest_t, new_unittest, check
   use feps_model, only: model_t
   use feps_deck, only: read_deck
@@ -24,7 +25,8 @@ contains
     tests = [ &
       new_unittest('sliding interfaces: 1 and 2 threads give the same bits', test_friction), &
       new_unittest('yielding soil: 1 and 2 threads give the same bits', test_collapse), &
-      new_unittest('linear model''s stress recovery: 1 and 2 threads give the same bits', test_linear)]
+      new_unittest('linear model''s stress recovery: 1 and 2 threads give the same bits', test_linear), &
+      new_unittest('factorization threads: every core up to 4, three quarters above', test_policy)]
   end subroutine collect_threads
 
   subroutine test_friction(error)
@@ -42,7 +44,23 @@ contains
     call same_bits('test/data/lame_hex20.dat', error)
   end subroutine test_linear
 
-  !> Run `deck` with one thread and with two: every step's displacements, reactions and point
+  !> The policy measured on a 16-core Xeon (docs/performance.md): 12 OpenBLAS threads
+  !! factorized the 200k mesh in 2.1-2.7 s, 16 in 28-33 s; on 2 cores, 2 beat 1.
+  subroutine test_policy(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: cores
+    call check(error, all([(factorization_threads(cores), cores = 1, 4)] == [1, 2, 3, 4]), &
+               'all the cores of a machine of up to 4')
+    if (allocated(error)) return
+    call check(error, factorization_threads(16), 12, '12 of 16 cores')
+    if (allocated(error)) return
+    call check(error, factorization_threads(8), 6, '6 of 8 cores')
+    if (allocated(error)) return
+    call check(error, factorization_threads(0), 1, 'at least one thread')
+  end subroutine test_policy
+
+  !> Run `deck` with one element-loop thread and with two, the BLAS on one (its thread count
+  !! changes the factorization at round-off): every step's displacements, reactions and point
   !! stresses must be equal bit for bit.
   subroutine same_bits(deck, error)
     character(len=*), intent(in) :: deck
@@ -56,12 +74,14 @@ contains
     call read_deck(deck, model, error)
     if (allocated(error)) return
     call omp_set_num_threads(1)
+    call set_blas_threads(1)
     call run_analysis(model, 'cholmod', one, summary, error)
     if (.not. allocated(error)) then
       call omp_set_num_threads(2)
       call run_analysis(model, 'cholmod', two, summary, error)
     end if
     call omp_set_num_threads(threads)
+    call set_blas_threads(factorization_threads(omp_get_num_procs()))
     if (allocated(error)) return
     call check(error, size(two%steps), size(one%steps), 'as many steps')
     if (allocated(error)) return

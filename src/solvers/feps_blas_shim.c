@@ -5,9 +5,16 @@
  * uses. Its functions are looked up at run time, so that feps links and runs with any BLAS;
  * another BLAS is named as unknown. */
 #define _GNU_SOURCE             /* RTLD_DEFAULT */
+#include <cpuid.h>
 #include <dlfcn.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+/* Set in the environment of the process feps started again with better kernels: OpenBLAS's own
+ * choice, for the description. */
+#define CHOSEN_VARIABLE "FEPS_BLAS_KERNELS_REPLACED"
 
 /* How new a kernel family is: 0 SSE only (Prescott, Core2, Nehalem, ...), 1 AVX (Sandybridge),
  * 2 AVX2 and FMA (Haswell, Zen), 3 AVX-512 (SkylakeX, Cooperlake, SapphireRapids). */
@@ -29,15 +36,26 @@ static int kernel_tier(const char *core)
  * subsets those kernels use, Haswell where it has AVX2 and FMA; NULL when its choice fits.
  * Only advice: OpenBLAS reads OPENBLAS_CORETYPE when it starts, and feps never picks kernels
  * whose instructions the CPU lacks. */
+/* Whether the operating system saves the vector registers a kernel family uses (XCR0): the
+ * CPU flags alone do not say that AVX or AVX-512 may be used. */
+static int os_saves(unsigned int mask)
+{
+    unsigned int a, b, c, d, lo, hi;
+    if (!__get_cpuid(1, &a, &b, &c, &d) || !(c & bit_OSXSAVE)) return 0;
+    __asm__ volatile("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+    (void)hi;
+    return (lo & mask) == mask;
+}
+
 static const char *better_kernels(const char *core)
 {
     int tier = kernel_tier(core);
     __builtin_cpu_init();
-    if (tier < 3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+    if (tier < 3 && os_saves(0xe6u) && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq") &&
         __builtin_cpu_supports("avx512cd"))
         return "SkylakeX";
-    if (tier < 2 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    if (tier < 2 && os_saves(0x06u) && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
         return "Haswell";
     return NULL;
 }
@@ -71,10 +89,66 @@ void feps_blas_describe(char *buf, int len)
     }
     const char *core = corename();
     int t = threads();
-    int n = snprintf(buf, (size_t)len, "%s, %s kernels, %d thread%s (solves on 1)", version,
+    const char *replaced = getenv(CHOSEN_VARIABLE);
+    int n;
+    if (replaced != NULL && core != NULL && strcmp(replaced, core) != 0)
+        n = snprintf(buf, (size_t)len, "%s, %s kernels (chosen by feps; OpenBLAS chose %s), %d thread%s "
+                     "(solves on 1)", version, core, replaced, t, t == 1 ? "" : "s");
+    else
+        n = snprintf(buf, (size_t)len, "%s, %s kernels, %d thread%s (solves on 1)", version,
                      core != NULL ? core : "unknown", t, t == 1 ? "" : "s");
     const char *better = better_kernels(core);
     if (better != NULL && n > 0 && n < len)
         snprintf(buf + n, (size_t)(len - n), "; this CPU runs %s kernels: OPENBLAS_CORETYPE=%s is up to "
                  "5x faster in dgemm", better, better);
+}
+
+/* Start feps again with the kernels this CPU runs when OpenBLAS chose older ones (issue 28: an
+ * old OpenBLAS takes a CPU it does not know for a Prescott, 5x slower in dgemm). OpenBLAS reads
+ * OPENBLAS_CORETYPE only when it is loaded, hence the new start, made before feps has read or
+ * written anything. Never when the user set OPENBLAS_CORETYPE (their choice stands), never twice,
+ * never for kernels whose instructions the CPU or the operating system lacks. Returns only when
+ * it does not start again (0), or when the new start failed (-1: feps goes on as it was). */
+int feps_blas_choose_kernels(void)
+{
+    char *(*corename)(void) = NULL;
+    if (getenv("OPENBLAS_CORETYPE") != NULL || getenv(CHOSEN_VARIABLE) != NULL) return 0;
+    *(void **)&corename = dlsym(RTLD_DEFAULT, "openblas_get_corename");
+    if (corename == NULL) return 0;
+    const char *core = corename();
+    const char *better = better_kernels(core);
+    if (better == NULL || core == NULL) return 0;
+
+    /* the arguments as given, from /proc/self/cmdline (NUL-separated) */
+    static char text[1 << 16];
+    static char *args[1024];
+    FILE *f = fopen("/proc/self/cmdline", "rb");
+    if (f == NULL) return -1;
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    int complete = feof(f);
+    fclose(f);
+    if (n == 0 || !complete) return -1;
+    text[n] = '\0';
+    size_t i = 0;
+    int count = 0;
+    while (i < n && count < (int)(sizeof args / sizeof *args) - 1) {
+        args[count++] = text + i;
+        i += strlen(text + i) + 1;
+    }
+    if (i < n) return -1;
+    args[count] = NULL;
+    if (setenv("OPENBLAS_CORETYPE", better, 1) != 0 || setenv(CHOSEN_VARIABLE, core, 1) != 0) return -1;
+    fflush(NULL);
+    execv("/proc/self/exe", args);
+    unsetenv("OPENBLAS_CORETYPE");         /* the new start failed: go on with OpenBLAS's choice */
+    unsetenv(CHOSEN_VARIABLE);
+    return -1;
+}
+
+/* Set OpenBLAS's thread count (the factorization's; solves run on one). Nothing with another BLAS. */
+void feps_blas_set_threads(int n)
+{
+    void (*set)(int) = NULL;
+    *(void **)&set = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+    if (set != NULL && n >= 1) set(n);
 }

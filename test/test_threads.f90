@@ -7,6 +7,8 @@
 module test_threads
   use omp_lib, only: omp_set_num_threads, omp_get_max_threads, omp_get_num_procs
   use feps_blas, only: factorization_threads, set_blas_threads
+  use feps_kinds, only: dp, i8
+  use feps_stress_recovery, only: nodal_average
   use feps_testing, only: error_t, unittest_t, new_unittest, check
   use feps_model, only: model_t
   use feps_deck, only: read_deck
@@ -26,7 +28,8 @@ contains
       new_unittest('sliding interfaces: 1 and 2 threads give the same bits', test_friction), &
       new_unittest('yielding soil: 1 and 2 threads give the same bits', test_collapse), &
       new_unittest('linear model''s stress recovery: 1 and 2 threads give the same bits', test_linear), &
-      new_unittest('factorization threads: every core up to 4, three quarters above', test_policy)]
+      new_unittest('factorization threads: every core up to 4, three quarters above', test_policy), &
+      new_unittest('nodal averaging: 1 and 2 threads give the same bits', test_nodal_average)]
   end subroutine collect_threads
 
   subroutine test_friction(error)
@@ -58,6 +61,49 @@ contains
     if (allocated(error)) return
     call check(error, factorization_threads(0), 1, 'at least one thread')
   end subroutine test_policy
+
+  !> Extrapolation to the nodes and averaging over 20 000 elements (three chunks) sharing 5 000
+  !! nodes in a scrambled order: the sums at each node are made in element order whatever the
+  !! threads, so one thread and two give the same bits.
+  subroutine test_nodal_average(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: nen = 8, np = 8, nelem = 20000, nnode = 5000
+    real(dp) :: e(nen, np)
+    real(dp), allocatable :: values(:, :), one(:, :), two(:, :)
+    integer, allocatable :: connectivity(:, :), count1(:), count2(:)
+    integer :: threads, i, j, seed
+    seed = 12345
+    do j = 1, np
+      do i = 1, nen
+        e(i, j) = next() - 0.5_dp
+      end do
+    end do
+    allocate (connectivity(nen, nelem), values(6, nelem * np))
+    do j = 1, nelem
+      do i = 1, nen
+        connectivity(i, j) = 1 + int(next() * nnode)
+      end do
+    end do
+    do j = 1, nelem * np
+      do i = 1, 6
+        values(i, j) = 100.0_dp * (next() - 0.5_dp)
+      end do
+    end do
+    allocate (one(6, nnode), two(6, nnode), count1(nnode), count2(nnode))
+    threads = omp_get_max_threads()
+    call omp_set_num_threads(1)
+    call nodal_average(e, connectivity, values, nnode, one, count1)
+    call omp_set_num_threads(2)
+    call nodal_average(e, connectivity, values, nnode, two, count2)
+    call omp_set_num_threads(threads)
+    call check(error, all(count1 == count2) .and. all(one == two), 'nodal values and counts bit-identical')
+  contains
+    !> A fixed pseudo-random sequence in [0, 1) (Park-Miller).
+    real(dp) function next()
+      seed = int(mod(16807_i8 * int(seed, i8), 2147483647_i8))
+      next = real(seed, dp) / 2147483647.0_dp
+    end function next
+  end subroutine test_nodal_average
 
   !> Run `deck` with one element-loop thread and with two, the BLAS on one (its thread count
   !! changes the factorization at round-off): every step's displacements, reactions and point

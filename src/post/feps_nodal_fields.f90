@@ -51,20 +51,24 @@ contains
       if (want_principal) then
         allocate (principal(2, model%nnode))
         principal = 0.0_dp
+        !$omp parallel do schedule(static) private(p)
         do node = 1, model%nnode
           if (count(node) == 0) cycle
           p = principal_values(nodal(:, node))
           principal(:, node) = [p(1), p(3)]
         end do
+        !$omp end parallel do
         call fill_outside(principal, count)
       end if
       if (csys > 0) then
         allocate (cylindrical(6, model%nnode))
         cylindrical = 0.0_dp
+        !$omp parallel do schedule(static)
         do node = 1, model%nnode
           if (count(node) == 0) cycle
           cylindrical(:, node) = stress_in_basis(nodal(:, node), model%systems(csys)%local_basis(model%coords(:, node)))
         end do
+        !$omp end parallel do
         call fill_outside(cylindrical, count)
       end if
       call fill_outside(nodal, count)

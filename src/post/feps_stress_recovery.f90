@@ -65,24 +65,39 @@ contains
   !! nelem * p)` are element-major Gauss-point values (p = size(e, 2) points per element),
   !! `connectivity(nen, nelem)` the group's nodes; `nodal(ncomp, nnode)` is zero at nodes of
   !! no element of the group, and `count(nnode)` tells how many elements each node averages.
-  pure subroutine nodal_average(e, connectivity, values, nnode, nodal, count)
+  subroutine nodal_average(e, connectivity, values, nnode, nodal, count)
     real(dp), intent(in) :: e(:, :)               !! (nen, p) from extrapolation_matrix
     integer, intent(in) :: connectivity(:, :)     !! (nen, nelem), 1-based
     real(dp), intent(in) :: values(:, :)          !! (ncomp, nelem * p)
     integer, intent(in) :: nnode
     real(dp), intent(out) :: nodal(:, :)          !! (ncomp, nnode)
     integer, intent(out) :: count(:)              !! (nnode)
-    integer :: el, a, p, q0, node
+    ! Elements per chunk: each chunk's extrapolations are made in parallel (OpenMP) and added to
+    ! the nodes in element order, so the sums, and the bits, do not depend on the threads.
+    integer, parameter :: chunk = 8192
+    real(dp), allocatable :: at_nodes(:, :, :)    !! (ncomp, nen, elements of the chunk)
+    integer :: el, a, p, q0, node, first, last
     p = size(e, 2)
     nodal = 0.0_dp
     count = 0
-    do el = 1, size(connectivity, 2)
-      q0 = (el - 1) * p
-      do a = 1, size(connectivity, 1)
-        node = connectivity(a, el)
-        if (node < 1 .or. node > nnode) cycle
-        nodal(:, node) = nodal(:, node) + matmul(values(:, q0 + 1:q0 + p), e(a, :))
-        count(node) = count(node) + 1
+    allocate (at_nodes(size(values, 1), size(connectivity, 1), min(chunk, size(connectivity, 2))))
+    do first = 1, size(connectivity, 2), chunk
+      last = min(first + chunk - 1, size(connectivity, 2))
+      !$omp parallel do schedule(static) private(q0, a)
+      do el = first, last
+        q0 = (el - 1) * p
+        do a = 1, size(connectivity, 1)
+          at_nodes(:, a, el - first + 1) = matmul(values(:, q0 + 1:q0 + p), e(a, :))
+        end do
+      end do
+      !$omp end parallel do
+      do el = first, last
+        do a = 1, size(connectivity, 1)
+          node = connectivity(a, el)
+          if (node < 1 .or. node > nnode) cycle
+          nodal(:, node) = nodal(:, node) + at_nodes(:, a, el - first + 1)
+          count(node) = count(node) + 1
+        end do
       end do
     end do
     do node = 1, nnode

@@ -48,6 +48,25 @@ case $line in
          || bad "--version with OPENBLAS_CORETYPE=Prescott (this CPU: $want): $line"
      fi ;;
 esac
+# An OpenBLAS that took this CPU for a Prescott by itself (a stand-in library, preloaded, that
+# says Prescott until OPENBLAS_CORETYPE asks for other kernels): feps starts again, with its
+# arguments, on the kernels the CPU runs, and says so; a user's OPENBLAS_CORETYPE stands.
+if [ "$want" != none ] && "$feps" --version | grep -q "^blas OpenBLAS" && command -v cc >/dev/null; then
+  cat >"$tmp/prescott.c" <<'CEOF'
+#include <stdlib.h>
+char *openblas_get_corename(void) { char *k = getenv("OPENBLAS_CORETYPE"); return k != NULL ? k : "Prescott"; }
+CEOF
+  cc -shared -fPIC -o "$tmp/prescott.so" "$tmp/prescott.c"
+  line=$(env -u OPENBLAS_CORETYPE -u FEPS_BLAS_KERNELS_REPLACED LD_PRELOAD="$tmp/prescott.so" \
+         "$feps" test/data/cube.dat --output "$tmp/kern.h5" --fields displacement | grep "^blas")
+  echo "$line" | grep -q "$want kernels (chosen by feps; OpenBLAS chose Prescott)" && [ -s "$tmp/kern.h5" ] \
+    && [ "$(h5dump -a /summary/blas "$tmp/kern.h5" 2>/dev/null | grep -c "chosen by feps")" -ge 1 ] \
+    && ok "an OpenBLAS that took this CPU for a Prescott: feps starts again on $want kernels, arguments kept" \
+    || bad "start again on better kernels: $line"
+  line=$(OPENBLAS_CORETYPE=Prescott LD_PRELOAD="$tmp/prescott.so" "$feps" --version | sed -n 2p)
+  echo "$line" | grep -q "Prescott kernels, .*OPENBLAS_CORETYPE=$want" \
+    && ok "the user's OPENBLAS_CORETYPE stands (no new start)" || bad "the user's OPENBLAS_CORETYPE: $line"
+fi
 OPENBLAS_NUM_THREADS=1 "$feps" --version | grep -Eq "^blas (OpenBLAS .*, 1 thread \(|not OpenBLAS)" \
   && ok "--version counts the BLAS threads OPENBLAS_NUM_THREADS sets" || bad "--version with OPENBLAS_NUM_THREADS=1: $(OPENBLAS_NUM_THREADS=1 "$feps" --version)"
 # The factorization's threads: every core up to 4, three quarters above (measured on 16 cores,

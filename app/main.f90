@@ -9,6 +9,7 @@ program feps_main
   use feps_paths, only: is_xdmf_name
   use feps_model, only: max_iterations_limit, max_total_steps
   use feps_files, only: report_file_size_limit
+  use feps_mumps_solver, only: mpi_built, mpi_start, mpi_stop, mumps_worker
   use feps_blas, only: blas_description, choose_blas_kernels, factorization_threads, set_blas_threads
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
   use feps_element_table, only: element_table_lines
@@ -27,16 +28,24 @@ program feps_main
   type(error_t), allocatable :: error
   integer :: status
   integer :: threads = 0           !! --threads N: element-loop threads (0: not given)
+  integer :: rank, ranks           !! this process's MPI rank and the number of ranks (0 and 1 without MPI)
 
   call choose_blas_kernels()
   call set_threads()
+  ! MPI build: the ranks above 0 only take part in rank 0's MUMPS calls (feps_mumps_solver)
+  call mpi_start(rank, ranks)
+  if (rank > 0) then
+    status = mumps_worker()
+    call mpi_stop(status)
+    call c_exit(int(status, c_int))
+  end if
   call report_file_size_limit()
   if (command_argument_count() >= 1) then
-    if (argument(1) == 'joint') call c_exit(int(joint_command(), c_int))
-    if (argument(1) == 'elements') call c_exit(int(elements_command(), c_int))
+    if (argument(1) == 'joint') call leave(joint_command())
+    if (argument(1) == 'elements') call leave(elements_command())
   end if
   call parse_arguments(options, status)
-  if (status >= 0) call c_exit(int(status, c_int))
+  if (status >= 0) call leave(status)
   call set_threads()
 
   if (options%quiet) then
@@ -51,14 +60,22 @@ program feps_main
     ! results beyond double precision) or results that cannot be written.
     select case (error%code)
     case (err_input, err_input_file, err_model)
-      call c_exit(2_c_int)
+      call leave(2)
     case default
-      call c_exit(1_c_int)
+      call leave(1)
     end select
   end if
   if (.not. options%quiet) call print_summary(summary)
+  call mpi_stop(0)
 
 contains
+
+  !> End the program with exit status `status`, the other MPI ranks with it.
+  subroutine leave(status)
+    integer, intent(in) :: status
+    call mpi_stop(status)
+    call c_exit(int(status, c_int))
+  end subroutine leave
 
   subroutine print_warning(line)
     character(len=*), intent(in) :: line
@@ -223,8 +240,13 @@ contains
           end if
         case ('--solver')
           options%solver = value
-          if (options%solver /= 'skyline' .and. options%solver /= 'cholmod') then
-            write (error_unit, '(a)') 'feps: error: --solver takes skyline or cholmod, not "' // options%solver // '"'
+          if (options%solver /= 'skyline' .and. options%solver /= 'cholmod' .and. options%solver /= 'mumps') then
+            write (error_unit, '(a)') 'feps: error: --solver takes skyline, cholmod or mumps, not "' // options%solver // '"'
+            status = 2
+            return
+          end if
+          if (options%solver == 'mumps' .and. .not. mpi_built()) then
+            write (error_unit, '(a)') 'feps: error: --solver mumps needs the MPI build of feps (README, "MUMPS over MPI")'
             status = 2
             return
           end if
@@ -345,7 +367,7 @@ contains
     write (output_unit, '(a)') &
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
-      'usage: feps DECK [--output FILE] [--solver skyline|cholmod] [--method NAME] [--maxit N]', &
+      'usage: feps DECK [--output FILE] [--solver skyline|cholmod|mumps] [--method NAME] [--maxit N]', &
       '                 [--fields LIST] [--check] [--strict] [--quiet]', &
       '                 [--restart-every N] [--restart FILE [--step N]] [--threads N]', &
       '       feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--json] ...', &
@@ -356,7 +378,8 @@ contains
       '  -o, --output FILE    HDF5 results file (overrides the deck''s OUTPUT record);', &
       '                       an XDMF file for ParaView is written beside it (FILE with .xmf', &
       '                       for its extension, so FILE must not end in .xmf)', &
-      '      --solver NAME    linear solver: cholmod (supernodal, METIS) or skyline (LDL^T, RCM)', &
+      '      --solver NAME    linear solver: cholmod (supernodal, METIS), skyline (LDL^T, RCM) or', &
+      '                       mumps (multifrontal, over MPI: mpirun -np N feps ..., in the MPI build)', &
       '      --method NAME    solve every stage by one method: euler, modified-euler, newton-raphson,', &
       '                       modified-newton-raphson, initial-stiffness, full-newton-raphson', &
       '                       (overrides the deck)', &

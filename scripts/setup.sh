@@ -7,11 +7,20 @@
 # scripts/import_mesh.py reads gmsh meshes through it) and gmsh (test/cli/check_import.py
 # meshes a pipe with it; its library needs the X and GLU libraries below).
 # Debian's calculix-ccx-test: CalculiX's published test examples, which check_import.py imports.
+# --mpi: also MUMPS 5.5 and OpenMPI 4.1 from Debian, for the MPI build (scripts/build_mpi.sh).
 set -euo pipefail
+mpi=0
+for a in "$@"; do
+  case $a in
+    --mpi) mpi=1 ;;
+    *) echo "setup: unknown option $a (--mpi)" >&2; exit 2 ;;
+  esac
+done
 
 debs=(gfortran libopenblas-dev liblapack-dev libsuitesparse-dev libmetis-dev
       libhdf5-dev hdf5-tools pkg-config hyperfine calculix-ccx-test
       libglu1-mesa libxrender1 libxcursor1 libxft2 libxinerama1)
+((mpi)) && debs+=(libmumps-dev libopenmpi-dev openmpi-bin)
 
 missing=()
 for p in "${debs[@]}"; do

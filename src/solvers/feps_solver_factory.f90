@@ -4,6 +4,7 @@ module feps_solver_factory
   use feps_linear_solver, only: linear_solver_t
   use feps_skyline_solver, only: skyline_solver_t
   use feps_cholmod_solver, only: cholmod_solver_t
+  use feps_mumps_solver, only: mumps_solver_t
   implicit none
   private
 
@@ -11,7 +12,8 @@ module feps_solver_factory
 
 contains
 
-  !> 'skyline' (LDL^T with reverse Cuthill-McKee) or 'cholmod' (supernodal, METIS).
+  !> 'skyline' (LDL^T with reverse Cuthill-McKee), 'cholmod' (supernodal, METIS) or 'mumps'
+  !! (multifrontal over MPI, in the MPI build).
   subroutine new_linear_solver(name, solver, error)
     character(len=*), intent(in) :: name
     class(linear_solver_t), allocatable, intent(out) :: solver
@@ -21,8 +23,10 @@ contains
       allocate (skyline_solver_t :: solver)
     case ('cholmod')
       allocate (cholmod_solver_t :: solver)
+    case ('mumps')
+      allocate (mumps_solver_t :: solver)
     case default
-      call fatal_error(error, err_input, 'unknown linear solver "' // name // '" (skyline or cholmod)')
+      call fatal_error(error, err_input, 'unknown linear solver "' // name // '" (skyline, cholmod or mumps)')
     end select
   end subroutine new_linear_solver
 

@@ -1,0 +1,286 @@
+/* MUMPS over MPI for feps (issue 29), master and workers.
+ *
+ * Rank 0 runs feps as always; the other ranks run only feps_mumps_worker(), which waits for rank
+ * 0's commands and takes part in each MUMPS call (analysis, factorization, solve). The matrix
+ * and the right-hand sides are given on rank 0 (MUMPS's centralised assembled input); MUMPS
+ * distributes the factorization and the solves over every rank. So every driver, stage and
+ * REPORT of feps works under MPI unchanged, and only rank 0 reads the deck, prints and writes.
+ *
+ * Built with MPI and MUMPS only when FEPS_MPI is defined (the MPI build, docs); otherwise every
+ * function says that MPI is not there, and feps runs as one process. */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { MUMPS_OK = 0, MUMPS_NO_MPI = 1, MUMPS_BAD_INPUT = 2, MUMPS_FAILED = 3, MUMPS_NO_MEMORY = 4,
+       MUMPS_SINGULAR = 5 };
+
+#ifdef FEPS_MPI
+#include <mpi.h>
+#include "dmumps_c.h"
+
+enum { CMD_END = 0, CMD_CREATE = 1, CMD_ANALYZE = 2, CMD_FACTORIZE = 3, CMD_SOLVE = 4, CMD_FREE = 5 };
+#define MAX_INSTANCES 16
+#define USE_COMM_WORLD -987654
+
+typedef struct {
+    DMUMPS_STRUC_C id;
+    int in_use;
+    MUMPS_INT *irn, *jcn;        /* rank 0: the pattern, 1-based (lower triangle) */
+} instance;
+
+static instance instances[MAX_INSTANCES];
+static int started = 0, rank = 0, size = 1;
+
+static void command(int cmd, int which, int extra)
+{
+    int message[3] = {cmd, which, extra};
+    if (size > 1) MPI_Bcast(message, 3, MPI_INT, 0, MPI_COMM_WORLD);
+}
+
+/* The controls every rank gives MUMPS: quiet, centralised assembled input, dense centralised
+ * right-hand side and solution, automatic ordering, null-pivot detection. */
+static void set_controls(DMUMPS_STRUC_C *id)
+{
+    id->icntl[0] = -1;           /* ICNTL(1) error messages: none (feps reports the errors) */
+    id->icntl[1] = -1;           /* ICNTL(2) diagnostics */
+    id->icntl[2] = -1;           /* ICNTL(3) global information */
+    id->icntl[3] = 0;            /* ICNTL(4) print level */
+    id->icntl[4] = 0;            /* ICNTL(5) assembled matrix */
+    id->icntl[6] = 7;            /* ICNTL(7) ordering: automatic (METIS where built in) */
+    id->icntl[17] = 0;           /* ICNTL(18) matrix centralised on the host */
+    id->icntl[19] = 0;           /* ICNTL(20) dense right-hand side */
+    id->icntl[20] = 0;           /* ICNTL(21) centralised solution */
+    id->icntl[23] = 1;           /* ICNTL(24) detect null pivots: names the equation */
+    id->cntl[2] = 1e-11;         /* CNTL(3): a pivot row below 1e-11 of the matrix's norm is null
+                                  * (CHOLMOD's rule is 1e-11 of the equation's own diagonal) */
+}
+
+static int create_on_all(int which, int sym)
+{
+    instance *in = &instances[which];
+    memset(&in->id, 0, sizeof in->id);
+    in->id.job = -1;
+    in->id.par = 1;              /* the host works too */
+    in->id.sym = sym;
+    in->id.comm_fortran = USE_COMM_WORLD;
+    dmumps_c(&in->id);
+    if (in->id.infog[0] < 0) return MUMPS_FAILED;
+    set_controls(&in->id);
+    in->in_use = 1;
+    return MUMPS_OK;
+}
+
+static void run_job(int which, int job)
+{
+    instances[which].id.job = job;
+    dmumps_c(&instances[which].id);
+}
+
+static void free_on_all(int which)
+{
+    instance *in = &instances[which];
+    if (!in->in_use) return;
+    in->id.job = -2;
+    dmumps_c(&in->id);
+    in->in_use = 0;
+}
+
+int feps_mpi_start(int *my_rank, int *ranks)
+{
+    int initialized = 0;
+    MPI_Initialized(&initialized);
+    if (!initialized) {
+        int provided;
+        if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) return MUMPS_NO_MPI;
+    }
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    started = 1;
+    *my_rank = rank;
+    *ranks = size;
+    return MUMPS_OK;
+}
+
+void feps_mpi_stop(int status)
+{
+    if (!started) return;
+    if (rank == 0) {
+        for (int i = 0; i < MAX_INSTANCES; i++)
+            if (instances[i].in_use) {
+                command(CMD_FREE, i, 0);
+                free_on_all(i);
+                free(instances[i].irn);
+                free(instances[i].jcn);
+                instances[i].irn = instances[i].jcn = NULL;
+            }
+        command(CMD_END, 0, status);
+    }
+    MPI_Finalize();
+    started = 0;
+}
+
+/* Ranks above 0: take part in rank 0's MUMPS calls until it ends; returns its exit status. */
+int feps_mumps_worker(void)
+{
+    for (;;) {
+        int message[3];
+        MPI_Bcast(message, 3, MPI_INT, 0, MPI_COMM_WORLD);
+        int which = message[1];
+        switch (message[0]) {
+        case CMD_END: return message[2];
+        case CMD_CREATE: create_on_all(which, message[2]); break;
+        case CMD_ANALYZE: run_job(which, 1); break;
+        case CMD_FACTORIZE: run_job(which, 2); break;
+        case CMD_SOLVE: run_job(which, 3); break;
+        case CMD_FREE: free_on_all(which); break;
+        default: return 1;
+        }
+    }
+}
+
+/* Rank 0: a MUMPS instance, sym 1 (symmetric positive definite) or 0 (unsymmetric); -1 when
+ * none is free or MUMPS cannot start. */
+int feps_mumps_create(int sym)
+{
+    if (!started) return -1;
+    for (int i = 0; i < MAX_INSTANCES; i++)
+        if (!instances[i].in_use) {
+            command(CMD_CREATE, i, sym);
+            if (create_on_all(i, sym) != MUMPS_OK) return -1;
+            return i;
+        }
+    return -1;
+}
+
+void feps_mumps_free(int which)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return;
+    command(CMD_FREE, which, 0);
+    free_on_all(which);
+    free(instances[which].irn);
+    free(instances[which].jcn);
+    instances[which].irn = instances[which].jcn = NULL;
+}
+
+static int result_of(const DMUMPS_STRUC_C *id)
+{
+    if (id->infog[0] >= 0) return MUMPS_OK;
+    if (id->infog[0] == -13 || id->infog[0] == -9 || id->infog[0] == -19) return MUMPS_NO_MEMORY;
+    if (id->infog[0] == -10) return MUMPS_SINGULAR;
+    return MUMPS_FAILED;
+}
+
+/* The pattern of the lower triangle in compressed rows (1-based row_ptr and col): ordering and
+ * symbolic analysis on every rank. */
+int feps_mumps_analyze(int which, int64_t n, const int64_t *row_ptr, const int32_t *col)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return MUMPS_BAD_INPUT;
+    instance *in = &instances[which];
+    int64_t nnz = row_ptr[n] - 1;
+    free(in->irn);
+    free(in->jcn);
+    in->irn = malloc(sizeof(MUMPS_INT) * (size_t)(nnz > 0 ? nnz : 1));
+    in->jcn = malloc(sizeof(MUMPS_INT) * (size_t)(nnz > 0 ? nnz : 1));
+    if (in->irn == NULL || in->jcn == NULL) return MUMPS_NO_MEMORY;
+    for (int64_t i = 0; i < n; i++)
+        for (int64_t k = row_ptr[i] - 1; k < row_ptr[i + 1] - 1; k++) {
+            in->irn[k] = (MUMPS_INT)(i + 1);
+            in->jcn[k] = (MUMPS_INT)col[k];
+        }
+    in->id.n = (MUMPS_INT)n;
+    in->id.nnz = nnz;
+    in->id.irn = in->irn;
+    in->id.jcn = in->jcn;
+    command(CMD_ANALYZE, which, 0);
+    run_job(which, 1);
+    return result_of(&in->id);
+}
+
+/* Numerical factorization of the values `val` in the analysed pattern's order. */
+int feps_mumps_factorize(int which, double *val)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return MUMPS_BAD_INPUT;
+    instance *in = &instances[which];
+    in->id.a = val;
+    command(CMD_FACTORIZE, which, 0);
+    run_job(which, 2);
+    in->id.a = NULL;
+    if (in->id.infog[0] >= 0 && in->id.infog[27] > 0) return MUMPS_SINGULAR;   /* INFOG(28) null pivots */
+    return result_of(&in->id);
+}
+
+/* The first null pivot's equation (1-based), 0 when MUMPS named none. */
+int64_t feps_mumps_null_pivot(int which)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES) return 0;
+    instance *in = &instances[which];
+    if (in->id.infog[27] > 0 && in->id.pivnul_list != NULL) return in->id.pivnul_list[0];
+    return 0;
+}
+
+/* Factor entries (INFOG(29), or -INFOG(29) millions when negative) and flops (RINFOG(3)). */
+int64_t feps_mumps_factor_entries(int which)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES) return 0;
+    int v = instances[which].id.infog[28];                 /* INFOG(29): after factorization */
+    if (v == 0) v = instances[which].id.infog[19];          /* INFOG(20): the analysis's estimate */
+    return v >= 0 ? (int64_t)v : -(int64_t)v * 1000000;
+}
+
+double feps_mumps_flops(int which)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES) return 0.0;
+    double done = instances[which].id.rinfog[2];           /* RINFOG(3): after factorization */
+    return done > 0.0 ? done : instances[which].id.rinfog[0];   /* RINFOG(1): the estimate */
+}
+
+/* Solve in place: b holds nrhs right-hand sides of n each, one after another. */
+int feps_mumps_solve(int which, int64_t n, int64_t nrhs, double *b)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return MUMPS_BAD_INPUT;
+    instance *in = &instances[which];
+    in->id.rhs = b;
+    in->id.nrhs = (MUMPS_INT)nrhs;
+    in->id.lrhs = (MUMPS_INT)n;
+    command(CMD_SOLVE, which, 0);
+    run_job(which, 3);
+    in->id.rhs = NULL;
+    return result_of(&in->id);
+}
+
+/* MUMPS's own error code (INFOG(1)) and detail (INFOG(2)), for messages. */
+int feps_mumps_infog(int which, int k)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES || k < 1 || k > 80) return 0;
+    return instances[which].id.infog[k - 1];
+}
+
+#else   /* no MPI: one process, no MUMPS */
+
+int feps_mpi_start(int *my_rank, int *ranks) { *my_rank = 0; *ranks = 1; return MUMPS_NO_MPI; }
+void feps_mpi_stop(int status) { (void)status; }
+int feps_mumps_worker(void) { return 0; }
+int feps_mumps_create(int sym) { (void)sym; return -1; }
+void feps_mumps_free(int which) { (void)which; }
+int feps_mumps_analyze(int which, int64_t n, const int64_t *row_ptr, const int32_t *col)
+{ (void)which; (void)n; (void)row_ptr; (void)col; return MUMPS_NO_MPI; }
+int feps_mumps_factorize(int which, double *val) { (void)which; (void)val; return MUMPS_NO_MPI; }
+int64_t feps_mumps_null_pivot(int which) { (void)which; return 0; }
+int64_t feps_mumps_factor_entries(int which) { (void)which; return 0; }
+double feps_mumps_flops(int which) { (void)which; return 0.0; }
+int feps_mumps_solve(int which, int64_t n, int64_t nrhs, double *b)
+{ (void)which; (void)n; (void)nrhs; (void)b; return MUMPS_NO_MPI; }
+int feps_mumps_infog(int which, int k) { (void)which; (void)k; return 0; }
+
+#endif
+
+/* Whether this build has MPI and MUMPS. */
+int feps_mpi_built(void)
+{
+#ifdef FEPS_MPI
+    return 1;
+#else
+    return 0;
+#endif
+}

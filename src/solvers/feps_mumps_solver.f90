@@ -1,0 +1,237 @@
+!> MUMPS over MPI (issue 29): the linear solver of `--solver mumps` in the MPI build. The matrix
+!! and right-hand sides are given on rank 0; MUMPS factorizes and solves on every rank
+!! (feps_mumps_shim.c, where the other ranks wait for rank 0's calls). LDL' of the symmetric
+!! stiffness (MUMPS SYM = 2: its null-pivot detection names the equation of a singular stiffness,
+!! which SYM = 1, the positive definite mode, did not do).
+module feps_mumps_solver
+  use, intrinsic :: iso_c_binding, only: c_int, c_int32_t, c_int64_t, c_double
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t, fatal_error, err_input, err_model, err_solver, err_memory, err_internal, str
+  use feps_sparse_matrix, only: csr_matrix_t
+  use feps_linear_solver, only: linear_solver_t
+  implicit none
+  private
+
+  public :: mumps_solver_t, mpi_built, mpi_start, mpi_stop, mumps_worker
+
+  !> Codes of feps_mumps_shim.c.
+  integer(c_int), parameter :: mumps_ok = 0, mumps_no_mpi = 1, mumps_no_memory = 4, mumps_singular = 5
+
+  type, extends(linear_solver_t) :: mumps_solver_t
+    private
+    integer(c_int) :: instance = -1     !! the shim's MUMPS instance, -1 before analyze
+    integer :: n = 0
+    logical :: factorized = .false.
+  contains
+    procedure :: analyze => mumps_analyze
+    procedure :: factorize => mumps_factorize
+    procedure :: solve => mumps_solve
+    procedure :: name => mumps_name
+    final :: mumps_finalize
+  end type mumps_solver_t
+
+  interface
+    integer(c_int) function feps_mpi_built() bind(C, name='feps_mpi_built')
+      import :: c_int
+    end function feps_mpi_built
+    integer(c_int) function feps_mpi_start(rank, ranks) bind(C, name='feps_mpi_start')
+      import :: c_int
+      integer(c_int), intent(out) :: rank, ranks
+    end function feps_mpi_start
+    subroutine feps_mpi_stop(status) bind(C, name='feps_mpi_stop')
+      import :: c_int
+      integer(c_int), value :: status
+    end subroutine feps_mpi_stop
+    integer(c_int) function feps_mumps_worker() bind(C, name='feps_mumps_worker')
+      import :: c_int
+    end function feps_mumps_worker
+    integer(c_int) function feps_mumps_create(sym) bind(C, name='feps_mumps_create')
+      import :: c_int
+      integer(c_int), value :: sym
+    end function feps_mumps_create
+    subroutine feps_mumps_free(instance) bind(C, name='feps_mumps_free')
+      import :: c_int
+      integer(c_int), value :: instance
+    end subroutine feps_mumps_free
+    integer(c_int) function feps_mumps_analyze(instance, n, row_ptr, col) bind(C, name='feps_mumps_analyze')
+      import :: c_int, c_int32_t, c_int64_t
+      integer(c_int), value :: instance
+      integer(c_int64_t), value :: n
+      integer(c_int64_t), intent(in) :: row_ptr(*)
+      integer(c_int32_t), intent(in) :: col(*)
+    end function feps_mumps_analyze
+    integer(c_int) function feps_mumps_factorize(instance, val) bind(C, name='feps_mumps_factorize')
+      import :: c_int, c_double
+      integer(c_int), value :: instance
+      real(c_double), intent(in) :: val(*)
+    end function feps_mumps_factorize
+    integer(c_int64_t) function feps_mumps_null_pivot(instance) bind(C, name='feps_mumps_null_pivot')
+      import :: c_int, c_int64_t
+      integer(c_int), value :: instance
+    end function feps_mumps_null_pivot
+    integer(c_int64_t) function feps_mumps_factor_entries(instance) bind(C, name='feps_mumps_factor_entries')
+      import :: c_int, c_int64_t
+      integer(c_int), value :: instance
+    end function feps_mumps_factor_entries
+    real(c_double) function feps_mumps_flops(instance) bind(C, name='feps_mumps_flops')
+      import :: c_int, c_double
+      integer(c_int), value :: instance
+    end function feps_mumps_flops
+    integer(c_int) function feps_mumps_solve(instance, n, nrhs, b) bind(C, name='feps_mumps_solve')
+      import :: c_int, c_int64_t, c_double
+      integer(c_int), value :: instance
+      integer(c_int64_t), value :: n, nrhs
+      real(c_double), intent(inout) :: b(*)
+    end function feps_mumps_solve
+    integer(c_int) function feps_mumps_infog(instance, k) bind(C, name='feps_mumps_infog')
+      import :: c_int
+      integer(c_int), value :: instance, k
+    end function feps_mumps_infog
+  end interface
+
+contains
+
+  !> Whether this build has MPI and MUMPS (the MPI build, README).
+  logical function mpi_built()
+    mpi_built = feps_mpi_built() /= 0
+  end function mpi_built
+
+  !> Start MPI (in the MPI build): this process's rank and the number of ranks; rank 0 and one
+  !! rank without MPI.
+  subroutine mpi_start(rank, ranks)
+    integer, intent(out) :: rank, ranks
+    integer(c_int) :: r, s, code
+    code = feps_mpi_start(r, s)
+    rank = int(r)
+    ranks = int(s)
+    if (code /= mumps_ok) then
+      rank = 0
+      ranks = 1
+    end if
+  end subroutine mpi_start
+
+  !> End MPI: rank 0 tells the other ranks to end with `status`. Nothing without MPI.
+  subroutine mpi_stop(status)
+    integer, intent(in) :: status
+    call feps_mpi_stop(int(status, c_int))
+  end subroutine mpi_stop
+
+  !> The work of a rank above 0: MUMPS's calls, as rank 0 makes them, until rank 0 ends; the
+  !! exit status rank 0 ends with.
+  integer function mumps_worker() result(status)
+    status = int(feps_mumps_worker())
+  end function mumps_worker
+
+  !> Ordering and symbolic analysis of the pattern of `a` (on every rank).
+  subroutine mumps_analyze(self, a, error)
+    class(mumps_solver_t), intent(inout) :: self
+    type(csr_matrix_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+    self%factorized = .false.
+    if (.not. mpi_built()) then
+      call fatal_error(error, err_input, '--solver mumps needs the MPI build of feps (README, "MUMPS over MPI")')
+      return
+    end if
+    if (.not. allocated(a%row_ptr) .or. .not. allocated(a%col)) then
+      call fatal_error(error, err_internal, 'mumps: analyze called without a pattern')
+      return
+    end if
+    if (self%instance < 0) self%instance = feps_mumps_create(2_c_int)
+    if (self%instance < 0) then
+      call fatal_error(error, err_solver, 'mumps: cannot start MUMPS (MPI not started, or out of memory)')
+      return
+    end if
+    code = feps_mumps_analyze(self%instance, int(a%n, c_int64_t), a%row_ptr, a%col)
+    if (code /= mumps_ok) then
+      call failed(self, code, 'the ordering and analysis of ' // str(a%n) // ' equations', error)
+      return
+    end if
+    self%n = a%n
+    self%factor_nnz = feps_mumps_factor_entries(self%instance)
+    self%flops = feps_mumps_flops(self%instance)
+  end subroutine mumps_analyze
+
+  !> Numerical LDL' factorization (on every rank). A null pivot fails with err_model naming the
+  !! equation in error%item when MUMPS names it.
+  subroutine mumps_factorize(self, a, error)
+    class(mumps_solver_t), intent(inout) :: self
+    type(csr_matrix_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+    integer :: equation
+    self%factorized = .false.
+    if (self%instance < 0 .or. self%n == 0 .or. a%n /= self%n .or. .not. allocated(a%val)) then
+      call fatal_error(error, err_internal, 'mumps: factorize called before analyze')
+      return
+    end if
+    code = feps_mumps_factorize(self%instance, a%val)
+    if (code == mumps_singular) then
+      equation = int(feps_mumps_null_pivot(self%instance))
+      call fatal_error(error, err_model, 'mumps: stiffness matrix singular or not positive definite at equation ' // &
+                       str(equation) // ' (unconstrained, mechanism or negative stiffness)', equation)
+      return
+    end if
+    if (code /= mumps_ok) then
+      call failed(self, code, 'the factor', error)
+      return
+    end if
+    self%flops = feps_mumps_flops(self%instance)
+    self%factor_nnz = feps_mumps_factor_entries(self%instance)
+    self%factorized = .true.
+    self%factorizations = self%factorizations + 1
+  end subroutine mumps_factorize
+
+  !> Solve A x = b in place; size(b) = n * nrhs.
+  subroutine mumps_solve(self, b, error)
+    class(mumps_solver_t), intent(inout) :: self
+    real(dp), intent(inout) :: b(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+    integer(i8) :: nrhs
+    if (.not. self%factorized) then
+      call fatal_error(error, err_internal, 'mumps: solve called without a valid factorization')
+      return
+    end if
+    nrhs = size(b, kind=i8) / self%n
+    if (nrhs < 1 .or. nrhs * self%n /= size(b, kind=i8)) then
+      call fatal_error(error, err_internal, 'mumps: right-hand side size is not a multiple of ' // str(self%n))
+      return
+    end if
+    code = feps_mumps_solve(self%instance, int(self%n, c_int64_t), int(nrhs, c_int64_t), b)
+    if (code /= mumps_ok) call failed(self, code, 'the solve', error)
+  end subroutine mumps_solve
+
+  !> The error of a MUMPS call that failed: out of memory, or MUMPS's own code.
+  subroutine failed(self, code, what, error)
+    type(mumps_solver_t), intent(in) :: self
+    integer(c_int), intent(in) :: code
+    character(len=*), intent(in) :: what
+    type(error_t), allocatable, intent(out) :: error
+    if (code == mumps_no_memory) then
+      call fatal_error(error, err_memory, 'mumps: ' // what // ' does not fit in the memory the ranks may use ' // &
+                       '(MUMPS INFOG(1) = ' // str(int(feps_mumps_infog(self%instance, 1_c_int))) // ')')
+    else if (code == mumps_no_mpi) then
+      call fatal_error(error, err_input, '--solver mumps needs the MPI build of feps (README, "MUMPS over MPI")')
+    else
+      call fatal_error(error, err_solver, 'mumps: ' // what // ' failed (MUMPS INFOG(1) = ' // &
+                       str(int(feps_mumps_infog(self%instance, 1_c_int))) // ', INFOG(2) = ' // &
+                       str(int(feps_mumps_infog(self%instance, 2_c_int))) // ')')
+    end if
+  end subroutine failed
+
+  pure function mumps_name(self) result(name)
+    class(mumps_solver_t), intent(in) :: self
+    character(len=:), allocatable :: name
+    name = 'mumps'
+  end function mumps_name
+
+  !> Release the MUMPS instance on every rank.
+  subroutine mumps_finalize(self)
+    type(mumps_solver_t), intent(inout) :: self
+    if (self%instance >= 0) call feps_mumps_free(self%instance)
+    self%instance = -1
+    self%factorized = .false.
+  end subroutine mumps_finalize
+
+end module feps_mumps_solver

@@ -4,6 +4,14 @@ bottom pipe in soil (thesis model C, chapter 6: quarter model, y >= 0 and z >= 0
 --packing 0 one pipe in soil under jacking loads on its ends (thesis model B, chapter 5: half
 model, y >= 0, edge or diagonal load).
 
+Misalignment (--misalignment): edge, the top pipe turned about the y axis so that the joint closes
+at x = +r_o (the thesis's); diagonal, turned about the axis at 45 deg in the cross-section (between
+x and y), the joint closing at theta = 45 deg. The diagonal one breaks the y = 0 symmetry, so its
+model is the whole ring (z >= 0 still: the three-pipe system's mid-plane): the edge case's mesh
+mirrored about the plane of deflection and turned by 45 deg, the top end displaced along that
+direction; --full writes the edge case on the same unturned ring (docs/verification.md,
+"Diagonal misalignment (issue 26 item 4)": the two give the same joint).
+
     python3 scripts/make_pipe_joint.py --inner-diameter 1000 --wall 100 --pipe-length 2500 \\
         --packing 20 --packing-G 300 --packing-nu 0.1 --angle 0.5 --jacking-stress 10 -o dn1000.dat
 

@@ -623,7 +623,7 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         f"! Half model (z >= 0; the whole ring, theta {rotation:g}..{rotation + 360:g}) of the symmetric three-pipe",
         "! system (thesis 6.2, Fig. 6.2; SPEC section 8), the misalignment in the direction theta = "
         f"{rotation:g} deg:"]) + [
-        f"! - bottom: half pipe r = {ri:g}..{ro:g}, z = 0..{z_joint:g} (z = 0 is the mid-length symmetry plane, fixed in",
+        f"! - bottom: {'pipe' if full else 'half pipe'} r = {ri:g}..{ro:g}, z = 0..{z_joint:g} (z = 0 is the mid-length symmetry plane, fixed in",
         f"!   z), in soil r = {ro:g}..{r_soil:g} over the same z (4 hex8 layers as model B; the thesis gives no soil",
         "!   extent). Pipe and soil are BONDED (shared nodes): thesis 6.2 says there was just one interface",
         "!   in the model, the one between the packing and the bottom pipe, and 6.3 calls stage 1 linear.",
@@ -637,19 +637,31 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
          f"phi = {phi_j:g}, psi = {psi:g} deg (thesis 6.2: 20), c = {c_j:g} MPa."),
         f"! - top pipe: full length {L:g} (z = {z_top:g}..{z_top + L:g}), NOT in soil: thesis 6.2 has soil only around the",
         "!   bottom half pipe ('a half pipe with its surrounding soil at the bottom, a complete pipe on the",
+    ] + ([
         "!   top'). Its only supports are the joint, the symmetry plane y = 0 and the prescribed x",
-        "!   displacement of its upper end.",
+        "!   displacement of its upper end."] if not full else [
+        "!   top'). Its only supports are the joint and the prescribed displacement of its upper end."]) + [
         f"! - concrete E = 40000, nu = 0.2; soil E = {soil_E:g}, nu = {nu_s:g} (thesis 6.1{'' if soil_E == 144.0 else ': E = 144'}); "
         + soil_law,
+    ] + ([
         "! - supports (thesis 6.2): soil outer surface fixed in x and y; z = 0 fixed in z; y = 0 fixed in y.",
         f"! - loads: q = {q:.10g} MPa uniform on the top end; delta in x on every node of the top end (thesis 6.2:",
-        "!   'an equivalent displacement delta in x direction at the upper end'); the end's y and z are free.",
+        "!   'an equivalent displacement delta in x direction at the upper end'); the end's y and z are free."]
+        if not full else [
+        "! - supports (thesis 6.2): soil outer surface fixed in x and y; z = 0 fixed in z.",
+        f"! - loads: q = {q:.10g} MPa uniform on the top end; delta along theta = {rotation:g} deg on every node of the",
+        "!   top end (thesis 6.2: 'an equivalent displacement delta ... at the upper end'); free across it and in z."]) + [
         "!   Stage 1: 20% of q in 1 step, the end held at ux = 0 ('without rotation'); stage 2: the other 80%",
         f"!   and delta together in {steps} steps (thesis 6.3/6.4), initial stiffness, at most 10 iterations;",
         "!   stage 3: equilibrium iterations (see the solution controls below).",
+    ] + ([
         f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg at the loaded edge (theta = 0,",
         f"!   x = +{ro:g}: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then "
-        + f"{len(thetas) - 4} x {thetas[-1]:g} deg;",
+        + f"{len(thetas) - 4} x {thetas[-1]:g} deg;"] if not full else [
+        f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg from the loaded edge (theta = {rotation:g};",
+        f"!   sigma_max comes from the elements within 6 deg of it, thesis 7.4.3), then {len(thetas) // 2 - 4} x "
+        f"{thetas[len(thetas) // 2 - 1]:g} deg",
+        "!   to the opposite side, and the same mirrored back;"]) + [
         "!   z graded " + "/".join(f"{d * p.zs:g}" for d in (150.0, 100.0, 50.0, 25.0, 12.5))
         + " mm towards the joint on both sides" + ("" if z_refine == 1 else f", each cut into {z_refine}")
         + f"; a node layer at z = {z_top + L / 2:g}, the",
@@ -664,6 +676,7 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
         f"PARAMETERS, G_p={G:g}, nu_p={nu:g}, beta={beta:g}, E_s={soil_E:g}" +
         ("" if psi == PSI_JOINT else f", psi_joint={psi:g}") + p.parameters()
+        + ("" if not full else f", misalignment={'edge' if rotation == 0.0 else 'diagonal'}, ring=full")
         + ("" if math.isclose(q, Q, rel_tol=1e-12) else f", q={q:.6g}") + ("" if kn == KN_JOINT else f", Kn={kn:g}"),
         "",
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",

@@ -260,7 +260,7 @@ def diagonal(tmp, feps, gen):
           f"diagonal off by {rel(d[:5], e[:5]):.1e}", rel(d[:5], e[:5]) < 1e-9 and d[5] == e[5] == 1, f"{e} / {d}")
     # the quarter model: sigma_max, Z, opening and P are its mirror's; the deflection is a least-squares
     # slope over the end face's nodes, and the half ring counts the nodes on y = 0 once against the
-    # others' twice in the full ring (1.7e-4 apart)
+    # others' twice in the full ring (1.8e-4 apart)
     check(f"... = the quarter model's (half the interface elements: {q[6]} of {e[6]}; 1e-9 relative, the deflection "
           f"1e-3: {q[4]:.7g} deg)", rel(q[:4], e[:4]) < 1e-9 and abs(q[4] / e[4] - 1) < 1e-3 and 2 * q[6] == e[6]
           and q[5] == 1, f"{q} / {e}")

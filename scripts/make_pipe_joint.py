@@ -4,6 +4,14 @@ bottom pipe in soil (thesis model C, chapter 6: quarter model, y >= 0 and z >= 0
 --packing 0 one pipe in soil under jacking loads on its ends (thesis model B, chapter 5: half
 model, y >= 0, edge or diagonal load).
 
+Misalignment (--misalignment): edge, the top pipe turned about the y axis so that the joint closes
+at x = +r_o (the thesis's); diagonal, turned about the axis at 45 deg in the cross-section (between
+x and y), the joint closing at theta = 45 deg. The diagonal one breaks the y = 0 symmetry, so its
+model is the whole ring (z >= 0 still: the three-pipe system's mid-plane): the edge case's mesh
+mirrored about the plane of deflection and turned by 45 deg, the top end displaced along that
+direction; --full writes the edge case on the same unturned ring (docs/verification.md,
+"Diagonal misalignment (issue 26 item 4)": the two give the same joint).
+
     python3 scripts/make_pipe_joint.py --inner-diameter 1000 --wall 100 --pipe-length 2500 \\
         --packing 20 --packing-G 300 --packing-nu 0.1 --angle 0.5 --jacking-stress 10 -o dn1000.dat
 
@@ -124,15 +132,20 @@ class Ground:
             return ""
         return f", GAMMA={self.gamma - GAMMA_W if wet else self.gamma:.6g}, K0={self.k0:.6g}"
 
-    def dry_columns(self, radii, thetas):
-        """Per soil element layer (between radii), the theta elements (from theta = 0, the top)
+    def dry_columns(self, radii, thetas, start=0.0):
+        """Per soil element layer (between radii), the number of theta elements (from theta = start)
         above the water table, by their centre's x; all of them when dry."""
+        return [sum(layer) for layer in self.dry_flags(radii, thetas, start)]
+
+    def dry_flags(self, radii, thetas, start=0.0):
+        """Per soil element layer (between radii), per theta element (from theta = start): above the
+        water table, by the mean of its corners' x (all True when dry)."""
         out = []
         for r0, r1 in zip(radii, radii[1:]):
-            edges = [sum(thetas[:j]) for j in range(len(thetas) + 1)]
+            edges = [start + sum(thetas[:j]) for j in range(len(thetas) + 1)]
             x = [0.25 * (r0 + r1) * (math.cos(math.radians(a)) + math.cos(math.radians(b)))
-                 for a, b in zip(edges, edges[1:])]                # the mean of the corners' x
-            out.append(len(thetas) if self.water is None else sum(1 for v in x if v > self.water))
+                 for a, b in zip(edges, edges[1:])]
+            out.append([self.water is None or v > self.water for v in x])
         return out
 
     def layers(self, dry, n):
@@ -524,10 +537,12 @@ def split(steps, k):
 
 class Mesh:
     """Node numbering of model C's two DATAIN node blocks (theta fastest, then r, then z in each);
-    `wall` elements through the pipe wall, every z increment cut into `z_refine`."""
+    `wall` elements through the pipe wall, every z increment cut into `z_refine`. A full ring
+    (`full`: the thetas sum to 360) has no node row at 360 deg: its last elements close on the first row."""
 
-    def __init__(self, pipe, r_soil, thetas, wall=WALL_ELEMENTS, z_refine=1):
-        self.nt = len(thetas) + 1                          # nodes along theta
+    def __init__(self, pipe, r_soil, thetas, wall=WALL_ELEMENTS, z_refine=1, full=False):
+        self.full = full
+        self.nt = len(thetas) + (0 if full else 1)         # nodes along theta
         self.r_bottom = [pipe.r_in + (pipe.r_out - pipe.r_in) * i / wall for i in range(wall + 1)]
         for d in soil_layers(r_soil, pipe.r_out):
             self.r_bottom.append(self.r_bottom[-1] + d)
@@ -541,11 +556,23 @@ class Mesh:
         self.bottom_nodes = self.nt * self.nr_bottom * self.nz_bottom
 
     def bottom(self, it, ir, iz):
-        return 1 + it + self.nt * (ir + self.nr_bottom * iz)
+        return 1 + it % self.nt + self.nt * (ir + self.nr_bottom * iz)
 
     def top(self, it, ir, iz):
         """Top block: iz = 0 is the packing's lower face, packing_layers its upper face."""
-        return self.bottom_nodes + 1 + it + self.nt * (ir + self.nr_top * iz)
+        return self.bottom_nodes + 1 + it % self.nt + self.nt * (ir + self.nr_top * iz)
+
+    def columns(self, its):
+        """The theta element indices `its` (ascending) as runs (first, count) that one DATAIN element
+        block copies along theta by +1 node: a run ends before a full ring's closing element, which
+        takes its nodes from the first row and so is a block of its own."""
+        out = []
+        for it in its:
+            if out and out[-1][0] + out[-1][1] == it and not (self.full and it == self.nt - 1):
+                out[-1][1] += 1
+            else:
+                out.append([it, 1])
+        return [tuple(r) for r in out]
 
 
 def hex_record(node, it, ir, iz):
@@ -558,16 +585,24 @@ def hex_record(node, it, ir, iz):
 def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, soil_E=144.0, wall=WALL_ELEMENTS,
                z_refine=1, psi=PSI_JOINT, name="", reference=None, writer="make_pipe_joint.py", pipe=None, q=Q,
                joint=(KN_JOINT, KS_JOINT, PHI_JOINT, C_JOINT), soil=(0.2, None, None, None), ground=None,
-               design=False):
+               design=False, rotation=0.0, full=False):
     """Model C's deck: packing G_p, nu_p, misalignment beta (deg); theta_step the element size (deg)
     beyond theta = 12, wall the elements through the pipe wall, z_refine the number of parts each z
     element is cut into, psi the joint interface's dilation angle (deg), joint its (Kn, Ks, phi, c),
-    soil its (nu, phi, psi, c) (phi None: elastic, else Matsuoka), reference the thesis's beta_bar."""
+    soil its (nu, phi, psi, c) (phi None: elastic, else Matsuoka), reference the thesis's beta_bar.
+    rotation (deg): the direction in the cross-section towards which the top pipe is displaced, where
+    the joint closes (0: +x, the edge misalignment; 45: the diagonal one), the mesh turned with it;
+    full: the whole ring (theta rotation-180..rotation+180, mirrored about the plane of deflection)
+    instead of the quarter model's half ring, which needs rotation 0."""
     p, g = pipe or Pipe(), ground or Ground()
     kn, ks, phi_j, c_j = joint
     nu_s, phi_s, psi_s, c_s = soil
+    if rotation != 0.0 and not full:
+        raise ValueError("a misalignment off the x axis breaks the y = 0 symmetry: it needs the full model")
     thetas = theta_steps(theta_step)
-    m = Mesh(p, r_soil, thetas, wall, z_refine)
+    if full:
+        thetas = thetas + thetas[::-1]          # mirrored: the same elements on either side of the edge
+    m = Mesh(p, r_soil, thetas, wall, z_refine, full)
     ri, ro, L, a = p.r_in, p.r_out, p.length, p.packing
     z_joint, z_top = L / 2, L / 2 + a
     delta = L * math.tan(math.radians(beta))
@@ -582,9 +617,13 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         f"! nu_p = {nu:g} (E_p = 2 G_p (1 + nu_p) = {E_p:g} MPa), misalignment beta = {beta:g} deg",
         f"! (delta = L tan(beta) = {delta:.3f} mm, L = {L:g}). Written by scripts/{writer}.",
         "!",
+    ] + ([
         "! Quarter model (theta 0..180, y >= 0; z >= 0) of the symmetric three-pipe system (thesis 6.2,",
-        "! Fig. 6.2; SPEC section 8):",
-        f"! - bottom: half pipe r = {ri:g}..{ro:g}, z = 0..{z_joint:g} (z = 0 is the mid-length symmetry plane, fixed in",
+        "! Fig. 6.2; SPEC section 8):"] if not full else [
+        f"! Half model (z >= 0; the whole ring, theta {rotation:g}..{rotation + 360:g}) of the symmetric three-pipe",
+        "! system (thesis 6.2, Fig. 6.2; SPEC section 8), the misalignment in the direction theta = "
+        f"{rotation:g} deg:"]) + [
+        f"! - bottom: {'pipe' if full else 'half pipe'} r = {ri:g}..{ro:g}, z = 0..{z_joint:g} (z = 0 is the mid-length symmetry plane, fixed in",
         f"!   z), in soil r = {ro:g}..{r_soil:g} over the same z (4 hex8 layers as model B; the thesis gives no soil",
         "!   extent). Pipe and soil are BONDED (shared nodes): thesis 6.2 says there was just one interface",
         "!   in the model, the one between the packing and the bottom pipe, and 6.3 calls stage 1 linear.",
@@ -598,38 +637,55 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
          f"phi = {phi_j:g}, psi = {psi:g} deg (thesis 6.2: 20), c = {c_j:g} MPa."),
         f"! - top pipe: full length {L:g} (z = {z_top:g}..{z_top + L:g}), NOT in soil: thesis 6.2 has soil only around the",
         "!   bottom half pipe ('a half pipe with its surrounding soil at the bottom, a complete pipe on the",
+    ] + ([
         "!   top'). Its only supports are the joint, the symmetry plane y = 0 and the prescribed x",
-        "!   displacement of its upper end.",
+        "!   displacement of its upper end."] if not full else [
+        "!   top'). Its only supports are the joint and the prescribed displacement of its upper end."]) + [
         f"! - concrete E = 40000, nu = 0.2; soil E = {soil_E:g}, nu = {nu_s:g} (thesis 6.1{'' if soil_E == 144.0 else ': E = 144'}); "
         + soil_law,
+    ] + ([
         "! - supports (thesis 6.2): soil outer surface fixed in x and y; z = 0 fixed in z; y = 0 fixed in y.",
         f"! - loads: q = {q:.10g} MPa uniform on the top end; delta in x on every node of the top end (thesis 6.2:",
-        "!   'an equivalent displacement delta in x direction at the upper end'); the end's y and z are free.",
+        "!   'an equivalent displacement delta in x direction at the upper end'); the end's y and z are free."]
+        if not full else [
+        "! - supports (thesis 6.2): soil outer surface fixed in x and y; z = 0 fixed in z.",
+        f"! - loads: q = {q:.10g} MPa uniform on the top end; delta along theta = {rotation:g} deg on every node of the",
+        "!   top end (thesis 6.2: 'an equivalent displacement delta ... at the upper end'); free across it and in z."]) + [
         "!   Stage 1: 20% of q in 1 step, the end held at ux = 0 ('without rotation'); stage 2: the other 80%",
         f"!   and delta together in {steps} steps (thesis 6.3/6.4), initial stiffness, at most 10 iterations;",
         "!   stage 3: equilibrium iterations (see the solution controls below).",
+    ] + ([
         f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg at the loaded edge (theta = 0,",
         f"!   x = +{ro:g}: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then "
-        + f"{len(thetas) - 4} x {thetas[-1]:g} deg;",
+        + f"{len(thetas) - 4} x {thetas[-1]:g} deg;"] if not full else [
+        f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg from the loaded edge (theta = {rotation:g};",
+        f"!   sigma_max comes from the elements within 6 deg of it, thesis 7.4.3), then {len(thetas) // 2 - 4} x "
+        f"{thetas[len(thetas) // 2 - 1]:g} deg",
+        "!   to the opposite side, and the same mirrored back;"]) + [
         "!   z graded " + "/".join(f"{d * p.zs:g}" for d in (150.0, 100.0, 50.0, 25.0, 12.5))
         + " mm towards the joint on both sides" + ("" if z_refine == 1 else f", each cut into {z_refine}")
         + f"; a node layer at z = {z_top + L / 2:g}, the",
         "!   top pipe's mid-length section A-A of thesis Fig. 7.7.",
+    ] + ([
         f"! The misalignment rotation is about +y: the joint closes at x = +{ro:g} (theta = 0) and may open",
-        f"! towards x = -{ro:g} (theta = 180), as thesis Figs. 6.4 and 6.11.",
+        f"! towards x = -{ro:g} (theta = 180), as thesis Figs. 6.4 and 6.11."] if rotation == 0.0 else [
+        f"! The misalignment rotation is about the axis at theta = {rotation + 90:g} deg in the cross-section: the",
+        f"! joint closes at theta = {rotation:g} and may open towards theta = {rotation + 180:g}; the mesh is the edge",
+        f"! case's full mesh turned by {rotation:g} deg (make_pipe_joint.py --misalignment diagonal)."]) + [
         f"TITLE, Model C {name}: packing G_p = {G:g}, nu_p = {nu:g}, beta = {beta:g} deg, q = {q:.10g} MPa",
         "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
         f"PARAMETERS, G_p={G:g}, nu_p={nu:g}, beta={beta:g}, E_s={soil_E:g}" +
         ("" if psi == PSI_JOINT else f", psi_joint={psi:g}") + p.parameters()
+        + ("" if not full else f", misalignment={'edge' if rotation == 0.0 else 'diagonal'}, ring=full")
         + ("" if math.isclose(q, Q, rel_tol=1e-12) else f", q={q:.6g}") + ("" if kn == KN_JOINT else f", Kn={kn:g}"),
         "",
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
-        f"A, 3, {num(ri)}, 0., 0.,",
+        f"A, 3, {num(ri)}, {num(rotation)}, 0.,",
     ]
     # 12 digits: a wall of 3 elements must still end on r = 715 (38.3333 x 3 would not)
     wall_record = f"%, {wall + 1}, {(ro - ri) / wall:.12g}, 0., 0.,".ljust(30) + \
         "! pipe wall r = " + ", ".join(f"{r:g}" for r in m.r_bottom[:wall + 1])
-    out += direction(thetas, 1, "theta")
+    out += direction(thetas[:m.nt - 1], 1, "theta", start=rotation)
     out.append(wall_record)
     for d in soil_layers(r_soil, ro):
         out.append(f"%, -1, {d:.4f}, 0., 0.,".ljust(30) + "! soil layer")
@@ -637,35 +693,44 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     out += ["E,", "",
             f"! --- node block 2: the packing's lower face at z = {z_joint:g} (coincident with the bottom pipe's",
             "! end face: the interface's two layers), the packing and the top pipe ---",
-            f"A, 3, {num(ri)}, 0., {num(z_joint)},"]
-    out += direction(thetas, 1, "theta")
+            f"A, 3, {num(ri)}, {num(rotation)}, {num(z_joint)},"]
+    out += direction(thetas[:m.nt - 1], 1, "theta", start=rotation)
     out.append(wall_record)
     out += direction([a / npl] * npl, 2, "z (packing)", start=z_joint)
     out += direction(m.z_top, 2, "z", first=False, start=z_top)
     out += ["E,", ""]
 
+    def blocks(node, its, ir, iz, copies):
+        """hex8 element blocks of the theta elements `its` from (ir, iz), each run of them copied along
+        theta and then by `copies` ((count, node increment), ...)."""
+        return [line for it, count in m.columns(its)
+                for line in [hex_record(node, it, ir, iz), f"%, {count}, *, 8, 1,"]
+                + [f"%, {n}, *, 8, {inc}," for n, inc in copies] + ["E,"]]
+
+    every = range(ntheta)
     soil_groups = []
-    dry = g.dry_columns(m.r_bottom[wall:], thetas)
+    flags = g.dry_flags(m.r_bottom[wall:], thetas, rotation)
+    dry = [sum(layer) for layer in flags]
     for wet in g.layers(dry, ntheta):
         soil_groups += [f"GROUP, soil{'_wet' if wet else ''}, TYPE=hex8, MATERIAL=soil{'_wet' if wet else ''}"]
         if g.water is None:
-            soil_groups += [hex_record(m.bottom, 0, wall, 0), f"%, {ntheta}, *, 8, 1,",
-                            f"%, {m.nr_bottom - wall - 1}, *, 8, {stride_r_b},", f"%, {nzb}, *, 8, {stride_z_b},", "E,"]
-        for i, k in enumerate(dry if g.water is not None else []):
-            it, count = (k, ntheta - k) if wet else (0, k)
-            soil_groups += [hex_record(m.bottom, it, wall + i, 0), f"%, {count}, *, 8, 1,",
-                            f"%, {nzb}, *, 8, {stride_z_b},", "E,"] if count else []
+            soil_groups += blocks(m.bottom, every, wall, 0, [(m.nr_bottom - wall - 1, stride_r_b), (nzb, stride_z_b)])
+        for i, layer in enumerate(flags if g.water is not None else []):
+            soil_groups += blocks(m.bottom, [it for it in every if layer[it] != wet], wall + i, 0, [(nzb, stride_z_b)])
         soil_groups.append("")
-    out += ["GROUP, bottom_pipe, TYPE=hex8, MATERIAL=concrete", hex_record(m.bottom, 0, 0, 0),
-            f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {stride_r_b},", f"%, {nzb}, *, 8, {stride_z_b},", "E,", ""]
+    out += ["GROUP, bottom_pipe, TYPE=hex8, MATERIAL=concrete"]
+    out += blocks(m.bottom, every, 0, 0, [(wall, stride_r_b), (nzb, stride_z_b)]) + [""]
     out += soil_groups
-    out += ["GROUP, packing, TYPE=hex8, MATERIAL=packing", hex_record(m.top, 0, 0, 0),
-            f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {stride_r_t},", f"%, {npl}, *, 8, {stride_z_t},",
-            "E,", "",
-            "GROUP, top_pipe, TYPE=hex8, MATERIAL=concrete", hex_record(m.top, 0, 0, npl),
-            f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {stride_r_t},", f"%, {nzt}, *, 8, {stride_z_t},", "E,", ""]
-    lo = [m.bottom(0, 0, nzb), m.bottom(0, 1, nzb), m.bottom(1, 1, nzb), m.bottom(1, 0, nzb)]
-    up = [m.top(0, 0, 0), m.top(0, 1, 0), m.top(1, 1, 0), m.top(1, 0, 0)]
+    out += ["GROUP, packing, TYPE=hex8, MATERIAL=packing"]
+    out += blocks(m.top, every, 0, 0, [(wall, stride_r_t), (npl, stride_z_t)]) + [""]
+    out += ["GROUP, top_pipe, TYPE=hex8, MATERIAL=concrete"]
+    out += blocks(m.top, every, 0, npl, [(wall, stride_r_t), (nzt, stride_z_t)]) + [""]
+
+    def joint_block(it, count):
+        lo = [m.bottom(it, 0, nzb), m.bottom(it, 1, nzb), m.bottom(it + 1, 1, nzb), m.bottom(it + 1, 0, nzb)]
+        up = [m.top(it, 0, 0), m.top(it, 1, 0), m.top(it + 1, 1, 0), m.top(it + 1, 0, 0)]
+        return ["A, 8, " + ", ".join(str(n) for n in lo + up) + ",", f"%, {count}, *, 8, 1,", f"%, {wall}, *, 8, {m.nt},",
+                "E,"]
 
     def soil_material(wet):
         law = (f"ELASTIC, E={soil_E:g}{'.' if float(soil_E).is_integer() else ''}, NU={nu_s:g}" if phi_s is None else
@@ -674,10 +739,9 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
 
     out += ["! lower layer = the bottom pipe's end face (counter-clockwise seen from +z: e1 along r, e2 along",
             "! theta, normal +z), upper layer = the packing's lower face; theta strides agree in both blocks",
-            "GROUP, joint, TYPE=interface-quad4, MATERIAL=pipe_packing",
-            "A, 8, " + ", ".join(str(n) for n in lo + up) + ",",
-            f"%, {ntheta}, *, 8, 1,", f"%, {wall}, *, 8, {m.nt},", "E,",
-            "E,", "",
+            "GROUP, joint, TYPE=interface-quad4, MATERIAL=pipe_packing"]
+    out += [line for it, count in m.columns(every) for line in joint_block(it, count)]
+    out += ["E,", "",
             "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2"]
     out += [soil_material(wet) for wet in g.layers(dry, ntheta)]
     out += [f"MATERIAL, packing, ELASTIC, G={G:g}, NU={nu:g}",
@@ -685,10 +749,11 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             f"PSI={psi:g}{'.' if float(psi).is_integer() else ''}, C={c_j:g}",
             "",
             "! --- supports (thesis 6.2) ---",
-            f"NSET, soil_outer, CSYS=3, R={radius_text(r_soil)}, TOL=0.01",
-            "NSET, symmetry_y, CSYS=2, Y=0., TOL=0.01",
-            "NSET, symmetry_z, CSYS=2, Z=0., TOL=0.01",
-            "FIX, soil_outer, X, Y", "FIX, symmetry_y, Y", "FIX, symmetry_z, Z"] + g.rollers(p, r_soil, (z_joint,))
+            f"NSET, soil_outer, CSYS=3, R={radius_text(r_soil)}, TOL=0.01"]
+    out += [] if full else ["NSET, symmetry_y, CSYS=2, Y=0., TOL=0.01"]
+    out += ["NSET, symmetry_z, CSYS=2, Z=0., TOL=0.01",
+            "FIX, soil_outer, X, Y"] + ([] if full else ["FIX, symmetry_y, Y"]) + ["FIX, symmetry_z, Z"] \
+        + g.rollers(p, r_soil, (z_joint,))
     out += ["", f"! --- loads: q = {q:.10g} MPa on the top end (reference load, applied 20% + 80% by the stages) ---",
             f"FSET, top_end, GROUP=top_pipe, CSYS=2, Z={num(z_top + L)}, TOL=0.01",
             f"NSET, top_end_nodes, CSYS=2, Z={num(z_top + L)}, TOL=0.01",
@@ -709,27 +774,37 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             "STAGE, s1, STEPS=1, LOAD=0.2",
             f"! stage 2: the other 80% and delta = {delta:.4f} mm together",
             f"STAGE, s2, STEPS={steps}, LOAD=0.8",
-            f"DISPLACE, top_end_nodes, X={delta:.4f}",
+        ] + ([f"DISPLACE, top_end_nodes, X={delta:.4f}"] if rotation == 0.0 else [
+            f"! along the misalignment's direction theta = {rotation:g} (system 4's x; the top end free across it)",
+            f"CSYS, 4, CARTESIAN, 0., 0., 0., {math.cos(math.radians(rotation)):.16g}, "
+            f"{math.sin(math.radians(rotation)):.16g}, 0., {-math.sin(math.radians(rotation)):.16g}, "
+            f"{math.cos(math.radians(rotation)):.16g}, 0.",
+            f"DISPLACE, top_end_nodes, X={delta:.4f}, CSYS=4"]) + [
             "! stage 3: equilibrium iterations only (no load or displacement increment)",
-            f"STAGE, s3, STEPS={EQUILIBRIUM_STEPS}, LOAD=0, MAXIT=50", "",
-            "! --- post-processing: scripts/postprocess_model_c.py computes beta*, beta_bar, Z and sigma_max",
+            f"STAGE, s3, STEPS={EQUILIBRIUM_STEPS}, LOAD=0, MAXIT=50", ""]
+    if rotation == 0.0:
+        out += ["! --- post-processing: scripts/postprocess_model_c.py computes beta*, beta_bar, Z and sigma_max",
             f"! (thesis 7.4). These REPORTs give quick views: the slope of w over x = {x_from:g}..{ro:g} on r = {ro:g} "
             "of the",
             "! top pipe's mid-length section A-A (beta_bar before the interface's own deformation is taken",
             f"! out; negative: w falls towards x = +{ro:g}; REFERENCE = minus the thesis's beta_bar) and of the",
             "! bottom pipe's end face (thesis Figs. 7.5/7.6) ---"]
-    rep = (f"REPORT, ROTATION, NAME=section_AA, GROUP=top_pipe, R={num(ro)}, Z={num(z_top + L / 2)}, "
-           f"FROM={num(x_from)}, TO={num(ro)}")
-    out.append(rep + (f", REFERENCE={-reference:g}" if reference is not None else ""))
-    out.append(f"REPORT, ROTATION, NAME=bottom_end, GROUP=bottom_pipe, R={num(ro)}, Z={num(z_joint)}, "
+        rep = (f"REPORT, ROTATION, NAME=section_AA, GROUP=top_pipe, R={num(ro)}, Z={num(z_top + L / 2)}, "
                f"FROM={num(x_from)}, TO={num(ro)}")
+        out.append(rep + (f", REFERENCE={-reference:g}" if reference is not None else ""))
+        out.append(f"REPORT, ROTATION, NAME=bottom_end, GROUP=bottom_pipe, R={num(ro)}, Z={num(z_joint)}, "
+                   f"FROM={num(x_from)}, TO={num(ro)}")
+    else:
+        out += ["! --- post-processing: REPORT ROTATION takes slopes along global x, not along the misalignment's",
+                "! direction: the joint's deflection is REPORT JOINT's (along theta = EDGE) ---"]
     out += ["! the force the imposed top-end displacement needs (fx: H = P e / L, the moment of the joint's",
             "! eccentric contact resultant; postprocess_model_c.py --statics drives beam theory with it)",
             "REPORT, REACTION, NAME=top_end, NSET=top_end_nodes"]
     if design:
         out += ["! the design summary of the joint (hoop tension, compression, contact width, opening, deflection,",
                 "! the Australian and Haslem models beside them): /summary joint_design_*",
-                "REPORT, JOINT, NAME=design, INTERFACE=joint, PIPE=bottom_pipe:top_pipe, PACKING=packing"]
+                "REPORT, JOINT, NAME=design, INTERFACE=joint, PIPE=bottom_pipe:top_pipe, PACKING=packing"
+                + ("" if rotation == 0.0 else f", EDGE={num(rotation)}")]
     out += ["! postprocess_model_c.py reads the interface's normal stress at the nodes, feps's nodal_interface",
             "FIELDS, all, nodal_interface"]
     out += ["", "SOLVER, cholmod", f"OUTPUT, {name}.h5", ""]
@@ -756,8 +831,13 @@ def main(argv=None):
     pipe.add_argument("--joint-c", type=finite, default=C_JOINT, help=f"default {C_JOINT:g}")
     load = ap.add_argument_group("misalignment and load")
     load.add_argument("--misalignment", choices=("edge", "diagonal"), default="edge",
-                      help="edge (the joint closes on one side: quarter model) or diagonal (the ends loaded on "
-                           "opposite sides: --packing 0 only, half model)")
+                      help="edge: the top pipe deflected about the y axis, the joint closing at x = +r_o (quarter "
+                           "model, y >= 0). diagonal: deflected about the axis at 45 deg in the cross-section, the "
+                           "joint closing at theta = 45 deg, which breaks the y = 0 symmetry: the full ring (the edge "
+                           "case's --full mesh turned by 45 deg). With --packing 0 (model B) the ends loaded on "
+                           "opposite sides (half model)")
+    load.add_argument("--full", action="store_true", help="model C: the whole ring also for the edge misalignment "
+                      "(the diagonal deck's mesh unturned: test/cli/check_pipe_joint.py compares the two)")
     load.add_argument("--angle", type=positive, default=BETA, help=f"misalignment beta (deg, default {BETA:g})")
     force = load.add_mutually_exclusive_group()
     force.add_argument("--jacking-stress", type=positive, help=f"mean stress on the pipe's end (default {Q:g})")
@@ -817,6 +897,8 @@ def deck_of(a):
         surface = p.r_out + a.cover
         ground = Ground(a.gamma, a.k0, a.soil_phi, surface, None if a.water_table is None else surface - a.water_table)
     if a.packing == 0.0:
+        if a.full:
+            raise ValueError("--full is model C's (two pipes, --packing > 0); model B is a half model")
         kind = "F" if a.interface == "frictional" else ("P" if a.soil_phi else "S")
         phi = a.soil_phi or 15.0
         force = a.jacking_force or (a.jacking_stress * math.pi * (p.r_out ** 2 - p.r_in ** 2) if a.jacking_stress
@@ -826,10 +908,9 @@ def deck_of(a):
                               phi if psi is None else psi, r_soil, a.refine, a.element, pipe=p, case=name,
                               soil_name=f"E_s = {a.soil_E:g} MPa", output=name, total=force / 2.0, steps=a.steps,
                               nu_s=a.soil_nu, c=a.soil_c, ground=ground)
-    if a.misalignment == "diagonal" or a.interface == "frictional":
-        raise ValueError("two pipes and the packing (--packing > 0) are written for the edge misalignment with the "
-                         "bottom pipe bonded to the soil; --misalignment diagonal and --interface frictional need "
-                         "--packing 0")
+    if a.interface == "frictional":
+        raise ValueError("two pipes and the packing (--packing > 0) are written with the bottom pipe bonded to the "
+                         "soil; --interface frictional needs --packing 0")
     if not -1.0 < a.packing_nu < 0.5 or not 0.0 <= a.joint_psi <= a.joint_phi:
         raise ValueError(f"--packing-nu {a.packing_nu:g} must lie in (-1, 0.5), --joint-psi {a.joint_psi:g} in "
                          f"[0, --joint-phi {a.joint_phi:g}]")
@@ -838,7 +919,9 @@ def deck_of(a):
     return joint_deck(G, a.packing_nu, a.angle, r_soil, a.steps or default_steps(a.angle), a.theta_step, a.soil_E,
                       a.wall_elements, a.z_refine, a.joint_psi, name=name, pipe=p, q=q,
                       joint=(a.joint_kn, a.joint_ks, a.joint_phi, a.joint_c),
-                      soil=(a.soil_nu, a.soil_phi, psi, a.soil_c), ground=ground, design=True)
+                      soil=(a.soil_nu, a.soil_phi, psi, a.soil_c), ground=ground, design=True,
+                      rotation=45.0 if a.misalignment == "diagonal" else 0.0,
+                      full=a.full or a.misalignment == "diagonal")
 
 
 if __name__ == "__main__":

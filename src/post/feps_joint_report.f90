@@ -322,7 +322,8 @@ contains
   !! taken from the loaded edge across the diameter (by their angular distance from EDGE=), the
   !! front of the contact zone is where sigma_n reaches zero: linear interpolation between the
   !! last compressive point and the next; when that next point is open (sigma_n = 0 exactly) the
-  !! line through the last two compressive points extended to zero (kept between the two points).
+  !! line through the last two compressive points extended to zero (kept between the two points;
+  !! the one before the last taken at another s, as a whole ring's mirror pairs share theirs).
   !! A ring without a non-compressive point has no gap: the zero of the least-squares line
   !! sigma_n(s) through all its points; a ring open at the edge gives its first point. Z = R less
   !! the zero's coordinate s along the edge's direction, averaged over the rings of 2 or more points.
@@ -334,7 +335,7 @@ contains
     real(dp), allocatable :: s(:), v(:)
     integer, allocatable :: idx(:), order(:)
     real(dp) :: zero, a, b, total
-    integer :: ring, k, p, used
+    integer :: ring, k, p, used, j
     total = 0.0_dp
     used = 0
     do ring = 1, geo%rings
@@ -356,8 +357,14 @@ contains
       else if (k == 1) then
         zero = s(1)
       else if (state(idx(k)) >= state_open .and. k >= 3) then
-        if (v(k - 1) /= v(k - 2)) then
-          zero = s(k - 1) - v(k - 1) * (s(k - 1) - s(k - 2)) / (v(k - 1) - v(k - 2))
+        ! the compressive point before the last at another s: on a whole ring the points come in
+        ! mirror pairs about the plane of deflection (equal s and sigma_n), whose line is no line
+        j = k - 2
+        do while (j > 1 .and. abs(s(j) - s(k - 1)) <= 1.0e-9_dp * geo%outer_radius)
+          j = j - 1
+        end do
+        if (v(k - 1) /= v(j)) then
+          zero = s(k - 1) - v(k - 1) * (s(k - 1) - s(j)) / (v(k - 1) - v(j))
         else
           zero = s(k - 1)
         end if

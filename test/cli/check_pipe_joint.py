@@ -10,6 +10,10 @@
 - a DN 2400 deck (another radius, wall, length and packing) runs, and its mesh is the pipe's;
 - --gamma decks hold the gravity, GEOSTATIC, GAMMA and K0 records with their computed values; the
   soil below --water-table is the group soil_wet (checked element by element on the run's mesh);
+- --misalignment diagonal (model C, the full ring turned by 45 deg) gives the answer of the edge
+  deck's full ring (--full) at the same angle and force, and both that of the quarter model
+  (REPORT JOINT's sigma_max, contact width, opening, load and deflection; docs/verification.md,
+  "Diagonal misalignment (issue 26 item 4)");
 - bad options stop with exit status 2 naming the option.
 
     python3 test/cli/check_pipe_joint.py --feps FEPS --tmp FOLDER
@@ -136,11 +140,12 @@ def generic(tmp, feps):
               f"delta = {res['delta']:.4f} mm = 3000 tan(0.2 deg) = {delta:.4f}",
               0.0 < res["Z"] <= 2800.0 and abs(res["delta"] - delta) < 1e-4, f"{res['Z']}, {res['delta']}")
     gravity(tmp, feps, gen)
+    diagonal(tmp, feps, gen)
     for args, words in ((["--gamma", "2e-5", "--soil-phi", "30"], "--gamma needs --cover"),
                         (["--gamma", "2e-5", "--soil-phi", "30", "--cover", "500"], "--cover 500"),
                         (["--gamma", "2e-5", "--cover", "5000"], "--gamma needs --k0"),
                         (["--k0", "0.5"], "need --gamma"),
-                        (["--misalignment", "diagonal"], "--misalignment diagonal"),
+                        (["--full", "--packing", "0"], "--full is model C's"),
                         (["--theta-step", "5"], "must divide 168"),
                         (["--wall", "-3"], "argument --wall")):
         got = run([sys.executable, GEN, "-o", os.path.join(tmp, "bad.dat")] + args)
@@ -190,6 +195,77 @@ def gravity(tmp, feps, gen):
         f.write(text)
     got = run([feps, deck, "--check"])
     check("... and passes feps --check", got.returncode == 0, got.stderr[-300:])
+
+
+def diagonal(tmp, feps, gen):
+    """--misalignment diagonal against the edge misalignment. Without the ground's weight the problem
+    is rotationally symmetric about the pipe's axis but for the misalignment's direction, and the
+    diagonal deck's mesh is the --full edge deck's turned by 45 deg (node for node, element for
+    element): the joint's answers agree to rounding. Coarse mesh (12 deg, one element through the
+    wall), beta = 0.27 deg (the joint opens), 2 load steps and full Newton-Raphson to 1e-8 (converged states, so no iteration count
+    cut-off can tell the decks apart): about 20 s for the four runs on a release build."""
+    keys = ("sigma_max", "contact_width", "opening", "load", "deflection_deg")
+    res = {}
+    for name, args in (("diag_edge", ["--full"]), ("diag_45", ["--misalignment", "diagonal"]), ("diag_quarter", [])):
+        out = gen(f"{name}.dat", "--theta-step", "12", "--wall-elements", "1", "--steps", "2", "--angle", "0.27",
+                  *args)
+        if not out:
+            check(f"make_pipe_joint.py {' '.join(args)} writes its deck", False)
+            return
+        text = open(out).read()
+        if name == "diag_45":
+            check("--misalignment diagonal: the ring starts at theta = 45 deg, the top end moves along (1, 1) / sqrt 2 "
+                  "(CSYS 4), REPORT JOINT's edge at 45 deg, no y = 0 symmetry plane",
+                  "A, 3, 600., 45., 0.," in text and "DISPLACE, top_end_nodes, X=11.7811, CSYS=4" in text
+                  and "CSYS, 4, CARTESIAN, 0., 0., 0., 0.7071067811865476, 0.7071067811865475, 0.," in text
+                  and ", EDGE=45." in text and "symmetry_y" not in text)
+        with open(out, "w") as f:
+            f.write(text.replace("STAGE, s3, STEPS=100,", "STAGE, s3, STEPS=1,").replace("DELTA1=1e-4", "DELTA1=1e-8"))
+        h5 = os.path.join(tmp, f"{name}.h5")
+        got = run([feps, out, "--quiet", "--output", h5, "--method", "full-newton-raphson", "--maxit", "100"])
+        if got.returncode != 0:
+            check(f"{name}: the deck runs", False, got.stderr[-300:])
+            return
+        with h5py.File(h5) as f:
+            a = f["summary"].attrs
+            res[name] = [float(a[f"joint_design_{k}"]) for k in keys] + [int(a["converged"])]
+            res[name].append(len(f["mesh/groups/joint/connectivity"]))
+
+    def rel(x, y):
+        return max(abs(u - v) / abs(v) for u, v in zip(x, y))
+
+    # with the ground's weight along -x the diagonal ring's soil splits by the water table element by
+    # element (the dry elements are no longer the first of each ring, as in the quarter model)
+    out = gen("diag_wet.dat", "--misalignment", "diagonal", "--inner-diameter", "1000", "--wall", "100", "--theta-step",
+              "24", "--steps", "1", "--gamma", "2e-5", "--soil-phi", "30", "--cover", "1500", "--water-table", "800")
+    with open(out) as f:
+        text = f.read()
+    with open(out, "w") as f:
+        f.write(text.replace("STAGE, s3, STEPS=100,", "STAGE, s3, STEPS=1,"))
+    h5 = os.path.join(tmp, "diag_wet.h5")
+    got = run([feps, out, "--quiet", "--output", h5])
+    if got.returncode != 0:
+        check("--misalignment diagonal --gamma --water-table: the deck runs", False, got.stderr[-300:])
+    else:
+        with h5py.File(h5) as f:
+            x = f["mesh/coordinates"][...]
+            c = {g: x[f[f"mesh/groups/{g}/connectivity"][...] - 1].mean(axis=1) for g in ("soil", "soil_wet")}
+        check(f"--misalignment diagonal --gamma --water-table 800 runs: {len(c['soil'])} soil elements centred above "
+              f"x = 1300, {len(c['soil_wet'])} below, on both sides of y = 0",
+              c["soil"][:, 0].min() > 1300.0 and c["soil_wet"][:, 0].max() < 1300.0 and c["soil"][:, 1].min() < 0.0
+              and c["soil_wet"][:, 1].min() < 0.0 and len(c["soil"]) + len(c["soil_wet"]) == 22 * 4 * 19,
+              f"{c['soil'][:, 0].min()}, {c['soil_wet'][:, 0].max()}, {len(c['soil'])} + {len(c['soil_wet'])}")
+    e, d, q = res["diag_edge"], res["diag_45"], res["diag_quarter"]
+    text = ", ".join(f"{k} {v:.10g}" for k, v in zip(keys, e))
+    check(f"diagonal = edge (both the full ring, beta 0.27 deg: the joint opens; q 10 MPa; 1e-9 relative): {text}; "
+          f"diagonal off by {rel(d[:5], e[:5]):.1e}", rel(d[:5], e[:5]) < 1e-9 and d[5] == e[5] == 1, f"{e} / {d}")
+    # the quarter model: sigma_max, Z, opening and P are its mirror's (Z read from the whole ring's
+    # mirror pairs of points, feps_joint_report's contact_width); the deflection is a least-squares
+    # slope over the end face's nodes, and the half ring counts the nodes on y = 0 once against the
+    # others' twice in the whole ring (5.8e-3 apart)
+    check(f"... = the quarter model's (half the interface elements: {q[6]} of {e[6]}; 1e-9 relative, the deflection "
+          f"1e-2: {q[4]:.7g} deg)", rel(q[:4], e[:4]) < 1e-9 and abs(q[4] / e[4] - 1) < 1e-2 and 2 * q[6] == e[6]
+          and q[5] == 1, f"{q} / {e}")
 
 
 def main():

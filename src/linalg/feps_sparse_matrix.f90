@@ -51,11 +51,11 @@ contains
   end function csr_find
 
   !> y = A x with the full symmetric matrix (each off-diagonal entry used twice).
-  !! Row i's own sum is kept in a register and stored once; its off-diagonal entries are then
-  !! scattered into the earlier rows. Every y(j) receives the same terms in the same order as
-  !! the one-loop form (row j's own entries, then one term from each later row in row order),
-  !! so results are bit-identical to it, but the sum no longer goes through memory per entry:
-  !! 2.2x faster on FE1's linear part (docs/performance.md, "The solve pair").
+  !! Row i's own sum is kept in a register and stored once, while its off-diagonal entries are
+  !! added into the earlier rows. Every y(j) receives the same terms in the same order as the
+  !! form that updates y(i) in memory entry by entry (row j's own entries, then one term from
+  !! each later row in row order), so the results are bit-identical to it, 2.7x faster on
+  !! FE1 (docs/performance.md, "The solve pair").
   pure subroutine csr_multiply(self, x, y)
     class(csr_matrix_t), intent(in) :: self
     real(dp), intent(in) :: x(:)
@@ -70,10 +70,8 @@ contains
       xi = x(i)
       s = 0.0_dp
       do k = first, last
-        s = s + self%val(k) * x(self%col(k))
-      end do
-      do k = first, last
         j = self%col(k)
+        s = s + self%val(k) * x(j)
         if (j /= i) y(j) = y(j) + self%val(k) * xi
       end do
       ! y(i) is still 0 here (only later rows add to it), so this stores s exactly

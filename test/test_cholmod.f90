@@ -32,9 +32,58 @@ contains
       new_unittest("node-graph ordering equals skyline", test_node_ordering_vs_skyline), &
       new_unittest("UMFPACK: non-symmetric Laplacian plus convection against dgesv; singular is err_model", &
                    test_umfpack), &
-      new_unittest("skyline, CHOLMOD and UMFPACK give one solution of an SPD system", test_three_solvers) &
+      new_unittest("skyline, CHOLMOD and UMFPACK give one solution of an SPD system", test_three_solvers), &
+      new_unittest("symmetric product: the one-loop form's bits, the dense product to 1e-14", test_multiply_order) &
     ]
   end subroutine collect_cholmod
+
+  !> csr_multiply against two independent computations on a 60 x 60 symmetric matrix whose
+  !! entries and x span 16 orders of magnitude, so that the order of the additions shows in the
+  !! last bits: bit for bit the one-loop form (y(i) and y(j) updated entry by entry in row
+  !! order), which the thesis results were computed with, and the dense product to 1e-14 of
+  !! sum |a_ij x_j|. The same sums added in reverse order differ in some bit (the bitwise
+  !! check can fail).
+  subroutine test_multiply_order(error)
+    type(error_t), allocatable, intent(out) :: error
+    integer, parameter :: n = 60
+    real(dp) :: dense(n, n), x(n), y(n), y_loop(n), y_reverse(n), scale(n)
+    type(csr_matrix_t) :: a
+    integer :: i, j
+    integer(i8) :: k
+    dense = 0.0_dp
+    do i = 1, n
+      x(i) = sin(0.37_dp * i) * 10.0_dp**modulo(7 * i, 17 - 8)
+      do j = 1, i
+        if (i /= j .and. modulo(i * j + 3 * i, 4) /= 0) cycle
+        dense(i, j) = cos(1.3_dp * i + 0.7_dp * j) * 10.0_dp**modulo(5 * i + 3 * j, 9)
+        dense(j, i) = dense(i, j)
+      end do
+      dense(i, i) = dense(i, i) + 2.0e9_dp
+    end do
+    a = dense_to_csr(dense)
+    call a%multiply(x, y)
+    y_loop = 0.0_dp
+    do i = 1, n
+      do k = a%row_ptr(i), a%row_ptr(i + 1) - 1
+        j = a%col(k)
+        y_loop(i) = y_loop(i) + a%val(k) * x(j)
+        if (j /= i) y_loop(j) = y_loop(j) + a%val(k) * x(i)
+      end do
+    end do
+    y_reverse = 0.0_dp
+    do i = 1, n
+      do j = n, 1, -1
+        y_reverse(i) = y_reverse(i) + dense(i, j) * x(j)
+      end do
+    end do
+    call check(error, all(y == y_loop), 'csr_multiply differs from the one-loop form in some bit')
+    if (allocated(error)) return
+    call check(error, any(y_reverse /= y_loop), 'the reverse order gives the same bits: the data cannot tell orders apart')
+    if (allocated(error)) return
+    scale = matmul(abs(dense), abs(x))
+    call check(error, maxval(abs(y - matmul(dense, x)) / scale) <= 1.0e-14_dp, &
+               'csr_multiply differs from the dense product by more than 1e-14')
+  end subroutine test_multiply_order
 
   !> The 2D Laplacian of a 9 x 9 grid with a varying diagonal (SPD) solved by skyline (LDL^T,
   !! RCM), CHOLMOD (LL^T, METIS) and UMFPACK (LU of both triangles, as full Newton factorizes a

@@ -1280,6 +1280,8 @@ expect_line "bench_compare.sh with a missing deck" 2 "no deck $tmp/no_such.dat" 
   bash scripts/bench_compare.sh "$feps" "$feps" --repeat 1 "$tmp/no_such.dat"
 expect_line "bench_compare.sh with a build that is not there" 2 "is not an executable" \
   bash scripts/bench_compare.sh "$tmp/no_feps" "$feps" test/data/cube.dat
+expect_line "bench_solve_bound.sh with a size that is not a number of bytes" 2 \
+  "usage: bash scripts/bench_solve_bound.sh" bash scripts/bench_solve_bound.sh 50MB
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).
 tester=${FEPS_TESTER:-$(fpm test --runner echo 2>/dev/null | tail -n 1)}
 expect_line "fpm test -- nosuchsuite" 2 'no test suite "nosuchsuite" (the suites: datain' "$tester" nosuchsuite

@@ -1,21 +1,23 @@
-!> Cracking concrete: an isotropic damage model driven by the Rankine (most tensile principal)
-!! effective stress, with linear or exponential tension softening regularised by the fracture
-!! energy G_f over the crack band h of the point's element (Bazant and Oh 1983; the Rankine
-!! damage model of Jirasek and Bazant, Inelastic Analysis of Structures, 2002, section 25.1).
+!> Cracking concrete: an isotropic damage model driven by the tensile effective stress (the
+!! Rankine measure where one principal stress is tensile), with linear or exponential tension
+!! softening regularised by the fracture energy G_f over the crack band h of the point's
+!! element (Bazant and Oh 1983; the Rankine damage model of Jirasek and Bazant, Inelastic
+!! Analysis of Structures, 2002, section 25.1).
 !!
 !! Components: 6 Voigt stresses [xx yy zz yz xz xy] and strains with engineering shears,
 !! tension positive. sigma = (1 - d) sigma_eff, sigma_eff = D eps (E, nu isotropic).
 !!
 !! Why isotropic damage and not a fixed or rotating smeared crack: one scalar history variable
-!! (kappa), a secant stiffness (1 - d) D that is symmetric and positive definite at every
-!! iterate (the symmetric solvers and every solution method take it), and exactly the crack
-!! band energy in uniaxial tension, which is what the crack band theory regularises. What it
-!! does not do: it softens the compressive and shear stiffness of a cracked point with the
-!! tensile one (a smeared crack would keep them), and it is elastic in compression (no
-!! Matsuoka-Nakai surface: the two do not share a cap cleanly, see docs/input-format.md).
+!! (kappa) and exactly the crack band energy, which is what the crack band theory regularises.
+!! What it does not do: it softens the compressive and shear stiffness of a cracked point with
+!! the tensile one (a smeared crack would keep them), and it is elastic in compression (no
+!! Matsuoka-Nakai surface).
 !!
-!! History: kappa, the largest equivalent strain reached, eps_eq = max(sigma_eff_1, 0) / E;
-!! damage starts at kappa = eps_0 = f_t / E. Softening of the uniaxial stress after the peak:
+!! History: kappa, the largest equivalent strain reached (`equivalent_strain`: the energy norm
+!! of the tensile part of the effective stress, which is the Rankine measure
+!! max(sigma_eff_1, 0) / E when one principal stress is tensile, and keeps the dissipation
+!! G_f / h when the lateral strain of a crack band is held, at any nu); damage starts at
+!! kappa = eps_0 = f_t / E. Softening of the uniaxial stress after the peak:
 !!  - LINEAR: sigma = f_t (eps_u - kappa) / (eps_u - eps_0), eps_u = 2 G_f / (h f_t);
 !!  - EXPONENTIAL: sigma = f_t exp(-(kappa - eps_0) / eps_f), eps_f = G_f / (h f_t) - eps_0 / 2;
 !! both dissipate G_f / h per unit volume, G_f per unit crack area over a band h. Both need
@@ -26,7 +28,11 @@
 !! The update is incremental in the effective stress, sigma_eff = sig0 / (1 - d(kappa0)) +
 !! D deps, so a stress imposed at the start of a step (prestress, in-situ) enters it. Internal
 !! variables: 1 kappa, 2 h (the crack band, set once per point by the analysis from its
-!! element: `band_slot`). Tangent: the secant (1 - d) D.
+!! element: `band_slot`). Tangent: unloading or below the peak the secant (1 - d) D; while
+!! the damage grows the consistent tangent (1 - d) D - d'(kappa) sigma_eff (D grad kappa)^T,
+!! non-symmetric in general (full Newton factorizes it by LU; the other methods take its
+!! nearest symmetric positive semi-definite part). The secant alone converged linearly, at a
+!! rate near 0.97 per iteration, once a laterally held band softened (nu > 0).
 module feps_concrete_damage
   use feps_kinds, only: dp
   use feps_error, only: error_t, str
@@ -64,6 +70,7 @@ module feps_concrete_damage
     procedure :: band_slot => cd_band_slot
     procedure :: max_band => cd_max_band
     procedure :: damage => cd_damage
+    procedure :: damage_rate => cd_damage_rate
     procedure :: unit_warning => cd_unit_warning
   end type concrete_damage_t
 
@@ -121,6 +128,26 @@ contains
     d = min(d, max_damage)
   end function cd_damage
 
+  !> d'(kappa), the damage's rate of growth with the history kappa while it grows (0 before
+  !! the peak and where the damage is capped).
+  pure real(dp) function cd_damage_rate(self, kappa, h) result(rate)
+    class(concrete_damage_t), intent(in) :: self
+    real(dp), intent(in) :: kappa, h
+    real(dp) :: eps0, epsu, epsf, ex
+    eps0 = self%ft / self%e
+    rate = 0.0_dp
+    if (.not. (kappa > eps0) .or. .not. (self%damage(kappa, h) < max_damage)) return
+    select case (self%softening)
+    case (softening_exponential)
+      epsf = self%gf / (h * self%ft) - 0.5_dp * eps0
+      ex = exp(-(kappa - eps0) / epsf)
+      rate = eps0 / kappa * ex * (1.0_dp / kappa + 1.0_dp / epsf)
+    case default
+      epsu = 2.0_dp * self%gf / (h * self%ft)
+      rate = eps0 * epsu / (kappa**2 * (epsu - eps0))
+    end select
+  end function cd_damage_rate
+
   !> Stress update over a step (see the module description); state_cracked once the point has
   !! damaged. Without a crack band (h = 0: not set) the point stays elastic.
   pure subroutine cd_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
@@ -132,7 +159,8 @@ contains
     real(dp), intent(out) :: dtan(:, :)
     real(dp), intent(in), optional :: var0(:)
     real(dp), intent(out), optional :: var(:)
-    real(dp) :: d(6, 6), kappa0, kappa, h, dmg0, dmg, sig_eff(6), p(3)
+    real(dp) :: d(6, 6), kappa0, kappa, h, dmg0, dmg, sig_eff(6), eq, rate, dk(6)
+    integer :: j
     d = elastic_matrix(self%e, self%nu)
     kappa0 = 0.0_dp
     h = 0.0_dp
@@ -143,12 +171,21 @@ contains
     dmg0 = 0.0_dp
     if (h > 0.0_dp) dmg0 = self%damage(kappa0, h)
     sig_eff = sig0(1:6) / (1.0_dp - dmg0) + matmul(d, deps(1:6))
-    p = principal_values(sig_eff)
-    kappa = max(kappa0, max(p(1), 0.0_dp) / self%e)
+    eq = equivalent_strain(sig_eff, self%e, self%nu)
+    kappa = max(kappa0, eq)
     dmg = 0.0_dp
     if (h > 0.0_dp) dmg = self%damage(kappa, h)
     sig(1:6) = (1.0_dp - dmg) * sig_eff
     dtan(1:6, 1:6) = (1.0_dp - dmg) * d
+    rate = 0.0_dp
+    if (h > 0.0_dp .and. eq > kappa0) rate = self%damage_rate(kappa, h)
+    if (rate > 0.0_dp) then
+      ! loading: d sig / d eps = (1 - d) D - d'(kappa) sig_eff (D grad kappa)^T
+      dk = matmul(d, equivalent_strain_gradient(sig_eff, self%e, self%nu))
+      do j = 1, 6
+        dtan(1:6, j) = dtan(1:6, j) - rate * sig_eff * dk(j)
+      end do
+    end if
     state = state_elastic
     if (dmg > 0.0_dp) state = state_cracked
     if (present(var)) then
@@ -156,6 +193,48 @@ contains
       var(var_band) = h
     end if
   end subroutine cd_update
+
+  !> The equivalent strain that drives the damage: the energy norm of the tensile part of the
+  !! effective stress, sqrt(<sigma>+ : C : <sigma>+) / sqrt(E) (C the elastic compliance), i.e.
+  !! sqrt(sum t_i^2 - 2 nu sum_{i<j} t_i t_j) / E over t_i = max(s_i, 0), s_i the principal
+  !! effective stresses. With one tensile principal stress it is the Rankine measure s_1 / E.
+  !! Where none is compressive it is sqrt(2 Y / E), Y = eps : D : eps / 2 the energy release
+  !! rate of the isotropic damage, so that the dissipation int Y dd = int E kappa^2 / 2
+  !! d'(kappa) dkappa is the uniaxial one, G_f / h, whatever the lateral strain: in uniaxial
+  !! stress and in a crack band held laterally by uncracked neighbours (near uniaxial strain)
+  !! alike. The Rankine measure alone dissipates 1 / 1.11 of G_f / h in that band at
+  !! nu = 0.2: its effective stress reaches (1 - nu) / ((1 + nu)(1 - 2 nu)) E eps there.
+  !! Compressive principal stresses do not enter (they neither crack nor delay cracking).
+  pure real(dp) function equivalent_strain(sig_eff, e, nu) result(eq)
+    real(dp), intent(in) :: sig_eff(6), e, nu
+    real(dp) :: t(3), q
+    t = max(principal_values(sig_eff), 0.0_dp)
+    q = t(1)**2 + t(2)**2 + t(3)**2 - 2.0_dp * nu * (t(1) * t(2) + t(2) * t(3) + t(1) * t(3))
+    eq = sqrt(max(q, 0.0_dp)) / e
+  end function equivalent_strain
+
+  !> The gradient of `equivalent_strain` with respect to the six Voigt effective stresses
+  !! (strain-like: the shear entries are derivatives by the shear stress), by central
+  !! differences with a step of 1e-6 of the largest component (rounding leaves about 1e-10
+  !! of the gradient; where a principal stress passes zero the measure has a kink and the
+  !! differences average its two sides). Differences spare the principal directions that the
+  !! analytic form would need.
+  pure function equivalent_strain_gradient(sig_eff, e, nu) result(g)
+    real(dp), intent(in) :: sig_eff(6), e, nu
+    real(dp) :: g(6)
+    real(dp) :: step, sp(6), sm(6)
+    integer :: k
+    step = 1.0e-6_dp * maxval(abs(sig_eff))
+    g = 0.0_dp
+    if (.not. (step > 0.0_dp)) return
+    do k = 1, 6
+      sp = sig_eff
+      sm = sig_eff
+      sp(k) = sp(k) + step
+      sm(k) = sm(k) - step
+      g(k) = (equivalent_strain(sp, e, nu) - equivalent_strain(sm, e, nu)) / (2.0_dp * step)
+    end do
+  end function equivalent_strain_gradient
 
   !> A Young's modulus far outside the physical range in N, mm and MPa.
   pure subroutine cd_unit_warning(self, warning, key)

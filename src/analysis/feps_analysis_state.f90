@@ -806,7 +806,7 @@ contains
                          an%eq%map%dof_name(ieq) // ' ' // node_position(model, an%eq%map%eq_node(ieq)) // &
                          ': that DOF is not held (an unconstrained rigid-body mode ' // &
                          'or a missing support), or held only through a stiffness contrast beyond double ' // &
-                         'precision (pivot below 1e-11 of its diagonal)', item=ieq)
+                         'precision (' // an%eq%solver%zero_pivot_rule() // ')', item=ieq)
       end if
       return
     end if

@@ -22,6 +22,7 @@ module feps_linear_solver
     procedure(factorize_interface), deferred :: factorize
     procedure(solve_interface), deferred :: solve
     procedure(name_interface), deferred :: name
+    procedure :: zero_pivot_rule    !! what the solver takes for a zero pivot, for messages
   end type linear_solver_t
 
   abstract interface
@@ -53,5 +54,15 @@ module feps_linear_solver
       character(len=:), allocatable :: name
     end function name_interface
   end interface
+
+contains
+
+  !> The rule by which a pivot counts as zero (a singular stiffness), as messages say it:
+  !! pivot_tolerance of the equation's own diagonal, as CHOLMOD, UMFPACK and skyline apply it.
+  pure function zero_pivot_rule(self) result(text)
+    class(linear_solver_t), intent(in) :: self
+    character(len=:), allocatable :: text
+    text = 'pivot below 1e-11 of its diagonal'
+  end function zero_pivot_rule
 
 end module feps_linear_solver

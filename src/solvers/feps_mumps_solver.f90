@@ -27,6 +27,7 @@ module feps_mumps_solver
     procedure :: factorize => mumps_factorize
     procedure :: solve => mumps_solve
     procedure :: name => mumps_name
+    procedure :: zero_pivot_rule => mumps_zero_pivot_rule
     final :: mumps_finalize
   end type mumps_solver_t
 
@@ -225,6 +226,13 @@ contains
     character(len=:), allocatable :: name
     name = 'mumps'
   end function mumps_name
+
+  !> MUMPS's null pivots (ICNTL(24), CNTL(3) = 1e-11, feps_mumps_shim.c).
+  pure function mumps_zero_pivot_rule(self) result(text)
+    class(mumps_solver_t), intent(in) :: self
+    character(len=:), allocatable :: text
+    text = 'MUMPS''s null pivot: its row below 1e-11 of the matrix''s norm'
+  end function mumps_zero_pivot_rule
 
   !> Release the MUMPS instance on every rank.
   subroutine mumps_finalize(self)

@@ -72,9 +72,9 @@ OPENBLAS_NUM_THREADS=1 "$feps" --version | grep -Eq "^blas (OpenBLAS .*, 1 threa
 # The factorization's threads: every core up to 4, three quarters above (measured on 16 cores,
 # docs/performance.md), never more than --threads N or OMP_NUM_THREADS.
 cores=$(nproc)
-want=$((cores <= 4 ? cores : 3 * cores / 4))
-env -u OPENBLAS_NUM_THREADS -u GOTO_NUM_THREADS -u OMP_NUM_THREADS "$feps" --version | grep -Eq "^blas (OpenBLAS .*, $want threads? \(|not OpenBLAS)" \
-  && ok "the factorization gets $want BLAS threads on $cores cores" || bad "BLAS threads on $cores cores (want $want): $("$feps" --version | sed -n 2p)"
+want_threads=$((cores <= 4 ? cores : 3 * cores / 4))
+env -u OPENBLAS_NUM_THREADS -u GOTO_NUM_THREADS -u OMP_NUM_THREADS "$feps" --version | grep -Eq "^blas (OpenBLAS .*, $want_threads threads? \(|not OpenBLAS)" \
+  && ok "the factorization gets $want_threads BLAS threads on $cores cores" || bad "BLAS threads on $cores cores (want $want_threads): $("$feps" --version | sed -n 2p)"
 env -u OPENBLAS_NUM_THREADS -u GOTO_NUM_THREADS "$feps" test/data/cube.dat --threads 1 --output "$tmp/th.h5" | grep -Eq "^blas +(OpenBLAS .*, 1 thread \(|not OpenBLAS)" \
   && ok "--threads 1 holds the BLAS to one thread" || bad "--threads 1 and the BLAS threads"
 expect_status "no deck" 2 "$feps"

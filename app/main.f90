@@ -170,7 +170,8 @@ contains
         write (output_unit, '(a)') 'feps ' // feps_version, 'blas ' // blas_description()
         status = 0
         return
-      case ('-q', '--quiet', '--check', '--strict', '-o', '--output', '--solver', '--method', '--maxit', '--fields', &
+      case ('-q', '--quiet', '--check', '--strict', '--out-of-core', '-o', '--output', '--solver', '--method', &
+            '--maxit', '--fields', &
             '--restart', '--step', '--restart-every', '--stop-after-step', '--threads')
         name = arg
         if (arg == '-q') name = '--quiet'
@@ -190,6 +191,9 @@ contains
           cycle
         else if (name == '--strict') then
           options%strict = .true.
+          cycle
+        else if (name == '--out-of-core') then
+          options%out_of_core = .true.
           cycle
         end if
         if (i == n) then
@@ -367,8 +371,8 @@ contains
     write (output_unit, '(a)') &
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
-      'usage: feps DECK [--output FILE] [--solver skyline|cholmod|mumps] [--method NAME] [--maxit N]', &
-      '                 [--fields LIST] [--check] [--strict] [--quiet]', &
+      'usage: feps DECK [--output FILE] [--solver skyline|cholmod|mumps [--out-of-core]] [--method NAME]', &
+      '                 [--maxit N] [--fields LIST] [--check] [--strict] [--quiet]', &
       '                 [--restart-every N] [--restart FILE [--step N]] [--threads N]', &
       '       feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--json] ...', &
       '       feps elements', &
@@ -380,6 +384,8 @@ contains
       '                       for its extension, so FILE must not end in .xmf)', &
       '      --solver NAME    linear solver: cholmod (supernodal, METIS), skyline (LDL^T, RCM) or', &
       '                       mumps (multifrontal, over MPI: mpirun -np N feps ..., in the MPI build)', &
+      '      --out-of-core    with mumps: the factors on disk, in MUMPS_OOC_TMPDIR (else TMPDIR, else', &
+      '                       /tmp), for models whose factor does not fit in memory', &
       '      --method NAME    solve every stage by one method: euler, modified-euler, newton-raphson,', &
       '                       modified-newton-raphson, initial-stiffness, full-newton-raphson', &
       '                       (overrides the deck)', &
@@ -435,6 +441,7 @@ contains
       if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
         ' (in no element; no DOFs)'
       write (output_unit, '(a)') 'solver           ' // s%solver
+      if (allocated(s%rank_memory_mb)) call print_ranks(s)
       write (output_unit, '(a)') 'blas             ' // s%blas
       if (s%linear) then
         write (output_unit, '(a)') 'analysis         linear: ' // str(s%factorizations) // ' factorization(s)'
@@ -506,6 +513,24 @@ contains
       text = sci(j, 5, 12)
     end if
   end function jacobian_text
+
+  !> MUMPS over MPI: each rank's factorization memory (the largest of the run) and time (summed).
+  subroutine print_ranks(s)
+    type(run_summary_t), intent(in) :: s
+    character(len=:), allocatable :: memory, time
+    character(len=32) :: buf
+    integer :: r
+    memory = ''
+    time = ''
+    do r = 1, size(s%rank_memory_mb)
+      memory = memory // ' ' // str(nint(s%rank_memory_mb(r)))
+      write (buf, '(f0.2)') s%rank_factor_seconds(r)
+      if (buf(1:1) == '.') buf = '0' // buf
+      time = time // ' ' // trim(buf)
+    end do
+    write (output_unit, '(a)') 'ranks            ' // str(size(s%rank_memory_mb)) // &
+      '; factorization memory per rank (MB):' // memory // '; factorization time per rank (s):' // time
+  end subroutine print_ranks
 
   !> The summary of `feps --check`: the model's size and the solver's predictions.
   subroutine print_check(s)

@@ -25,7 +25,7 @@ module feps_analysis_state
   use feps_solid_element, only: solid_element_t
   use feps_point_state_store, only: point_state_store_t
   use feps_tangent_symmetry, only: nearest_symmetric_psd
-  use feps_solver_factory, only: new_linear_solver
+  use feps_solver_factory, only: new_linear_solver, new_lu_solver
   use feps_observer, only: observer_t
   use feps_equation_system, only: equation_system_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
@@ -134,6 +134,7 @@ contains
     summary%matrix_nnz = an%eq%a%nnz()
     call new_linear_solver(solver_name, an%eq%solver, error)
     if (allocated(error)) return
+    call new_lu_solver(solver_name, an%eq%lu)
     summary%solver = an%eq%solver%name()
     call an%eq%solver%analyze(an%eq%a, error)
     if (.not. allocated(error)) call check_factor_memory(model, an, error)
@@ -150,7 +151,7 @@ contains
     integer(i8) :: need, limit
     limit = memory_limit_bytes()
     if (limit <= 0) return
-    need = 8_i8 * an%eq%solver%factor_nnz + 12_i8 * an%eq%a%nnz()
+    need = an%eq%solver%memory_need_bytes() + 12_i8 * an%eq%a%nnz()
     if (need <= limit) return
     call fatal_error(error, err_memory, model%deck_file // ': the factor of the stiffness matrix (' // &
                      str(an%eq%map%neq) // ' equations, ' // str(real(an%eq%solver%factor_nnz, dp)) // &
@@ -771,7 +772,11 @@ contains
     end if
     if (nonsymmetric) then
       t0 = wall_clock()
-      if (.not. allocated(an%eq%a_full%row_ptr)) call full_pattern(an%eq%a, an%eq%a_full)
+      if (.not. allocated(an%eq%a_full%row_ptr)) then
+        call full_pattern(an%eq%a, an%eq%a_full)
+        call an%eq%lu%analyze(an%eq%a_full, error)
+        if (allocated(error)) return
+      end if
       call assemble_tangent(model, an, elastic, use_trial, .true., an%eq%a_full, nonsymmetric)
       summary%time_assembly = summary%time_assembly + wall_clock() - t0
       t0 = wall_clock()
@@ -780,7 +785,7 @@ contains
       if (.not. allocated(lu_error)) then
         an%eq%use_lu = .true.
         summary%lu_factorizations = an%eq%lu%factorizations
-        summary%lu_min_rcond = an%eq%lu%min_rcond
+        summary%lu_min_rcond = an%eq%lu_min_rcond()
         summary%factorizations = an%eq%solver%factorizations + an%eq%lu%factorizations
         return
       end if
@@ -986,7 +991,7 @@ contains
     data%lu_singular = an%eq%lu_singular
     data%solver_factorizations = an%eq%solver%factorizations
     data%lu_factorizations = an%eq%lu%factorizations
-    data%lu_min_rcond = an%eq%lu%min_rcond
+    data%lu_min_rcond = an%eq%lu_min_rcond()
   end subroutine save_state
 
   !> `an` (set up, its states initialised) as restart data saved it at the end of a step of
@@ -1042,6 +1047,8 @@ contains
     an%eq%solver%factorizations = data%solver_factorizations
     if (allocated(data%a_full_val)) then
       call full_pattern(an%eq%a, an%eq%a_full)
+      call an%eq%lu%analyze(an%eq%a_full, error)
+      if (allocated(error)) return
       an%eq%a_full%val = data%a_full_val
       if (data%use_lu) then
         call an%eq%lu%factorize(an%eq%a_full, error)
@@ -1049,7 +1056,7 @@ contains
       end if
     end if
     an%eq%lu%factorizations = data%lu_factorizations
-    an%eq%lu%min_rcond = data%lu_min_rcond
+    call an%eq%set_lu_min_rcond(data%lu_min_rcond)
     an%eq%use_lu = data%use_lu
     an%eq%symmetrized = data%symmetrized
     an%eq%warned_condition = data%warned_condition

@@ -45,6 +45,8 @@ module feps_analysis_summary
     character(len=:), allocatable :: solver
     logical :: condition_warning = .false.   !! max/min pivot ratio passed condition_warning
     integer(i8), allocatable :: state_bytes(:)  !! per group: bytes of point state (0: elastic, none kept)
+    real(dp), allocatable :: rank_memory_mb(:)       !! MUMPS over MPI: each rank's largest factorization memory (MB)
+    real(dp), allocatable :: rank_factor_seconds(:)  !! and its time in the factorizations (s)
   end type analysis_summary_t
 
   !> Above this max/min pivot ratio the results may have lost digits: say so.

@@ -118,6 +118,17 @@ contains
 
     summary%factor_nnz = an%eq%solver%factor_nnz
     summary%flops = an%eq%solver%flops
+    if (allocated(an%eq%solver%rank_memory_mb)) then
+      summary%rank_memory_mb = an%eq%solver%rank_memory_mb
+      summary%rank_factor_seconds = an%eq%solver%rank_factor_seconds
+    end if
+    if (allocated(an%eq%lu)) then
+      ! MUMPS's LU of the non-symmetric tangents: its own instance on the same ranks
+      if (allocated(an%eq%lu%rank_memory_mb) .and. allocated(summary%rank_memory_mb)) then
+        summary%rank_memory_mb = max(summary%rank_memory_mb, an%eq%lu%rank_memory_mb)
+        summary%rank_factor_seconds = summary%rank_factor_seconds + an%eq%lu%rank_factor_seconds
+      end if
+    end if
     summary%min_pivot_ratio = an%eq%solver%min_pivot_ratio
     summary%max_pivot_ratio = an%eq%solver%max_pivot_ratio
     summary%applied_force = sum(an%path%f_applied, dim=2)

@@ -65,6 +65,7 @@ module feps_results_file
     procedure :: write_gauss
     procedure :: write_summary_string
     procedure :: write_summary_real
+    procedure :: write_summary_reals
     procedure :: write_summary_int
     procedure :: write_group_int
     procedure :: write_group_real
@@ -541,6 +542,36 @@ contains
     call write_real_attribute(group_id, key, value, error)
     call h5gclose_f(group_id, hdferr)
   end subroutine write_summary_real
+
+  !> Real array attribute `key` of the group `/summary` (replaced if it exists), e.g. one value per
+  !! MPI rank.
+  subroutine write_summary_reals(self, key, values, error)
+    class(results_file_t), intent(inout) :: self
+    character(len=*), intent(in) :: key
+    real(dp), intent(in) :: values(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: group_id, space_id, attribute_id
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr, ignored, i
+    do i = 1, size(values)
+      call refuse_non_finite_attribute('/summary', key, values(i), error)
+      if (allocated(error)) return
+    end do
+    call open_summary(self, key, group_id, error)
+    if (allocated(error)) return
+    dims = size(values)
+    call h5screate_simple_f(1, dims, space_id, hdferr)
+    if (hdferr >= 0) then
+      call h5acreate_f(group_id, key, H5T_NATIVE_DOUBLE, space_id, attribute_id, hdferr)
+      if (hdferr >= 0) then
+        call h5awrite_f(attribute_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+        call h5aclose_f(attribute_id, ignored)
+      end if
+      call h5sclose_f(space_id, ignored)
+    end if
+    call h5gclose_f(group_id, ignored)
+    if (hdferr < 0) call fatal_error(error, err_io, 'cannot write attribute /summary/' // key)
+  end subroutine write_summary_reals
 
   !> 64-bit integer attribute `key` of the group `/summary` (replaced if it exists).
   subroutine write_summary_int(self, key, value, error)

@@ -42,6 +42,7 @@ module feps_program
     logical :: quiet = .false.
     logical :: check_only = .false.             !! check the deck and the model, solve nothing, write nothing
     logical :: strict = .false.                 !! a run that ends out of balance fails (exit 1, no results)
+    logical :: out_of_core = .false.            !! --out-of-core: MUMPS's factors on disk (solver mumps only)
     character(len=:), allocatable :: restart    !! --restart FILE: continue from its restart data when not empty
     integer :: restart_step = 0                 !! --step N: the restart point (0: the last in the file)
     integer :: restart_every = 0                !! --restart-every N: overrides the deck's RESTART when positive
@@ -139,6 +140,14 @@ contains
     solver = model%solver
     if (allocated(options%solver)) then
       if (len(options%solver) > 0) solver = options%solver
+    end if
+    if (options%out_of_core) then
+      if (solver /= 'mumps') then
+        call fatal_error(error, err_input, '--out-of-core keeps MUMPS''s factors on disk: it needs the mumps ' // &
+                         'solver (--solver mumps), not ' // solver)
+        return
+      end if
+      solver = 'mumps-ooc'
     end if
     if (allocated(options%method)) then
       if (len(options%method) > 0) then
@@ -675,6 +684,12 @@ contains
     if (.not. allocated(error)) call h5%write_summary_int('dofs', int(summary%dofs, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('factor_nonzeros', summary%factor_nnz, error)
     if (.not. allocated(error)) call h5%write_summary_real('factor_flops', summary%flops, error)
+    if (.not. allocated(error) .and. allocated(summary%rank_memory_mb)) then
+      call h5%write_summary_int('ranks', size(summary%rank_memory_mb, kind=i8), error)
+      if (.not. allocated(error)) call h5%write_summary_reals('rank_memory_mb', summary%rank_memory_mb, error)
+      if (.not. allocated(error)) call h5%write_summary_reals('rank_factorization_time', &
+                                                              summary%rank_factor_seconds, error)
+    end if
     if (.not. allocated(error)) call h5%write_summary_int('matrix_nonzeros', summary%matrix_nnz, error)
     if (.not. allocated(error)) call h5%write_summary_real('time_assembly', summary%time_assembly, error)
     if (.not. allocated(error)) call h5%write_summary_real('time_factorization', summary%time_factorization, error)

@@ -17,7 +17,10 @@ module feps_linear_solver
     real(dp) :: min_pivot_ratio = 0.0_dp  !! min over equations of pivot / diagonal entry
     real(dp) :: max_pivot_ratio = 0.0_dp  !! max over equations of pivot / diagonal entry
     integer :: factorizations = 0         !! how many factorizations so far
+    real(dp), allocatable :: rank_memory_mb(:)       !! solvers over MPI: each rank's largest factorization memory
+    real(dp), allocatable :: rank_factor_seconds(:)  !! and its time in the factorizations, summed
   contains
+    procedure :: memory_need_bytes  !! memory the factorization needs, known after the analysis
     procedure(analyze_interface), deferred :: analyze
     procedure(factorize_interface), deferred :: factorize
     procedure(solve_interface), deferred :: solve
@@ -56,6 +59,14 @@ module feps_linear_solver
   end interface
 
 contains
+
+  !> The memory the factorization needs (a lower bound, 8 bytes a factor entry), known after the
+  !! analysis; solvers that keep the factor elsewhere (out of core) or know better override it.
+  pure function memory_need_bytes(self) result(bytes)
+    class(linear_solver_t), intent(in) :: self
+    integer(i8) :: bytes
+    bytes = 8_i8 * self%factor_nnz
+  end function memory_need_bytes
 
   !> The rule by which a pivot counts as zero (a singular stiffness), as messages say it:
   !! pivot_tolerance of the equation's own diagonal, as CHOLMOD, UMFPACK and skyline apply it.

@@ -27,6 +27,7 @@ typedef struct {
     DMUMPS_STRUC_C id;
     int in_use;
     MUMPS_INT *irn, *jcn;        /* rank 0: the pattern, 1-based (lower triangle) */
+    double *rank_stats;          /* rank 0: per rank, the last factorization's memory (MB) and seconds */
 } instance;
 
 static instance instances[MAX_INSTANCES];
@@ -56,8 +57,24 @@ static void set_controls(DMUMPS_STRUC_C *id)
                                   * (CHOLMOD's rule is 1e-11 of the equation's own diagonal) */
 }
 
-static int create_on_all(int which, int sym)
+/* The folder of the out-of-core factor files: MUMPS_OOC_TMPDIR, else TMPDIR, else /tmp. MUMPS
+ * makes its files there (names starting "feps_") and removes them when the instance ends. */
+static void set_out_of_core(DMUMPS_STRUC_C *id)
 {
+    const char *dir = getenv("MUMPS_OOC_TMPDIR");
+    if (dir == NULL || dir[0] == '\0') dir = getenv("TMPDIR");
+    if (dir == NULL || dir[0] == '\0') dir = "/tmp";
+    id->icntl[21] = 1;           /* ICNTL(22) the factors go to disk */
+    strncpy(id->ooc_tmpdir, dir, sizeof id->ooc_tmpdir - 1);
+    id->ooc_tmpdir[sizeof id->ooc_tmpdir - 1] = '\0';
+    strncpy(id->ooc_prefix, "feps_", sizeof id->ooc_prefix - 1);
+    id->ooc_prefix[sizeof id->ooc_prefix - 1] = '\0';
+}
+
+/* `mode`: MUMPS's SYM (0 unsymmetric, 2 general symmetric) plus 16 for out-of-core factors. */
+static int create_on_all(int which, int mode)
+{
+    int sym = mode & 15, out_of_core = (mode & 16) != 0;
     instance *in = &instances[which];
     memset(&in->id, 0, sizeof in->id);
     in->id.job = -1;
@@ -67,14 +84,26 @@ static int create_on_all(int which, int sym)
     dmumps_c(&in->id);
     if (in->id.infog[0] < 0) return MUMPS_FAILED;
     set_controls(&in->id);
+    if (out_of_core) set_out_of_core(&in->id);
     in->in_use = 1;
     return MUMPS_OK;
 }
 
+/* One MUMPS job on this rank. After a factorization every rank sends rank 0 the memory it used
+ * (INFO(22), MB) and its wall time, for the run summary. */
 static void run_job(int which, int job)
 {
-    instances[which].id.job = job;
-    dmumps_c(&instances[which].id);
+    instance *in = &instances[which];
+    double start = MPI_Wtime();
+    in->id.job = job;
+    dmumps_c(&in->id);
+    if (job != 2) return;
+    double mine[2] = {(double)in->id.info[21], MPI_Wtime() - start};
+    if (rank == 0) {
+        free(in->rank_stats);
+        in->rank_stats = malloc(sizeof(double) * 2 * (size_t)size);
+    }
+    MPI_Gather(mine, 2, MPI_DOUBLE, rank == 0 ? in->rank_stats : NULL, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD);
 }
 
 static void free_on_all(int which)
@@ -84,6 +113,8 @@ static void free_on_all(int which)
     in->id.job = -2;
     dmumps_c(&in->id);
     in->in_use = 0;
+    free(in->rank_stats);
+    in->rank_stats = NULL;
 }
 
 int feps_mpi_start(int *my_rank, int *ranks)
@@ -139,18 +170,39 @@ int feps_mumps_worker(void)
     }
 }
 
-/* Rank 0: a MUMPS instance, sym 1 (symmetric positive definite) or 0 (unsymmetric); -1 when
- * none is free or MUMPS cannot start. */
-int feps_mumps_create(int sym)
+/* Rank 0: a MUMPS instance, sym 2 (general symmetric, LDL') or 0 (unsymmetric, LU), its factors
+ * on disk when out_of_core is not 0; -1 when none is free or MUMPS cannot start. */
+int feps_mumps_create(int sym, int out_of_core)
 {
     if (!started) return -1;
+    int mode = (sym & 15) | (out_of_core ? 16 : 0);
     for (int i = 0; i < MAX_INSTANCES; i++)
         if (!instances[i].in_use) {
-            command(CMD_CREATE, i, sym);
-            if (create_on_all(i, sym) != MUMPS_OK) return -1;
+            command(CMD_CREATE, i, mode);
+            if (create_on_all(i, mode) != MUMPS_OK) return -1;
             return i;
         }
     return -1;
+}
+
+/* The number of ranks, and rank r's (0-based) memory in MB and seconds in the last
+ * factorization; 0 when there was none. */
+int feps_mumps_ranks(void) { return started ? size : 0; }
+
+double feps_mumps_rank_stat(int which, int r, int k)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES || r < 0 || r >= size || k < 0 || k > 1) return 0.0;
+    const double *stats = instances[which].rank_stats;
+    return stats == NULL ? 0.0 : stats[2 * r + k];
+}
+
+/* MUMPS's estimate after the analysis of the memory, in MB summed over the ranks, that the
+ * factorization needs: in core (INFOG(17)) or with the factors on disk (INFOG(27)). */
+double feps_mumps_memory_estimate(int which)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES) return 0.0;
+    const DMUMPS_STRUC_C *id = &instances[which].id;
+    return (double)(id->icntl[21] == 1 ? id->infog[26] : id->infog[16]);
 }
 
 void feps_mumps_free(int which)
@@ -261,7 +313,10 @@ int feps_mumps_infog(int which, int k)
 int feps_mpi_start(int *my_rank, int *ranks) { *my_rank = 0; *ranks = 1; return MUMPS_NO_MPI; }
 void feps_mpi_stop(int status) { (void)status; }
 int feps_mumps_worker(void) { return 0; }
-int feps_mumps_create(int sym) { (void)sym; return -1; }
+int feps_mumps_create(int sym, int out_of_core) { (void)sym; (void)out_of_core; return -1; }
+int feps_mumps_ranks(void) { return 0; }
+double feps_mumps_rank_stat(int which, int r, int k) { (void)which; (void)r; (void)k; return 0.0; }
+double feps_mumps_memory_estimate(int which) { (void)which; return 0.0; }
 void feps_mumps_free(int which) { (void)which; }
 int feps_mumps_analyze(int which, int64_t n, const int64_t *row_ptr, const int32_t *col)
 { (void)which; (void)n; (void)row_ptr; (void)col; return MUMPS_NO_MPI; }

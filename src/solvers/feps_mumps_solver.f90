@@ -2,7 +2,9 @@
 !! and right-hand sides are given on rank 0; MUMPS factorizes and solves on every rank
 !! (feps_mumps_shim.c, where the other ranks wait for rank 0's calls). LDL' of the symmetric
 !! stiffness (MUMPS SYM = 2: its null-pivot detection names the equation of a singular stiffness,
-!! which SYM = 1, the positive definite mode, did not do).
+!! which SYM = 1, the positive definite mode, did not do), or LU of the exact non-symmetric
+!! tangent (SYM = 0, `unsymmetric`); the factors in memory or on disk (`out_of_core`, MUMPS's
+!! ICNTL(22), `--out-of-core`). Each factorization records every rank's memory and time.
 module feps_mumps_solver
   use, intrinsic :: iso_c_binding, only: c_int, c_int32_t, c_int64_t, c_double
   use feps_kinds, only: dp, i8
@@ -18,11 +20,14 @@ module feps_mumps_solver
   integer(c_int), parameter :: mumps_ok = 0, mumps_no_mpi = 1, mumps_no_memory = 4, mumps_singular = 5
 
   type, extends(linear_solver_t) :: mumps_solver_t
-    private
-    integer(c_int) :: instance = -1     !! the shim's MUMPS instance, -1 before analyze
-    integer :: n = 0
-    logical :: factorized = .false.
+    logical :: out_of_core = .false.    !! the factors on disk (MUMPS_OOC_TMPDIR, else TMPDIR, else /tmp)
+    logical :: unsymmetric = .false.    !! LU of the full matrix (both triangles) instead of LDL' of the lower
+    integer(c_int), private :: instance = -1     !! the shim's MUMPS instance, -1 before analyze
+    integer, private :: n = 0
+    logical, private :: factorized = .false.
+    real(dp), private :: memory_estimate_mb = 0.0_dp   !! MUMPS's, after the analysis (all ranks)
   contains
+    procedure :: memory_need_bytes => mumps_memory_need_bytes
     procedure :: analyze => mumps_analyze
     procedure :: factorize => mumps_factorize
     procedure :: solve => mumps_solve
@@ -46,10 +51,21 @@ module feps_mumps_solver
     integer(c_int) function feps_mumps_worker() bind(C, name='feps_mumps_worker')
       import :: c_int
     end function feps_mumps_worker
-    integer(c_int) function feps_mumps_create(sym) bind(C, name='feps_mumps_create')
+    integer(c_int) function feps_mumps_create(sym, out_of_core) bind(C, name='feps_mumps_create')
       import :: c_int
-      integer(c_int), value :: sym
+      integer(c_int), value :: sym, out_of_core
     end function feps_mumps_create
+    integer(c_int) function feps_mumps_ranks() bind(C, name='feps_mumps_ranks')
+      import :: c_int
+    end function feps_mumps_ranks
+    real(c_double) function feps_mumps_rank_stat(instance, rank, k) bind(C, name='feps_mumps_rank_stat')
+      import :: c_int, c_double
+      integer(c_int), value :: instance, rank, k
+    end function feps_mumps_rank_stat
+    real(c_double) function feps_mumps_memory_estimate(instance) bind(C, name='feps_mumps_memory_estimate')
+      import :: c_int, c_double
+      integer(c_int), value :: instance
+    end function feps_mumps_memory_estimate
     subroutine feps_mumps_free(instance) bind(C, name='feps_mumps_free')
       import :: c_int
       integer(c_int), value :: instance
@@ -138,7 +154,8 @@ contains
       call fatal_error(error, err_internal, 'mumps: analyze called without a pattern')
       return
     end if
-    if (self%instance < 0) self%instance = feps_mumps_create(2_c_int)
+    if (self%instance < 0) self%instance = feps_mumps_create(merge(0_c_int, 2_c_int, self%unsymmetric), &
+                                                            merge(1_c_int, 0_c_int, self%out_of_core))
     if (self%instance < 0) then
       call fatal_error(error, err_solver, 'mumps: cannot start MUMPS (MPI not started, or out of memory)')
       return
@@ -151,6 +168,7 @@ contains
     self%n = a%n
     self%factor_nnz = feps_mumps_factor_entries(self%instance)
     self%flops = feps_mumps_flops(self%instance)
+    self%memory_estimate_mb = real(feps_mumps_memory_estimate(self%instance), dp)
   end subroutine mumps_analyze
 
   !> Numerical LDL' factorization (on every rank). A null pivot fails with err_model naming the
@@ -181,7 +199,36 @@ contains
     self%factor_nnz = feps_mumps_factor_entries(self%instance)
     self%factorized = .true.
     self%factorizations = self%factorizations + 1
+    call record_ranks(self)
   end subroutine mumps_factorize
+
+  !> Every rank's memory in this factorization (the largest of the run kept) and its time (summed
+  !! over the run's factorizations), from feps_mumps_shim.c.
+  subroutine record_ranks(self)
+    class(mumps_solver_t), intent(inout) :: self
+    integer :: ranks, r
+    ranks = int(feps_mumps_ranks())
+    if (ranks < 1) return
+    if (.not. allocated(self%rank_memory_mb)) then
+      allocate (self%rank_memory_mb(ranks), self%rank_factor_seconds(ranks))
+      self%rank_memory_mb = 0.0_dp
+      self%rank_factor_seconds = 0.0_dp
+    end if
+    do r = 1, ranks
+      self%rank_memory_mb(r) = max(self%rank_memory_mb(r), &
+                                   real(feps_mumps_rank_stat(self%instance, int(r - 1, c_int), 0_c_int), dp))
+      self%rank_factor_seconds(r) = self%rank_factor_seconds(r) + &
+                                    real(feps_mumps_rank_stat(self%instance, int(r - 1, c_int), 1_c_int), dp)
+    end do
+  end subroutine record_ranks
+
+  !> MUMPS's own estimate, after the analysis, of the memory its factorization needs on all
+  !! ranks together: in core, or with the factors on disk (then far less than the factor).
+  pure function mumps_memory_need_bytes(self) result(bytes)
+    class(mumps_solver_t), intent(in) :: self
+    integer(i8) :: bytes
+    bytes = int(self%memory_estimate_mb, i8) * 1000000_i8
+  end function mumps_memory_need_bytes
 
   !> Solve A x = b in place; size(b) = n * nrhs.
   subroutine mumps_solve(self, b, error)
@@ -224,7 +271,13 @@ contains
   pure function mumps_name(self) result(name)
     class(mumps_solver_t), intent(in) :: self
     character(len=:), allocatable :: name
-    name = 'mumps'
+    if (self%unsymmetric) then
+      name = 'mumps-lu'
+    else if (self%out_of_core) then
+      name = 'mumps-ooc'
+    else
+      name = 'mumps'
+    end if
   end function mumps_name
 
   !> MUMPS's null pivots (ICNTL(24), CNTL(3) = 1e-11, feps_mumps_shim.c).

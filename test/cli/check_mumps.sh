@@ -5,7 +5,9 @@
 # Matsuoka-Nakai) and model C (C_G300_nu0.1_b0.09: packing, interfaces, staged misalignment). The
 # nonlinear decks run a twentieth of their steps (the same short deck for both solvers: the solver is
 # what is compared). Bad input under MPI: one line from rank 0, exit 2 from mpirun, no results
-# file. The default build refuses --solver mumps with one line and exit 2.
+# file. The default build refuses --solver mumps with one line and exit 2. MUMPS's LU of the
+# non-symmetric tangents (joint_psi0, full Newton) equals UMFPACK's, with each rank's memory and
+# time in /summary; --out-of-core (factors on disk) gives the same answer and leaves no file.
 # Installs MUMPS and OpenMPI (scripts/setup.sh --mpi) and builds the MPI build (build_mpi.sh).
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -70,6 +72,51 @@ print(re.sub(r'STEPS=(\d+)', lambda m: 'STEPS=%d' % max(1, int(m.group(1)) // 20
     fi
   done
 done
+
+# MUMPS's LU for the non-symmetric tangents (full Newton, interfaces with psi = 0 < phi): the same
+# answer and LU count as UMFPACK's; each rank's factorization memory and time in /summary
+"$feps" test/data/joint_psi0.dat --quiet --output "$tmp/joint.cholmod.h5" >"$tmp/out" 2>&1 || bad "joint_psi0: the UMFPACK run failed"
+for np in 1 2 4; do
+  if "${mpi[@]}" "$np" "$feps_mpi" test/data/joint_psi0.dat --quiet --solver mumps --output "$tmp/joint.$np.h5" >"$tmp/out" 2>&1; then
+    got=$(compare "$tmp/joint.cholmod.h5" "$tmp/joint.$np.h5")
+    lu=$(python3 - "$tmp/joint.cholmod.h5" "$tmp/joint.$np.h5" "$np" <<'EOF'
+import sys, h5py
+a, b = (h5py.File(f, 'r')['summary'].attrs for f in sys.argv[1:3])
+ranks = int(sys.argv[3])
+ok = (a['lu_factorizations'] == b['lu_factorizations'] > 0 and 'ranks' not in a and b['ranks'] == ranks
+      and len(b['rank_memory_mb']) == ranks and len(b['rank_factorization_time']) == ranks
+      and min(b['rank_memory_mb']) >= 0 and min(b['rank_factorization_time']) >= 0)
+print(f"{'ok' if ok else 'bad'} {a['lu_factorizations']} LU factorizations against {b['lu_factorizations']}; "
+      f"ranks {b.get('ranks')}, memory {[float(m) for m in b['rank_memory_mb']]} MB")
+EOF
+)
+    python3 -c "import sys; sys.exit(float(sys.argv[1]) > 1e-9)" "${got%% *}" && [ "${lu%% *}" = ok ] \
+      && ok "joint_psi0 (non-symmetric), MUMPS LU on $np rank(s) = UMFPACK to ${got}; ${lu#ok }" \
+      || bad "joint_psi0, MUMPS LU on $np rank(s) against UMFPACK: $got; $lu"
+  else
+    bad "joint_psi0, MUMPS LU on $np rank(s): $(tail -n 3 "$tmp/out")"
+  fi
+done
+
+# --out-of-core: the factors on disk (in MUMPS_OOC_TMPDIR), the same answer; MUMPS removes its
+# own files and nothing else in that folder
+mkdir "$tmp/ooc" && echo keep >"$tmp/ooc/user_file"
+if MUMPS_OOC_TMPDIR="$tmp/ooc" "${mpi[@]}" 2 "$feps_mpi" "$tmp/SE1.dat" --quiet --solver mumps --out-of-core \
+     --output "$tmp/SE1.ooc.h5" >"$tmp/out" 2>&1; then
+  got=$(compare "$tmp/SE1.cholmod.h5" "$tmp/SE1.ooc.h5")
+  solver=$(python3 -c "import h5py, sys; s = h5py.File(sys.argv[1], 'r')['summary'].attrs['solver']; print(s.decode() if isinstance(s, bytes) else s)" "$tmp/SE1.ooc.h5")
+  python3 -c "import sys; sys.exit(float(sys.argv[1]) > 1e-9)" "${got%% *}" && [ "$solver" = mumps-ooc ] \
+    && [ "$(ls "$tmp/ooc")" = user_file ] \
+    && ok "SE1 out of core on 2 ranks = CHOLMOD to ${got}; its files gone, the folder's own kept" \
+    || bad "SE1 out of core: $got, solver $solver, left: $(ls "$tmp/ooc" | tr '\n' ' ')"
+else
+  bad "SE1 out of core on 2 ranks: $(tail -n 3 "$tmp/out")"
+fi
+# --out-of-core is MUMPS's: with another solver, one line and exit 2
+"$feps" input/modelB/SE1.dat --out-of-core --output "$tmp/no.h5" >"$tmp/out" 2>"$tmp/err"
+got=$?
+[ "$got" -eq 2 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "needs the mumps" "$tmp/err" && [ ! -e "$tmp/no.h5" ] \
+  && ok "--out-of-core without mumps: one line, exit 2" || bad "--out-of-core without mumps: exit $got: $(cat "$tmp/err")"
 
 # bad input under MPI: one line from rank 0 (mpirun adds its own report), exit 2, no results
 for np in 1 2 4; do

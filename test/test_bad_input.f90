@@ -418,20 +418,23 @@ contains
   subroutine test_path_keys(error)
     type(error_t), allocatable, intent(out) :: error
     character(len=*), parameter :: dir = 'test/data/bad/'
-    integer, parameter :: n = 13
+    integer, parameter :: n = 17
     character(len=40), parameter :: decks(n) = [character(len=40) :: 'path_unknown', 'path_arc_zero', &
       'path_arc_without_arc_length', 'path_displacement_incomplete', 'path_nset_undefined', 'path_dof_unknown', &
       'path_value_zero', 'path_nset_without_displacement', 'path_euler', 'path_with_displace', 'path_no_load', &
-      'path_dof_held', 'path_restart']
+      'path_dof_held', 'path_restart', 'path_from_undefined', 'path_from_without_displacement', &
+      'path_from_same_set', 'path_from_same_nodes']
     character(len=60), parameter :: where(n) = [character(len=60) :: ':13: field 4:', ':13: field 5:', &
       ':13: field 4:', ':13: field 4:', ':13: field 5:', ':13: field 6:', ':13: field 7:', ':13: field 5:', &
-      ':13: field 4:', ':13: PATH=ARC-LENGTH', ':13: PATH=ARC-LENGTH', ':13: PATH=DISPLACEMENT', ':14: field 4:']
+      ':13: field 4:', ':13: PATH=ARC-LENGTH', ':13: PATH=ARC-LENGTH', ':13: PATH=DISPLACEMENT', ':14: field 4:', &
+      ':13: field 6:', ':13: field 5:', ':13: field 6:', ':14: PATH=DISPLACEMENT']
     character(len=60), parameter :: what(n) = [character(len=60) :: 'unknown PATH "SPIRAL"', &
       'ARC (the arc length) must be positive', 'ARC is the arc length of PATH=ARC-LENGTH', &
       'PATH=DISPLACEMENT needs NSET=<set>, DOF=', 'undefined node set "tip"', 'DOF takes X, Y or Z, got "W"', &
       'VALUE (the displacement increment of the stage) must not be', 'NSET goes with PATH=DISPLACEMENT', &
       'METHOD=euler takes one pass per step', 'it moves no DOF by DISPLACE', 'has no load to scale', &
-      'node 2 of set pulled is held in Y', 'which restart data do not carry']
+      'node 2 of set pulled is held in Y', 'which restart data do not carry', 'undefined node set "tip"', &
+      'FROM goes with PATH=DISPLACEMENT', 'FROM= names the set NSET= names', 'the two sets move together']
     character(len=80) :: pieces(2)
     integer :: i, j
     ! each deck twice: a run, then --check (odd i, even i)

@@ -4,7 +4,9 @@
 !! limit load (test_collapse); both paths go through it and along the plateau beyond. A linear
 !! bar (test/data/path_bar.dat) gives the load factor read back and the arc's steps exactly. A
 !! softening bar of cracking concrete (test/data/crack_bar_arc.dat) under a force: arc-length
-!! follows its falling branch, F = A f_t (uu - u) / (uu - u0), where load control must stop.
+!! follows its falling branch, F = A f_t (uu - u) / (uu - u0), where load control must stop. A
+!! column of ten cubes, one weaker (test/data/snap_back_bar.dat), snaps back; displacement control
+!! of the crack's opening (NSET= less FROM=) follows it on its closed form.
 module test_path_following
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
@@ -34,7 +36,9 @@ contains
       new_unittest('linear bar: load factor read back k u / F; arc-length in equal steps to the full load', &
                    test_bar), &
       new_unittest('softening bar: arc-length through the peak and down the closed-form softening line', &
-                   test_softening_bar) &
+                   test_softening_bar), &
+      new_unittest('snap-back: the crack''s opening (NSET less FROM) followed, the top back on the closed form', &
+                   test_snap_back) &
       ]
   end subroutine collect_path_following
 
@@ -198,5 +202,60 @@ contains
     call check(error, obs%steps(size(obs%steps))%load_factor * reference < 0.2_dp * area * ft, &
                'the load falls below a fifth of the peak')
   end subroutine test_softening_bar
+
+  !> test/data/snap_back_bar.dat: the column's top displacement u at every step on the closed
+  !! form against the load (to 1e-9 of the peak's u, L f_t / E), the crack's opening at each step
+  !! VALUE / STEPS more than at the last (to 1e-12), at least 80 steps in which the top moves back
+  !! (the snap-back), and the load down to a quarter of the peak.
+  subroutine test_snap_back(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, area = 1.0e4_dp, length = 1000.0_dp, h = 100.0_dp, ft = 2.7_dp, &
+                           gf = 0.1_dp, reference = 4.0_dp * 10000.0_dp
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    real(dp) :: e0, eu, s, u, w, u_last, expected, worst, worst_w
+    integer :: i, back
+    call run_deck('test/data/snap_back_bar.dat', model, obs, summary, error)
+    if (allocated(error)) return
+    e0 = ft / e
+    eu = 2.0_dp * gf / (ft * h)
+    worst = 0.0_dp
+    worst_w = 0.0_dp
+    back = 0
+    u_last = 0.0_dp
+    do i = 1, size(obs%steps)
+      s = obs%steps(i)%load_factor * reference / area
+      u = mean_of(model, obs, 'top', i)
+      w = mean_of(model, obs, 'crack_top', i) - mean_of(model, obs, 'crack_bottom', i)
+      if (w <= h * e0) then
+        expected = length * s / e
+      else
+        expected = (length - h) * s / e + h * (eu - (eu - e0) * s / ft)
+      end if
+      worst = max(worst, abs(u - expected) / (length * ft / e))
+      worst_w = max(worst_w, abs(w - 0.06_dp * i / size(obs%steps)))
+      if (u < u_last) back = back + 1
+      u_last = u
+    end do
+    call check(error, worst, 0.0_dp, 'the top displacement on the closed form at every step', abs=1.0e-9_dp)
+    if (allocated(error)) return
+    call check(error, worst_w, 0.0_dp, 'the crack''s opening follows VALUE in equal steps', abs=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, back >= 80, 'the top moves back in at least 80 steps (' // str(back) // ')')
+    if (allocated(error)) return
+    call check(error, s < 0.25_dp * ft, 'the load falls below a quarter of the peak')
+  end subroutine test_snap_back
+
+  !> The mean z displacement of node set `name` at step i of obs.
+  real(dp) function mean_of(model, obs, name, i)
+    type(model_t), intent(in) :: model
+    type(all_steps_t), intent(in) :: obs
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: i
+    associate (nodes => model%node_sets(model%find_node_set(name))%nodes)
+      mean_of = sum(obs%steps(i)%displacement(3, nodes)) / size(nodes)
+    end associate
+  end function mean_of
 
 end module test_path_following

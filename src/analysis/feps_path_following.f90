@@ -6,7 +6,9 @@
 !!   increment on the free DOFs; the predictor's sign follows the angle with the previous
 !!   step's increment (it keeps going through a limit point), and of the two roots of the
 !!   corrector's quadratic the one nearer the iterate's increment (largest cosine) is taken;
-!! - displacement control (indirect): e . du = v, e the mean of one direction over a node set;
+!! - displacement control (indirect): e . du = v, e the mean of one direction over a node set,
+!!   less its mean over a second set (FROM=) when one is given: a relative displacement such as a
+!!   crack's opening, which grows monotonically through a snap-back (de Borst 1987);
 !! - load: lambda fixed (a step to the stage's full load that ends an arc-length stage).
 !!
 !! Each iteration solves K du_r = R and K du_t = q with the stiffness held (the method's) and
@@ -95,9 +97,21 @@ contains
         end if
         unit(st%path_dof, n) = 1.0_dp / size(nodes)
       end do
-      ! The mean displacement in direction DOF is e . u (nodal systems rotate e as they rotate loads).
-      call to_equations(an%eq%map, unit, pt%e)
     end associate
+    if (st%path_from_set > 0) then
+      ! FROM's nodes may be held (a base): they add nothing then
+      associate (nodes => model%node_sets(st%path_from_set)%nodes)
+        do i = 1, size(nodes)
+          unit(st%path_dof, nodes(i)) = unit(st%path_dof, nodes(i)) - 1.0_dp / size(nodes)
+        end do
+      end associate
+    end if
+    ! The mean displacement in direction DOF is e . u (nodal systems rotate e as they rotate loads).
+    call to_equations(an%eq%map, unit, pt%e)
+    if (all(pt%e == 0.0_dp)) then
+      call input_error(error, st%file, st%line, path // ': NSET''s mean displacement less FROM''s is ' // &
+                       'no displacement of a free DOF (the two sets move together)')
+    end if
   end subroutine start_path
 
   !> One (sub)step of the path from the committed state: the constraint `mode` with `target`

@@ -90,7 +90,7 @@ contains
           if (colon > len(names)) exit
           names = names(colon + 1:)
         end do
-      case ('PATH', 'ARC', 'NSET', 'DOF', 'VALUE')
+      case ('PATH', 'ARC', 'NSET', 'FROM', 'DOF', 'VALUE')
         call read_path_option(rec, i, k, v, model, st, error)
         if (allocated(error)) return
       case ('METHOD', 'MAXIT', 'CUTBACKS', 'DELTA1', 'DELTA2', 'DELTA3', 'DELTA4', 'DIVERGENCE', 'ACCELERATION', &
@@ -112,8 +112,8 @@ contains
   end subroutine read_stage
 
   !> One of the path-following options of a STAGE record (field i, key k, value v): PATH=
-  !! (LOAD, ARC-LENGTH, DISPLACEMENT), ARC= (> 0), NSET= (a node set defined before the STAGE),
-  !! DOF= (X, Y or Z) and VALUE= (not zero). Which keys go with which PATH is check_path_options'.
+  !! (LOAD, ARC-LENGTH, DISPLACEMENT), ARC= (> 0), NSET= and FROM= (node sets defined before the
+  !! STAGE), DOF= (X, Y or Z) and VALUE= (not zero). Which keys go with which PATH is check_path_options'.
   subroutine read_path_option(rec, i, k, v, model, st, error)
     type(record_t), intent(in) :: rec
     integer, intent(in) :: i
@@ -140,6 +140,11 @@ contains
       st%path_set = model%find_node_set(v)
       if (st%path_set == 0) call input_error(error, rec%file, field_line(rec, i), 'undefined node set "' // v // &
                                              '" (PATH=DISPLACEMENT follows a set defined before its STAGE)', i)
+    case ('FROM')
+      st%path_from_set = model%find_node_set(v)
+      if (st%path_from_set == 0) call input_error(error, rec%file, field_line(rec, i), 'undefined node set "' // &
+                                                  v // '" (FROM= of PATH=DISPLACEMENT names a set defined before ' // &
+                                                  'its STAGE)', i)
     case ('DOF')
       st%path_dof = index('XYZ', to_upper(v))
       if (len(v) /= 1 .or. st%path_dof == 0) then
@@ -177,10 +182,17 @@ contains
                          'DOF=<X, Y or Z> and VALUE=<the displacement increment of the stage>', st%path_field)
         return
       end if
+      if (st%path_from_set == st%path_set) then
+        call option_text(rec, 'FROM', v, i, found)
+        call input_error(error, rec%file, field_line(rec, i), 'FROM= names the set NSET= names: their ' // &
+                         'relative displacement is zero', i)
+        return
+      end if
     else
       do i = 3, nfields(rec)
         v = to_upper(field_text(rec, i))
-        if (index(v, 'NSET=') == 1 .or. index(v, 'DOF=') == 1 .or. index(v, 'VALUE=') == 1) then
+        if (index(v, 'NSET=') == 1 .or. index(v, 'DOF=') == 1 .or. index(v, 'VALUE=') == 1 .or. &
+            index(v, 'FROM=') == 1) then
           call input_error(error, rec%file, field_line(rec, i), v(:index(v, '=') - 1) // ' goes with ' // &
                            'PATH=DISPLACEMENT (the DOF it follows); this stage follows PATH=' // &
                            to_upper(trim(path_names(st%path))), i)

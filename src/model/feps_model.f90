@@ -226,6 +226,8 @@ module feps_model
     integer :: path_field = 0                !! the PATH= field (for messages)
     real(dp) :: arc = 0.0_dp                 !! ARC=: the first step's arc length (0: from the first predictor)
     integer :: path_set = 0                  !! PATH=DISPLACEMENT: NSET= (index into model%node_sets)
+    integer :: path_from_set = 0             !! FROM=: the value followed is NSET's mean minus this set's
+                                             !! (a relative displacement: a crack's opening; 0: none)
     integer :: path_dof = 0                  !! DOF= (1..3, global x, y, z)
     real(dp) :: path_value = 0.0_dp          !! VALUE=: the set's mean displacement increment over the stage
     character(len=name_len), allocatable :: activate(:)  !! groups born at the start of this stage

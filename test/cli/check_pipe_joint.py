@@ -304,12 +304,13 @@ def soil_top(tmp, feps, gen, bottom, top, keys):
           and top[5] == 1, str(top))
     # the bonded soil round the top pipe holds it: against its rotation (the deflection and the opening fall)
     # and against the rise of its axis as it turns about the closed edge (the soil pulls it down onto the
-    # joint: P and sigma_max grow); Z barely moves
+    # joint: P and sigma_max grow). Z is not held to a direction: on this mesh it moves by -0.03%, on the
+    # default mesh by -6.7% (docs/verification.md)
     ch = {k: top[i] / bottom[i] - 1.0 for i, k in enumerate(keys)}
     check("... with the joint loaded (beta 0.27 deg, q 10 MPa) against soil round the bottom pipe only: "
           + ", ".join(f"{k} {100 * v:+.2f}%" for k, v in ch.items()),
           ch["deflection_deg"] < -0.1 and ch["opening"] < -0.1 and ch["load"] > 0.05 and ch["sigma_max"] > 0.05
-          and abs(ch["contact_width"]) < 0.01, str(ch))
+          and abs(ch["contact_width"]) < 0.1, str(ch))
     # gravity alone: the generator's pipes weigh nothing, so the check gives them and the packing a weight;
     # the stages of the joint's load are taken out (the geostatic stage only). hex8 on a faceted ring:
     # each element's cross-section is the trapezoid 0.5 (r1^2 - r0^2) sin(dtheta), a prism along z

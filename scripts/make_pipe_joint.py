@@ -1,16 +1,26 @@
 #!/usr/bin/env python3
 """Write a feps deck of a pipe joint for any pipe: two pipes and the packing between them, the
-bottom pipe in soil (thesis model C, chapter 6: quarter model, y >= 0 and z >= 0), or with
+bottom pipe in soil (thesis model C, chapter 6: quarter model, y >= 0 and z >= 0; both pipes with
+--soil-around-top), or with
 --packing 0 one pipe in soil under jacking loads on its ends (thesis model B, chapter 5: half
 model, y >= 0, edge or diagonal load).
 
 Misalignment (--misalignment): edge, the top pipe turned about the y axis so that the joint closes
 at x = +r_o (the thesis's); diagonal, turned about the axis at 45 deg in the cross-section (between
-x and y), the joint closing at theta = 45 deg. The diagonal one breaks the y = 0 symmetry, so its
-model is the whole ring (z >= 0 still: the three-pipe system's mid-plane): the edge case's mesh
-mirrored about the plane of deflection and turned by 45 deg, the top end displaced along that
-direction; --full writes the edge case on the same unturned ring (docs/verification.md,
-"Diagonal misalignment (issue 26 item 4)": the two give the same joint).
+x and y), the joint closing at theta = 45 deg. The plane of deflection is a symmetry plane as long
+as gravity (along -x, --gamma) does not break it: the diagonal deck is then the quarter model
+turned by 45 deg (theta 45..225), its symmetry plane held normal to itself in a Cartesian CSYS
+turned by 45 deg (a nodal system: feps's inclined support), so it gives the edge quarter model's
+joint. With --gamma, or --full, it is the whole ring (z >= 0 still: the three-pipe system's
+mid-plane): the edge case's mesh mirrored about the plane of deflection and turned by 45 deg, the
+top end displaced along that direction; --full writes the edge case on the same unturned ring
+(docs/verification.md, "Diagonal misalignment (issue 26 item 4)": they all give the same joint).
+
+Soil round the top pipe (--soil-around-top): the thesis's model C has soil round the bottom pipe
+only; a real drive has ground round both. The option puts the same four soil layers round the
+packing and the top pipe (bonded, out to the same far boundary, fixed there in x and y), one
+ground with the bottom pipe's; with --gamma the soil's end face is then the top pipe's end, on
+rollers in z. Default: as the thesis (the presets write the thesis's decks byte for byte).
 
     python3 scripts/make_pipe_joint.py --inner-diameter 1000 --wall 100 --pipe-length 2500 \\
         --packing 20 --packing-G 300 --packing-nu 0.1 --angle 0.5 --jacking-stress 10 -o dn1000.dat
@@ -538,9 +548,11 @@ def split(steps, k):
 class Mesh:
     """Node numbering of model C's two DATAIN node blocks (theta fastest, then r, then z in each);
     `wall` elements through the pipe wall, every z increment cut into `z_refine`. A full ring
-    (`full`: the thetas sum to 360) has no node row at 360 deg: its last elements close on the first row."""
+    (`full`: the thetas sum to 360) has no node row at 360 deg: its last elements close on the first row.
+    With `soil_top` the top block has the soil's radii too (its soil nodes at the joint plane, iz = 0,
+    belong to no element: the soil above takes the bottom block's there, one continuous ground)."""
 
-    def __init__(self, pipe, r_soil, thetas, wall=WALL_ELEMENTS, z_refine=1, full=False):
+    def __init__(self, pipe, r_soil, thetas, wall=WALL_ELEMENTS, z_refine=1, full=False, soil_top=False):
         self.full = full
         self.nt = len(thetas) + (0 if full else 1)         # nodes along theta
         self.r_bottom = [pipe.r_in + (pipe.r_out - pipe.r_in) * i / wall for i in range(wall + 1)]
@@ -551,7 +563,7 @@ class Mesh:
         self.z_top = split([d * pipe.zs for d in Z_TOP_STEPS], z_refine)
         self.packing_layers = PACKING_LAYERS * z_refine
         self.nz_bottom = len(self.z_bottom) + 1            # 20 unrefined
-        self.nr_top = wall + 1
+        self.nr_top = self.nr_bottom if soil_top else wall + 1
         self.nz_top = self.packing_layers + len(self.z_top) + 1
         self.bottom_nodes = self.nt * self.nr_bottom * self.nz_bottom
 
@@ -585,7 +597,7 @@ def hex_record(node, it, ir, iz):
 def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, soil_E=144.0, wall=WALL_ELEMENTS,
                z_refine=1, psi=PSI_JOINT, name="", reference=None, writer="make_pipe_joint.py", pipe=None, q=Q,
                joint=(KN_JOINT, KS_JOINT, PHI_JOINT, C_JOINT), soil=(0.2, None, None, None), ground=None,
-               design=False, rotation=0.0, full=False):
+               design=False, rotation=0.0, full=False, soil_top=False):
     """Model C's deck: packing G_p, nu_p, misalignment beta (deg); theta_step the element size (deg)
     beyond theta = 12, wall the elements through the pipe wall, z_refine the number of parts each z
     element is cut into, psi the joint interface's dilation angle (deg), joint its (Kn, Ks, phi, c),
@@ -593,16 +605,21 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     rotation (deg): the direction in the cross-section towards which the top pipe is displaced, where
     the joint closes (0: +x, the edge misalignment; 45: the diagonal one), the mesh turned with it;
     full: the whole ring (theta rotation-180..rotation+180, mirrored about the plane of deflection)
-    instead of the quarter model's half ring, which needs rotation 0."""
+    instead of the quarter model's half ring (theta rotation..rotation+180: the plane of deflection
+    a symmetry plane, held normal to itself in a Cartesian system turned by `rotation`; without the
+    ground's weight only, whose gravity along -x it would break). soil_top: the soil's layers round
+    the top pipe and the packing too, one ground with the bottom pipe's (thesis 6.2: round the bottom
+    pipe only)."""
     p, g = pipe or Pipe(), ground or Ground()
     kn, ks, phi_j, c_j = joint
     nu_s, phi_s, psi_s, c_s = soil
-    if rotation != 0.0 and not full:
-        raise ValueError("a misalignment off the x axis breaks the y = 0 symmetry: it needs the full model")
+    if rotation != 0.0 and not full and g.gamma is not None:
+        raise ValueError("gravity along -x breaks the symmetry about a plane of deflection off the x axis: "
+                         "a diagonal misalignment with the ground's weight needs the full ring")
     thetas = theta_steps(theta_step)
     if full:
         thetas = thetas + thetas[::-1]          # mirrored: the same elements on either side of the edge
-    m = Mesh(p, r_soil, thetas, wall, z_refine, full)
+    m = Mesh(p, r_soil, thetas, wall, z_refine, full, soil_top)
     ri, ro, L, a = p.r_in, p.r_out, p.length, p.packing
     z_joint, z_top = L / 2, L / 2 + a
     delta = L * math.tan(math.radians(beta))
@@ -619,7 +636,10 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         "!",
     ] + ([
         "! Quarter model (theta 0..180, y >= 0; z >= 0) of the symmetric three-pipe system (thesis 6.2,",
-        "! Fig. 6.2; SPEC section 8):"] if not full else [
+        "! Fig. 6.2; SPEC section 8):"] if not full and rotation == 0.0 else [
+        f"! Quarter model (theta {rotation:g}..{rotation + 180:g}: the plane of deflection a symmetry plane; z >= 0) of the",
+        "! symmetric three-pipe system (thesis 6.2, Fig. 6.2; SPEC section 8), the misalignment in the direction",
+        f"! theta = {rotation:g} deg:"] if not full else [
         f"! Half model (z >= 0; the whole ring, theta {rotation:g}..{rotation + 360:g}) of the symmetric three-pipe",
         "! system (thesis 6.2, Fig. 6.2; SPEC section 8), the misalignment in the direction theta = "
         f"{rotation:g} deg:"]) + [
@@ -635,18 +655,29 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         f"!   z = {z_joint:g}, the top one starts there). Kn = {kn:g}, Ks = {ks:g} MPa/mm, " +
         (f"phi = psi = {phi_j:g} deg, c = {c_j:g} MPa." if psi == phi_j else
          f"phi = {phi_j:g}, psi = {psi:g} deg (thesis 6.2: 20), c = {c_j:g} MPa."),
+    ] + ([
         f"! - top pipe: full length {L:g} (z = {z_top:g}..{z_top + L:g}), NOT in soil: thesis 6.2 has soil only around the",
         "!   bottom half pipe ('a half pipe with its surrounding soil at the bottom, a complete pipe on the",
     ] + ([
         "!   top'). Its only supports are the joint, the symmetry plane y = 0 and the prescribed x",
-        "!   displacement of its upper end."] if not full else [
-        "!   top'). Its only supports are the joint and the prescribed displacement of its upper end."]) + [
+        "!   displacement of its upper end."] if not full and rotation == 0.0 else [
+        "!   top'). Its only supports are the joint" + ("" if full else ", the symmetry plane")
+        + " and the prescribed displacement of its upper end."]) if not soil_top else [
+        f"! - top pipe: full length {L:g} (z = {z_top:g}..{z_top + L:g}), in soil as the bottom pipe (--soil-around-top; thesis",
+        f"!   6.2 has soil round the bottom pipe only): the same 4 layers from z = {z_joint:g} to {z_top + L:g}, bonded to the",
+        f"!   packing and the top pipe, one ground with the bottom's (its nodes at z = {z_joint:g}; the packing's lower",
+        "!   outer edge, on the interface, is not the soil's)."]) + [
         f"! - concrete E = 40000, nu = 0.2; soil E = {soil_E:g}, nu = {nu_s:g} (thesis 6.1{'' if soil_E == 144.0 else ': E = 144'}); "
         + soil_law,
     ] + ([
         "! - supports (thesis 6.2): soil outer surface fixed in x and y; z = 0 fixed in z; y = 0 fixed in y.",
         f"! - loads: q = {q:.10g} MPa uniform on the top end; delta in x on every node of the top end (thesis 6.2:",
         "!   'an equivalent displacement delta in x direction at the upper end'); the end's y and z are free."]
+        if not full and rotation == 0.0 else [
+        f"! - supports: soil outer surface fixed in x and y; z = 0 fixed in z; the plane theta = {rotation:g}/{rotation + 180:g}",
+        "!   fixed normal to itself (y of system 4, in which every support is held).",
+        f"! - loads: q = {q:.10g} MPa uniform on the top end; delta along theta = {rotation:g} deg on every node of the",
+        "!   top end (thesis 6.2: 'an equivalent displacement delta ... at the upper end'); free in z."]
         if not full else [
         "! - supports (thesis 6.2): soil outer surface fixed in x and y; z = 0 fixed in z.",
         f"! - loads: q = {q:.10g} MPa uniform on the top end; delta along theta = {rotation:g} deg on every node of the",
@@ -655,8 +686,9 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         f"!   and delta together in {steps} steps (thesis 6.3/6.4), initial stiffness, at most 10 iterations;",
         "!   stage 3: equilibrium iterations (see the solution controls below).",
     ] + ([
-        f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg at the loaded edge (theta = 0,",
-        f"!   x = +{ro:g}: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then "
+        f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg at the loaded edge (theta = {rotation:g},",
+        (f"!   x = +{ro:g}: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then " if rotation == 0.0
+         else "!   the misalignment's direction: sigma_max comes from the elements within 6 deg of it), then ")
         + f"{len(thetas) - 4} x {thetas[-1]:g} deg;"] if not full else [
         f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg from the loaded edge (theta = {rotation:g};",
         f"!   sigma_max comes from the elements within 6 deg of it, thesis 7.4.3), then {len(thetas) // 2 - 4} x "
@@ -671,12 +703,14 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         f"! towards x = -{ro:g} (theta = 180), as thesis Figs. 6.4 and 6.11."] if rotation == 0.0 else [
         f"! The misalignment rotation is about the axis at theta = {rotation + 90:g} deg in the cross-section: the",
         f"! joint closes at theta = {rotation:g} and may open towards theta = {rotation + 180:g}; the mesh is the edge",
-        f"! case's full mesh turned by {rotation:g} deg (make_pipe_joint.py --misalignment diagonal)."]) + [
+        f"! case's {'full' if full else 'quarter'} mesh turned by {rotation:g} deg (make_pipe_joint.py --misalignment diagonal)."]) + [
         f"TITLE, Model C {name}: packing G_p = {G:g}, nu_p = {nu:g}, beta = {beta:g} deg, q = {q:.10g} MPa",
         "! the case's parameters, written to the results file as /summary attributes parameter_<name>",
         f"PARAMETERS, G_p={G:g}, nu_p={nu:g}, beta={beta:g}, E_s={soil_E:g}" +
         ("" if psi == PSI_JOINT else f", psi_joint={psi:g}") + p.parameters()
-        + ("" if not full else f", misalignment={'edge' if rotation == 0.0 else 'diagonal'}, ring=full")
+        + ("" if not full and rotation == 0.0 else
+           f", misalignment={'edge' if rotation == 0.0 else 'diagonal'}, ring={'full' if full else 'half'}")
+        + (", soil=both_pipes" if soil_top else "")
         + ("" if math.isclose(q, Q, rel_tol=1e-12) else f", q={q:.6g}") + ("" if kn == KN_JOINT else f", Kn={kn:g}"),
         "",
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
@@ -696,6 +730,8 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             f"A, 3, {num(ri)}, {num(rotation)}, {num(z_joint)},"]
     out += direction(thetas[:m.nt - 1], 1, "theta", start=rotation)
     out.append(wall_record)
+    for d in soil_layers(r_soil, ro) if soil_top else []:
+        out.append(f"%, -1, {d:.4f}, 0., 0.,".ljust(30) + "! soil layer round the top pipe")
     out += direction([a / npl] * npl, 2, "z (packing)", start=z_joint)
     out += direction(m.z_top, 2, "z", first=False, start=z_top)
     out += ["E,", ""]
@@ -711,12 +747,20 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     soil_groups = []
     flags = g.dry_flags(m.r_bottom[wall:], thetas, rotation)
     dry = [sum(layer) for layer in flags]
+    # the soil's z regions (node numbering, first layer, layers, z stride): round the bottom pipe, and
+    # with soil_top a layer from the joint plane (its lower face the bottom block's nodes: one ground)
+    # and the rest round the packing and the top pipe
+    regions = [(m.bottom, 0, nzb, stride_z_b)] + ([
+        (lambda it, ir, iz: m.bottom(it, ir, nzb) if iz == 0 else m.top(it, ir, 1), 0, 1, 0),
+        (m.top, 1, npl + nzt - 1, stride_z_t)] if soil_top else [])
     for wet in g.layers(dry, ntheta):
         soil_groups += [f"GROUP, soil{'_wet' if wet else ''}, TYPE=hex8, MATERIAL=soil{'_wet' if wet else ''}"]
-        if g.water is None:
-            soil_groups += blocks(m.bottom, every, wall, 0, [(m.nr_bottom - wall - 1, stride_r_b), (nzb, stride_z_b)])
-        for i, layer in enumerate(flags if g.water is not None else []):
-            soil_groups += blocks(m.bottom, [it for it in every if layer[it] != wet], wall + i, 0, [(nzb, stride_z_b)])
+        for node, iz, nz, stride_z in regions:
+            along_z = [(nz, stride_z)] if nz > 1 else []
+            if g.water is None:
+                soil_groups += blocks(node, every, wall, iz, [(m.nr_bottom - wall - 1, stride_r_b)] + along_z)
+            for i, layer in enumerate(flags if g.water is not None else []):
+                soil_groups += blocks(node, [it for it in every if layer[it] != wet], wall + i, iz, along_z)
         soil_groups.append("")
     out += ["GROUP, bottom_pipe, TYPE=hex8, MATERIAL=concrete"]
     out += blocks(m.bottom, every, 0, 0, [(wall, stride_r_b), (nzb, stride_z_b)]) + [""]
@@ -748,15 +792,23 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             f"MATERIAL, pipe_packing, INTERFACE, KN={num(kn)}, KS={num(ks)}, PHI={num(phi_j)}, "
             f"PSI={psi:g}{'.' if float(psi).is_integer() else ''}, C={c_j:g}",
             "",
-            "! --- supports (thesis 6.2) ---",
+            "! --- supports (thesis 6.2) ---"] + ([] if rotation == 0.0 else [
+            f"! system 4: x along the misalignment's direction theta = {rotation:g}, y across it",
+            f"CSYS, 4, CARTESIAN, 0., 0., 0., {math.cos(math.radians(rotation)):.16g}, "
+            f"{math.sin(math.radians(rotation)):.16g}, 0., {-math.sin(math.radians(rotation)):.16g}, "
+            f"{math.cos(math.radians(rotation)):.16g}, 0."]) + [
             f"NSET, soil_outer, CSYS=3, R={radius_text(r_soil)}, TOL=0.01"]
-    out += [] if full else ["NSET, symmetry_y, CSYS=2, Y=0., TOL=0.01"]
+    # the plane of deflection as a symmetry plane: y = 0, or (diagonal half model) y = 0 of system 4, held
+    # normal to itself in that nodal system (every support then in it: a node has one nodal system)
+    turned = "" if rotation == 0.0 or full else ", CSYS=4"
+    out += [] if full else ["NSET, symmetry_y, CSYS=2, Y=0., TOL=0.01" if not turned else
+                            "NSET, symmetry_plane, CSYS=4, Y=0., TOL=0.01"]
     out += ["NSET, symmetry_z, CSYS=2, Z=0., TOL=0.01",
-            "FIX, soil_outer, X, Y"] + ([] if full else ["FIX, symmetry_y, Y"]) + ["FIX, symmetry_z, Z"] \
-        + g.rollers(p, r_soil, (z_joint,))
+            f"FIX, soil_outer, X, Y{turned}"] + ([] if full else [f"FIX, symmetry_{'plane' if turned else 'y'}, Y{turned}"]) \
+        + [f"FIX, symmetry_z, Z{turned}"] + g.rollers(p, r_soil, (z_top + L if soil_top else z_joint,))
     out += ["", f"! --- loads: q = {q:.10g} MPa on the top end (reference load, applied 20% + 80% by the stages) ---",
             f"FSET, top_end, GROUP=top_pipe, CSYS=2, Z={num(z_top + L)}, TOL=0.01",
-            f"NSET, top_end_nodes, CSYS=2, Z={num(z_top + L)}, TOL=0.01",
+            f"NSET, top_end_nodes, CSYS={f'3, R={num(ri)}:{num(ro)}' if soil_top else 2}, Z={num(z_top + L)}, TOL=0.01",
             f"PRESSURE, top_end, VALUE={q:.10g}", "",
             "! --- solution (thesis 6.3/6.4: initial stiffness, 'several iterations within each step",
             "! depending on convergence and controlled by the program'; no tolerance given: DELTA1 = 1e-4",
@@ -776,9 +828,6 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             f"STAGE, s2, STEPS={steps}, LOAD=0.8",
         ] + ([f"DISPLACE, top_end_nodes, X={delta:.4f}"] if rotation == 0.0 else [
             f"! along the misalignment's direction theta = {rotation:g} (system 4's x; the top end free across it)",
-            f"CSYS, 4, CARTESIAN, 0., 0., 0., {math.cos(math.radians(rotation)):.16g}, "
-            f"{math.sin(math.radians(rotation)):.16g}, 0., {-math.sin(math.radians(rotation)):.16g}, "
-            f"{math.cos(math.radians(rotation)):.16g}, 0.",
             f"DISPLACE, top_end_nodes, X={delta:.4f}, CSYS=4"]) + [
             "! stage 3: equilibrium iterations only (no load or displacement increment)",
             f"STAGE, s3, STEPS={EQUILIBRIUM_STEPS}, LOAD=0, MAXIT=50", ""]
@@ -833,11 +882,14 @@ def main(argv=None):
     load.add_argument("--misalignment", choices=("edge", "diagonal"), default="edge",
                       help="edge: the top pipe deflected about the y axis, the joint closing at x = +r_o (quarter "
                            "model, y >= 0). diagonal: deflected about the axis at 45 deg in the cross-section, the "
-                           "joint closing at theta = 45 deg, which breaks the y = 0 symmetry: the full ring (the edge "
-                           "case's --full mesh turned by 45 deg). With --packing 0 (model B) the ends loaded on "
-                           "opposite sides (half model)")
-    load.add_argument("--full", action="store_true", help="model C: the whole ring also for the edge misalignment "
-                      "(the diagonal deck's mesh unturned: test/cli/check_pipe_joint.py compares the two)")
+                           "joint closing at theta = 45 deg: the quarter model turned by 45 deg (theta 45..225, the "
+                           "plane of deflection held normal to itself in a CSYS turned by 45 deg), or with --gamma "
+                           "(gravity along -x breaks that symmetry) or --full the whole ring (the edge case's --full "
+                           "mesh turned by 45 deg). With --packing 0 (model B) the ends loaded on opposite sides "
+                           "(half model)")
+    load.add_argument("--full", action="store_true", help="model C: the whole ring (the edge case's mesh mirrored "
+                      "about the plane of deflection) where the quarter model would do: test/cli/check_pipe_joint.py "
+                      "compares them")
     load.add_argument("--angle", type=positive, default=BETA, help=f"misalignment beta (deg, default {BETA:g})")
     force = load.add_mutually_exclusive_group()
     force.add_argument("--jacking-stress", type=positive, help=f"mean stress on the pipe's end (default {Q:g})")
@@ -854,6 +906,9 @@ def main(argv=None):
     soil.add_argument("--interface", choices=("bonded", "frictional"), default="bonded",
                       help="pipe/soil: shared nodes, or (--packing 0) Mohr-Coulomb interfaces with Ks = 50 E_s / 144, "
                            "Kn = 2 Ks (the thesis's)")
+    soil.add_argument("--soil-around-top", action="store_true", help="model C: the soil's layers round the top pipe "
+                      "and the packing too, one ground with the bottom pipe's (default: round the bottom pipe only, "
+                      "as thesis 6.2); the far boundary and, with --gamma, the rollers at the top pipe's end")
     soil.add_argument("--gamma", type=positive, help="the soil's unit weight (N/mm3; 2.0e-5 = 20 kN/m3): gravity and "
                       "the K0 stress field")
     soil.add_argument("--k0", type=positive, help="K0 (default 1 - sin(phi), Jaky)")
@@ -897,8 +952,9 @@ def deck_of(a):
         surface = p.r_out + a.cover
         ground = Ground(a.gamma, a.k0, a.soil_phi, surface, None if a.water_table is None else surface - a.water_table)
     if a.packing == 0.0:
-        if a.full:
-            raise ValueError("--full is model C's (two pipes, --packing > 0); model B is a half model")
+        if a.full or a.soil_around_top:
+            raise ValueError(f"--{'full' if a.full else 'soil-around-top'} is model C's (two pipes, --packing > 0); "
+                             "model B is a half model of one pipe in soil")
         kind = "F" if a.interface == "frictional" else ("P" if a.soil_phi else "S")
         phi = a.soil_phi or 15.0
         force = a.jacking_force or (a.jacking_stress * math.pi * (p.r_out ** 2 - p.r_in ** 2) if a.jacking_stress
@@ -921,7 +977,8 @@ def deck_of(a):
                       joint=(a.joint_kn, a.joint_ks, a.joint_phi, a.joint_c),
                       soil=(a.soil_nu, a.soil_phi, psi, a.soil_c), ground=ground, design=True,
                       rotation=45.0 if a.misalignment == "diagonal" else 0.0,
-                      full=a.full or a.misalignment == "diagonal")
+                      full=a.full or (a.misalignment == "diagonal" and a.gamma is not None),
+                      soil_top=a.soil_around_top)
 
 
 if __name__ == "__main__":

@@ -682,7 +682,9 @@ sys.exit(m.deck("FE1").replace("OUTPUT, modelB_FE1.h5", "OUTPUT, modelB.h5") != 
 # make_pipe_joint.py, the generator make_model_b.py and make_model_c.py are presets of (issue 26
 # item 4): the presets write the decks of the generators before the merge byte for byte (every
 # thesis case, the mesh-study and grid options), the generator's command line writes the thesis's
-# models, a DN 2400 deck runs on the pipe's mesh, the --gamma records (test/cli/check_pipe_joint.py).
+# models, a DN 2400 deck runs on the pipe's mesh, the --gamma records, the diagonal misalignment
+# (whole ring and half model against the edge quarter), --soil-around-top (its weight against the
+# geometry) (test/cli/check_pipe_joint.py).
 python3 test/cli/check_pipe_joint.py --feps "$feps" --tmp "$tmp/pj" >"$tmp/out" 2>&1 \
   && ok "check_pipe_joint.py: $(grep -c '^  ok' "$tmp/out") checks of make_pipe_joint.py and its presets" \
   || bad "check_pipe_joint.py: $(grep -v '^  ok' "$tmp/out" | head -c 600)"

@@ -235,9 +235,9 @@ grep -q "feps --maxit 400" "$tmp/err" && [ ! -e "$tmp/u3.h5" ] && [ ! -e "$tmp/u
 expect_status "--maxit 200 follows the unzipping" 0 "$feps" test/data/unzip.dat --maxit 200 --output "$tmp/u200.h5"
 
 # Every example of the manuals (README.md, docs/*.md) runs and says what feps does: decks and
-# records accepted, error messages as printed, the HDF5 layout table, commands (scripts/check_docs.py,
+# records accepted, error messages as printed, the HDF5 layout table, commands (test/cli/check_docs.py,
 # driven by the <!-- check: ... --> markers; a fenced block without one fails).
-python3 scripts/check_docs.py --feps "$feps" >"$tmp/out" 2>&1 \
+python3 test/cli/check_docs.py --feps "$feps" >"$tmp/out" 2>&1 \
   && ok "docs' examples: $(tail -n 1 "$tmp/out")" || bad "docs' examples: $(grep -v '^  ok' "$tmp/out" | head -c 1500)"
 # A file holding only a DATAIN mesh: report it, write /mesh with --output.
 expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.datain --output "$tmp/t21.h5"

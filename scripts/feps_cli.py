@@ -15,6 +15,7 @@ status: 1 (default) for something that ran or was looked for and failed, 2 for a
 The argparse types below refuse NaN and infinities, which float() accepts.
 """
 import argparse
+import csv
 import math
 import os
 import sys
@@ -107,3 +108,9 @@ def benchmark_file(name):
     if not os.path.isfile(path):
         raise Error(f"no {name} in the benchmarks folder {os.path.dirname(path)} (FEPS_BENCHMARKS)", 2)
     return path
+
+
+def benchmark_rows(name):
+    """The rows of one CSV table in benchmarks_dir() as dicts ('#' lines are comments)."""
+    with open(benchmark_file(name)) as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))

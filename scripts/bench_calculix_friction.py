@@ -81,6 +81,9 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_cli import feps_option  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 L, W, H1, H2 = 100.0, 10.0, 20.0, 10.0
@@ -588,12 +591,7 @@ def main():
         subprocess.run(sudo + ["apt-get", "update", "-qq"], check=True)
         subprocess.run(sudo + ["apt-get", "install", "-y", "-qq", "calculix-ccx"], check=True,
                        env=dict(os.environ, DEBIAN_FRONTEND="noninteractive"))
-    feps = a.feps
-    if not feps:
-        subprocess.run(["fpm", "build", "--profile", "release"], cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
-        feps = os.path.join(ROOT, subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"], cwd=ROOT,
-                                                 check=True, capture_output=True, text=True).stdout.split()[-1])
-    feps = os.path.abspath(feps)
+    feps = feps_option(a.feps or "", "release")
     outdir = os.path.abspath(a.outdir or os.path.join(
         ROOT, "results",
         "calculix-friction-" + ("2d-" if plane else "") + datetime.datetime.now().strftime("%Y%m%d-%H%M%S")))

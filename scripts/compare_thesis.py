@@ -38,8 +38,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
-from feps_build import feps_executable  # noqa: E402
-from feps_cli import Error, benchmark_file, benchmarks_dir, guard  # noqa: E402
+from feps_cli import Error, benchmark_file, benchmarks_dir, feps_executable, guard  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRESETS = ["euler", "modified-euler", "newton-raphson", "modified-newton-raphson", "initial-stiffness",

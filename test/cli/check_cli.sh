@@ -1227,10 +1227,10 @@ expect_arg_error "make_model_c.py --theta-step 0" "argument --theta-step" \
   python3 scripts/make_model_c.py --outdir "$tmp/x" --theta-step 0
 [ ! -e "$tmp/x" ] && ok "  ... no deck written" || bad "  ... no deck written"
 expect_arg_error "study_prestress.py --q nan" "argument --q" python3 scripts/study_prestress.py --q nan
-python3 scripts/make_symmetry_decks.py --outdir "$tmp/sym" >/dev/null && cmp -s "$tmp/sym/symmetry_half.dat" test/data/symmetry_half.dat \
+python3 test/data/make_symmetry_decks.py --outdir "$tmp/sym" >/dev/null && cmp -s "$tmp/sym/symmetry_half.dat" test/data/symmetry_half.dat \
   && cmp -s "$tmp/sym/symmetry_full.dat" test/data/symmetry_full.dat && ok "make_symmetry_decks.py --outdir writes test/data's decks" \
   || bad "make_symmetry_decks.py --outdir writes test/data's decks"
-expect_arg_error "make_symmetry_decks.py --bogus" "unrecognized arguments" python3 scripts/make_symmetry_decks.py --bogus
+expect_arg_error "make_symmetry_decks.py --bogus" "unrecognized arguments" python3 test/data/make_symmetry_decks.py --bogus
 # The lined hole (docs/verification.md, "A pipe in elastic ground"): the closed form's own checks
 # (equilibrium and compatibility by finite differences, which the Fortran test does not repeat),
 # the test's eight decks written again byte for byte, and one run compared with the closed form by

@@ -81,6 +81,9 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from feps_cli import feps_option  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 L, W, H1, H2 = 100.0, 10.0, 20.0, 10.0
@@ -141,6 +144,7 @@ def feps_deck(nx, ny, nz1, nz2, steps, pull, itype, method, e_lower):
         "NSET, base, Z=0.\nNSET, sym, Y=0.\nFIX, base, ALL\nFIX, sym, Y\n",
         f"NSET, pull, GROUP=upper, X={L!r}\n",
         f"FSET, top, GROUP=upper, Z={H1 + H2!r}\n",
+        "FIELDS, all, nodal_interface\n",
         f"STAGE, press, STEPS=1, {method}, OUTPUT=1\n",
         f"PRESSURE, top, VALUE={P!r}\n",
         f"STAGE, pull, STEPS={steps}, {method}, OUTPUT=1\n",
@@ -183,6 +187,7 @@ def feps_deck_2d(nx, ny1, ny2, steps, pull, itype, method, e_lower):
         "NSET, base, Y=0.\nFIX, base, X, Y\n",
         f"NSET, pull, GROUP=upper, X={L!r}\n",
         f"FSET, top, GROUP=upper, Y={H1 + H2!r}\n",
+        "FIELDS, all, nodal_interface\n",
         f"STAGE, press, STEPS=1, {method}, OUTPUT=1\n",
         f"PRESSURE, top, VALUE={P!r}\n",
         f"STAGE, pull, STEPS={steps}, {method}, OUTPUT=1\n",
@@ -314,7 +319,8 @@ def feps_results(h5path):
         s = h["steps"][name]
         out.append(dict(t=float(s.attrs["load_factor"]), u=s["displacement"][...],
                         fx=float(s["reaction"][...][pull, 0].sum()),
-                        it=s["interface/joint"][...], iterations=int(s.attrs["iterations"])))
+                        it=s["interface/joint"][...], nodal=s["nodal_interface/joint"][...],
+                        iterations=int(s.attrs["iterations"])))
     return out
 
 
@@ -419,23 +425,6 @@ def point_weights(xe, itype="interface-quad4"):
     return np.full(4, area / 4.0)
 
 
-def to_nodes(itype, values):
-    """Corner values of each element from its 4 point values (bilinear extrapolation for Gauss)."""
-    if itype.endswith("-nodal"):
-        return values
-    if itype == "interface-line3":
-        # the quadratic through the points s = -a, 0, a, at the nodes s = -1, 1, 0
-        a = math.sqrt(0.6)
-        m = np.array([[s * (s - a) / (2 * a * a), 1 - s * s / (a * a), s * (s + a) / (2 * a * a)]
-                      for s in (-1.0, 1.0, 0.0)])
-        return np.einsum("cg,egk->eck", m, values)
-    s = math.sqrt(3.0)
-    corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
-    gp = [(-1, -1), (1, -1), (-1, 1), (1, 1)]
-    m = np.array([[0.25 * (1 + ca * s * ga) * (1 + cb * s * gb) for ga, gb in gp] for ca, cb in corners])
-    return np.einsum("cg,egk->eck", m, values)
-
-
 def compare(itype, pull, feps_h5, ccx_dir, g=FAMILIES["solid"]):
     """Rows of the comparison table per written step, and what the distributions need."""
     fr = feps_results(feps_h5)
@@ -514,7 +503,7 @@ def compare(itype, pull, feps_h5, ccx_dir, g=FAMILIES["solid"]):
     # distributions along y = 0 (interface nodes; in plane strain all), at a few partial-slip steps
     line = [n for n in ups if npair == 3 or abs(x[n - 1, 1]) < 1e-9]
     line.sort(key=lambda n: x[n - 1, 0])
-    return rows, dist, line, pair, x, joint, itype
+    return rows, dist, line, pair, x
 
 
 def fmt_table(case, rows, g=FAMILIES["solid"]):
@@ -532,21 +521,11 @@ def fmt_table(case, rows, g=FAMILIES["solid"]):
     return out
 
 
-def fmt_distribution(case, rows, dist, line, pair, x, joint, itype, picks, g=FAMILIES["solid"]):
+def fmt_distribution(case, rows, dist, line, pair, x, picks, g=FAMILIES["solid"]):
     out = []
     npair, isn = g["npair"], g["i_sn"]
-    upper = joint[:, npair:]
     for k in picks:
         s, c, con = dist[k]
-        # feps nodal shear: the points' tau1 taken to the corners and averaged over elements
-        it = s["it"].reshape(len(joint), npair, isn + 2)
-        corner = to_nodes(itype, it[:, :, :isn + 1])
-        acc, cnt = {}, {}
-        for e in range(len(joint)):
-            for a in range(npair):
-                n = upper[e, a]
-                acc[n] = acc.get(n, 0.0) + corner[e, a]
-                cnt[n] = cnt.get(n, 0) + 1
         r = rows[k]
         out += ["", f"{case}, step {k} (pull {r['ux']:.4f} mm, F feps {r['f_feps']:.2f} N = "
                 f"{r['f_feps'] / g['f_slide']:.3f} mu N): along the joint" + (" at y = 0" if npair == 4 else ""), "",
@@ -558,7 +537,7 @@ def fmt_distribution(case, rows, dist, line, pair, x, joint, itype, picks, g=FAM
             lo = pair[n]
             sf = s["u"][n - 1, 0] - s["u"][lo - 1, 0]
             sc = c["u"][n - 1, 0] - c["u"][lo - 1, 0]
-            tf = acc[n] / cnt[n]
+            tf = s["nodal"][lo - 1]      # feps's nodal_interface: at the lower node of the pair
             v = con.get(n, [0.0] * 6)
             # ccx's CSHEAR1: the shear the slave (upper) side exerts on the master along +x, the
             # sign of feps's tau1 (upper minus lower); CPRESS > 0 is a pressure (feps sigma_n < 0)
@@ -612,12 +591,7 @@ def main():
         subprocess.run(sudo + ["apt-get", "update", "-qq"], check=True)
         subprocess.run(sudo + ["apt-get", "install", "-y", "-qq", "calculix-ccx"], check=True,
                        env=dict(os.environ, DEBIAN_FRONTEND="noninteractive"))
-    feps = a.feps
-    if not feps:
-        subprocess.run(["fpm", "build", "--profile", "release"], cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
-        feps = os.path.join(ROOT, subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"], cwd=ROOT,
-                                                 check=True, capture_output=True, text=True).stdout.split()[-1])
-    feps = os.path.abspath(feps)
+    feps = feps_option(a.feps or "", "release")
     outdir = os.path.abspath(a.outdir or os.path.join(
         ROOT, "results",
         "calculix-friction-" + ("2d-" if plane else "") + datetime.datetime.now().strftime("%Y%m%d-%H%M%S")))
@@ -662,7 +636,7 @@ def main():
         if "Job finished" not in log:
             sys.exit(f"bench_calculix_friction: ccx failed, see {d}/ccx.out")
         ccx_iters = len(re.findall(r"^ iteration \d+", log, re.M))
-        rows, dist, line, pair, x, joint, itype = compare(itype, a.pull, os.path.join(d, "feps.h5"), d, g)
+        rows, dist, line, pair, x = compare(itype, a.pull, os.path.join(d, "feps.h5"), d, g)
         summary += fmt_table(case, rows, g)
         fe = open(os.path.join(d, "feps.out")).read()
         m = re.search(r"analysis\s+(.*)", fe)
@@ -673,7 +647,7 @@ def main():
         picks = []
         for frac in (0.25, 0.5, 0.75):
             picks.append(min(range(1, len(rows)), key=lambda k: abs(rows[k]["f_feps"] / g["f_slide"] - frac)))
-        summary += fmt_distribution(case, rows, dist, line, pair, x, joint, itype, sorted(set(picks)), g)
+        summary += fmt_distribution(case, rows, dist, line, pair, x, sorted(set(picks)), g)
         summary.append("")
     text = "\n".join(summary) + "\n"
     open(os.path.join(outdir, "summary.md"), "w").write(text)

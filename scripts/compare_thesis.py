@@ -37,8 +37,8 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from feps_build import feps_executable  # noqa: E402
-from feps_cli import Error, benchmark_file, benchmarks_dir, guard  # noqa: E402
+import feps_results as fr  # noqa: E402
+from feps_cli import Error, benchmark_file, benchmarks_dir, feps_executable, guard  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRESETS = ["euler", "modified-euler", "newton-raphson", "modified-newton-raphson", "initial-stiffness",
@@ -120,7 +120,7 @@ def run_feps(feps, deck, workdir, name, *args):
 def interface_history(path, group="joint"):
     """(load_factor, tractions, strains) of every written step, in step order."""
     with h5py.File(path) as f:
-        steps = sorted(f["steps"], key=int)
+        steps = fr.steps(f)
         lf = np.array([f["steps"][s].attrs["load_factor"] for s in steps])
         tr = np.array([f["steps"][s]["interface"][group][...] for s in steps])
         st = np.array([f["steps"][s]["interface_strain"][group][...] for s in steps])
@@ -206,7 +206,7 @@ def bar_case(table, feps, tmp, case, csv, nnodes):
         deck = f"input/verification/{csv[:-4]}_bar{k}.dat"
         h5 = run_feps(feps, deck, tmp, f"{csv[:-4]}_bar{k}")
         with h5py.File(h5) as f:
-            last = sorted(f["steps"], key=int)[-1]
+            last = fr.last_step(f)
             n = f["steps"][last]["bar"]["ring"][:, 0]
         label = f"{case} [bar{k}]"
         table.add(label, "Gauss points written", float(ne * ng), float(n.size), 0.0, kind="abs")
@@ -239,7 +239,7 @@ def case_table2_3(table, feps, tmp):
 
 def block_history(path):
     with h5py.File(path) as f:
-        steps = sorted(f["steps"], key=int)
+        steps = fr.steps(f)
         lf = np.array([f["steps"][s].attrs["load_factor"] for s in steps])
         sz = np.array([f["steps"][s]["stress"]["block"][:, 2] for s in steps])
         summ = dict(f["summary"].attrs)
@@ -392,7 +392,7 @@ def case_table7_4(table, feps, tmp, full=False):
 
 def peak_tension(path, group="pipe"):
     with h5py.File(path) as f:
-        last = sorted(f["steps"], key=int)[-1]
+        last = fr.last_step(f)
         return float(f["steps"][last]["principal"][group][:, 0].max())
 
 

@@ -15,8 +15,10 @@ status: 1 (default) for something that ran or was looked for and failed, 2 for a
 The argparse types below refuse NaN and infinities, which float() accepts.
 """
 import argparse
+import csv
 import math
 import os
+import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -78,12 +80,23 @@ def positive_int(text):
     return value
 
 
+def feps_executable(profile="debug"):
+    """Build feps with fpm's `profile` (debug or release) and return the executable's path;
+    exit with fpm's message if it does not build."""
+    built = subprocess.run(["fpm", "build", "--profile", profile], cwd=ROOT, capture_output=True, text=True)
+    out = subprocess.run(["fpm", "run", "--profile", profile, "--runner", "echo"], cwd=ROOT,
+                         capture_output=True, text=True)
+    lines = [line for line in out.stdout.strip().splitlines() if line.strip()]
+    if built.returncode != 0 or out.returncode != 0 or not lines:
+        sys.exit(f"{prog()}: cannot build feps ({profile}):\n" + built.stderr + out.stderr)
+    return os.path.join(ROOT, lines[-1].strip())
+
+
 def feps_option(path, profile="release"):
     """The feps executable a script runs: `path` (a --feps option) made absolute, so that it still
     resolves after the script changes folder, or fpm's `profile` build when `path` is empty;
     Error (status 2) when `path` names no executable file."""
     if not path:
-        from feps_build import feps_executable
         return feps_executable(profile)
     feps = os.path.abspath(path)
     if not (os.path.isfile(feps) and os.access(feps, os.X_OK)):
@@ -107,3 +120,9 @@ def benchmark_file(name):
     if not os.path.isfile(path):
         raise Error(f"no {name} in the benchmarks folder {os.path.dirname(path)} (FEPS_BENCHMARKS)", 2)
     return path
+
+
+def benchmark_rows(name):
+    """The rows of one CSV table in benchmarks_dir() as dicts ('#' lines are comments)."""
+    with open(benchmark_file(name)) as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))

@@ -150,12 +150,6 @@ def gauss_points(f, group, dataset=None):
     return x
 
 
-def element_of_point(f, group, dataset):
-    """Element index (0-based) of each row of a Gauss-point dataset."""
-    ppe = int(dataset.attrs["points_per_element"])
-    return np.repeat(np.arange(dataset.shape[0] // ppe), ppe)
-
-
 def group_nodes(f, group):
     """Sorted 0-based indices of the nodes a group's elements use."""
     return np.unique(connectivity(f, group))

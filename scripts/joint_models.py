@@ -38,7 +38,6 @@ Thesis Table 7.4: P = 10 MPa on the full annulus, a = 15, L = 2500, E_c = 40000,
 E_p = 2 G_p (1 + nu_p) (the thesis's own definition, section 7.4.1).
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -47,7 +46,7 @@ import sys
 from collections import namedtuple
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from feps_cli import benchmark_file, feps_option, guard  # noqa: E402
+from feps_cli import benchmark_rows, feps_option, guard  # noqa: E402
 
 DEFAULTS = dict(a=15.0, L=2500.0, Ec=40000.0, R=715.0, r=600.0)
 TOLERANCE = 0.005       # SPEC section 9: 0.5 %
@@ -140,12 +139,6 @@ def packing_modulus(G, nu):
     return 2.0 * G * (1.0 + nu)
 
 
-def _read_csv(name):
-    """Rows of a thesis table in the benchmarks folder ($FEPS_BENCHMARKS, default ../shared/benchmarks)."""
-    with open(benchmark_file(name)) as fh:
-        return list(csv.DictReader(l for l in fh if not l.startswith("#")))
-
-
 def _case_name(beta, G, nu):
     return f"table7.4 b{beta:.4f} G{G:.0f} nu{nu:g}"
 
@@ -170,7 +163,7 @@ def table_rows():
     for model, fn in (("australian", australian), ("haslem", haslem)):
         res = fn(Z=t["Z"], P=t["P"], a=t["a"], L=t["L"], Ec=t["Ec"], Ep=t["Ep"])
         rows.append(("table7.1 edge load", f"{model} deflection (deg)", t[model], res.beta, TOLERANCE))
-    for d in _read_csv("table7_4.csv"):
+    for d in benchmark_rows("table7_4.csv"):
         beta, G, nu = float(d["beta_bar_deg"]), float(d["G_p_MPa"]), float(d["mu_p"])
         case = _case_name(beta, G, nu)
         for model, fn in (("australian", australian), ("haslem", haslem)):
@@ -240,7 +233,7 @@ def check():
           "E_c = 40000, P = 10 MPa x annulus):")
     A = annulus_area(715.0, 600.0)
     rows74 = {_case_name(float(d["beta_bar_deg"]), float(d["G_p_MPa"]), float(d["mu_p"])): d
-              for d in _read_csv("table7_4.csv")}
+              for d in benchmark_rows("table7_4.csv")}
     for (beta, G, nu, quantity), why in NOT_REPRODUCED.items():
         case = _case_name(beta, G, nu)
         print(f"  {case}: {'all four analytic entries' if quantity == '*' else quantity}: {why}")

@@ -43,6 +43,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import feps_results as fr  # noqa: E402
 from feps_cli import Error, guard  # noqa: E402
 
 FT = 5.0
@@ -54,10 +55,6 @@ _G = 1.0 / np.sqrt(3.0)
 GAUSS_XI = np.array([[i, j, k] for k in (-_G, _G) for j in (-_G, _G) for i in (-_G, _G)])
 NODE_XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
                     [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], dtype=float)
-
-
-def last_step(f):
-    return sorted(f["steps"].keys(), key=int)[-1]   # by number: names have 4 or more digits
 
 
 def hex8_gauss_points(coords, conn):
@@ -78,7 +75,7 @@ def hex8_gauss_points(coords, conn):
 def read_pipe(path):
     """Last step's s1 of group pipe, Gauss-point positions and volumes, node radii."""
     with h5py.File(path, "r") as f:
-        step = last_step(f)
+        step = fr.last_step(f)
         s1 = f[f"steps/{step}/principal/pipe"][:, 0]
         coords = f["mesh/coordinates"][...]
         conn = f["mesh/groups/pipe/connectivity"][...]

@@ -66,7 +66,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
-from feps_cli import Error, benchmark_file, guard  # noqa: E402
+from feps_cli import Error, benchmark_rows, guard  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 R_IN, R_OUT = 600.0, 715.0
@@ -111,10 +111,6 @@ def geometry(f):
     make_pipe_joint.py's decks write for pipes off the thesis's, else the thesis's (THESIS)."""
     attrs = f["summary"].attrs if "summary" in f else {}
     return Geometry(*(float(attrs.get("parameter_" + k, v)) for k, v in zip(("r_i", "r_o", "L", "a", "Kn"), THESIS)))
-
-
-def last_step(f):
-    return f["steps"][sorted(f["steps"], key=int)[-1]]
 
 
 def _lsq_line(x, y):
@@ -365,7 +361,7 @@ def postprocess(h5path, verbose=True):
         conn_top = f["mesh/groups/top_pipe/connectivity"][...]
         conn_joint = f["mesh/groups/joint/connectivity"][...]
         conn_packing = f["mesh/groups/packing/connectivity"][...]
-        names = sorted(f["steps"], key=int)
+        names = fr.steps(f)
         step = f["steps"][names[-1]]
         for path in ("displacement", "interface/joint", "nodal_interface/joint", "cell/stress/packing"):
             if path not in step:
@@ -429,14 +425,9 @@ def case_name(G, nu, beta):
     return make_model_c.case_name(G, nu, beta)
 
 
-def _rows(name):
-    with open(benchmark_file(name)) as f:
-        return list(csv.DictReader(l for l in f if not l.startswith("#")))
-
-
 def thesis_values():
     """case -> dict(beta_star, beta_bar, Z, sigma_max) from Tables 7.3 and 7.4 (same row order)."""
-    t3, t4 = _rows("table7_3.csv"), _rows("table7_4.csv")
+    t3, t4 = benchmark_rows("table7_3.csv"), benchmark_rows("table7_4.csv")
     out = {}
     for a, b in zip(t3, t4):
         assert abs(float(a["beta_bar_deg"]) - float(b["beta_bar_deg"])) < 1e-9
@@ -492,7 +483,7 @@ def peak_tension_pipes(h5path):
     """Max most tensile principal stress (MPa) over the Gauss points of the two concrete pipes at
     the last step (the packing and the interface left out, as in the thesis's contours)."""
     with open_model_c(h5path) as f:
-        step = last_step(f)
+        step = f["steps"][fr.last_step(f)]
         for g in ("top_pipe", "bottom_pipe"):
             if f"principal/{g}" not in step:
                 raise Error(f"{h5path}: no principal stresses of {g} in the last step (left out with FIELDS?)")
@@ -627,7 +618,7 @@ def top_pipe_statics(h5path):
     measured and predicted values (deg) for comparison."""
     with open_model_c(h5path) as f:
         X = f["mesh/coordinates"][...]
-        step = f["steps"][sorted(f["steps"], key=int)[-1]]
+        step = f["steps"][fr.last_step(f)]
         u, reac = step["displacement"][...], step["reaction"][...]
         conn_top = f["mesh/groups/top_pipe/connectivity"][...]
     top = np.unique(conn_top - 1)

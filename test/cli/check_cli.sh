@@ -235,9 +235,9 @@ grep -q "feps --maxit 400" "$tmp/err" && [ ! -e "$tmp/u3.h5" ] && [ ! -e "$tmp/u
 expect_status "--maxit 200 follows the unzipping" 0 "$feps" test/data/unzip.dat --maxit 200 --output "$tmp/u200.h5"
 
 # Every example of the manuals (README.md, docs/*.md) runs and says what feps does: decks and
-# records accepted, error messages as printed, the HDF5 layout table, commands (scripts/check_docs.py,
+# records accepted, error messages as printed, the HDF5 layout table, commands (test/cli/check_docs.py,
 # driven by the <!-- check: ... --> markers; a fenced block without one fails).
-python3 scripts/check_docs.py --feps "$feps" >"$tmp/out" 2>&1 \
+python3 test/cli/check_docs.py --feps "$feps" >"$tmp/out" 2>&1 \
   && ok "docs' examples: $(tail -n 1 "$tmp/out")" || bad "docs' examples: $(grep -v '^  ok' "$tmp/out" | head -c 1500)"
 # A file holding only a DATAIN mesh: report it, write /mesh with --output.
 expect_status "Table 2.1 mesh-only" 0 "$feps" ../shared/benchmarks/table2_1.datain --output "$tmp/t21.h5"
@@ -656,17 +656,6 @@ python3 scripts/make_model_c.py --outdir "$tmp/mc_fine" --cases C_G300_nu0.1_b0.
   && grep -q "^nodes *$((61 * 9 * 39 + 61 * 5 * 67))$" "$tmp/out" \
   && ok "model C with 4 wall elements and z cut in 2: $((61 * 9 * 39 + 61 * 5 * 67)) nodes, --check passes" \
   || bad "model C with 4 wall elements and z cut in 2: $(grep -E '^nodes|error' "$tmp/out")"
-# The speed-accuracy study builds the deck of every scene (it once broke when a generator's
-# signature changed, and nothing ran it).
-python3 - <<'PY' && ok "study_tradeoff.py builds every scene's deck" || bad "study_tradeoff.py builds every scene's deck"
-import sys
-sys.path.insert(0, "scripts")
-import study_tradeoff as t
-plans = t.plans(quick=False)
-for name, sc in t.scenes().items():
-    for element, n, method, steps, tol, solver in plans[name][:1] + plans[name][-1:]:
-        assert "STAGE" in sc["deck"](element, n, steps, tol or 1e-6, method), name
-PY
 python3 scripts/make_chapter9.py --outdir "$tmp/c9" >/dev/null && diff -r input/chapter9 "$tmp/c9" >/dev/null \
   && ok "make_chapter9.py's defaults = input/chapter9" || bad "make_chapter9.py's defaults = input/chapter9"
 # The other generators write the committed thesis decks byte for byte.
@@ -957,12 +946,6 @@ chmod +x "$tmp/fake/feps"
   && grep -q "postprocess_model_c: .*not an HDF5 file" "$tmp/err" && ! grep -q Traceback "$tmp/err" \
   && ok "campaign_modelC.sh --feps RELATIVE runs the case; a failed post-processing gives exit 1" \
   || bad "campaign_modelC.sh --feps RELATIVE: exit $got, $(head -c 300 "$tmp/err")"
-expect_line "study_tradeoff.py --feps that does not exist" 2 "^study_tradeoff: --feps" \
-  python3 scripts/study_tradeoff.py --quick --feps "$tmp/no_feps" --out "$tmp/trade"
-[ ! -e "$tmp/trade" ] && ok "  ... and writes nothing" || bad "  ... and writes nothing"
-expect_arg_error "study_tradeoff.py --scenes bogus" "invalid choice: 'bogus'" python3 scripts/study_tradeoff.py --scenes bogus
-expect_line "study_tradeoff.py --compare a missing folder" 2 "no folder" \
-  python3 scripts/study_tradeoff.py --compare "$tmp/no_such_dir"
 expect_line "postprocess_model_c.py, a missing file" 2 "^postprocess_model_c: no result file" \
   python3 scripts/postprocess_model_c.py "$tmp/no.h5"
 expect_line "postprocess_model_c.py, a model B result" 1 "not a model C result" \
@@ -1246,11 +1229,10 @@ expect_arg_error "make_model_c.py --theta-step 0" "argument --theta-step" \
   python3 scripts/make_model_c.py --outdir "$tmp/x" --theta-step 0
 [ ! -e "$tmp/x" ] && ok "  ... no deck written" || bad "  ... no deck written"
 expect_arg_error "study_prestress.py --q nan" "argument --q" python3 scripts/study_prestress.py --q nan
-python3 scripts/make_symmetry_decks.py --outdir "$tmp/sym" >/dev/null && cmp -s "$tmp/sym/symmetry_half.dat" test/data/symmetry_half.dat \
+python3 test/data/make_symmetry_decks.py --outdir "$tmp/sym" >/dev/null && cmp -s "$tmp/sym/symmetry_half.dat" test/data/symmetry_half.dat \
   && cmp -s "$tmp/sym/symmetry_full.dat" test/data/symmetry_full.dat && ok "make_symmetry_decks.py --outdir writes test/data's decks" \
   || bad "make_symmetry_decks.py --outdir writes test/data's decks"
-expect_arg_error "make_symmetry_decks.py --bogus" "unrecognized arguments" python3 scripts/make_symmetry_decks.py --bogus
-expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" python3 scripts/stability_extremes.py --only bogus
+expect_arg_error "make_symmetry_decks.py --bogus" "unrecognized arguments" python3 test/data/make_symmetry_decks.py --bogus
 # The lined hole (docs/verification.md, "A pipe in elastic ground"): the closed form's own checks
 # (equilibrium and compatibility by finite differences, which the Fortran test does not repeat),
 # the test's eight decks written again byte for byte, and one run compared with the closed form by

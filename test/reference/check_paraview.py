@@ -257,7 +257,7 @@ def main(argv):
     if not argv:
         fail_usage("usage: python3 test/reference/check_paraview.py [--png FILE.png] RESULT.xmf [...]")
     if shutil.which("pvbatch") is None:
-        fail_usage("pvbatch (ParaView) is not installed: bash scripts/check_paraview.sh installs it")
+        fail_usage("pvbatch (ParaView) is not installed: bash test/cli/check_paraview.sh installs it")
     try:
         import h5py  # noqa: F401
     except ImportError:

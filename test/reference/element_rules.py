@@ -8,7 +8,7 @@ catalog (src/elements) writes the integration points (/mesh/groups/<g>/points) a
 averages (nodal_stress, nodal_principal, nodal_interface) into the results file, and the scripts
 read them there. This copy exists only to check those: test/cli/check_cli.sh recomputes the
 written stresses and interface strains from the displacements and holds nodal_stress to
-`extrapolation_matrix`; scripts/check_docs.py holds the table of integration points in
+`extrapolation_matrix`; test/cli/check_docs.py holds the table of integration points in
 docs/output-format.md to `integration_points`.
 """
 import math

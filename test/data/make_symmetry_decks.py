@@ -5,7 +5,7 @@ test/data/symmetry_full.dat. The full ring is closed by a last column of element
 the nodes at theta = 0 (the DATAIN block's duplicate nodes at 360 deg stay unused).
 The symmetric half must give the full model's displacements (fpm test checks 1e-6).
 
-    python3 scripts/make_symmetry_decks.py [--outdir test/data]
+    python3 test/data/make_symmetry_decks.py [--outdir test/data]
 
 Without options it rewrites the two decks fpm test reads (the same bytes); --outdir writes them
 elsewhere.
@@ -14,7 +14,7 @@ import argparse
 import os
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NR = 7                      # r = 600, 657.5, 715, 865, 1115, 1465, 2000
 NZ = 9                      # z nodes: 0, 100, 200, 725, 1250, 1775, 2300, 2400, 2500
 DTH = 15.0
@@ -23,7 +23,7 @@ DTH = 15.0
 def deck(full):
     nth = (24 if full else 12) + 1          # theta nodes (the full one repeats 0 at 360)
     layer = NR * nth
-    lines = [f"! Coarse model B SE1 ({'full 360 deg' if full else 'half, y = 0 symmetry'}): scripts/make_symmetry_decks.py",
+    lines = [f"! Coarse model B SE1 ({'full 360 deg' if full else 'half, y = 0 symmetry'}): test/data/make_symmetry_decks.py",
              f"TITLE, symmetry check, {'full' if full else 'half'} model",
              "A, 3, 600., 0., 0.,", "%, 3, 57.5, 0., 0.,", "%, -1, 150., 0., 0.,", "%, -1, 250., 0., 0.,",
              "%, -1, 350., 0., 0.,", "%, -1, 535., 0., 0.,",

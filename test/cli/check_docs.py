@@ -68,7 +68,7 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DOCS = ["README.md", "docs/input-format.md", "docs/output-format.md", "docs/performance.md",
         "docs/tradeoff.md"]
 MARK = "<!-- check:"

@@ -11,8 +11,8 @@ Names: G<Gp>_nu<nu_p>_b<beta>[_stiff], e.g. G300_nu0.4_b0.1, G300_nu-0.3_b0.3, G
 
 Meshes: 'fine' (default, the delivered decks: 2.5 mm elements at the joint, 26 500 DOFs),
 'coarse' (5 mm, 7 300 DOFs: peaks 4-20% lower, same trends) and 'tiny' (for quick checks).
-Run a deck from the folder that should receive its results (OUTPUT joint2d_<case>.h5); the study's
-summary (docs/verification.md) was made with summarise_joint_2d.py of commit f0fbd8d.
+Run a deck from the folder that should receive its results (OUTPUT joint2d_<case>.h5), then
+scripts/summarise_joint_2d.py.
 
 Geometry and loads follow SPEC section 8; every choice the thesis leaves open is written into the
 deck's comments.

@@ -656,6 +656,17 @@ python3 scripts/make_model_c.py --outdir "$tmp/mc_fine" --cases C_G300_nu0.1_b0.
   && grep -q "^nodes *$((61 * 9 * 39 + 61 * 5 * 67))$" "$tmp/out" \
   && ok "model C with 4 wall elements and z cut in 2: $((61 * 9 * 39 + 61 * 5 * 67)) nodes, --check passes" \
   || bad "model C with 4 wall elements and z cut in 2: $(grep -E '^nodes|error' "$tmp/out")"
+# The speed-accuracy study builds the deck of every scene (it once broke when a generator's
+# signature changed, and nothing ran it).
+python3 - <<'PY' && ok "study_tradeoff.py builds every scene's deck" || bad "study_tradeoff.py builds every scene's deck"
+import sys
+sys.path.insert(0, "scripts")
+import study_tradeoff as t
+plans = t.plans(quick=False)
+for name, sc in t.scenes().items():
+    for element, n, method, steps, tol, solver in plans[name][:1] + plans[name][-1:]:
+        assert "STAGE" in sc["deck"](element, n, steps, tol or 1e-6, method), name
+PY
 python3 scripts/make_chapter9.py --outdir "$tmp/c9" >/dev/null && diff -r input/chapter9 "$tmp/c9" >/dev/null \
   && ok "make_chapter9.py's defaults = input/chapter9" || bad "make_chapter9.py's defaults = input/chapter9"
 # The other generators write the committed thesis decks byte for byte.
@@ -946,6 +957,12 @@ chmod +x "$tmp/fake/feps"
   && grep -q "postprocess_model_c: .*not an HDF5 file" "$tmp/err" && ! grep -q Traceback "$tmp/err" \
   && ok "campaign_modelC.sh --feps RELATIVE runs the case; a failed post-processing gives exit 1" \
   || bad "campaign_modelC.sh --feps RELATIVE: exit $got, $(head -c 300 "$tmp/err")"
+expect_line "study_tradeoff.py --feps that does not exist" 2 "^study_tradeoff: --feps" \
+  python3 scripts/study_tradeoff.py --quick --feps "$tmp/no_feps" --out "$tmp/trade"
+[ ! -e "$tmp/trade" ] && ok "  ... and writes nothing" || bad "  ... and writes nothing"
+expect_arg_error "study_tradeoff.py --scenes bogus" "invalid choice: 'bogus'" python3 scripts/study_tradeoff.py --scenes bogus
+expect_line "study_tradeoff.py --compare a missing folder" 2 "no folder" \
+  python3 scripts/study_tradeoff.py --compare "$tmp/no_such_dir"
 expect_line "postprocess_model_c.py, a missing file" 2 "^postprocess_model_c: no result file" \
   python3 scripts/postprocess_model_c.py "$tmp/no.h5"
 expect_line "postprocess_model_c.py, a model B result" 1 "not a model C result" \
@@ -1233,6 +1250,7 @@ python3 test/data/make_symmetry_decks.py --outdir "$tmp/sym" >/dev/null && cmp -
   && cmp -s "$tmp/sym/symmetry_full.dat" test/data/symmetry_full.dat && ok "make_symmetry_decks.py --outdir writes test/data's decks" \
   || bad "make_symmetry_decks.py --outdir writes test/data's decks"
 expect_arg_error "make_symmetry_decks.py --bogus" "unrecognized arguments" python3 test/data/make_symmetry_decks.py --bogus
+expect_arg_error "stability_extremes.py --only bogus" "invalid choice: 'bogus'" python3 scripts/stability_extremes.py --only bogus
 # The lined hole (docs/verification.md, "A pipe in elastic ground"): the closed form's own checks
 # (equilibrium and compatibility by finite differences, which the Fortran test does not repeat),
 # the test's eight decks written again byte for byte, and one run compared with the closed form by

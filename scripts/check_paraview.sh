@@ -5,10 +5,10 @@
 # interface and bar groups, 2D tri6 with a line interface, solids with interfaces, and model B's
 # pipe SE1, whose deformed pipe, coloured by the most tensile principal stress, is rendered.
 # Installs Debian's paraview and xvfb when pvbatch or xvfb-run is missing (root: apt-get).
-# Usage: bash test/cli/check_paraview.sh [OUTDIR]   (default: a temporary folder; the PNG is
+# Usage: bash scripts/check_paraview.sh [OUTDIR]   (default: a temporary folder; the PNG is
 # OUTDIR/SE1_principal.png). Exit status 0 when every reader shows every array right.
 set -euo pipefail
-cd "$(dirname "$0")/../.."
+cd "$(dirname "$0")/.."
 
 if ! command -v pvbatch >/dev/null 2>&1 || ! command -v xvfb-run >/dev/null 2>&1; then
   echo "== installing Debian's paraview and xvfb"

@@ -361,8 +361,9 @@ contains
     end do
   end subroutine test_crush_prism
 
-  !> Every CONCRETE parameter out of range, a softening law feps does not know and an unknown
-  !! key are refused at their field.
+  !> Every CONCRETE parameter out of range (FC at or below FT, PHI and PSI of the compression
+  !! side too), PHI or PSI without FC, a softening law feps does not know and an unknown key
+  !! are refused at their field.
   subroutine test_bad_parameters(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_material_rejected(error, 'c', 'concrete', ['e ', 'nu', 'ft', 'gf'], &
@@ -381,7 +382,23 @@ contains
                                   [30000.0_dp, 0.5_dp, 3.0_dp, 0.1_dp], 'NU', 5)
     if (allocated(error)) return
     call expect_material_rejected(error, 'c', 'concrete', ['e  ', 'nu ', 'ft ', 'gf ', 'phi'], &
-                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp], 'PHI', 8)
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp], 'PHI needs FC', 8)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'c', 'concrete', ['e  ', 'nu ', 'ft ', 'gf ', 'psi'], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp], 'PSI needs FC', 8)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'c', 'concrete', ['e ', 'nu', 'ft', 'gf', 'fc'], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 3.0_dp], 'FC = 3.00000 must exceed FT', 8)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'c', 'concrete', ['e  ', 'nu ', 'ft ', 'gf ', 'fc ', 'phi'], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp, 0.0_dp], 'PHI', 9)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'c', 'concrete', ['e  ', 'nu ', 'ft ', 'gf ', 'fc ', 'psi'], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp, -1.0_dp], 'PSI', 9)
+    if (allocated(error)) return
+    ! the cohesion follows from FC and PHI: C is not a CONCRETE key
+    call expect_material_rejected(error, 'c', 'concrete', ['e ', 'nu', 'ft', 'gf', 'fc', 'c '], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp, 5.0_dp], 'unknown parameter C', 9)
   end subroutine test_bad_parameters
 
 end module test_concrete

@@ -34,6 +34,8 @@ contains
       new_unittest('FC: triaxial compression reaches the Mohr-Coulomb strength of the compression meridian', &
                    test_triaxial_compression), &
       new_unittest('FC leaves uniaxial tension as it was: cracks at FT, bit for bit', test_tension_with_fc), &
+      new_unittest('FC: a cracked point is elastic-damaged in compression (no Matsuoka-Nakai cap)', &
+                   test_cracked_in_compression), &
       new_unittest('FC: a prism crushed by displacement carries FC x area (full Newton)', test_crush_prism), &
       new_unittest('bad CONCRETE parameters name their field', test_bad_parameters) &
     ]
@@ -318,6 +320,46 @@ contains
     if (allocated(error)) return
     call check(error, state == state_cracked, 'cracked at the end')
   end subroutine test_tension_with_fc
+
+  !> A point with FC = 30 (nu = 0, uniaxial strain = stress) pulled past its peak to kappa =
+  !! 2 FT / E, then pushed back to -3 FC / E: once cracked its compression side is off (the
+  !! design choice: its effective stress may lie far outside the surface), so the stress is
+  !! (1 - d) E eps with the damage d of kappa = 2 FT / E, to 1e-12, beyond -FC (1 - d), and the
+  !! point stays cracked.
+  subroutine test_cracked_in_compression(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, ft = 3.0_dp, fc = 30.0_dp, h = 50.0_dp
+    type(concrete_damage_t) :: mat
+    real(dp) :: sig0(6), sig(6), eps(6), deps(6), dtan(6, 6), var0(8), var(8), dmg
+    integer :: k, state
+    call make_concrete(['e ', 'nu', 'ft', 'gf', 'fc'], [e, 0.0_dp, ft, 0.1_dp, fc], mat, error)
+    if (allocated(error)) return
+    sig0 = 0.0_dp
+    eps = 0.0_dp
+    var0 = 0.0_dp
+    var0(2) = h
+    deps = 0.0_dp
+    deps(1) = 0.1_dp * ft / e
+    do k = 1, 20
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      sig0 = sig
+      eps = eps + deps
+      var0 = var
+    end do
+    dmg = mat%damage(2.0_dp * ft / e, h)
+    call check(error, var(1), 2.0_dp * ft / e, 'kappa after the pull', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    deps(1) = -(2.0_dp * ft + 3.0_dp * fc) / e / 50.0_dp
+    do k = 1, 50
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      sig0 = sig
+      eps = eps + deps
+      var0 = var
+    end do
+    call check(error, sig(1), (1.0_dp - dmg) * e * eps(1), 'compressed cracked point: (1 - d) E eps', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, sig(1) < -(1.0_dp - dmg) * fc .and. state == state_cracked, 'beyond -FC (1 - d), cracked')
+  end subroutine test_cracked_in_compression
 
   !> test/data/crush_prism.dat: a 100 mm cube (one hex8) on rollers with FC = 30 MPa, its top
   !! pushed down 0.3 mm in 30 steps by full Newton. The top reaction is E A u / L until

@@ -13,19 +13,25 @@
 !! the tensile one (a smeared crack would keep them).
 !!
 !! Compression (optional, MATERIAL key FC and with it PHI and PSI): the modified Matsuoka-Nakai
-!! surface of feps_matsuoka_nakai (perfectly plastic) bounds the effective stress where the
-!! trial effective stress's mean stress is compressive (p_tr < 0); its return mapping and
-!! consistent tangent are the MATSUOKA material's own (a component, `crush`, called, not
-!! copied), with its continuous closest-point rule (its apex lies on the tensile side, where
-!! the damage governs). The surface passes through -FC in uniaxial compression: apex
-!! M = FC/2 (1/sin(phi) - 1), i.e. cohesion c = FC (1 - sin phi) / (2 cos phi); PHI defaults
-!! to asin((FC - FT) / (FC + FT)), which puts it through FT in uniaxial tension too (thesis
-!! chapter 9's concrete: FC = 50, FT = 5 give its 54.9 deg), and PSI to PHI. Why only where
-!! p_tr < 0: the surface also caps the uniaxial tensile effective stress at its own tensile
-!! strength (FT with the default PHI), so the effective stress would never pass FT and the
-!! damage would never start; with p_tr >= 0 the damage alone governs. The price: where the
-!! mean stress changes sign (near pure shear) the update jumps between the Matsuoka-Nakai
-!! surface and the cracking one, by at most their distance there.
+!! surface of feps_matsuoka_nakai (perfectly plastic) bounds the effective stress of a point
+!! that has not cracked, where the return lands at a compressive mean stress (p < 0); its
+!! return mapping and consistent tangent are the MATSUOKA material's own (a component,
+!! `crush`, called, not copied), with its continuous closest-point rule (its apex lies on the
+!! tensile side, where the damage governs). The surface passes through -FC in uniaxial
+!! compression: apex M = FC/2 (1/sin(phi) - 1), i.e. cohesion c = FC (1 - sin phi) /
+!! (2 cos phi); PHI defaults to asin((FC - FT) / (FC + FT)), which puts it through FT in
+!! uniaxial tension too (thesis chapter 9's concrete: FC = 50, FT = 5 give its 54.9 deg), and
+!! PSI to PHI. Why only where the return lands at p < 0: the surface also caps the uniaxial
+!! tensile effective stress at its own tensile strength (FT with the default PHI), so the
+!! damage would never start; elsewhere the damage alone governs. Why by where the return
+!! lands and not by the elastic trial: full Newton's first iterate after yield predicts the
+!! plastic dilation, whose elastic trial is tensile, though its return lands back on the
+!! compressive side (the trial choice cycled; docs/verification.md). Why not once cracked:
+!! a cracked point's effective stress may lie far outside the surface, and a return from
+!! there jumps by as much (chapter 9's CR did not converge with it); a cracked point is
+!! elastic-damaged in compression. The price: where the landing point's mean stress changes
+!! sign (near pure shear) the update of an uncracked point jumps between the two surfaces, by
+!! at most their distance there.
 !!
 !! History: kappa, the largest equivalent strain reached (`equivalent_strain`: the energy norm
 !! of the tensile part of the effective stress, which is the Rankine measure
@@ -197,9 +203,10 @@ contains
     if (h > 0.0_dp) dmg0 = self%damage(kappa0, h)
     sig_eff = sig0(1:6) / (1.0_dp - dmg0) + matmul(d, deps(1:6))
     crushing = .false.
-    if (allocated(self%crush)) then
+    if (allocated(self%crush) .and. .not. (dmg0 > 0.0_dp)) then
       ! The Matsuoka-Nakai return of the same trial (formed there), kept where it lands on the
-      ! compressive side of the surface (mean stress < 0); elsewhere the damage governs.
+      ! compressive side of the surface (mean stress < 0); elsewhere, and once the point has
+      ! cracked (its effective stress may lie far outside the surface), the damage governs.
       call self%crush%update(sig0(1:6) / (1.0_dp - dmg0), eps0, deps, state0, sig_ret, crush_state, dep)
       crushing = crush_state /= state_elastic .and. sig_ret(1) + sig_ret(2) + sig_ret(3) < 0.0_dp
       if (crushing) then

@@ -54,8 +54,9 @@
 !! the damage grows the consistent tangent (1 - d) D - d'(kappa) sigma_eff (D grad kappa)^T,
 !! non-symmetric in general (full Newton factorizes it by LU; the other methods take its
 !! nearest symmetric positive semi-definite part). Where the compression side yields, D is
-!! the Matsuoka-Nakai consistent tangent D_ep in both terms (D_ep^T grad kappa in the second). The secant alone converged linearly, at a
-!! rate near 0.97 per iteration, once a laterally held band softened (nu > 0).
+!! the Matsuoka-Nakai consistent tangent D_ep in both terms (D_ep^T grad kappa in the
+!! second). The secant alone converged linearly, at a rate near 0.97 per iteration, once a
+!! laterally held band softened (nu > 0).
 module feps_concrete_damage
   use feps_kinds, only: dp, deg2rad
   use feps_error, only: error_t, str
@@ -178,8 +179,9 @@ contains
   end function cd_damage_rate
 
   !> Stress update over a step (see the module description); state_cracked once the point has
-  !! damaged, state_plastic while its compression side yields (over cracked: what the point
-  !! does now). Without a crack band (h = 0: not set) the point does not crack.
+  !! damaged, state_plastic in a step in which its compression side yields (only before it
+  !! has cracked; over state_cracked should it crack in that step). Without a crack band
+  !! (h = 0: not set) the point does not crack.
   pure subroutine cd_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
     class(concrete_damage_t), intent(in) :: self
     real(dp), intent(in) :: sig0(:), eps0(:), deps(:)

@@ -141,6 +141,12 @@ contains
       new_unittest('ELASTIC with an unknown key names its field', test_elastic_unknown_key), &
       new_unittest('CONCRETE with a negative GF names its field', test_concrete_gf_negative), &
       new_unittest('CONCRETE with an unknown SOFTENING law names its field', test_concrete_softening_unknown), &
+      new_unittest('CONCRETE with FC below FT names the field of FC', test_concrete_fc_below_ft), &
+      new_unittest('CONCRETE with a negative FC names its field', test_concrete_fc_negative), &
+      new_unittest('CONCRETE with PHI out of range names its field', test_concrete_phi_out_of_range), &
+      new_unittest('CONCRETE with PSI above PHI names its field', test_concrete_psi_above_phi), &
+      new_unittest('CONCRETE with PHI but no FC names the field of PHI', test_concrete_phi_without_fc), &
+      new_unittest('CONCRETE with FC given twice names the second', test_concrete_fc_twice), &
       new_unittest('CONCRETE in elements longer than its crack band allows (snap-back) names GF', &
                    test_concrete_band_too_large), &
       new_unittest('an unknown material kind names its field', test_material_kind_unknown), &
@@ -1045,6 +1051,48 @@ contains
                         [character(len=60) :: 'concrete_gf_negative.dat:15: field 7:', 'material concrete', &
                          'GF = -0.100000 must be positive and finite'], error)
   end subroutine test_concrete_gf_negative
+
+  subroutine test_concrete_fc_below_ft(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_fc_below_ft.dat', err_input, &
+                        [character(len=60) :: 'concrete_fc_below_ft.dat:15: field 8:', 'material concrete', &
+                         'FC = 2.00000 must exceed FT = 3.00000'], error)
+  end subroutine test_concrete_fc_below_ft
+
+  subroutine test_concrete_fc_negative(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_fc_negative.dat', err_input, &
+                        [character(len=60) :: 'concrete_fc_negative.dat:15: field 8:', 'material concrete', &
+                         'FC = -30.0000 must be positive and finite'], error)
+  end subroutine test_concrete_fc_negative
+
+  subroutine test_concrete_phi_out_of_range(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_phi_out_of_range.dat', err_input, &
+                        [character(len=60) :: 'concrete_phi_out_of_range.dat:15: field 9:', 'material concrete', &
+                         'PHI = 95.0000 must lie in (0, 90) degrees'], error)
+  end subroutine test_concrete_phi_out_of_range
+
+  subroutine test_concrete_psi_above_phi(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_psi_above_phi.dat', err_input, &
+                        [character(len=60) :: 'concrete_psi_above_phi.dat:15: field 10:', 'material concrete', &
+                         'PSI = 50.0000 must lie in [0, PHI]'], error)
+  end subroutine test_concrete_psi_above_phi
+
+  subroutine test_concrete_phi_without_fc(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_phi_without_fc.dat', err_input, &
+                        [character(len=60) :: 'concrete_phi_without_fc.dat:15: field 8:', 'material concrete', &
+                         'PHI needs FC'], error)
+  end subroutine test_concrete_phi_without_fc
+
+  subroutine test_concrete_fc_twice(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_fc_twice.dat', err_input, &
+                        [character(len=60) :: 'concrete_fc_twice.dat:15: field 9:', 'material concrete', &
+                         'FC is given twice (fields 8 and 9)'], error)
+  end subroutine test_concrete_fc_twice
 
   subroutine test_concrete_softening_unknown(error)
     type(error_t), allocatable, intent(out) :: error

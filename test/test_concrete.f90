@@ -7,7 +7,10 @@ module test_concrete
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_error, only: str
   use feps_material_testing, only: expect_material_rejected
-  use feps_material, only: state_elastic, state_cracked
+  use feps_material, only: material_t, state_elastic, state_plastic, state_cracked
+  use feps_material_testing, only: material_spec
+  use feps_material_factory, only: new_material
+  use feps_kinds, only: deg2rad
   use feps_concrete_damage, only: concrete_damage_t, softening_linear, softening_exponential
   use feps_model, only: model_t
   use feps_deck, only: read_deck
@@ -26,6 +29,14 @@ contains
       new_unittest('one point dissipates GF / h per volume, linear and exponential softening', test_point_energy), &
       new_unittest('a prism pulled apart dissipates GF x area on 1, 3 and 5 elements along, nu = 0 and 0.2', &
                    test_bar_energy), &
+      new_unittest('FC: uniaxial compression reaches -FC and stays on the plateau, plastic strain', &
+                   test_uniaxial_compression), &
+      new_unittest('FC: triaxial compression reaches the Mohr-Coulomb strength of the compression meridian', &
+                   test_triaxial_compression), &
+      new_unittest('FC leaves uniaxial tension as it was: cracks at FT, bit for bit', test_tension_with_fc), &
+      new_unittest('FC: a cracked point is elastic-damaged in compression (no Matsuoka-Nakai cap)', &
+                   test_cracked_in_compression), &
+      new_unittest('FC: a prism crushed by displacement carries FC x area (full Newton)', test_crush_prism), &
       new_unittest('bad CONCRETE parameters name their field', test_bad_parameters) &
     ]
   end subroutine collect_concrete
@@ -138,8 +149,263 @@ contains
     end do
   end subroutine test_bar_energy
 
-  !> Every CONCRETE parameter out of range, a softening law feps does not know and an unknown
-  !! key are refused at their field.
+  !> A CONCRETE material from a hand-built record (keys and values as on a MATERIAL record).
+  subroutine make_concrete(keys, values, mat, error)
+    character(len=*), intent(in) :: keys(:)
+    real(dp), intent(in) :: values(:)
+    type(concrete_damage_t), intent(out) :: mat
+    type(error_t), allocatable, intent(out) :: error
+    class(material_t), allocatable :: m
+    call new_material(material_spec('c', 'concrete', keys, values), m, error)
+    if (allocated(error)) return
+    select type (m)
+    type is (concrete_damage_t)
+      mat = m
+    class default
+      call test_failed(error, 'CONCRETE did not make a concrete_damage_t')
+    end select
+  end subroutine make_concrete
+
+  !> One step of a point strained by dz along z with its x and y stresses held at `lateral`
+  !! and no shear: Newton's method on the x and y strains with the point's own tangent
+  !! (quadratic with a consistent tangent), to 1e-12 of the axial stress.
+  subroutine axial_step(mat, sig0, eps0, var0, dz, lateral, sig, state, var, deps, iterations)
+    type(concrete_damage_t), intent(in) :: mat
+    real(dp), intent(in) :: sig0(6), eps0(6), var0(:), dz, lateral
+    real(dp), intent(out) :: sig(6), var(:), deps(6)
+    integer, intent(out) :: state, iterations
+    real(dp) :: dtan(6, 6), r(2), a(2, 2), det
+    deps = 0.0_dp
+    deps(3) = dz
+    do iterations = 1, 50
+      call mat%update(sig0, eps0, deps, state_elastic, sig, state, dtan, var0, var)
+      r = sig(1:2) - lateral
+      if (maxval(abs(r)) <= 1.0e-12_dp * max(abs(sig(3)), 1.0_dp)) return
+      a = dtan(1:2, 1:2)
+      det = a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)
+      deps(1) = deps(1) - (a(2, 2) * r(1) - a(1, 2) * r(2)) / det
+      deps(2) = deps(2) - (a(1, 1) * r(2) - a(2, 1) * r(1)) / det
+    end do
+  end subroutine axial_step
+
+  !> Uniaxial compression (x and y stress free) of a point with FC = 30, FT = 3 (PHI and PSI
+  !! by default, 54.9 deg), and with PHI = 40, PSI = 10 (non-associated): strained in 45
+  !! steps to 4.5 times FC / E. The stress is E eps until -FC, then -FC to 1e-9 on every later
+  !! step (perfect plasticity; the surface passes through -FC whatever PHI), the point is
+  !! plastic there and never cracks (kappa stays 0), its plastic strain along z is
+  !! eps_z + FC / E (the elastic strain of uniaxial stress is sigma / E) to 1e-9, and the
+  !! lateral Newton iterations take at most 5 (the consistent tangent).
+  subroutine test_uniaxial_compression(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, fc = 30.0_dp
+    type(concrete_damage_t) :: mat
+    real(dp) :: sig0(6), sig(6), eps(6), deps(6), var0(8), var(8), dz
+    integer :: k, state, iterations, variant
+    do variant = 1, 2
+      if (variant == 1) then
+        call make_concrete(['e ', 'nu', 'ft', 'gf', 'fc'], [e, 0.2_dp, 3.0_dp, 0.1_dp, fc], mat, error)
+      else
+        call make_concrete(['e  ', 'nu ', 'ft ', 'gf ', 'fc ', 'phi', 'psi'], &
+                           [e, 0.2_dp, 3.0_dp, 0.1_dp, fc, 40.0_dp, 10.0_dp], mat, error)
+      end if
+      if (allocated(error)) return
+      call check(error, mat%state_size(), 8, 'state size with FC')
+      if (allocated(error)) return
+      sig0 = 0.0_dp
+      eps = 0.0_dp
+      var0 = 0.0_dp
+      var0(2) = 50.0_dp
+      dz = -0.1_dp * fc / e
+      do k = 1, 45
+        call axial_step(mat, sig0, eps, var0, dz, 0.0_dp, sig, state, var, deps, iterations)
+        call check(error, iterations <= 5, 'variant ' // str(variant) // ' step ' // str(k) // ': ' // &
+                   str(iterations) // ' lateral iterations')
+        if (allocated(error)) return
+        eps = eps + deps
+        if (k < 10) then
+          call check(error, sig(3), e * eps(3), 'elastic before -FC', rel=1.0e-12_dp)
+          if (allocated(error)) return
+          call check(error, state == state_elastic, 'elastic before -FC')
+        else if (k > 10) then
+          call check(error, sig(3), -fc, 'variant ' // str(variant) // ' step ' // str(k) // ': on the plateau', &
+                     rel=1.0e-9_dp)
+          if (allocated(error)) return
+          call check(error, state == state_plastic, 'plastic on the plateau')
+          if (allocated(error)) return
+          call check(error, var(5), eps(3) - sig(3) / e, 'plastic strain along z', rel=1.0e-9_dp)
+        end if
+        if (allocated(error)) return
+        call check(error, var(1), 0.0_dp, 'no cracking in uniaxial compression', abs=1.0e-12_dp)
+        if (allocated(error)) return
+        sig0 = sig
+        var0 = var
+      end do
+    end do
+  end subroutine test_uniaxial_compression
+
+  !> Triaxial compression: a point under hydrostatic -q (imposed as its initial stress), then
+  !! shortened along z with x and y held at -q. On the compression meridian the surface is
+  !! the Mohr-Coulomb one, sigma_1 = q (1 + sin phi) / (1 - sin phi) + FC (compression
+  !! positive; 2 c cos phi / (1 - sin phi) = FC); with the default PHI, (1 + sin) / (1 - sin)
+  !! = FC / FT = 10, so q = 10 gives 130 MPa, and PHI = 40 gives 10 x 4.599 + 30. The axial
+  !! stress reaches that to 1e-9 and stays.
+  subroutine test_triaxial_compression(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, fc = 30.0_dp, q = 10.0_dp
+    type(concrete_damage_t) :: mat
+    real(dp) :: sig0(6), sig(6), eps(6), deps(6), var0(8), var(8), expected, sn
+    integer :: k, state, iterations, variant
+    do variant = 1, 2
+      if (variant == 1) then
+        call make_concrete(['e ', 'nu', 'ft', 'gf', 'fc'], [e, 0.2_dp, 3.0_dp, 0.1_dp, fc], mat, error)
+        expected = 10.0_dp * q + fc
+      else
+        call make_concrete(['e  ', 'nu ', 'ft ', 'gf ', 'fc ', 'phi', 'psi'], &
+                           [e, 0.2_dp, 3.0_dp, 0.1_dp, fc, 40.0_dp, 10.0_dp], mat, error)
+        sn = sin(40.0_dp * deg2rad)
+        expected = q * (1.0_dp + sn) / (1.0_dp - sn) + fc
+      end if
+      if (allocated(error)) return
+      sig0 = 0.0_dp
+      sig0(1:3) = -q
+      eps = 0.0_dp
+      var0 = 0.0_dp
+      var0(2) = 50.0_dp
+      do k = 1, 60
+        call axial_step(mat, sig0, eps, var0, -0.05_dp * expected / e, -q, sig, state, var, deps, iterations)
+        call check(error, iterations <= 5, 'variant ' // str(variant) // ' step ' // str(k) // ': ' // &
+                   str(iterations) // ' lateral iterations')
+        if (allocated(error)) return
+        eps = eps + deps
+        sig0 = sig
+        var0 = var
+      end do
+      call check(error, -sig(3), expected, 'variant ' // str(variant) // ': triaxial strength at q = 10', &
+                 rel=1.0e-9_dp)
+      if (allocated(error)) return
+      call check(error, state == state_plastic, 'plastic at the end')
+      if (allocated(error)) return
+    end do
+  end subroutine test_triaxial_compression
+
+  !> Uniaxial tension (x and y stress free, nu = 0.2) with and without FC: the mean stress is
+  !! tensile, so the compression side never acts and the stresses are the same bit for bit;
+  !! the peak is FT to 1e-3 and the point ends cracked.
+  subroutine test_tension_with_fc(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(concrete_damage_t) :: plain, crush
+    real(dp) :: sig0(6), sig(6), eps(6), deps(6), var0(8), var(8), sig_p(6), var_p(8), peak, dtan_p(6, 6)
+    integer :: k, state, state_p, iterations
+    call make_concrete(['e ', 'nu', 'ft', 'gf'], [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp], plain, error)
+    if (allocated(error)) return
+    call make_concrete(['e ', 'nu', 'ft', 'gf', 'fc'], [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp], crush, error)
+    if (allocated(error)) return
+    sig0 = 0.0_dp
+    eps = 0.0_dp
+    var0 = 0.0_dp
+    var0(2) = 50.0_dp
+    peak = 0.0_dp
+    do k = 1, 400
+      call axial_step(crush, sig0, eps, var0, 5.0e-7_dp, 0.0_dp, sig, state, var, deps, iterations)
+      call plain%update(sig0, eps, deps, state_elastic, sig_p, state_p, dtan_p, var0(1:2), var_p(1:2))
+      call check(error, all(sig == sig_p) .and. state == state_p .and. all(var(1:2) == var_p(1:2)), &
+                 'step ' // str(k) // ': the same update with and without FC')
+      if (allocated(error)) return
+      peak = max(peak, sig(3))
+      eps = eps + deps
+      sig0 = sig
+      var0 = var
+    end do
+    call check(error, peak, 3.0_dp, 'tensile peak', rel=1.0e-3_dp)
+    if (allocated(error)) return
+    call check(error, state == state_cracked, 'cracked at the end')
+  end subroutine test_tension_with_fc
+
+  !> A point with FC = 30 (nu = 0, uniaxial strain = stress) pulled past its peak to kappa =
+  !! 2 FT / E, then pushed back to -3 FC / E: once cracked its compression side is off (the
+  !! design choice: its effective stress may lie far outside the surface), so the stress is
+  !! (1 - d) E eps with the damage d of kappa = 2 FT / E, to 1e-12, beyond -FC (1 - d), and the
+  !! point stays cracked.
+  subroutine test_cracked_in_compression(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, ft = 3.0_dp, fc = 30.0_dp, h = 50.0_dp
+    type(concrete_damage_t) :: mat
+    real(dp) :: sig0(6), sig(6), eps(6), deps(6), dtan(6, 6), var0(8), var(8), dmg
+    integer :: k, state
+    call make_concrete(['e ', 'nu', 'ft', 'gf', 'fc'], [e, 0.0_dp, ft, 0.1_dp, fc], mat, error)
+    if (allocated(error)) return
+    sig0 = 0.0_dp
+    eps = 0.0_dp
+    var0 = 0.0_dp
+    var0(2) = h
+    deps = 0.0_dp
+    deps(1) = 0.1_dp * ft / e
+    do k = 1, 20
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      sig0 = sig
+      eps = eps + deps
+      var0 = var
+    end do
+    dmg = mat%damage(2.0_dp * ft / e, h)
+    call check(error, var(1), 2.0_dp * ft / e, 'kappa after the pull', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    deps(1) = -(2.0_dp * ft + 3.0_dp * fc) / e / 50.0_dp
+    do k = 1, 50
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      sig0 = sig
+      eps = eps + deps
+      var0 = var
+    end do
+    call check(error, sig(1), (1.0_dp - dmg) * e * eps(1), 'compressed cracked point: (1 - d) E eps', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, sig(1) < -(1.0_dp - dmg) * fc .and. state == state_cracked, 'beyond -FC (1 - d), cracked')
+  end subroutine test_cracked_in_compression
+
+  !> test/data/crush_prism.dat: a 100 mm cube (one hex8) on rollers with FC = 30 MPa, its top
+  !! pushed down 0.3 mm in 30 steps by full Newton. The top reaction is E A u / L until
+  !! -FC x area = -300 000 N at step 10 and stays there to 1e-9 (homogeneous uniaxial stress),
+  !! every point is plastic from step 11, every step converges to DELTA1 = 1e-10 without a
+  !! cut-back and a step takes at most 3 iterations (the consistent tangent).
+  subroutine test_crush_prism(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: area = 100.0_dp**2, force = -30.0_dp * area
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    real(dp) :: f
+    integer :: k, n
+    call read_deck('test/data/crush_prism.dat', model, error)
+    if (allocated(error)) return
+    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (allocated(error)) return
+    call check(error, summary%unconverged_steps == 0 .and. summary%cutbacks == 0, &
+               'every step converged without a cut-back')
+    if (allocated(error)) return
+    call check(error, size(obs%steps), 30, 'every step written')
+    if (allocated(error)) return
+    do k = 1, size(obs%steps)
+      f = 0.0_dp
+      do n = 1, size(model%coords, 2)
+        if (abs(model%coords(3, n) - 100.0_dp) < 1.0e-6_dp) f = f + obs%steps(k)%reaction(3, n)
+      end do
+      call check(error, obs%steps(k)%iterations <= 3, 'step ' // str(k) // ': ' // str(obs%steps(k)%iterations) // &
+                 ' iterations')
+      if (allocated(error)) return
+      if (k <= 10) then
+        call check(error, f, 30000.0_dp * area * (-0.01_dp * k) / 100.0_dp, 'step ' // str(k) // ': elastic', &
+                   rel=1.0e-9_dp)
+      else
+        call check(error, f, force, 'step ' // str(k) // ': FC x area', rel=1.0e-9_dp)
+        if (allocated(error)) return
+        call check(error, all(obs%steps(k)%groups(1)%state == state_plastic), 'step ' // str(k) // ': plastic')
+      end if
+      if (allocated(error)) return
+    end do
+  end subroutine test_crush_prism
+
+  !> Every CONCRETE parameter out of range (FC at or below FT, PHI and PSI of the compression
+  !! side too), PHI or PSI without FC, a softening law feps does not know and an unknown key
+  !! are refused at their field.
   subroutine test_bad_parameters(error)
     type(error_t), allocatable, intent(out) :: error
     call expect_material_rejected(error, 'c', 'concrete', ['e ', 'nu', 'ft', 'gf'], &
@@ -158,7 +424,23 @@ contains
                                   [30000.0_dp, 0.5_dp, 3.0_dp, 0.1_dp], 'NU', 5)
     if (allocated(error)) return
     call expect_material_rejected(error, 'c', 'concrete', ['e  ', 'nu ', 'ft ', 'gf ', 'phi'], &
-                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp], 'PHI', 8)
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp], 'PHI needs FC', 8)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'c', 'concrete', ['e  ', 'nu ', 'ft ', 'gf ', 'psi'], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp], 'PSI needs FC', 8)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'c', 'concrete', ['e ', 'nu', 'ft', 'gf', 'fc'], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 3.0_dp], 'FC = 3.00000 must exceed FT', 8)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'c', 'concrete', ['e  ', 'nu ', 'ft ', 'gf ', 'fc ', 'phi'], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp, 0.0_dp], 'PHI', 9)
+    if (allocated(error)) return
+    call expect_material_rejected(error, 'c', 'concrete', ['e  ', 'nu ', 'ft ', 'gf ', 'fc ', 'psi'], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp, -1.0_dp], 'PSI', 9)
+    if (allocated(error)) return
+    ! the cohesion follows from FC and PHI: C is not a CONCRETE key
+    call expect_material_rejected(error, 'c', 'concrete', ['e ', 'nu', 'ft', 'gf', 'fc', 'c '], &
+                                  [30000.0_dp, 0.2_dp, 3.0_dp, 0.1_dp, 30.0_dp, 5.0_dp], 'unknown parameter C', 9)
   end subroutine test_bad_parameters
 
 end module test_concrete

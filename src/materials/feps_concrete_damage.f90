@@ -10,8 +10,28 @@
 !! Why isotropic damage and not a fixed or rotating smeared crack: one scalar history variable
 !! (kappa) and exactly the crack band energy, which is what the crack band theory regularises.
 !! What it does not do: it softens the compressive and shear stiffness of a cracked point with
-!! the tensile one (a smeared crack would keep them), and it is elastic in compression (no
-!! Matsuoka-Nakai surface).
+!! the tensile one (a smeared crack would keep them).
+!!
+!! Compression (optional, MATERIAL key FC and with it PHI and PSI): the modified Matsuoka-Nakai
+!! surface of feps_matsuoka_nakai (perfectly plastic) bounds the effective stress of a point
+!! that has not cracked, where the return lands at a compressive mean stress (p < 0); its
+!! return mapping and consistent tangent are the MATSUOKA material's own (a component,
+!! `crush`, called, not copied), with its continuous closest-point rule (its apex lies on the
+!! tensile side, where the damage governs). The surface passes through -FC in uniaxial
+!! compression: apex M = FC/2 (1/sin(phi) - 1), i.e. cohesion c = FC (1 - sin phi) /
+!! (2 cos phi); PHI defaults to asin((FC - FT) / (FC + FT)), which puts it through FT in
+!! uniaxial tension too (thesis chapter 9's concrete: FC = 50, FT = 5 give its 54.9 deg), and
+!! PSI to PHI. Why only where the return lands at p < 0: the surface also caps the uniaxial
+!! tensile effective stress at its own tensile strength (FT with the default PHI), so the
+!! damage would never start; elsewhere the damage alone governs. Why by where the return
+!! lands and not by the elastic trial: full Newton's first iterate after yield predicts the
+!! plastic dilation, whose elastic trial is tensile, though its return lands back on the
+!! compressive side (the trial choice cycled; docs/verification.md). Why not once cracked:
+!! a cracked point's effective stress may lie far outside the surface, and a return from
+!! there jumps by as much (chapter 9's CR did not converge with it); a cracked point is
+!! elastic-damaged in compression. The price: where the landing point's mean stress changes
+!! sign (near pure shear) the update of an uncracked point jumps between the two surfaces, by
+!! at most their distance there.
 !!
 !! History: kappa, the largest equivalent strain reached (`equivalent_strain`: the energy norm
 !! of the tensile part of the effective stress, which is the Rankine measure
@@ -28,17 +48,22 @@
 !! The update is incremental in the effective stress, sigma_eff = sig0 / (1 - d(kappa0)) +
 !! D deps, so a stress imposed at the start of a step (prestress, in-situ) enters it. Internal
 !! variables: 1 kappa, 2 h (the crack band, set once per point by the analysis from its
-!! element: `band_slot`). Tangent: unloading or below the peak the secant (1 - d) D; while
+!! element: `band_slot`); with FC, 3-8 the plastic strain of the compression side (Voigt,
+!! engineering shears: for the record; the update is incremental in the effective stress and
+!! does not need it). Tangent: unloading or below the peak the secant (1 - d) D; while
 !! the damage grows the consistent tangent (1 - d) D - d'(kappa) sigma_eff (D grad kappa)^T,
 !! non-symmetric in general (full Newton factorizes it by LU; the other methods take its
-!! nearest symmetric positive semi-definite part). The secant alone converged linearly, at a
-!! rate near 0.97 per iteration, once a laterally held band softened (nu > 0).
+!! nearest symmetric positive semi-definite part). Where the compression side yields, D is
+!! the Matsuoka-Nakai consistent tangent D_ep in both terms (D_ep^T grad kappa in the
+!! second). The secant alone converged linearly, at a rate near 0.97 per iteration, once a
+!! laterally held band softened (nu > 0).
 module feps_concrete_damage
-  use feps_kinds, only: dp
+  use feps_kinds, only: dp, deg2rad
   use feps_error, only: error_t, str
   use feps_model, only: material_spec_t
   use feps_material_params, only: check_known_keys, get_parameter, material_error, get_unit_weight, get_k0
   use feps_material, only: material_t, state_elastic, state_cracked, modulus_warning
+  use feps_matsuoka_nakai, only: matsuoka_nakai_t, tension_closest_point
   use feps_elastic, only: elastic_matrix
   use feps_principal, only: principal_values
   implicit none
@@ -52,16 +77,20 @@ module feps_concrete_damage
   !> The largest damage: a fully cracked point keeps 1e-6 of its stiffness.
   real(dp), parameter, public :: max_damage = 1.0_dp - 1.0e-6_dp
 
-  integer, parameter :: var_kappa = 1, var_band = 2
+  integer, parameter :: var_kappa = 1, var_band = 2, var_plastic = 3
 
   !> Cracking concrete (isotropic Rankine damage): E, nu, tensile strength ft (MPa), fracture
-  !! energy gf (N/mm) and the softening law.
+  !! energy gf (N/mm) and the softening law; with a compressive strength fc, the
+  !! Matsuoka-Nakai surface `crush` in compression.
   type, extends(material_t), public :: concrete_damage_t
     real(dp) :: e = 0.0_dp
     real(dp) :: nu = 0.0_dp
     real(dp) :: ft = 0.0_dp
     real(dp) :: gf = 0.0_dp
     integer :: softening = softening_linear
+    real(dp) :: fc = 0.0_dp    !! uniaxial compressive strength (MPa); 0: elastic in compression
+    !> The Matsuoka-Nakai surface on the compression side (allocated with fc > 0)
+    type(matsuoka_nakai_t), allocatable :: crush
   contains
     procedure :: elastic_tangent => cd_elastic_tangent
     procedure :: update => cd_update
@@ -87,10 +116,11 @@ contains
     cd_is_linear = .false.
   end function cd_is_linear
 
-  !> kappa and the crack band h.
+  !> kappa and the crack band h; with the compression side, its plastic strain (6) too.
   pure integer function cd_state_size(self) result(n)
     class(concrete_damage_t), intent(in) :: self
     n = 2
+    if (allocated(self%crush)) n = 8
   end function cd_state_size
 
   !> The internal variable that holds the point's crack band.
@@ -149,7 +179,9 @@ contains
   end function cd_damage_rate
 
   !> Stress update over a step (see the module description); state_cracked once the point has
-  !! damaged. Without a crack band (h = 0: not set) the point stays elastic.
+  !! damaged, state_plastic in a step in which its compression side yields (only before it
+  !! has cracked; over state_cracked should it crack in that step). Without a crack band
+  !! (h = 0: not set) the point does not crack.
   pure subroutine cd_update(self, sig0, eps0, deps, state0, sig, state, dtan, var0, var)
     class(concrete_damage_t), intent(in) :: self
     real(dp), intent(in) :: sig0(:), eps0(:), deps(:)
@@ -159,8 +191,9 @@ contains
     real(dp), intent(out) :: dtan(:, :)
     real(dp), intent(in), optional :: var0(:)
     real(dp), intent(out), optional :: var(:)
-    real(dp) :: d(6, 6), kappa0, kappa, h, dmg0, dmg, sig_eff(6), eq, rate, dk(6)
-    integer :: j
+    real(dp) :: d(6, 6), kappa0, kappa, h, dmg0, dmg, sig_eff(6), eq, rate, dk(6), sig_tr(6), sig_ret(6), dep(6, 6)
+    integer :: j, crush_state
+    logical :: crushing
     d = elastic_matrix(self%e, self%nu)
     kappa0 = 0.0_dp
     h = 0.0_dp
@@ -171,28 +204,65 @@ contains
     dmg0 = 0.0_dp
     if (h > 0.0_dp) dmg0 = self%damage(kappa0, h)
     sig_eff = sig0(1:6) / (1.0_dp - dmg0) + matmul(d, deps(1:6))
+    crushing = .false.
+    if (allocated(self%crush) .and. .not. (dmg0 > 0.0_dp)) then
+      ! The Matsuoka-Nakai return of the same trial (formed there), kept where it lands on the
+      ! compressive side of the surface (mean stress < 0); elsewhere, and once the point has
+      ! cracked (its effective stress may lie far outside the surface), the damage governs.
+      call self%crush%update(sig0(1:6) / (1.0_dp - dmg0), eps0, deps, state0, sig_ret, crush_state, dep)
+      crushing = crush_state /= state_elastic .and. sig_ret(1) + sig_ret(2) + sig_ret(3) < 0.0_dp
+      if (crushing) then
+        sig_tr = sig_eff
+        sig_eff = sig_ret
+      end if
+    end if
     eq = equivalent_strain(sig_eff, self%e, self%nu)
     kappa = max(kappa0, eq)
     dmg = 0.0_dp
     if (h > 0.0_dp) dmg = self%damage(kappa, h)
     sig(1:6) = (1.0_dp - dmg) * sig_eff
-    dtan(1:6, 1:6) = (1.0_dp - dmg) * d
+    if (crushing) then
+      dtan(1:6, 1:6) = (1.0_dp - dmg) * dep
+    else
+      dtan(1:6, 1:6) = (1.0_dp - dmg) * d
+    end if
     rate = 0.0_dp
     if (h > 0.0_dp .and. eq > kappa0) rate = self%damage_rate(kappa, h)
     if (rate > 0.0_dp) then
       ! loading: d sig / d eps = (1 - d) D - d'(kappa) sig_eff (D grad kappa)^T
-      dk = matmul(d, equivalent_strain_gradient(sig_eff, self%e, self%nu))
+      if (crushing) then
+        dk = matmul(equivalent_strain_gradient(sig_eff, self%e, self%nu), dep)
+      else
+        dk = matmul(d, equivalent_strain_gradient(sig_eff, self%e, self%nu))
+      end if
       do j = 1, 6
         dtan(1:6, j) = dtan(1:6, j) - rate * sig_eff * dk(j)
       end do
     end if
     state = state_elastic
     if (dmg > 0.0_dp) state = state_cracked
+    if (crushing) state = crush_state
     if (present(var)) then
       var(var_kappa) = kappa
       var(var_band) = h
+      if (allocated(self%crush)) then
+        var(var_plastic:var_plastic + 5) = 0.0_dp
+        if (present(var0)) var(var_plastic:var_plastic + 5) = var0(var_plastic:var_plastic + 5)
+        if (crushing) var(var_plastic:var_plastic + 5) = var(var_plastic:var_plastic + 5) + &
+                                                         compliance_times(sig_tr - sig_eff, self%e, self%nu)
+      end if
     end if
   end subroutine cd_update
+
+  !> The elastic strain (engineering shears) of a Voigt stress: D^-1 s.
+  pure function compliance_times(s, e, nu) result(eps)
+    real(dp), intent(in) :: s(6), e, nu
+    real(dp) :: eps(6)
+    eps(1) = (s(1) - nu * (s(2) + s(3))) / e
+    eps(2) = (s(2) - nu * (s(1) + s(3))) / e
+    eps(3) = (s(3) - nu * (s(1) + s(2))) / e
+    eps(4:6) = 2.0_dp * (1.0_dp + nu) / e * s(4:6)
+  end function compliance_times
 
   !> The equivalent strain that drives the damage: the energy norm of the tensile part of the
   !! effective stress, sqrt(<sigma>+ : C : <sigma>+) / sqrt(E) (C the elastic compliance), i.e.
@@ -245,19 +315,23 @@ contains
   end subroutine cd_unit_warning
 
   !> A cracking concrete material from MATERIAL parameters E, NU, FT (tensile strength, MPa),
-  !! GF (fracture energy, N/mm), SOFTENING (LINEAR, the default, or EXPONENTIAL), GAMMA, K0.
-  !! Checks E > 0, -1 < nu < 0.5, FT > 0, GF > 0 and rejects unknown keys and laws; errors name
-  !! the record's file and line and the parameter's field.
+  !! GF (fracture energy, N/mm), SOFTENING (LINEAR, the default, or EXPONENTIAL), GAMMA, K0,
+  !! and optionally FC (compressive strength, MPa) with PHI and PSI (degrees) for the
+  !! Matsuoka-Nakai surface in compression. Checks E > 0, -1 < nu < 0.5, FT > 0, GF > 0,
+  !! FT < FC < huge, 0 < PHI < 90, 0 <= PSI <= PHI, PHI and PSI only with FC, and rejects
+  !! unknown keys and laws; errors name the record's file and line and the parameter's field.
   subroutine new_concrete_damage(spec, material, error)
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: error
-    character(len=*), parameter :: known(7) = ['e        ', 'nu       ', 'ft       ', 'gf       ', &
-                                               'softening', 'gamma    ', 'k0       ']
-    real(dp) :: e, nu, ft, gf, gamma, k0
+    character(len=*), parameter :: known(10) = ['e        ', 'nu       ', 'ft       ', 'gf       ', &
+                                                'softening', 'gamma    ', 'k0       ', 'fc       ', &
+                                                'phi      ', 'psi      ']
+    real(dp) :: e, nu, ft, gf, gamma, k0, fc
     character(len=:), allocatable :: law
     logical :: has_law
     integer :: softening
+    type(matsuoka_nakai_t), allocatable :: crush
     call check_known_keys(spec, known, error)
     if (.not. allocated(error)) call get_parameter(spec, 'e', e, error, positive=.true.)
     if (.not. allocated(error)) call get_parameter(spec, 'nu', nu, error)
@@ -284,11 +358,73 @@ contains
         return
       end select
     end if
+    call get_compression_side(spec, e, nu, ft, fc, crush, error)
+    if (allocated(error)) return
     call get_unit_weight(spec, gamma, error)
     if (.not. allocated(error)) call get_k0(spec, k0, error)
     if (allocated(error)) return
     allocate (material, source=concrete_damage_t(name=spec%name, e=e, nu=nu, ft=ft, gf=gf, softening=softening, &
-                                                 unit_weight=gamma, k0=k0))
+                                                 unit_weight=gamma, k0=k0, fc=fc))
+    ! moved in, not through the constructor (gfortran 12 freed a constructor's allocatable
+    ! component twice)
+    select type (material)
+    type is (concrete_damage_t)
+      if (allocated(crush)) call move_alloc(crush, material%crush)
+    end select
   end subroutine new_concrete_damage
+
+  !> The compression side from FC, PHI and PSI (none given: fc = 0 and no `crush`, elastic in
+  !! compression): the Matsuoka-Nakai surface through -FC in uniaxial compression, PHI by
+  !! default through FT in uniaxial tension too, PSI by default PHI.
+  subroutine get_compression_side(spec, e, nu, ft, fc, crush, error)
+    type(material_spec_t), intent(in) :: spec
+    real(dp), intent(in) :: e, nu, ft
+    real(dp), intent(out) :: fc
+    type(matsuoka_nakai_t), allocatable, intent(out) :: crush
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: phi, psi
+    logical :: has_fc, has_phi, has_psi
+    call spec%get('fc', fc, has_fc)
+    call spec%get('phi', phi, has_phi)
+    call spec%get('psi', psi, has_psi)
+    if (.not. has_fc) then
+      fc = 0.0_dp
+      if (has_phi) call material_error(error, spec, 'PHI needs FC (the compressive strength, which switches on ' // &
+                                       'the Matsuoka-Nakai surface in compression)', 'phi')
+      if (has_psi .and. .not. has_phi) call material_error(error, spec, 'PSI needs FC (the compressive ' // &
+                                       'strength, which switches on the Matsuoka-Nakai surface in compression)', 'psi')
+      return
+    end if
+    if (.not. (fc > 0.0_dp .and. fc <= huge(fc))) then
+      call material_error(error, spec, 'FC = ' // str(fc) // ' must be positive and finite (the uniaxial ' // &
+                          'compressive strength, MPa)', 'fc')
+      return
+    end if
+    if (.not. (fc > ft)) then
+      call material_error(error, spec, 'FC = ' // str(fc) // ' must exceed FT = ' // str(ft) // &
+                          ' (the compressive strength is the larger)', 'fc')
+      return
+    end if
+    if (has_phi) then
+      if (.not. (phi > 0.0_dp .and. phi < 90.0_dp)) then
+        call material_error(error, spec, 'PHI = ' // str(phi) // ' must lie in (0, 90) degrees', 'phi')
+        return
+      end if
+    else
+      phi = asin((fc - ft) / (fc + ft)) / deg2rad
+    end if
+    if (has_psi) then
+      if (.not. (psi >= 0.0_dp .and. psi <= phi)) then
+        call material_error(error, spec, 'PSI = ' // str(psi) // ' must lie in [0, PHI] = [0, ' // str(phi) // &
+                            '] degrees', 'psi')
+        return
+      end if
+    else
+      psi = phi
+    end if
+    allocate (crush, source=matsuoka_nakai_t(name=spec%name, e=e, nu=nu, phi=phi, psi=psi, &
+                                             apex=0.5_dp * fc * (1.0_dp / sin(phi * deg2rad) - 1.0_dp), &
+                                             tension=tension_closest_point))
+  end subroutine get_compression_side
 
 end module feps_concrete_damage

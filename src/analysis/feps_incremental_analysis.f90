@@ -541,6 +541,7 @@ contains
             if (ok) then
               done = done + h
               f%rel_prev = rnorm / pnorm
+              f%rel_accepted = f%rel_prev
               f%abs_prev = rnorm
               if (.not. (f%rel_prev < c%delta1 .or. rnorm < c%delta2)) step_unconverged = .true.
               call commit(an)
@@ -698,10 +699,10 @@ contains
     type(factor_state_t), intent(in) :: f
     type(controls_t), intent(in) :: c
     character(len=:), allocatable :: text
-    if (f%rel_prev < c%delta1 .or. f%abs_prev < c%delta2) then
+    if (f%rel_accepted < c%delta1 .or. f%abs_prev < c%delta2) then
       text = 'the last state in equilibrium'
     else
-      text = 'the last state accepted, out of balance by a relative residual of ' // str(f%rel_prev) // &
+      text = 'the last state accepted, out of balance by a relative residual of ' // str(f%rel_accepted) // &
              ' (carried)'
     end if
   end function last_state
@@ -959,6 +960,7 @@ contains
           an%path%f_applied = pt%f0 + pt%lam * pt%df
           pt%du_prev = du
           f%rel_prev = rnorm / pnorm
+          f%rel_accepted = f%rel_prev
           f%abs_prev = rnorm
           if (mode == constrain_displacement) then
             done = done + h

@@ -20,6 +20,8 @@ module feps_solution_method
     logical :: elastic_retry = .false.   !! the next factorization is the elastic stiffness
     real(dp) :: rel_prev = 0.0_dp        !! |R| / |P| at the end of the last (sub)step
     real(dp) :: abs_prev = 0.0_dp        !! |R| (N) at the end of the last (sub)step
+    real(dp) :: rel_accepted = 0.0_dp    !! |R| / |P| of the last state accepted (rel_prev may be reset
+                                         !! to force a factorization; a stop's message needs this one)
   end type factor_state_t
 
   type, abstract, public :: solution_method_t

@@ -280,6 +280,7 @@ contains
       data%factor%elastic_retry = ints(14) == 1
       data%lu_min_rcond = reals(1)
       data%factor%rel_prev = reals(2)
+      data%factor%rel_accepted = reals(2)   ! written at the end of an accepted step
       data%factor%abs_prev = reals(3)
       call get_real(fid, g // '/summary_reals', sr, shp, hdferr)
     end if

@@ -54,16 +54,16 @@ contains
     call run_analysis(model, 'cholmod', obs, summary, error)
   end subroutine run_deck
 
-  !> The mean x displacement of node set `name` at step i of obs.
-  real(dp) function mean_ux(model, obs, name, i)
+  !> The mean displacement in direction `dof` (1..3) of node set `name` at step i of obs.
+  real(dp) function mean_u(model, obs, name, i, dof)
     type(model_t), intent(in) :: model
     type(all_steps_t), intent(in) :: obs
     character(len=*), intent(in) :: name
-    integer, intent(in) :: i
+    integer, intent(in) :: i, dof
     associate (nodes => model%node_sets(model%find_node_set(name))%nodes)
-      mean_ux = sum(obs%steps(i)%displacement(1, nodes)) / size(nodes)
+      mean_u = sum(obs%steps(i)%displacement(dof, nodes)) / size(nodes)
     end associate
-  end function mean_ux
+  end function mean_u
 
   !> The block under PATH=ARC-LENGTH: the largest load of the path is the capacity to 1e-6;
   !! at least 10 steps lie on the plateau (the load within 1e-6 of it) with the block sliding
@@ -87,7 +87,7 @@ contains
     call run_deck('test/data/block_displacement.dat', model, obs, summary, error)
     if (allocated(error)) return
     do k = 1, 20
-      call check(error, mean_ux(model, obs, 'push', k + 1), 0.5_dp * k / 20, 'the set''s mean ux at step ' // &
+      call check(error, mean_u(model, obs, 'push', k + 1, 1), 0.5_dp * k / 20, 'the set''s mean ux at step ' // &
                  str(k), abs=1.0e-9_dp)
       if (allocated(error)) return
     end do
@@ -126,12 +126,12 @@ contains
     do k = 1, n
       if (abs(lam(k) * push - capacity) > 1.0e-6_dp * capacity) cycle
       on_plateau = on_plateau + 1
-      if (.not. mean_ux(model, obs, 'push', k + 1) > ux_prev) then
+      if (.not. mean_u(model, obs, 'push', k + 1, 1) > ux_prev) then
         call test_failed(error, deck // ': on the plateau the block slides further at each step (step ' // &
                          str(k) // ')')
         return
       end if
-      ux_prev = mean_ux(model, obs, 'push', k + 1)
+      ux_prev = mean_u(model, obs, 'push', k + 1, 1)
     end do
     call check(error, on_plateau >= 10, deck // ': at least 10 steps on the plateau, got ' // str(on_plateau))
   end subroutine check_peak
@@ -226,8 +226,8 @@ contains
     u_last = 0.0_dp
     do i = 1, size(obs%steps)
       s = obs%steps(i)%load_factor * reference / area
-      u = mean_of(model, obs, 'top', i)
-      w = mean_of(model, obs, 'crack_top', i) - mean_of(model, obs, 'crack_bottom', i)
+      u = mean_u(model, obs, 'top', i, 3)
+      w = mean_u(model, obs, 'crack_top', i, 3) - mean_u(model, obs, 'crack_bottom', i, 3)
       if (w <= h * e0) then
         expected = length * s / e
       else
@@ -246,16 +246,5 @@ contains
     if (allocated(error)) return
     call check(error, s < 0.25_dp * ft, 'the load falls below a quarter of the peak')
   end subroutine test_snap_back
-
-  !> The mean z displacement of node set `name` at step i of obs.
-  real(dp) function mean_of(model, obs, name, i)
-    type(model_t), intent(in) :: model
-    type(all_steps_t), intent(in) :: obs
-    character(len=*), intent(in) :: name
-    integer, intent(in) :: i
-    associate (nodes => model%node_sets(model%find_node_set(name))%nodes)
-      mean_of = sum(obs%steps(i)%displacement(3, nodes)) / size(nodes)
-    end associate
-  end function mean_of
 
 end module test_path_following

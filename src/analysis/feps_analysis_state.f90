@@ -140,10 +140,10 @@ contains
     if (.not. allocated(error)) call check_factor_memory(model, an, error)
   end subroutine set_up
 
-  !> A failed run (err_memory, exit status 1) when the factor the solver's analysis foresees
-  !! (8 bytes a nonzero, a lower bound: its indices and workspace come on top), with the matrix
-  !! it is made from, is beyond the memory this process may use (memory_limit_bytes), before it
-  !! is allocated.
+  !> A failed run (err_memory, exit status 1) when the memory the solver's analysis foresees for
+  !! its factorization (memory_need_bytes: 8 bytes a factor nonzero, a lower bound, or the
+  !! solver's own estimate), with the matrix it is made from, is beyond the memory this process
+  !! may use (memory_limit_bytes), before it is allocated.
   subroutine check_factor_memory(model, an, error)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: an

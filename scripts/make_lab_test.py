@@ -2,7 +2,7 @@
 """The laboratory tests of thesis chapter 8 as decks run through the peak (issue 27 item 3), and
 their predicted strengths beside Tables 8.4-8.8.
 
-    python3 scripts/make_lab_test.py [--outdir input/chapter8] [--pipes 1,3,25] [--steps N] [--rough]
+    python3 scripts/make_lab_test.py [--outdir input/chapter8] [--pipes 1,3,25] [--steps N] [--rough] [--contact]
     python3 scripts/make_lab_test.py --run FEPS [--outdir DIR] [--pipes ...]
 
 The first form writes lab_<pipe>.dat for each pipe of ../shared/benchmarks/table8_lab.csv whose
@@ -30,7 +30,9 @@ place of the thesis's Matsuoka material:
   plate touching only where the end has closed its gap makes a line contact at the edge that
   crushes at once and stops full Newton within a few steps), scaled by its load factor under
   displacement control (PATH=DISPLACEMENT) of the end's outer edge node at x = -100 down by
-  --travel, so that the path goes on past the peak.
+  --travel, so that the path goes on past the peak. --contact writes plate B as that rigid plate
+  instead (frictionless, KN = 1e4 MPa/mm): its face a layer of nodes joined to the end by
+  interface-quad4, lifted to the gap (100 - |x|) tan 1 deg in a first stage, then pushed down.
 Both are followed with full Newton-Raphson, DELTA1 = 1e-4 (docs/tradeoff.md: 1e-6 gives the same peak in twice the time); the peak is the largest force of the
 run (the last converged step when the run stops before the force falls, which the table flags).
 """
@@ -63,6 +65,9 @@ AREA = math.pi * (ch9.R_OUT ** 2 - ch9.R_IN ** 2)      # the pipe's section, mm2
 PHI_CONCRETE = 35.0                                    # deg, the compression surface (docstring)
 P_CHAPTER9 = 4.0 * ch9.P_QUARTER                       # N: chapter 9's plate B load, the pattern's size
 TRAVEL = 0.6                                           # mm pushed by default: past each peak
+TOP = ch9.NZ - 1                                       # z index of the loaded end
+PLATE_ANGLE = 1.0                                      # deg, plate B (thesis 8.3)
+CONTACT = "MATERIAL, plate_contact, INTERFACE, KN=1.e4, KS=0., PHI=0., PSI=0., C=0."   # --contact
 
 
 def read_table(path=TABLE):
@@ -86,12 +91,22 @@ def why_not(row):
     return None
 
 
+def theta(it):
+    """Theta (deg) of node column it of make_chapter9's mesh: 6 x 9 deg from 90, 2 x 7, 4 x 5.5."""
+    return 90.0 + sum(([9.0] * 6 + [7.0] * 2 + [5.5] * 4)[:it])
+
+
+def face_node(ir, it):
+    """The rigid plate's face node over the end node (ir, it) (--contact): one layer above the mesh."""
+    return ch9.node(ir, it, TOP) + ch9.LAYER
+
+
 def cube(pipe):
     a, b = CUBES[pipe]
     return 0.5 * (a + b)
 
 
-def deck(pipe, row, steps, travel, rough=False):
+def deck(pipe, row, steps, travel, rough=False, contact=False):
     """The deck of one pipe's test (the module's text gives every choice)."""
     fc = FC_PER_CUBE * cube(pipe)
     ft = FT_PER_FC * fc
@@ -106,6 +121,13 @@ def deck(pipe, row, steps, travel, rough=False):
            f"TITLE, Laboratory test pipe {pipe}: {what}", "",
            "! --- nodes: r fastest (5), then theta (13), then z (27) ---"]
     out += ch9.node_block()
+    contact = contact and plate == "B"
+    if contact:
+        out += ["", "! the rigid plate's face: a copy of the loaded end's nodes", "NODES"]
+        for it in range(ch9.NT):
+            for ir in range(ch9.NR):
+                t, r = math.radians(theta(it)), ch9.R_NODES[ir]
+                out.append(f"{face_node(ir, it)}, {r * math.cos(t):.12g}, {r * math.sin(t):.12g}, {ch9.LENGTH:g}")
     out += ["", "GROUP, pipe, TYPE=hex8, MATERIAL=concrete",
             f"A, 8, 1, 2, {ch9.NR + 2}, {ch9.NR + 1}, {ch9.LAYER + 1}, {ch9.LAYER + 2}, "
             f"{ch9.LAYER + ch9.NR + 2}, {ch9.LAYER + ch9.NR + 1},",
@@ -113,6 +135,17 @@ def deck(pipe, row, steps, travel, rough=False):
     if rebar:
         out += ["", "GROUP, rebar, TYPE=bar3, MATERIAL=hoop_bar"]
         out += ch9.hoop_ring_block(ch9.REBAR_R["RE1"], list(ch9.REBAR_Z))
+    if contact:
+        out += ["E,", "", "! contact of the plate: lower layer the pipe's end (normal +z), upper the plate's face",
+                "GROUP, plate_face, TYPE=interface-quad4, MATERIAL=plate_contact", "ELEMENTS, plate_face"]
+        eid = 1
+        for it in range(ch9.NT - 1):
+            for ir in range(ch9.NR - 1):
+                corners = [(ir, it), (ir + 1, it), (ir + 1, it + 1), (ir, it + 1)]
+                nodes = [ch9.node(a, b, TOP) for a, b in corners] + [face_node(a, b) for a, b in corners]
+                out.append(f"{eid}, " + ", ".join(map(str, nodes)))
+                eid += 1
+        out.append(CONTACT)
     out += ["E,", "", f"MATERIAL, concrete, CONCRETE, E={E_CONCRETE:g}., NU={NU_CONCRETE:g}, FT={ft:.6g}, GF={gf:.6g}, "
             f"FC={fc:.6g}, PHI={PHI_CONCRETE:g}, PSI={PHI_CONCRETE:g}"]
     if rebar:
@@ -131,6 +164,17 @@ def deck(pipe, row, steps, travel, rough=False):
                 + (" (rough: the end held in x and y)" if rough else " (frictionless)"),
                 f"STAGE, push, STEPS={steps}, OUTPUT=1, {controls}",
                 f"DISPLACE, end, {push}"]
+    elif contact:
+        out += ["NSET, plate, LIST", f"{face_node(0, 0)}:{face_node(ch9.NR - 1, ch9.NT - 1)}", "FIX, plate, X, Y",
+                "! stage 1: the plate's face lifted to its gap (100 - |x|) tan 1 deg (the interfaces open)",
+                f"STAGE, seat, STEPS=1, {controls}", "DISPLACE, LIST"]
+        for it in range(ch9.NT):
+            for ir in range(ch9.NR):
+                x = ch9.R_NODES[ir] * math.cos(math.radians(theta(it)))
+                gap = (ch9.R_OUT - abs(x)) * math.tan(math.radians(PLATE_ANGLE))
+                out.append(f"{face_node(ir, it)}, Z, {gap:.12g}")
+        out += [f"! stage 2: the rigid plate pushed down {travel:g} mm",
+                f"STAGE, push, STEPS={steps}, OUTPUT=1, {controls}", f"DISPLACE, plate, Z={-travel:g}"]
     else:
         out += ["! plate B: chapter 9's pressure, followed by the end's outer edge node going down "
                 f"{travel:g} mm",
@@ -196,6 +240,9 @@ def main():
     ap.add_argument("--steps", type=int, default=60)
     ap.add_argument("--travel", type=float, default=None, help="mm pushed (default 0.6)")
     ap.add_argument("--rough", action="store_true", help="plate A (only) holds the end in x and y too")
+    ap.add_argument("--contact", action="store_true",
+                    help="plate B as a rigid 1 deg plate in contact with the end (frictionless) instead of "
+                         "chapter 9's pressure (slow; not followed to a peak here: docs/verification.md)")
     ap.add_argument("--run", metavar="FEPS", help="run the decks with this feps and print the table")
     args = ap.parse_args()
     if args.steps < 1:
@@ -219,7 +266,7 @@ def main():
         travel = args.travel if args.travel is not None else TRAVEL
         path = os.path.join(args.outdir, f"lab_{pipe}.dat")
         with open(path, "w") as f:
-            f.write(deck(pipe, row, args.steps, travel, args.rough))
+            f.write(deck(pipe, row, args.steps, travel, args.rough, args.contact))
         decks.append((pipe, path))
         print(f"pipe {pipe:2d} (plate {row['load_type']}, packing {row['packing']}): wrote {path}")
     if not args.run:

@@ -39,6 +39,7 @@ NZ = 27
 Z_NODES = [0.0, 6.5, 13.0, 20.5, 28.0, 37.0, 46.0] + [46.0 + 10.0 * k for k in range(1, 15)] + \
           [195.0, 204.0, 211.5, 219.0, 225.5, 232.0]
 R_NODES = [R_IN + 6.25 * k for k in range(NR)]
+THETA_NODES = [90.0 + 9.0 * k for k in range(7)] + [151.0, 158.0] + [158.0 + 5.5 * k for k in range(1, 5)]
 P_QUARTER = 50000.0                 # N: P = 200 kN on the whole pipe end, a quarter of it here
 HOOP_AREA = 6.28                    # mm2 (thesis 9.2, Figure 8.7)
 BAND_AREAS = (4.5, 9.0, 4.5)        # mm2 at z = 219, 225.5, 232 (thesis 9.3, Figure 9.5)
@@ -123,6 +124,19 @@ def node_block():
     ]
 
 
+def pipe_block():
+    """DATAIN element block of the pipe's hex8 (4 through the wall, 12 in theta, 26 in z)."""
+    return [f"A, 8, 1, 2, {NR + 2}, {NR + 1}, {LAYER + 1}, {LAYER + 2}, {LAYER + NR + 2}, {LAYER + NR + 1},",
+            "%, 4, *, 8, 1,", f"%, 12, *, 8, {NR},", f"%, 26, *, 8, {LAYER},", "E,"]
+
+
+def supports():
+    """The bottom z = 0 fixed, and the symmetry planes x = 0 and y = 0."""
+    return ["NSET, bottom, CSYS=2, Z=0., TOL=0.01", "FIX, bottom, X, Y, Z",
+            "NSET, sym_x, CSYS=2, X=0., TOL=0.01", "FIX, sym_x, X",
+            "NSET, sym_y, CSYS=2, Y=0., TOL=0.01", "FIX, sym_y, Y"]
+
+
 def hoop_ring_block(ir, izs):
     """DATAIN element block: bar3 rings along theta at r index ir and z indices izs (equally spaced)."""
     first = [node(ir, 0, izs[0]), node(ir, 1, izs[0]), node(ir, 2, izs[0])]
@@ -163,9 +177,7 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
     out += [f"TITLE, Chapter 9 back analysis {case}: {titles[case]}, P = 200 kN (quarter: 50 kN)", "",
             "! --- nodes: r fastest (5), then theta (13), then z (27) ---"]
     out += node_block()
-    out += ["", "GROUP, pipe, TYPE=hex8, MATERIAL=concrete",
-            f"A, 8, 1, 2, {NR + 2}, {NR + 1}, {LAYER + 1}, {LAYER + 2}, {LAYER + NR + 2}, {LAYER + NR + 1},",
-            "%, 4, *, 8, 1,", f"%, 12, *, 8, {NR},", f"%, 26, *, 8, {LAYER},", "E,"]
+    out += ["", "GROUP, pipe, TYPE=hex8, MATERIAL=concrete"] + pipe_block()
     if case.startswith("RE"):
         out += ["", f"GROUP, rebar, TYPE=bar3, MATERIAL=hoop_bar"]
         out += hoop_ring_block(REBAR_R[case], list(REBAR_Z))
@@ -186,9 +198,7 @@ def deck(case, steps=400, tension="proportional", method="modified-newton-raphso
         out.append(f"MATERIAL, band_edge, BAR, E=200000., A={BAND_AREAS[0]}")
         out.append(f"MATERIAL, band_middle, BAR, E=200000., A={BAND_AREAS[1]}")
     out += ["", "! --- supports ---",
-            "NSET, bottom, CSYS=2, Z=0., TOL=0.01", "FIX, bottom, X, Y, Z",
-            "NSET, sym_x, CSYS=2, X=0., TOL=0.01", "FIX, sym_x, X",
-            "NSET, sym_y, CSYS=2, Y=0., TOL=0.01", "FIX, sym_y, Y", "",
+            *supports(), "",
             "! --- loads ---",
             "FSET, top, GROUP=pipe, CSYS=2, Z=232., TOL=0.01"]
     out += ["", f"CONTROLS, METHOD={method}, MAXIT={30 if method == 'full-newton-raphson' else 10}"]

@@ -91,11 +91,6 @@ def why_not(row):
     return None
 
 
-def theta(it):
-    """Theta (deg) of node column it of make_chapter9's mesh: 6 x 9 deg from 90, 2 x 7, 4 x 5.5."""
-    return 90.0 + sum(([9.0] * 6 + [7.0] * 2 + [5.5] * 4)[:it])
-
-
 def face_node(ir, it):
     """The rigid plate's face node over the end node (ir, it) (--contact): one layer above the mesh."""
     return ch9.node(ir, it, TOP) + ch9.LAYER
@@ -126,12 +121,9 @@ def deck(pipe, row, steps, travel, rough=False, contact=False):
         out += ["", "! the rigid plate's face: a copy of the loaded end's nodes", "NODES"]
         for it in range(ch9.NT):
             for ir in range(ch9.NR):
-                t, r = math.radians(theta(it)), ch9.R_NODES[ir]
+                t, r = math.radians(ch9.THETA_NODES[it]), ch9.R_NODES[ir]
                 out.append(f"{face_node(ir, it)}, {r * math.cos(t):.12g}, {r * math.sin(t):.12g}, {ch9.LENGTH:g}")
-    out += ["", "GROUP, pipe, TYPE=hex8, MATERIAL=concrete",
-            f"A, 8, 1, 2, {ch9.NR + 2}, {ch9.NR + 1}, {ch9.LAYER + 1}, {ch9.LAYER + 2}, "
-            f"{ch9.LAYER + ch9.NR + 2}, {ch9.LAYER + ch9.NR + 1},",
-            "%, 4, *, 8, 1,", f"%, 12, *, 8, {ch9.NR},", f"%, 26, *, 8, {ch9.LAYER},", "E,"]
+    out += ["", "GROUP, pipe, TYPE=hex8, MATERIAL=concrete"] + ch9.pipe_block()
     if rebar:
         out += ["", "GROUP, rebar, TYPE=bar3, MATERIAL=hoop_bar"]
         out += ch9.hoop_ring_block(ch9.REBAR_R["RE1"], list(ch9.REBAR_Z))
@@ -152,9 +144,7 @@ def deck(pipe, row, steps, travel, rough=False, contact=False):
         out.append(f"MATERIAL, hoop_bar, BAR, E=200000., A={ch9.HOOP_AREA}")
     out += [f"PARAMETERS, pipe={pipe}, cube={cube(pipe):.4f}, area={AREA:.6f}, plate={plate}",
             "", "! --- supports (chapter 9's) ---",
-            "NSET, bottom, CSYS=2, Z=0., TOL=0.01", "FIX, bottom, X, Y, Z",
-            "NSET, sym_x, CSYS=2, X=0., TOL=0.01", "FIX, sym_x, X",
-            "NSET, sym_y, CSYS=2, Y=0., TOL=0.01", "FIX, sym_y, Y",
+            *ch9.supports(),
             f"NSET, end, CSYS=2, Z={ch9.LENGTH:g}, TOL=0.01", ""]
     controls = "METHOD=full-newton-raphson, MAXIT=60, DELTA1=1e-4"
     if plate == "A":
@@ -170,7 +160,7 @@ def deck(pipe, row, steps, travel, rough=False, contact=False):
                 f"STAGE, seat, STEPS=1, {controls}", "DISPLACE, LIST"]
         for it in range(ch9.NT):
             for ir in range(ch9.NR):
-                x = ch9.R_NODES[ir] * math.cos(math.radians(theta(it)))
+                x = ch9.R_NODES[ir] * math.cos(math.radians(ch9.THETA_NODES[it]))
                 gap = (ch9.R_OUT - abs(x)) * math.tan(math.radians(PLATE_ANGLE))
                 out.append(f"{face_node(ir, it)}, Z, {gap:.12g}")
         out += [f"! stage 2: the rigid plate pushed down {travel:g} mm",

@@ -101,7 +101,7 @@ def cube(pipe):
     return 0.5 * (a + b)
 
 
-def deck(pipe, row, steps, travel, rough=False, contact=False):
+def deck(pipe, row, steps, travel, rough=False, contact=False, damage=None):
     """The deck of one pipe's test (the module's text gives every choice)."""
     fc = FC_PER_CUBE * cube(pipe)
     ft = FT_PER_FC * fc
@@ -139,7 +139,7 @@ def deck(pipe, row, steps, travel, rough=False, contact=False):
                 eid += 1
         out.append(CONTACT)
     out += ["E,", "", f"MATERIAL, concrete, CONCRETE, E={E_CONCRETE:g}., NU={NU_CONCRETE:g}, FT={ft:.6g}, GF={gf:.6g}, "
-            f"FC={fc:.6g}, PHI={PHI_CONCRETE:g}, PSI={PHI_CONCRETE:g}"]
+            f"FC={fc:.6g}, PHI={PHI_CONCRETE:g}, PSI={PHI_CONCRETE:g}" + (f", DAMAGE={damage.upper()}" if damage else "")]
     if rebar:
         out.append(f"MATERIAL, hoop_bar, BAR, E=200000., A={ch9.HOOP_AREA}")
     out += [f"PARAMETERS, pipe={pipe}, cube={cube(pipe):.4f}, area={AREA:.6f}, plate={plate}",
@@ -233,6 +233,8 @@ def main():
     ap.add_argument("--contact", action="store_true",
                     help="plate B as a rigid 1 deg plate in contact with the end (frictionless) instead of "
                          "chapter 9's pressure (slow; not followed to a peak here: docs/verification.md)")
+    ap.add_argument("--damage", choices=["isotropic", "tensile"], default=None,
+                    help="the concrete's DAMAGE (default: not written, i.e. isotropic)")
     ap.add_argument("--run", metavar="FEPS", help="run the decks with this feps and print the table")
     args = ap.parse_args()
     if args.steps < 1:
@@ -256,7 +258,7 @@ def main():
         travel = args.travel if args.travel is not None else TRAVEL
         path = os.path.join(args.outdir, f"lab_{pipe}.dat")
         with open(path, "w") as f:
-            f.write(deck(pipe, row, args.steps, travel, args.rough, args.contact))
+            f.write(deck(pipe, row, args.steps, travel, args.rough, args.contact, args.damage))
         decks.append((pipe, path))
         print(f"pipe {pipe:2d} (plate {row['load_type']}, packing {row['packing']}): wrote {path}")
     if not args.run:

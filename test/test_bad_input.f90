@@ -141,6 +141,7 @@ contains
       new_unittest('ELASTIC with an unknown key names its field', test_elastic_unknown_key), &
       new_unittest('CONCRETE with a negative GF names its field', test_concrete_gf_negative), &
       new_unittest('CONCRETE with an unknown SOFTENING law names its field', test_concrete_softening_unknown), &
+      new_unittest('CONCRETE with an unknown DAMAGE kind names its field', test_concrete_damage_unknown), &
       new_unittest('CONCRETE with FC below FT names the field of FC', test_concrete_fc_below_ft), &
       new_unittest('CONCRETE with a negative FC names its field', test_concrete_fc_negative), &
       new_unittest('CONCRETE with PHI out of range names its field', test_concrete_phi_out_of_range), &
@@ -1100,6 +1101,13 @@ contains
                         [character(len=60) :: 'concrete_softening_unknown.dat:15: field 8:', 'material concrete', &
                          'SOFTENING = "bilinear"', 'LINEAR (the default) or EXPONENTIAL'], error)
   end subroutine test_concrete_softening_unknown
+
+  subroutine test_concrete_damage_unknown(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/concrete_damage_unknown.dat', err_input, &
+                        [character(len=60) :: 'concrete_damage_unknown.dat:15: field 8:', 'material concrete', &
+                         'DAMAGE = "anisotropic"', 'ISOTROPIC (the default) or TENSILE'], error)
+  end subroutine test_concrete_damage_unknown
 
   !> 5 mm elements where the crack band may be at most 2 E GF / FT^2 = 0.667 mm: refused before
   !! the first step, at GF's field, naming the element and group (--check too: check_cli.sh).

@@ -37,6 +37,10 @@ contains
       new_unittest('FC: a cracked point is elastic-damaged in compression (no Matsuoka-Nakai cap)', &
                    test_cracked_in_compression), &
       new_unittest('FC: a prism crushed by displacement carries FC x area (full Newton)', test_crush_prism), &
+      new_unittest('DAMAGE=TENSILE: uniaxial tension as isotropic damage, to rounding', test_tensile_uniaxial), &
+      new_unittest('DAMAGE=TENSILE: a cracked point keeps its stiffness in compression along and across the crack', &
+                   test_tensile_compression_kept), &
+      new_unittest('DAMAGE=TENSILE: the tangent against central differences of the update', test_tensile_tangent), &
       new_unittest('bad CONCRETE parameters name their field', test_bad_parameters) &
     ]
   end subroutine collect_concrete
@@ -402,6 +406,147 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_crush_prism
+
+  !> DAMAGE=TENSILE in uniaxial stress (nu = 0, x pulled to 20 times the linear law's ultimate
+  !! strain in 2000 steps): the tensile part is the whole effective stress, so every stress
+  !! equals the isotropic damage's to 1e-13 of f_t (the two forms round differently).
+  subroutine test_tensile_uniaxial(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, ft = 3.0_dp, gf = 0.1_dp, h = 50.0_dp
+    type(concrete_damage_t) :: iso, split
+    real(dp) :: sig0(6), sig(6), sig_i(6), eps(6), deps(6), dtan(6, 6), var0(2), var(2), var_i(2), worst
+    integer :: k, state
+    iso = concrete_damage_t(name='c', e=e, nu=0.0_dp, ft=ft, gf=gf)
+    split = concrete_damage_t(name='c', e=e, nu=0.0_dp, ft=ft, gf=gf, tensile_only=.true.)
+    deps = 0.0_dp
+    deps(1) = 20.0_dp * 2.0_dp * gf / (h * ft) / 2000.0_dp
+    sig0 = 0.0_dp
+    eps = 0.0_dp
+    var0 = [0.0_dp, h]
+    worst = 0.0_dp
+    do k = 1, 2000
+      call split%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      call iso%update(sig0, eps, deps, state_elastic, sig_i, state, dtan, var0, var_i)
+      worst = max(worst, maxval(abs(sig - sig_i)))
+      sig0 = sig
+      eps = eps + deps
+      var0 = var
+    end do
+    call check(error, worst <= 1.0e-13_dp * ft, 'largest difference from isotropic damage ' // str(worst) // ' MPa')
+    if (allocated(error)) return
+    call check(error, state == state_cracked, 'cracked at the end')
+  end subroutine test_tensile_uniaxial
+
+  !> A point (nu = 0) pulled along x to kappa = 2 f_t / E (damage d), then, with x held,
+  !! compressed along y to -10 f_t / E: DAMAGE=TENSILE keeps the full stiffness along the crack,
+  !! sigma_y = E eps_y (isotropic damage: (1 - d) E eps_y), while sigma_x stays (1 - d) E eps_x;
+  !! then x pushed back to -3 f_t / E: the crack closes and sigma_x = E eps_x (the isotropic
+  !! damage's (1 - d) E eps_x), every one to 1e-12; the point stays cracked.
+  subroutine test_tensile_compression_kept(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, ft = 3.0_dp, gf = 0.1_dp, h = 50.0_dp
+    type(concrete_damage_t) :: mat
+    real(dp) :: sig0(6), sig(6), eps(6), deps(6), dtan(6, 6), var0(2), var(2), dmg
+    integer :: k, state
+    mat = concrete_damage_t(name='c', e=e, nu=0.0_dp, ft=ft, gf=gf, tensile_only=.true.)
+    sig0 = 0.0_dp
+    eps = 0.0_dp
+    var0 = [0.0_dp, h]
+    deps = 0.0_dp
+    deps(1) = 0.1_dp * ft / e
+    do k = 1, 20
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      sig0 = sig
+      eps = eps + deps
+      var0 = var
+    end do
+    dmg = mat%damage(2.0_dp * ft / e, h)
+    call check(error, var(1), 2.0_dp * ft / e, 'kappa after the pull', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    deps = 0.0_dp
+    deps(2) = -0.5_dp * ft / e
+    do k = 1, 20
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      sig0 = sig
+      eps = eps + deps
+      var0 = var
+    end do
+    call check(error, sig(2), e * eps(2), 'compressed along the crack: E eps_y', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, sig(1), (1.0_dp - dmg) * e * eps(1), 'across the crack: (1 - d) E eps_x', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, dtan(2, 2), e, 'tangent along the crack: E', rel=1.0e-9_dp)
+    if (allocated(error)) return
+    deps = 0.0_dp
+    deps(1) = -(2.0_dp * ft + 3.0_dp * ft) / e / 50.0_dp
+    do k = 1, 50
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      sig0 = sig
+      eps = eps + deps
+      var0 = var
+    end do
+    call check(error, sig(1), e * eps(1), 'the crack closed: E eps_x', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, var(1), 2.0_dp * ft / e, 'kappa unchanged by compression', rel=1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, state == state_cracked, 'still cracked')
+  end subroutine test_tensile_compression_kept
+
+  !> DAMAGE=TENSILE (nu = 0.2, FC = 30): a point pulled along a general direction (shears
+  !! too) past its peak, then compressed along y while still opening (a principal stress of
+  !! about -2 f_t, which makes d <sig_eff>+ / d sig_eff far from the identity), then the tangent of a further step checked against central
+  !! differences of the update's stress by the strain increment (step 1e-9 of a strain ~1e-4),
+  !! while the damage grows (loading) and while it does not (unloading), to 1e-5 of the
+  !! largest entry (the tangent's own derivatives are central differences of the stress).
+  subroutine test_tensile_tangent(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, ft = 3.0_dp, gf = 0.1_dp, h = 50.0_dp, step = 1.0e-9_dp
+    type(concrete_damage_t) :: mat
+    real(dp) :: sig0(6), sig(6), eps(6), dir(6), deps(6), dtan(6, 6), var0(8), var(8), sp(6), sm(6), fd(6, 6), dp_(6)
+    integer :: k, j, state, probe
+    character(len=*), parameter :: what(2) = ['loading  ', 'unloading']
+    call make_concrete(['e ', 'nu', 'ft', 'gf', 'fc'], [e, 0.2_dp, ft, gf, 30.0_dp], mat, error)
+    if (allocated(error)) return
+    mat%tensile_only = .true.
+    dir = [1.0_dp, -0.3_dp, 0.2_dp, 0.15_dp, -0.25_dp, 0.4_dp] * (0.05_dp * ft / e)
+    sig0 = 0.0_dp
+    eps = 0.0_dp
+    var0 = 0.0_dp
+    var0(2) = h
+    do k = 1, 40
+      ! pulled, then (cracked: the compression side is off) compressed along y, still opening x
+      if (k == 31) dir = [1.0_dp, -6.0_dp, 0.3_dp, 0.1_dp, -0.1_dp, 0.2_dp] * (0.05_dp * ft / e)
+      call mat%update(sig0, eps, dir, state_elastic, sig, state, dtan, var0, var)
+      sig0 = sig
+      eps = eps + dir
+      var0 = var
+    end do
+    call check(error, state == state_cracked .and. var(1) > 1.2_dp * ft / e, 'cracked past the peak')
+    if (allocated(error)) return
+    do probe = 1, 2
+      ! along x: the crack opens further (the damage grows) or closes a little (it does not)
+      deps = 0.0_dp
+      deps(1) = 0.5_dp * ft / e
+      if (probe == 2) deps(1) = -0.01_dp * ft / e
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      call check(error, (var(1) > var0(1)) .eqv. (probe == 1), trim(what(probe)) // ': kappa ' // str(var0(1)) // &
+                 ' -> ' // str(var(1)))
+      if (allocated(error)) return
+      do j = 1, 6
+        dp_ = 0.0_dp
+        dp_(j) = step
+        call mat%update(sig0, eps, deps + dp_, state_elastic, sp, state, fd, var0, var)
+        call mat%update(sig0, eps, deps - dp_, state_elastic, sm, state, fd, var0, var)
+        fd(:, j) = 0.0_dp
+        fd(:, j) = (sp - sm) / (2.0_dp * step)
+      end do
+      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
+      call check(error, maxval(abs(dtan - fd)) <= 1.0e-5_dp * maxval(abs(fd)), trim(what(probe)) // &
+                 ': tangent against differences, largest gap ' // str(maxval(abs(dtan - fd))) // ' of ' // &
+                 str(maxval(abs(fd))))
+      if (allocated(error)) return
+    end do
+  end subroutine test_tensile_tangent
 
   !> Every CONCRETE parameter out of range (FC at or below FT, PHI and PSI of the compression
   !! side too), PHI or PSI without FC, a softening law feps does not know and an unknown key

@@ -10,7 +10,11 @@
 !! Why isotropic damage and not a fixed or rotating smeared crack: one scalar history variable
 !! (kappa) and exactly the crack band energy, which is what the crack band theory regularises.
 !! What it does not do: it softens the compressive and shear stiffness of a cracked point with
-!! the tensile one (a smeared crack would keep them).
+!! the tensile one (a smeared crack would keep them). DAMAGE=TENSILE (`tensile_only`) keeps the
+!! compression: sigma = sig_eff - d <sig_eff>+, the damage on the tensile principal part of the
+!! effective stress only (its inverse divides the tensile principal values of a stored stress by
+!! 1 - d; the tangent (I - d P) D - d' <sig_eff>+ (D grad kappa)^T, P = d <sig_eff>+ / d sig_eff
+!! by central differences). The same kappa and law, so uniaxial tension is unchanged.
 !!
 !! Compression (optional, MATERIAL key FC and with it PHI and PSI): the modified Matsuoka-Nakai
 !! surface of feps_matsuoka_nakai (perfectly plastic) bounds the effective stress of a point
@@ -65,7 +69,7 @@ module feps_concrete_damage
   use feps_material, only: material_t, state_elastic, state_cracked, modulus_warning
   use feps_matsuoka_nakai, only: matsuoka_nakai_t, tension_closest_point
   use feps_elastic, only: elastic_matrix
-  use feps_principal, only: principal_values
+  use feps_principal, only: principal_values, principal_frame
   implicit none
   private
 
@@ -88,6 +92,9 @@ module feps_concrete_damage
     real(dp) :: ft = 0.0_dp
     real(dp) :: gf = 0.0_dp
     integer :: softening = softening_linear
+    !> DAMAGE=TENSILE: the damage acts on the tensile principal part of the effective stress
+    !! only (compression kept along a crack and across a closed one); .false.: isotropic
+    logical :: tensile_only = .false.
     real(dp) :: fc = 0.0_dp    !! uniaxial compressive strength (MPa); 0: elastic in compression
     !> The Matsuoka-Nakai surface on the compression side (allocated with fc > 0)
     type(matsuoka_nakai_t), allocatable :: crush
@@ -192,6 +199,7 @@ contains
     real(dp), intent(in), optional :: var0(:)
     real(dp), intent(out), optional :: var(:)
     real(dp) :: d(6, 6), kappa0, kappa, h, dmg0, dmg, sig_eff(6), eq, rate, dk(6), sig_tr(6), sig_ret(6), dep(6, 6)
+    real(dp) :: sig_damaging(6)
     integer :: j, crush_state
     logical :: crushing
     d = elastic_matrix(self%e, self%nu)
@@ -203,13 +211,17 @@ contains
     end if
     dmg0 = 0.0_dp
     if (h > 0.0_dp) dmg0 = self%damage(kappa0, h)
-    sig_eff = sig0(1:6) / (1.0_dp - dmg0) + matmul(d, deps(1:6))
+    if (self%tensile_only) then
+      sig_eff = undamaged_stress(sig0(1:6), dmg0) + matmul(d, deps(1:6))
+    else
+      sig_eff = sig0(1:6) / (1.0_dp - dmg0) + matmul(d, deps(1:6))
+    end if
     crushing = .false.
     if (allocated(self%crush) .and. .not. (dmg0 > 0.0_dp)) then
       ! The Matsuoka-Nakai return of the same trial (formed there), kept where it lands on the
       ! compressive side of the surface (mean stress < 0); elsewhere, and once the point has
       ! cracked (its effective stress may lie far outside the surface), the damage governs.
-      call self%crush%update(sig0(1:6) / (1.0_dp - dmg0), eps0, deps, state0, sig_ret, crush_state, dep)
+      call self%crush%update(sig0(1:6), eps0, deps, state0, sig_ret, crush_state, dep)
       crushing = crush_state /= state_elastic .and. sig_ret(1) + sig_ret(2) + sig_ret(3) < 0.0_dp
       if (crushing) then
         sig_tr = sig_eff
@@ -220,23 +232,30 @@ contains
     kappa = max(kappa0, eq)
     dmg = 0.0_dp
     if (h > 0.0_dp) dmg = self%damage(kappa, h)
-    sig(1:6) = (1.0_dp - dmg) * sig_eff
-    if (crushing) then
-      dtan(1:6, 1:6) = (1.0_dp - dmg) * dep
+    if (crushing) d = dep
+    if (self%tensile_only) then
+      ! sigma = sig_eff - d <sig_eff>+: d sigma / d eps = (I - d P) D, P = d <sig_eff>+ / d sig_eff
+      sig_damaging = tensile_part(sig_eff)
+      sig(1:6) = sig_eff - dmg * sig_damaging
+      dtan(1:6, 1:6) = d
+      if (dmg > 0.0_dp) dtan(1:6, 1:6) = d - dmg * matmul(tensile_part_derivative(sig_eff), d)
     else
+      sig_damaging = sig_eff
+      sig(1:6) = (1.0_dp - dmg) * sig_eff
       dtan(1:6, 1:6) = (1.0_dp - dmg) * d
     end if
     rate = 0.0_dp
     if (h > 0.0_dp .and. eq > kappa0) rate = self%damage_rate(kappa, h)
     if (rate > 0.0_dp) then
-      ! loading: d sig / d eps = (1 - d) D - d'(kappa) sig_eff (D grad kappa)^T
+      ! loading: minus d'(kappa) times the damaged stress (sig_eff, or its tensile part) times
+      ! (D grad kappa)^T (D the compression side's D_ep where it yields: D_ep^T grad kappa)
       if (crushing) then
-        dk = matmul(equivalent_strain_gradient(sig_eff, self%e, self%nu), dep)
+        dk = matmul(equivalent_strain_gradient(sig_eff, self%e, self%nu), d)
       else
         dk = matmul(d, equivalent_strain_gradient(sig_eff, self%e, self%nu))
       end if
       do j = 1, 6
-        dtan(1:6, j) = dtan(1:6, j) - rate * sig_eff * dk(j)
+        dtan(1:6, j) = dtan(1:6, j) - rate * sig_damaging * dk(j)
       end do
     end if
     state = state_elastic
@@ -253,6 +272,61 @@ contains
       end if
     end if
   end subroutine cd_update
+
+  !> The tensile principal part <s>+ = sum over the principal stresses s_k > 0 of s_k n_k n_k^T
+  !! of a Voigt stress.
+  pure function tensile_part(s) result(t)
+    real(dp), intent(in) :: s(6)
+    real(dp) :: t(6)
+    real(dp) :: values(3), vectors(3, 3)
+    integer :: k
+    call principal_frame(s, values, vectors)
+    t = 0.0_dp
+    do k = 1, 3
+      if (values(k) > 0.0_dp) t = t + values(k) * voigt_dyad(vectors(:, k))
+    end do
+  end function tensile_part
+
+  !> The effective stress of a stress s damaged on its tensile part by d (DAMAGE=TENSILE):
+  !! s and sig_eff share principal directions; the tensile principal values are divided by
+  !! 1 - d, the compressive ones are s's own.
+  pure function undamaged_stress(s, dmg) result(sig_eff)
+    real(dp), intent(in) :: s(6), dmg
+    real(dp) :: sig_eff(6)
+    if (.not. (dmg > 0.0_dp)) then
+      sig_eff = s
+      return
+    end if
+    sig_eff = s + dmg / (1.0_dp - dmg) * tensile_part(s)
+  end function undamaged_stress
+
+  !> The derivative of `tensile_part` with respect to the six Voigt stresses (column k: by
+  !! s_k), by central differences with a step of 1e-6 of the largest component, as
+  !! `equivalent_strain_gradient` (where a principal stress passes zero the differences
+  !! average the two sides of the kink).
+  pure function tensile_part_derivative(s) result(p)
+    real(dp), intent(in) :: s(6)
+    real(dp) :: p(6, 6)
+    real(dp) :: step, sp(6), sm(6)
+    integer :: k
+    step = 1.0e-6_dp * maxval(abs(s))
+    p = 0.0_dp
+    if (.not. (step > 0.0_dp)) return
+    do k = 1, 6
+      sp = s
+      sm = s
+      sp(k) = sp(k) + step
+      sm(k) = sm(k) - step
+      p(:, k) = (tensile_part(sp) - tensile_part(sm)) / (2.0_dp * step)
+    end do
+  end function tensile_part_derivative
+
+  !> n n^T of a unit vector in Voigt order [xx yy zz yz xz xy].
+  pure function voigt_dyad(n) result(v)
+    real(dp), intent(in) :: n(3)
+    real(dp) :: v(6)
+    v = [n(1) * n(1), n(2) * n(2), n(3) * n(3), n(2) * n(3), n(1) * n(3), n(1) * n(2)]
+  end function voigt_dyad
 
   !> The elastic strain (engineering shears) of a Voigt stress: D^-1 s.
   pure function compliance_times(s, e, nu) result(eps)
@@ -324,12 +398,12 @@ contains
     type(material_spec_t), intent(in) :: spec
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: error
-    character(len=*), parameter :: known(10) = ['e        ', 'nu       ', 'ft       ', 'gf       ', &
+    character(len=*), parameter :: known(11) = ['e        ', 'nu       ', 'ft       ', 'gf       ', &
                                                 'softening', 'gamma    ', 'k0       ', 'fc       ', &
-                                                'phi      ', 'psi      ']
+                                                'phi      ', 'psi      ', 'damage   ']
     real(dp) :: e, nu, ft, gf, gamma, k0, fc
-    character(len=:), allocatable :: law
-    logical :: has_law
+    character(len=:), allocatable :: law, kind
+    logical :: has_law, has_kind, tensile_only
     integer :: softening
     type(matsuoka_nakai_t), allocatable :: crush
     call check_known_keys(spec, known, error)
@@ -358,13 +432,27 @@ contains
         return
       end select
     end if
+    tensile_only = .false.
+    call spec%get_text('damage', kind, has_kind)
+    if (has_kind) then
+      select case (kind)
+      case ('isotropic')
+        tensile_only = .false.
+      case ('tensile')
+        tensile_only = .true.
+      case default
+        call material_error(error, spec, 'DAMAGE = "' // kind // '": it must be ISOTROPIC (the default) or ' // &
+                            'TENSILE', 'damage')
+        return
+      end select
+    end if
     call get_compression_side(spec, e, nu, ft, fc, crush, error)
     if (allocated(error)) return
     call get_unit_weight(spec, gamma, error)
     if (.not. allocated(error)) call get_k0(spec, k0, error)
     if (allocated(error)) return
     allocate (material, source=concrete_damage_t(name=spec%name, e=e, nu=nu, ft=ft, gf=gf, softening=softening, &
-                                                 unit_weight=gamma, k0=k0, fc=fc))
+                                                 tensile_only=tensile_only, unit_weight=gamma, k0=k0, fc=fc))
     ! moved in, not through the constructor (gfortran 12 freed a constructor's allocatable
     ! component twice)
     select type (material)

@@ -42,7 +42,7 @@ module feps_model
   end type material_spec_t
 
   !> MATERIAL keys whose value is a word, not a number (e.g. TENSION=closest-point).
-  character(len=*), parameter, public :: text_material_keys(2) = ['tension  ', 'softening']
+  character(len=*), parameter, public :: text_material_keys(3) = ['tension  ', 'softening', 'damage   ']
 
   !> Elements of one type and one material.
   type, public :: element_group_t

@@ -3,7 +3,7 @@
 their predicted strengths beside Tables 8.4-8.8.
 
     python3 scripts/make_lab_test.py [--outdir input/chapter8] [--pipes 1,3,25] [--steps N] [--rough] [--contact]
-    python3 scripts/make_lab_test.py --run FEPS [--outdir DIR] [--pipes ...]
+    python3 scripts/make_lab_test.py --run FEPS [--outdir DIR] [--pipes ...] [--damage tensile]
 
 The first form writes lab_<pipe>.dat for each pipe of ../shared/benchmarks/table8_lab.csv whose
 set-up the thesis text defines, and names the reason for each of the others; the second also runs
@@ -139,7 +139,8 @@ def deck(pipe, row, steps, travel, rough=False, contact=False, damage=None):
                 eid += 1
         out.append(CONTACT)
     out += ["E,", "", f"MATERIAL, concrete, CONCRETE, E={E_CONCRETE:g}., NU={NU_CONCRETE:g}, FT={ft:.6g}, GF={gf:.6g}, "
-            f"FC={fc:.6g}, PHI={PHI_CONCRETE:g}, PSI={PHI_CONCRETE:g}" + (f", DAMAGE={damage.upper()}" if damage else "")]
+            f"FC={fc:.6g}, PHI={PHI_CONCRETE:g}, PSI={PHI_CONCRETE:g}"
+            + (f", DAMAGE={damage.upper()}" if damage else "")]
     if rebar:
         out.append(f"MATERIAL, hoop_bar, BAR, E=200000., A={ch9.HOOP_AREA}")
     out += [f"PARAMETERS, pipe={pipe}, cube={cube(pipe):.4f}, area={AREA:.6f}, plate={plate}",

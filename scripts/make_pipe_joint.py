@@ -61,8 +61,13 @@ R_SOIL = 2000.0            # the thesis decks' soil radius (the thesis gives non
 GAMMA_W = 9.81e-6          # N/mm3: the unit weight of water
 # model C (thesis 6.2): q on the top end, the packing/bottom-pipe interface, the packing
 Q = 10.0
+# --capacity: the pipes' cracking concrete takes the compression surface's PHI = PSI = 35 deg (the
+# laboratory tests' choice, docs/verification.md: at chapter 9's 54.9 the surface meets the cracking
+# criterion in tension and full Newton stops before a peak)
+CONCRETE_PHI = 35.0
 KN_JOINT, KS_JOINT, PHI_JOINT, PSI_JOINT, C_JOINT = 800.0, 400.0, 20.0, 20.0, 0.05
 G_PACKING, NU_PACKING, BETA = 300.0, 0.1, 0.09
+SEAT_STEPS = 5             # --capacity: stage seat's steps
 EQUILIBRIUM_STEPS = 100    # stage s3: at most 100 x 50 iterations, 1 per step once converged
 
 # theta grid: 4 x 3 deg on the loaded edge (theta = 0, x = +715: sigma_max is read from elements
@@ -597,7 +602,7 @@ def hex_record(node, it, ir, iz):
 def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, soil_E=144.0, wall=WALL_ELEMENTS,
                z_refine=1, psi=PSI_JOINT, name="", reference=None, writer="make_pipe_joint.py", pipe=None, q=Q,
                joint=(KN_JOINT, KS_JOINT, PHI_JOINT, C_JOINT), soil=(0.2, None, None, None), ground=None,
-               design=False, rotation=0.0, full=False, soil_top=False):
+               design=False, rotation=0.0, full=False, soil_top=False, capacity=None, concrete=None):
     """Model C's deck: packing G_p, nu_p, misalignment beta (deg); theta_step the element size (deg)
     beyond theta = 12, wall the elements through the pipe wall, z_refine the number of parts each z
     element is cut into, psi the joint interface's dilation angle (deg), joint its (Kn, Ks, phi, c),
@@ -609,7 +614,8 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     a symmetry plane, held normal to itself in a Cartesian system turned by `rotation`; without the
     ground's weight only, whose gravity along -x it would break). soil_top: the soil's layers round
     the top pipe and the packing too, one ground with the bottom pipe's (thesis 6.2: round the bottom
-    pipe only)."""
+    pipe only). capacity (seat fraction, seat steps): the capacity staging instead of the thesis's
+    (`capacity_stages`); concrete (FT, FC, GF): the pipes of cracking CONCRETE instead of elastic."""
     p, g = pipe or Pipe(), ground or Ground()
     kn, ks, phi_j, c_j = joint
     nu_s, phi_s, psi_s, c_s = soil
@@ -786,7 +792,9 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             "GROUP, joint, TYPE=interface-quad4, MATERIAL=pipe_packing"]
     out += [line for it, count in m.columns(every) for line in joint_block(it, count)]
     out += ["E,", "",
-            "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2"]
+            "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2" if concrete is None else
+            "MATERIAL, concrete, CONCRETE, E=40000., NU=0.2, FT={:g}, FC={:g}, GF={:g}, PHI={:g}, PSI={:g}".format(
+                *concrete, CONCRETE_PHI, CONCRETE_PHI)]
     out += [soil_material(wet) for wet in g.layers(dry, ntheta)]
     out += [f"MATERIAL, packing, ELASTIC, G={G:g}, NU={nu:g}",
             f"MATERIAL, pipe_packing, INTERFACE, KN={num(kn)}, KS={num(ks)}, PHI={num(phi_j)}, "
@@ -809,7 +817,14 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     out += ["", f"! --- loads: q = {q:.10g} MPa on the top end (reference load, applied 20% + 80% by the stages) ---",
             f"FSET, top_end, GROUP=top_pipe, CSYS=2, Z={num(z_top + L)}, TOL=0.01",
             f"NSET, top_end_nodes, CSYS={f'3, R={num(ri)}:{num(ro)}' if soil_top else 2}, Z={num(z_top + L)}, TOL=0.01",
-            f"PRESSURE, top_end, VALUE={q:.10g}", "",
+            f"PRESSURE, top_end, VALUE={q:.10g}", ""]
+    if capacity is not None:
+        out += ["! --- solution (--capacity): full Newton-Raphson, every step converged to 1e-6 or cut back;",
+                "! a step that does not converge after the cut-backs stops the run: the failure ---",
+                "CONTROLS, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-6"] + g.stage()
+        out += capacity_stages(capacity, steps, delta, rotation)
+    else:
+        out += [
             "! --- solution (thesis 6.3/6.4: initial stiffness, 'several iterations within each step",
             "! depending on convergence and controlled by the program'; no tolerance given: DELTA1 = 1e-4",
             "! as model B). Once the joint slides and a gap opens (beta = 0.27 from stage-2 step ~35) the",
@@ -822,7 +837,30 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             "! (up to 50 per step) until |R|/|P| < 1e-4, so the final state is in equilibrium. The HDF5",
             "! keeps the end of s2 (step s2_last) and of s3 (final). ---",
             "CONTROLS, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4, DIVERGENCE=0.1"] + g.stage()
-    out += ["! stage 1: 20% of q, 1 step; the top end's ux is prescribed in stage 2, so held at 0 here",
+        out += thesis_stages(steps, delta, rotation)
+    out += postprocessing(ro, L, z_joint, z_top, x_from, reference, rotation, design)
+    out += ["", "SOLVER, cholmod", f"OUTPUT, {name}.h5", ""]
+    return "\n".join(out)
+
+
+def capacity_stages(capacity, steps, delta, rotation):
+    """The capacity staging (--capacity): stage `seat`, a fraction of q with the whole misalignment
+    delta, in `seat_steps`; stage `jack`, the rest of q in `steps`. The misalignment is then held
+    while the jacking force grows, as in a drive (and in chapter 8's tests with the angled plate);
+    the run stops where a step does not converge: the failure, under load control."""
+    seat, seat_steps = capacity
+    move = (f"DISPLACE, top_end_nodes, X={delta:.4f}" if rotation == 0.0
+            else f"DISPLACE, top_end_nodes, X={delta:.4f}, CSYS=4")
+    return [f"! stage seat: {seat:g} of q and the misalignment delta = {delta:.4f} mm together",
+            f"STAGE, seat, STEPS={seat_steps}, LOAD={seat:g}, OUTPUT=1", move,
+            f"! stage jack: the other {1.0 - seat:g} of q, the misalignment held",
+            f"STAGE, jack, STEPS={steps}, LOAD={1.0 - seat:g}, OUTPUT=1", ""]
+
+
+def thesis_stages(steps, delta, rotation):
+    """Model C's stages as thesis 6.3/6.4: 20 % of q, then the rest and delta together, then
+    equilibrium iterations."""
+    out = ["! stage 1: 20% of q, 1 step; the top end's ux is prescribed in stage 2, so held at 0 here",
             "STAGE, s1, STEPS=1, LOAD=0.2",
             f"! stage 2: the other 80% and delta = {delta:.4f} mm together",
             f"STAGE, s2, STEPS={steps}, LOAD=0.8",
@@ -831,6 +869,12 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             f"DISPLACE, top_end_nodes, X={delta:.4f}, CSYS=4"]) + [
             "! stage 3: equilibrium iterations only (no load or displacement increment)",
             f"STAGE, s3, STEPS={EQUILIBRIUM_STEPS}, LOAD=0, MAXIT=50", ""]
+    return out
+
+
+def postprocessing(ro, L, z_joint, z_top, x_from, reference, rotation, design):
+    """The REPORTs and FIELDS of model C's deck."""
+    out = []
     if rotation == 0.0:
         out += ["! --- post-processing: scripts/postprocess_model_c.py computes beta*, beta_bar, Z and sigma_max",
             f"! (thesis 7.4). These REPORTs give quick views: the slope of w over x = {x_from:g}..{ro:g} on r = {ro:g} "
@@ -856,8 +900,7 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
                 + ("" if rotation == 0.0 else f", EDGE={num(rotation)}")]
     out += ["! postprocess_model_c.py reads the interface's normal stress at the nodes, feps's nodal_interface",
             "FIELDS, all, nodal_interface"]
-    out += ["", "SOLVER, cholmod", f"OUTPUT, {name}.h5", ""]
-    return "\n".join(out)
+    return out
 
 
 def main(argv=None):
@@ -895,7 +938,15 @@ def main(argv=None):
     force.add_argument("--jacking-stress", type=positive, help=f"mean stress on the pipe's end (default {Q:g})")
     force.add_argument("--jacking-force", type=positive, help="force on the whole pipe's end (N; --packing 0 "
                        "default 2.0e6, the thesis's 1000 kN on the half model)")
-    load.add_argument("--steps", type=positive_int, help="load steps (model C's stage 2; default by the angle)")
+    load.add_argument("--steps", type=positive_int, help="load steps (model C's stage 2, or with --capacity stage "
+                      "jack; default by the angle)")
+    load.add_argument("--capacity", type=float, metavar="SEAT", help="model C: the capacity staging instead of the "
+                      "thesis's: stage seat applies this fraction of q (0 < SEAT < 1) with the whole misalignment "
+                      "in 5 steps, stage jack the rest of q in --steps steps with the misalignment held, full "
+                      "Newton-Raphson; a step that does not converge stops the run (scripts/capacity_curves.py)")
+    load.add_argument("--concrete", type=positive, nargs=3, metavar=("FT", "FC", "GF"), help="model C: the pipes of "
+                      f"cracking CONCRETE (tensile and compressive strength, MPa; fracture energy, N/mm; PHI = PSI = "
+                      f"{CONCRETE_PHI:g}) instead of elastic")
     soil = ap.add_argument_group("soil and ground")
     soil.add_argument("--soil-E", type=positive, default=144.0, help="default 144")
     soil.add_argument("--soil-nu", type=finite, default=0.2, help="default 0.2")
@@ -952,6 +1003,9 @@ def deck_of(a):
         surface = p.r_out + a.cover
         ground = Ground(a.gamma, a.k0, a.soil_phi, surface, None if a.water_table is None else surface - a.water_table)
     if a.packing == 0.0:
+        if a.capacity is not None or a.concrete is not None:
+            raise ValueError(f"--{'capacity' if a.capacity is not None else 'concrete'} is model C's (two pipes, "
+                             "--packing > 0)")
         if a.full or a.soil_around_top:
             raise ValueError(f"--{'full' if a.full else 'soil-around-top'} is model C's (two pipes, --packing > 0); "
                              "model B is a half model of one pipe in soil")
@@ -970,6 +1024,10 @@ def deck_of(a):
     if not -1.0 < a.packing_nu < 0.5 or not 0.0 <= a.joint_psi <= a.joint_phi:
         raise ValueError(f"--packing-nu {a.packing_nu:g} must lie in (-1, 0.5), --joint-psi {a.joint_psi:g} in "
                          f"[0, --joint-phi {a.joint_phi:g}]")
+    if a.capacity is not None and not 0.0 < a.capacity < 1.0:
+        raise ValueError(f"--capacity {a.capacity:g}: the seating fraction of q lies in (0, 1)")
+    if a.concrete is not None and not a.concrete[0] < a.concrete[1]:
+        raise ValueError(f"--concrete: FT {a.concrete[0]:g} must be below FC {a.concrete[1]:g}")
     G = a.packing_G or (a.packing_E / (2.0 * (1.0 + a.packing_nu)) if a.packing_E else G_PACKING)
     q = a.jacking_stress or (a.jacking_force / (math.pi * (p.r_out ** 2 - p.r_in ** 2)) if a.jacking_force else Q)
     return joint_deck(G, a.packing_nu, a.angle, r_soil, a.steps or default_steps(a.angle), a.theta_step, a.soil_E,
@@ -978,7 +1036,8 @@ def deck_of(a):
                       soil=(a.soil_nu, a.soil_phi, psi, a.soil_c), ground=ground, design=True,
                       rotation=45.0 if a.misalignment == "diagonal" else 0.0,
                       full=a.full or (a.misalignment == "diagonal" and a.gamma is not None),
-                      soil_top=a.soil_around_top)
+                      soil_top=a.soil_around_top, capacity=None if a.capacity is None else (a.capacity, SEAT_STEPS),
+                      concrete=a.concrete)
 
 
 if __name__ == "__main__":

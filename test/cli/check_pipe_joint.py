@@ -146,6 +146,17 @@ def generic(tmp, feps):
         check(f"... postprocess_model_c.py reads it with its geometry: Z = {res['Z']:.0f} mm in (0, 2800], "
               f"delta = {res['delta']:.4f} mm = 3000 tan(0.2 deg) = {delta:.4f}",
               0.0 < res["Z"] <= 2800.0 and abs(res["delta"] - delta) < 1e-4, f"{res['Z']}, {res['delta']}")
+    out = gen("cap.dat", "--theta-step", "24", "--angle", "0.1", "--capacity", "0.05", "--jacking-stress", "40",
+              "--steps", "40", "--concrete", "4", "40", "0.1")
+    text = open(out).read() if out else ""
+    check("--capacity 0.05 --concrete 4 40 0.1: stage seat (5 % of q and the misalignment, 5 steps), stage jack "
+          "(the rest, 40 steps), full Newton, the pipes' CONCRETE",
+          "CONTROLS, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-6\n" in text
+          and "STAGE, seat, STEPS=5, LOAD=0.05, OUTPUT=1\nDISPLACE, top_end_nodes, X=4.3633\n" in text
+          and "STAGE, jack, STEPS=40, LOAD=0.95, OUTPUT=1\n" in text and "STAGE, s2" not in text
+          and "MATERIAL, concrete, CONCRETE, E=40000., NU=0.2, FT=4, FC=40, GF=0.1, PHI=35, PSI=35\n" in text)
+    got = run([feps, out or "", "--check"])
+    check("... and passes feps --check", got.returncode == 0, got.stderr[-300:])
     gravity(tmp, feps, gen)
     diagonal(tmp, feps, gen)
     for args, words in ((["--gamma", "2e-5", "--soil-phi", "30"], "--gamma needs --cover"),
@@ -155,6 +166,10 @@ def generic(tmp, feps):
                         (["--full", "--packing", "0"], "--full is model C's"),
                         (["--soil-around-top", "--packing", "0"], "--soil-around-top is model C's"),
                         (["--theta-step", "5"], "must divide 168"),
+                        (["--capacity", "0.05", "--packing", "0"], "--capacity is model C's"),
+                        (["--concrete", "4", "40", "0.1", "--packing", "0"], "--concrete is model C's"),
+                        (["--capacity", "1.5"], "--capacity 1.5"),
+                        (["--concrete", "40", "4", "0.1"], "FT 40 must be below FC 4"),
                         (["--wall", "-3"], "argument --wall")):
         got = run([sys.executable, GEN, "-o", os.path.join(tmp, "bad.dat")] + args)
         check(f"make_pipe_joint.py {' '.join(args)}: exit 2 naming '{words}'",

@@ -4,13 +4,13 @@ at failure against the misalignment angle and the packing's stiffness, beside th
 model's allowable force.
 
     python3 scripts/capacity_curves.py FEPS [--angles 0.05,0.1,0.2] [--packing-G 100,300,1000]
-        [--ft 4 --fc 40 --gf 0.1] [--allowable-stress MPa] [--q-max 40] [--steps 40]
+        [--ft 4 --fc 40 --gf 0.1] [--allowable-stress MPa] [--q-max MPa] [--seat 0.05] [--steps 40]
         [--outdir capacity] [--plot capacity.png] [-- GENERATOR OPTIONS]
 
 For every angle beta and packing G_p, scripts/make_pipe_joint.py writes the joint (model C: two
 pipes and the packing, the bottom pipe in soil; any pipe, packing and soil through the generator's
 own options after `--`) with `--capacity`: the misalignment is applied with a seating load
-(--seat, 5 % of --q-max), then held while the jacking stress grows to --q-max in --steps steps,
+(--seat, 5 % of --q-max), then held while the jacking stress grows to --q-max (default 1.2 FC) in --steps steps,
 full Newton-Raphson. Two runs of each deck:
 
 - elastic pipes: the jacking force at **first cracking** is where the largest principal stress in

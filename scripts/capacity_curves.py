@@ -46,7 +46,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from feps_results import components, open_result, steps  # noqa: E402
 
-from make_pipe_joint import SEAT_STEPS  # noqa: E402  (stage seat's steps)
+from make_pipe_joint import L_PIPE, PACKING, R_IN, R_OUT, SEAT_STEPS  # noqa: E402
 
 PIPES = ("bottom_pipe", "top_pipe")
 
@@ -76,9 +76,8 @@ def run(feps, deck):
 
 
 def end_force(group):
-    """The whole pipe's jacking force at a step: the applied end force scaled to the full ring
-    (q times pi (r_o^2 - r_i^2); the deck models part of it, so the scale is the ratio of the
-    full end's area to the applied force's at the reference q)."""
+    """The applied end force at a step on the part of the ring the deck models (N, along -z);
+    main scales it to the whole pipe's q pi (r_o^2 - r_i^2)."""
     return -float(np.sum(group["applied_force"][:, 2]))
 
 
@@ -168,8 +167,9 @@ def main():
     args.q_max = args.q_max or 1.2 * args.fc
     os.makedirs(args.outdir, exist_ok=True)
     gen = argparse.ArgumentParser(add_help=False)
-    for opt, default in (("--inner-diameter", 1200.0), ("--wall", 115.0), ("--pipe-length", 2500.0),
-                         ("--packing", 15.0)):
+    # the generator's geometry options and defaults, read from what goes to it
+    for opt, default in (("--inner-diameter", 2 * R_IN), ("--wall", R_OUT - R_IN), ("--pipe-length", L_PIPE),
+                         ("--packing", PACKING)):
         gen.add_argument(opt, type=float, default=default)
     known, _ = gen.parse_known_args(extra)
     r, R = known.inner_diameter / 2.0, known.inner_diameter / 2.0 + known.wall

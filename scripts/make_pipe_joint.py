@@ -849,12 +849,18 @@ def capacity_stages(capacity, steps, delta, rotation):
     while the jacking force grows, as in a drive (and in chapter 8's tests with the angled plate);
     the run stops where a step does not converge: the failure, under load control."""
     seat, seat_steps = capacity
-    move = (f"DISPLACE, top_end_nodes, X={delta:.4f}" if rotation == 0.0
-            else f"DISPLACE, top_end_nodes, X={delta:.4f}, CSYS=4")
     return [f"! stage seat: {seat:g} of q and the misalignment delta = {delta:.4f} mm together",
-            f"STAGE, seat, STEPS={seat_steps}, LOAD={seat:g}, OUTPUT=1", move,
+            f"STAGE, seat, STEPS={seat_steps}, LOAD={seat:g}, OUTPUT=1"] + misalignment(delta, rotation) + [
             f"! stage jack: the other {1.0 - seat:g} of q, the misalignment held",
             f"STAGE, jack, STEPS={steps}, LOAD={1.0 - seat:g}, OUTPUT=1", ""]
+
+
+def misalignment(delta, rotation):
+    """The top end's displacement delta along the misalignment's direction theta = rotation."""
+    if rotation == 0.0:
+        return [f"DISPLACE, top_end_nodes, X={delta:.4f}"]
+    return [f"! along the misalignment's direction theta = {rotation:g} (system 4's x; the top end free across it)",
+            f"DISPLACE, top_end_nodes, X={delta:.4f}, CSYS=4"]
 
 
 def thesis_stages(steps, delta, rotation):
@@ -864,9 +870,7 @@ def thesis_stages(steps, delta, rotation):
             "STAGE, s1, STEPS=1, LOAD=0.2",
             f"! stage 2: the other 80% and delta = {delta:.4f} mm together",
             f"STAGE, s2, STEPS={steps}, LOAD=0.8",
-        ] + ([f"DISPLACE, top_end_nodes, X={delta:.4f}"] if rotation == 0.0 else [
-            f"! along the misalignment's direction theta = {rotation:g} (system 4's x; the top end free across it)",
-            f"DISPLACE, top_end_nodes, X={delta:.4f}, CSYS=4"]) + [
+        ] + misalignment(delta, rotation) + [
             "! stage 3: equilibrium iterations only (no load or displacement increment)",
             f"STAGE, s3, STEPS={EQUILIBRIUM_STEPS}, LOAD=0, MAXIT=50", ""]
     return out

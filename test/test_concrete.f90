@@ -170,6 +170,25 @@ contains
     end select
   end subroutine make_concrete
 
+  !> n equal strain increments deps from the state (sig, eps, var), which each step replaces with
+  !! its update's; state and dtan are the last step's.
+  subroutine strain_steps(mat, deps, n, sig, eps, var, state, dtan)
+    type(concrete_damage_t), intent(in) :: mat
+    real(dp), intent(in) :: deps(6)
+    integer, intent(in) :: n
+    real(dp), intent(inout) :: sig(6), eps(6), var(:)
+    integer, intent(out) :: state
+    real(dp), intent(out) :: dtan(6, 6)
+    real(dp) :: sig_new(6), var_new(size(var))
+    integer :: k
+    do k = 1, n
+      call mat%update(sig, eps, deps, state_elastic, sig_new, state, dtan, var, var_new)
+      sig = sig_new
+      eps = eps + deps
+      var = var_new
+    end do
+  end subroutine strain_steps
+
   !> One step of a point strained by dz along z with its x and y stresses held at `lateral`
   !! and no shear: Newton's method on the x and y strains with the point's own tangent
   !! (quadratic with a consistent tangent), to 1e-12 of the axial stress.
@@ -334,32 +353,22 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), parameter :: e = 30000.0_dp, ft = 3.0_dp, fc = 30.0_dp, h = 50.0_dp
     type(concrete_damage_t) :: mat
-    real(dp) :: sig0(6), sig(6), eps(6), deps(6), dtan(6, 6), var0(8), var(8), dmg
-    integer :: k, state
+    real(dp) :: sig(6), eps(6), deps(6), dtan(6, 6), var(8), dmg
+    integer :: state
     call make_concrete(['e ', 'nu', 'ft', 'gf', 'fc'], [e, 0.0_dp, ft, 0.1_dp, fc], mat, error)
     if (allocated(error)) return
-    sig0 = 0.0_dp
+    sig = 0.0_dp
     eps = 0.0_dp
-    var0 = 0.0_dp
-    var0(2) = h
+    var = 0.0_dp
+    var(2) = h
     deps = 0.0_dp
     deps(1) = 0.1_dp * ft / e
-    do k = 1, 20
-      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
-      sig0 = sig
-      eps = eps + deps
-      var0 = var
-    end do
+    call strain_steps(mat, deps, 20, sig, eps, var, state, dtan)
     dmg = mat%damage(2.0_dp * ft / e, h)
     call check(error, var(1), 2.0_dp * ft / e, 'kappa after the pull', rel=1.0e-12_dp)
     if (allocated(error)) return
     deps(1) = -(2.0_dp * ft + 3.0_dp * fc) / e / 50.0_dp
-    do k = 1, 50
-      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
-      sig0 = sig
-      eps = eps + deps
-      var0 = var
-    end do
+    call strain_steps(mat, deps, 50, sig, eps, var, state, dtan)
     call check(error, sig(1), (1.0_dp - dmg) * e * eps(1), 'compressed cracked point: (1 - d) E eps', rel=1.0e-12_dp)
     if (allocated(error)) return
     call check(error, sig(1) < -(1.0_dp - dmg) * fc .and. state == state_cracked, 'beyond -FC (1 - d), cracked')
@@ -446,31 +455,21 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(dp), parameter :: e = 30000.0_dp, ft = 3.0_dp, gf = 0.1_dp, h = 50.0_dp
     type(concrete_damage_t) :: mat
-    real(dp) :: sig0(6), sig(6), eps(6), deps(6), dtan(6, 6), var0(2), var(2), dmg
-    integer :: k, state
+    real(dp) :: sig(6), eps(6), deps(6), dtan(6, 6), var(2), dmg
+    integer :: state
     mat = concrete_damage_t(name='c', e=e, nu=0.0_dp, ft=ft, gf=gf, tensile_only=.true.)
-    sig0 = 0.0_dp
+    sig = 0.0_dp
     eps = 0.0_dp
-    var0 = [0.0_dp, h]
+    var = [0.0_dp, h]
     deps = 0.0_dp
     deps(1) = 0.1_dp * ft / e
-    do k = 1, 20
-      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
-      sig0 = sig
-      eps = eps + deps
-      var0 = var
-    end do
+    call strain_steps(mat, deps, 20, sig, eps, var, state, dtan)
     dmg = mat%damage(2.0_dp * ft / e, h)
     call check(error, var(1), 2.0_dp * ft / e, 'kappa after the pull', rel=1.0e-12_dp)
     if (allocated(error)) return
     deps = 0.0_dp
     deps(2) = -0.5_dp * ft / e
-    do k = 1, 20
-      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
-      sig0 = sig
-      eps = eps + deps
-      var0 = var
-    end do
+    call strain_steps(mat, deps, 20, sig, eps, var, state, dtan)
     call check(error, sig(2), e * eps(2), 'compressed along the crack: E eps_y', rel=1.0e-12_dp)
     if (allocated(error)) return
     call check(error, sig(1), (1.0_dp - dmg) * e * eps(1), 'across the crack: (1 - d) E eps_x', rel=1.0e-12_dp)
@@ -479,12 +478,7 @@ contains
     if (allocated(error)) return
     deps = 0.0_dp
     deps(1) = -(2.0_dp * ft + 3.0_dp * ft) / e / 50.0_dp
-    do k = 1, 50
-      call mat%update(sig0, eps, deps, state_elastic, sig, state, dtan, var0, var)
-      sig0 = sig
-      eps = eps + deps
-      var0 = var
-    end do
+    call strain_steps(mat, deps, 50, sig, eps, var, state, dtan)
     call check(error, sig(1), e * eps(1), 'the crack closed: E eps_x', rel=1.0e-12_dp)
     if (allocated(error)) return
     call check(error, var(1), 2.0_dp * ft / e, 'kappa unchanged by compression', rel=1.0e-12_dp)
@@ -494,33 +488,32 @@ contains
 
   !> DAMAGE=TENSILE (nu = 0.2, FC = 30): a point pulled along a general direction (shears
   !! too) past its peak, then compressed along y while still opening (a principal stress of
-  !! about -2 f_t, which makes d <sig_eff>+ / d sig_eff far from the identity), then the tangent of a further step checked against central
-  !! differences of the update's stress by the strain increment (step 1e-9 of a strain ~1e-4),
-  !! while the damage grows (loading) and while it does not (unloading), to 1e-5 of the
-  !! largest entry (the tangent's own derivatives are central differences of the stress).
+  !! about -3 f_t, which makes d <sig_eff>+ / d sig_eff far from the identity), then the
+  !! tangent of a further step checked against central differences of the update's stress by
+  !! the strain increment (step 1e-9 of a strain ~1e-4), while the damage grows (loading) and
+  !! while it does not (unloading), to 1e-5 of the largest entry (the tangent's own derivatives
+  !! are central differences of the stress).
   subroutine test_tensile_tangent(error)
     type(error_t), allocatable, intent(out) :: error
     real(dp), parameter :: e = 30000.0_dp, ft = 3.0_dp, gf = 0.1_dp, h = 50.0_dp, step = 1.0e-9_dp
     type(concrete_damage_t) :: mat
     real(dp) :: sig0(6), sig(6), eps(6), dir(6), deps(6), dtan(6, 6), var0(8), var(8), sp(6), sm(6), fd(6, 6), dp_(6)
-    integer :: k, j, state, probe
+    integer :: j, state, probe
     character(len=*), parameter :: what(2) = ['loading  ', 'unloading']
     call make_concrete(['e ', 'nu', 'ft', 'gf', 'fc'], [e, 0.2_dp, ft, gf, 30.0_dp], mat, error)
     if (allocated(error)) return
     mat%tensile_only = .true.
     dir = [1.0_dp, -0.3_dp, 0.2_dp, 0.15_dp, -0.25_dp, 0.4_dp] * (0.05_dp * ft / e)
-    sig0 = 0.0_dp
+    sig = 0.0_dp
     eps = 0.0_dp
-    var0 = 0.0_dp
-    var0(2) = h
-    do k = 1, 40
-      ! pulled, then (cracked: the compression side is off) compressed along y, still opening x
-      if (k == 31) dir = [1.0_dp, -6.0_dp, 0.3_dp, 0.1_dp, -0.1_dp, 0.2_dp] * (0.05_dp * ft / e)
-      call mat%update(sig0, eps, dir, state_elastic, sig, state, dtan, var0, var)
-      sig0 = sig
-      eps = eps + dir
-      var0 = var
-    end do
+    var = 0.0_dp
+    var(2) = h
+    ! pulled, then (cracked: the compression side is off) compressed along y, still opening x
+    call strain_steps(mat, dir, 30, sig, eps, var, state, dtan)
+    dir = [1.0_dp, -6.0_dp, 0.3_dp, 0.1_dp, -0.1_dp, 0.2_dp] * (0.05_dp * ft / e)
+    call strain_steps(mat, dir, 10, sig, eps, var, state, dtan)
+    sig0 = sig
+    var0 = var
     call check(error, state == state_cracked .and. var(1) > 1.2_dp * ft / e, 'cracked past the peak')
     if (allocated(error)) return
     do probe = 1, 2

@@ -233,9 +233,13 @@ contains
     dmg = 0.0_dp
     if (h > 0.0_dp) dmg = self%damage(kappa, h)
     if (crushing) d = dep
+    rate = 0.0_dp
+    if (h > 0.0_dp .and. eq > kappa0) rate = self%damage_rate(kappa, h)
     if (self%tensile_only) then
       ! sigma = sig_eff - d <sig_eff>+: d sigma / d eps = (I - d P) D, P = d <sig_eff>+ / d sig_eff
-      sig_damaging = tensile_part(sig_eff)
+      ! (an undamaged point, most of them, needs neither the principal frame nor P)
+      sig_damaging = 0.0_dp
+      if (dmg > 0.0_dp .or. rate > 0.0_dp) sig_damaging = tensile_part(sig_eff)
       sig(1:6) = sig_eff - dmg * sig_damaging
       dtan(1:6, 1:6) = d
       if (dmg > 0.0_dp) dtan(1:6, 1:6) = d - dmg * matmul(tensile_part_derivative(sig_eff), d)
@@ -244,8 +248,6 @@ contains
       sig(1:6) = (1.0_dp - dmg) * sig_eff
       dtan(1:6, 1:6) = (1.0_dp - dmg) * d
     end if
-    rate = 0.0_dp
-    if (h > 0.0_dp .and. eq > kappa0) rate = self%damage_rate(kappa, h)
     if (rate > 0.0_dp) then
       ! loading: minus d'(kappa) times the damaged stress (sig_eff, or its tensile part) times
       ! (D grad kappa)^T (D the compression side's D_ep where it yields: D_ep^T grad kappa)

@@ -43,6 +43,8 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from feps_results import components, gauss_points, steps  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, "test", "data"))
+import make_split_cylinder as generator  # noqa: E402  (the deck's steps and mesh, not the closed form)
 
 R, B, FT = 75.0, 12.0, 3.0
 failures = 0
@@ -107,8 +109,8 @@ def main():
     sys.exit(1 if failures else 0)
 
 
-PEAK_LOAD_STEPS = 10
-MIDDLE_HALF_WIDTH = math.sqrt(2.0) * B / 6.0   # the middle column's half width at y = 0 (its widest)
+PEAK_LOAD_STEPS = generator.PEAK_LOAD_STEPS
+MIDDLE_HALF_WIDTH = generator.R * generator.U_EDGE / 3.0   # the middle column's half width at y = 0 (its widest)
 
 
 def peak(feps, work, gf):

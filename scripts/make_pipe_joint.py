@@ -21,6 +21,9 @@ only; a real drive has ground round both. The option puts the same four soil lay
 packing and the top pipe (bonded, out to the same far boundary, fixed there in x and y), one
 ground with the bottom pipe's; with --gamma the soil's end face is then the top pipe's end, on
 rollers in z. Default: as the thesis (the presets write the thesis's decks byte for byte).
+--interface frictional joins the soil to the pipes (and, with --soil-around-top, the packing)
+through Mohr-Coulomb interfaces on r = r_o instead of shared nodes, so that the pipes can slide
+through the ground (group pipe_soil; a second node row at r = r_o is the soil's inner face).
 
     python3 scripts/make_pipe_joint.py --inner-diameter 1000 --wall 100 --pipe-length 2500 \\
         --packing 20 --packing-G 300 --packing-nu 0.1 --angle 0.5 --jacking-stress 10 -o dn1000.dat
@@ -555,12 +558,18 @@ class Mesh:
     `wall` elements through the pipe wall, every z increment cut into `z_refine`. A full ring
     (`full`: the thetas sum to 360) has no node row at 360 deg: its last elements close on the first row.
     With `soil_top` the top block has the soil's radii too (its soil nodes at the joint plane, iz = 0,
-    belong to no element: the soil above takes the bottom block's there, one continuous ground)."""
+    belong to no element: the soil above takes the bottom block's there, one continuous ground).
+    With `interface` each block has a second node row at r = r_o, the soil's inner face (coincident
+    with the pipe's outer face, joined to it by interface elements): the soil's rows start at
+    `soil_first`."""
 
-    def __init__(self, pipe, r_soil, thetas, wall=WALL_ELEMENTS, z_refine=1, full=False, soil_top=False):
+    def __init__(self, pipe, r_soil, thetas, wall=WALL_ELEMENTS, z_refine=1, full=False, soil_top=False,
+                 interface=False):
         self.full = full
         self.nt = len(thetas) + (0 if full else 1)         # nodes along theta
         self.r_bottom = [pipe.r_in + (pipe.r_out - pipe.r_in) * i / wall for i in range(wall + 1)]
+        self.r_bottom += [pipe.r_out] if interface else []
+        self.soil_first = len(self.r_bottom) - 1
         for d in soil_layers(r_soil, pipe.r_out):
             self.r_bottom.append(self.r_bottom[-1] + d)
         self.nr_bottom = len(self.r_bottom)                # 7 with 2 wall elements
@@ -602,7 +611,8 @@ def hex_record(node, it, ir, iz):
 def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, soil_E=144.0, wall=WALL_ELEMENTS,
                z_refine=1, psi=PSI_JOINT, name="", reference=None, writer="make_pipe_joint.py", pipe=None, q=Q,
                joint=(KN_JOINT, KS_JOINT, PHI_JOINT, C_JOINT), soil=(0.2, None, None, None), ground=None,
-               design=False, rotation=0.0, full=False, soil_top=False, capacity=None, concrete=None):
+               design=False, rotation=0.0, full=False, soil_top=False, capacity=None, concrete=None,
+               pipe_soil=None):
     """Model C's deck: packing G_p, nu_p, misalignment beta (deg); theta_step the element size (deg)
     beyond theta = 12, wall the elements through the pipe wall, z_refine the number of parts each z
     element is cut into, psi the joint interface's dilation angle (deg), joint its (Kn, Ks, phi, c),
@@ -615,7 +625,9 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     ground's weight only, whose gravity along -x it would break). soil_top: the soil's layers round
     the top pipe and the packing too, one ground with the bottom pipe's (thesis 6.2: round the bottom
     pipe only). capacity (seat fraction, seat steps): the capacity staging instead of the thesis's
-    (`capacity_stages`); concrete (FT, FC, GF): the pipes of cracking CONCRETE instead of elastic."""
+    (`capacity_stages`); concrete (FT, FC, GF): the pipes of cracking CONCRETE instead of elastic;
+    pipe_soil (Kn, Ks, phi, psi, c): Mohr-Coulomb interfaces between the pipes (and the packing) and
+    the soil round them instead of shared nodes."""
     p, g = pipe or Pipe(), ground or Ground()
     kn, ks, phi_j, c_j = joint
     nu_s, phi_s, psi_s, c_s = soil
@@ -625,7 +637,8 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     thetas = theta_steps(theta_step)
     if full:
         thetas = thetas + thetas[::-1]          # mirrored: the same elements on either side of the edge
-    m = Mesh(p, r_soil, thetas, wall, z_refine, full, soil_top)
+    m = Mesh(p, r_soil, thetas, wall, z_refine, full, soil_top, pipe_soil is not None)
+    s0 = m.soil_first
     ri, ro, L, a = p.r_in, p.r_out, p.length, p.packing
     z_joint, z_top = L / 2, L / 2 + a
     delta = L * math.tan(math.radians(beta))
@@ -651,8 +664,12 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         f"{rotation:g} deg:"]) + [
         f"! - bottom: {'pipe' if full else 'half pipe'} r = {ri:g}..{ro:g}, z = 0..{z_joint:g} (z = 0 is the mid-length symmetry plane, fixed in",
         f"!   z), in soil r = {ro:g}..{r_soil:g} over the same z (4 hex8 layers as model B; the thesis gives no soil",
+    ] + ([
         "!   extent). Pipe and soil are BONDED (shared nodes): thesis 6.2 says there was just one interface",
-        "!   in the model, the one between the packing and the bottom pipe, and 6.3 calls stage 1 linear.",
+        "!   in the model, the one between the packing and the bottom pipe, and 6.3 calls stage 1 linear."]
+        if pipe_soil is None else [
+        "!   extent). Pipe and soil meet through Mohr-Coulomb interfaces (--interface frictional; thesis 6.2",
+        "!   bonds them): Kn = {:g}, Ks = {:g} MPa/mm, phi = {:g}, psi = {:g} deg, c = {:g} MPa.".format(*pipe_soil)]) + [
         f"! - packing: {a:g} mm thick" + (" (SPEC 8: derived from Table 7.4's Australian columns)" if a == PACKING
                                           else "") + f", z = {z_joint:g}..{z_top:g},",
         f"!   r = {ri:g}..{ro:g}, {npl} hex8 layers, bonded to the top pipe (shared nodes at z = {z_top:g}).",
@@ -716,7 +733,7 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         ("" if psi == PSI_JOINT else f", psi_joint={psi:g}") + p.parameters()
         + ("" if not full and rotation == 0.0 else
            f", misalignment={'edge' if rotation == 0.0 else 'diagonal'}, ring={'full' if full else 'half'}")
-        + (", soil=both_pipes" if soil_top else "")
+        + (", soil=both_pipes" if soil_top else "") + ("" if pipe_soil is None else ", soil_interface=frictional")
         + ("" if math.isclose(q, Q, rel_tol=1e-12) else f", q={q:.6g}") + ("" if kn == KN_JOINT else f", Kn={kn:g}"),
         "",
         "! --- node block 1: bottom pipe and soil (theta fastest, then r, then z) ---",
@@ -727,6 +744,8 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         "! pipe wall r = " + ", ".join(f"{r:g}" for r in m.r_bottom[:wall + 1])
     out += direction(thetas[:m.nt - 1], 1, "theta", start=rotation)
     out.append(wall_record)
+    coincident = f"%, -1, 0., 0., 0.,".ljust(30) + f"! r = {ro:g} again: the soil's inner face (coincident nodes)"
+    out += [coincident] if pipe_soil is not None else []
     for d in soil_layers(r_soil, ro):
         out.append(f"%, -1, {d:.4f}, 0., 0.,".ljust(30) + "! soil layer")
     out += direction(m.z_bottom, 2, "z")
@@ -736,6 +755,7 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             f"A, 3, {num(ri)}, {num(rotation)}, {num(z_joint)},"]
     out += direction(thetas[:m.nt - 1], 1, "theta", start=rotation)
     out.append(wall_record)
+    out += [coincident] if pipe_soil is not None and soil_top else []
     for d in soil_layers(r_soil, ro) if soil_top else []:
         out.append(f"%, -1, {d:.4f}, 0., 0.,".ljust(30) + "! soil layer round the top pipe")
     out += direction([a / npl] * npl, 2, "z (packing)", start=z_joint)
@@ -751,7 +771,7 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
 
     every = range(ntheta)
     soil_groups = []
-    flags = g.dry_flags(m.r_bottom[wall:], thetas, rotation)
+    flags = g.dry_flags(m.r_bottom[s0:], thetas, rotation)
     dry = [sum(layer) for layer in flags]
     # the soil's z regions (node numbering, first layer, layers, z stride): round the bottom pipe, and
     # with soil_top a layer from the joint plane (its lower face the bottom block's nodes: one ground)
@@ -764,9 +784,9 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         for node, iz, nz, stride_z in regions:
             along_z = [(nz, stride_z)] if nz > 1 else []
             if g.water is None:
-                soil_groups += blocks(node, every, wall, iz, [(m.nr_bottom - wall - 1, stride_r_b)] + along_z)
+                soil_groups += blocks(node, every, s0, iz, [(m.nr_bottom - s0 - 1, stride_r_b)] + along_z)
             for i, layer in enumerate(flags if g.water is not None else []):
-                soil_groups += blocks(node, [it for it in every if layer[it] != wet], wall + i, iz, along_z)
+                soil_groups += blocks(node, [it for it in every if layer[it] != wet], s0 + i, iz, along_z)
         soil_groups.append("")
     out += ["GROUP, bottom_pipe, TYPE=hex8, MATERIAL=concrete"]
     out += blocks(m.bottom, every, 0, 0, [(wall, stride_r_b), (nzb, stride_z_b)]) + [""]
@@ -791,14 +811,37 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
             "! theta, normal +z), upper layer = the packing's lower face; theta strides agree in both blocks",
             "GROUP, joint, TYPE=interface-quad4, MATERIAL=pipe_packing"]
     out += [line for it, count in m.columns(every) for line in joint_block(it, count)]
-    out += ["E,", "",
+    out += ["E,", ""]
+
+    def pipe_soil_blocks(lower, upper, iz, copies):
+        """interface-quad4 blocks on r = r_o from layer iz: lower layer the pipe's (or the packing's)
+        outer face (theta then z: normal +r, towards the soil), upper the soil's inner face."""
+        def face(node, ir, it):
+            return [node(it, ir, iz), node(it + 1, ir, iz), node(it + 1, ir, iz + 1), node(it, ir, iz + 1)]
+        return [line for it, count in m.columns(every)
+                for line in ["A, 8, " + ", ".join(str(n) for n in face(lower, wall, it) + face(upper, s0, it)) + ",",
+                             f"%, {count}, *, 8, 1,"] + [f"%, {n}, *, 8, {inc}," for n, inc in copies] + ["E,"]]
+
+    if pipe_soil is not None:
+        out += ["! pipe/soil interfaces: lower layer the pipe's (and the packing's) outer face, upper the soil's",
+                "GROUP, pipe_soil, TYPE=interface-quad4, MATERIAL=pipe_soil"]
+        out += pipe_soil_blocks(m.bottom, m.bottom, 0, [(nzb, stride_z_b)])
+        if soil_top:
+            # the layer from the joint plane: the soil's lower face is the bottom block's (one ground)
+            out += pipe_soil_blocks(m.top, lambda it, ir, iz: m.bottom(it, ir, nzb) if iz == 0 else m.top(it, ir, iz),
+                                    0, [])
+            out += pipe_soil_blocks(m.top, m.top, 1, [(npl + nzt - 1, stride_z_t)])
+        out += ["E,", ""]
+    out += [
             "MATERIAL, concrete, ELASTIC, E=40000., NU=0.2" if concrete is None else
             "MATERIAL, concrete, CONCRETE, E=40000., NU=0.2, FT={:g}, FC={:g}, GF={:g}, PHI={:g}, PSI={:g}".format(
                 *concrete, CONCRETE_PHI, CONCRETE_PHI)]
     out += [soil_material(wet) for wet in g.layers(dry, ntheta)]
     out += [f"MATERIAL, packing, ELASTIC, G={G:g}, NU={nu:g}",
             f"MATERIAL, pipe_packing, INTERFACE, KN={num(kn)}, KS={num(ks)}, PHI={num(phi_j)}, "
-            f"PSI={psi:g}{'.' if float(psi).is_integer() else ''}, C={c_j:g}",
+            f"PSI={psi:g}{'.' if float(psi).is_integer() else ''}, C={c_j:g}"] + ([] if pipe_soil is None else [
+            "MATERIAL, pipe_soil, INTERFACE, KN={:g}, KS={:g}, PHI={}, PSI={}, C={:g}".format(
+                pipe_soil[0], pipe_soil[1], num(pipe_soil[2]), num(pipe_soil[3]), pipe_soil[4])]) + [
             "",
             "! --- supports (thesis 6.2) ---"] + ([] if rotation == 0.0 else [
             f"! system 4: x along the misalignment's direction theta = {rotation:g}, y across it",
@@ -816,7 +859,8 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         + [f"FIX, symmetry_z, Z{turned}"] + g.rollers(p, r_soil, (z_top + L if soil_top else z_joint,))
     out += ["", f"! --- loads: q = {q:.10g} MPa on the top end (reference load, applied 20% + 80% by the stages) ---",
             f"FSET, top_end, GROUP=top_pipe, CSYS=2, Z={num(z_top + L)}, TOL=0.01",
-            f"NSET, top_end_nodes, CSYS={f'3, R={num(ri)}:{num(ro)}' if soil_top else 2}, Z={num(z_top + L)}, TOL=0.01",
+            f"NSET, top_end_nodes, CSYS={f'3, R={num(ri)}:{num(ro)}' if soil_top else 2}, Z={num(z_top + L)}, TOL=0.01"
+            + (", GROUP=top_pipe" if soil_top and pipe_soil is not None else ""),
             f"PRESSURE, top_end, VALUE={q:.10g}", ""]
     if capacity is not None:
         out += ["! --- solution (--capacity): full Newton-Raphson, every step converged to 1e-6 or cut back;",
@@ -959,8 +1003,10 @@ def main(argv=None):
     soil.add_argument("--soil-psi", type=finite, help="dilation angle (default: phi)")
     soil.add_argument("--soil-c", type=finite, default=0.05, help="cohesion (default 0.05)")
     soil.add_argument("--interface", choices=("bonded", "frictional"), default="bonded",
-                      help="pipe/soil: shared nodes, or (--packing 0) Mohr-Coulomb interfaces with Ks = 50 E_s / 144, "
-                           "Kn = 2 Ks (the thesis's)")
+                      help="pipe/soil: shared nodes, or Mohr-Coulomb interfaces with Ks = 50 E_s / 144, Kn = 2 Ks (the "
+                           "thesis's model B), phi = --soil-phi (default 15), psi = --soil-psi, c = --soil-c; model B's "
+                           "soil is then elastic, model C's stays Matsuoka-Nakai with --soil-phi. Model C: between "
+                           "the soil and every pipe (and the packing) it surrounds")
     soil.add_argument("--soil-around-top", action="store_true", help="model C: the soil's layers round the top pipe "
                       "and the packing too, one ground with the bottom pipe's (default: round the bottom pipe only, "
                       "as thesis 6.2); the far boundary and, with --gamma, the rollers at the top pipe's end")
@@ -1022,9 +1068,6 @@ def deck_of(a):
                               phi if psi is None else psi, r_soil, a.refine, a.element, pipe=p, case=name,
                               soil_name=f"E_s = {a.soil_E:g} MPa", output=name, total=force / 2.0, steps=a.steps,
                               nu_s=a.soil_nu, c=a.soil_c, ground=ground)
-    if a.interface == "frictional":
-        raise ValueError("two pipes and the packing (--packing > 0) are written with the bottom pipe bonded to the "
-                         "soil; --interface frictional needs --packing 0")
     if not -1.0 < a.packing_nu < 0.5 or not 0.0 <= a.joint_psi <= a.joint_phi:
         raise ValueError(f"--packing-nu {a.packing_nu:g} must lie in (-1, 0.5), --joint-psi {a.joint_psi:g} in "
                          f"[0, --joint-phi {a.joint_phi:g}]")
@@ -1041,7 +1084,16 @@ def deck_of(a):
                       rotation=45.0 if a.misalignment == "diagonal" else 0.0,
                       full=a.full or (a.misalignment == "diagonal" and a.gamma is not None),
                       soil_top=a.soil_around_top, capacity=None if a.capacity is None else (a.capacity, SEAT_STEPS),
-                      concrete=a.concrete)
+                      concrete=a.concrete, pipe_soil=pipe_soil_interface(a, psi))
+
+
+def pipe_soil_interface(a, psi):
+    """Model C's pipe/soil interface (Kn, Ks, phi, psi, c) for --interface frictional, as model B's
+    (Ks = 50 E_s / 144, Kn = 2 Ks, phi = --soil-phi or 15 deg), or None (bonded)."""
+    if a.interface != "frictional":
+        return None
+    ks, phi = 50.0 * a.soil_E / 144.0, a.soil_phi or 15.0
+    return (2.0 * ks, ks, phi, phi if psi is None else psi, a.soil_c)
 
 
 if __name__ == "__main__":

@@ -20,7 +20,9 @@
   extent); under gravity alone the applied weight and the support reactions equal the weight of
   soil, pipes and packing from the geometry (1e-9); with the joint loaded, REPORT JOINT's answers
   move against the soil-round-the-bottom deck's as the bonded soil's restraint says
-  (docs/verification.md, "Soil round the top pipe (issue 26 item 4)");
+  (docs/verification.md, "Soil round the top pipe (issue 26 item 4)"); with --interface frictional
+  the soil meets the pipes and packing through interfaces only, and the top body's axial balance
+  holds (the jacking force = the joint's normal force + the interfaces' axial shear, 1e-7);
 - bad options stop with exit status 2 naming the option.
 
     python3 test/cli/check_pipe_joint.py --feps FEPS --tmp FOLDER
@@ -307,6 +309,7 @@ def diagonal(tmp, feps, gen):
           f"off by {rel(h[:4], d[:4]):.1e}) and = the edge quarter model (the five: 1e-9; off by {rel(h[:5], q[:5]):.1e})",
           rel(h[:4], d[:4]) < 1e-9 and rel(h[:5], q[:5]) < 1e-9 and h[5] == 1 and h[6] == q[6], f"{h} / {d} / {q}")
     soil_top(tmp, feps, gen, q, res["top_soil"], keys)
+    pipe_soil(tmp, feps, gen, res["top_soil"], keys)
 
 
 def soil_top(tmp, feps, gen, bottom, top, keys):
@@ -368,6 +371,63 @@ def soil_top(tmp, feps, gen, bottom, top, keys):
           f"{reaction[0]:.10g} N along x = the weight of soil, pipes and packing from the geometry {weight:.10g} N "
           "(1e-9)", abs(-applied[0] / weight - 1) < 1e-9 and abs(reaction[0] / weight - 1) < 1e-9
           and max(abs(applied[1:]).max(), abs(reaction[1:]).max()) < 1e-9 * weight, f"{applied}, {reaction}, {weight}")
+
+
+def pipe_soil(tmp, feps, gen, bonded, keys):
+    """--soil-around-top --interface frictional: Mohr-Coulomb interfaces between the soil and the
+    pipes and packing (the coarse deck of diagonal()). Its mesh (no node of the soil on a pipe), and
+    the top body's axial balance: the jacking force on the top end equals the joint's normal force
+    plus the axial shear of its interfaces with the soil, summed here from the interface points'
+    tau2 (e2 along +z) and weights (each element a rectangle on the faceted surface: a quarter of
+    its area a point); the friction takes a share of the jacking force, where the bonded soil added
+    to it (diagonal())."""
+    out = gen("top_friction.dat", "--soil-around-top", "--interface", "frictional", "--theta-step", "12",
+              "--wall-elements", "1", "--steps", "2", "--angle", "0.27")
+    text = open(out).read() if out else ""
+    check("--interface frictional (model C): group pipe_soil of interface-quad4 with model B's interface law "
+          "(Ks = 50 E_s / 144, Kn = 2 Ks, phi = 15, c = 0.05), the top end's nodes the pipe's only",
+          "GROUP, pipe_soil, TYPE=interface-quad4, MATERIAL=pipe_soil" in text
+          and "MATERIAL, pipe_soil, INTERFACE, KN=100, KS=50, PHI=15., PSI=15., C=0.05" in text
+          and "NSET, top_end_nodes, CSYS=3, R=600.:715., Z=3765., TOL=0.01, GROUP=top_pipe" in text)
+    # the interfaces' sliding and opening need the exact tangent with the line search (without it full
+    # Newton-Raphson cuts stage 2's first step back without end)
+    text = re.sub(r"CONTROLS, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4, DIVERGENCE=0.1",
+                  "CONTROLS, METHOD=full-newton-raphson, MAXIT=100, DELTA1=1e-8, LINESEARCH=energy", text)
+    with open(out, "w") as f:
+        f.write(text.replace("STAGE, s3, STEPS=100,", "STAGE, s3, STEPS=1,"))
+    h5 = os.path.join(tmp, "top_friction.h5")
+    got = run([feps, out, "--quiet", "--output", h5])
+    if got.returncode != 0:
+        check("--soil-around-top --interface frictional: the deck runs", False, got.stderr[-300:])
+        return
+    with h5py.File(h5) as f:
+        x = f["mesh/coordinates"][...]
+        groups = {g: np.unique(f[f"mesh/groups/{g}/connectivity"][...]) for g in
+                  ("soil", "bottom_pipe", "packing", "top_pipe")}
+        conn = f["mesh/groups/pipe_soil/connectivity"][...]
+        last = f["steps"][sorted(f["steps"].keys())[-1]]
+        traction = last["interface/pipe_soil"][...].reshape(len(conn), 4, 4)
+        a = f["summary"].attrs
+        res = [float(a[f"joint_design_{k}"]) for k in keys]
+        converged = int(a["converged"])
+    solid = np.concatenate([groups["bottom_pipe"], groups["packing"], groups["top_pipe"]])
+    radius = np.hypot(x[conn - 1, 0], x[conn - 1, 1])
+    check(f"... mesh: {len(conn)} interface elements = 18 x (19 + 2 + 31) on r = 715, lower layer on the pipes and "
+          "packing, upper on the soil; no node shared by the soil and a pipe",
+          len(conn) == 18 * 52 and abs(radius - 715.0).max() < 1e-9 and np.isin(conn[:, :4], solid).all()
+          and np.isin(conn[:, 4:], groups["soil"]).all() and not np.isin(groups["soil"], solid).any())
+    lower = x[conn[:, :4] - 1]
+    area = np.linalg.norm(lower[:, 1] - lower[:, 0], axis=1) * np.linalg.norm(lower[:, 3] - lower[:, 0], axis=1)
+    top = lower[:, :, 2].mean(axis=1) > 1250.0
+    friction = float((traction[top, :, 1].sum(axis=1) * area[top] / 4.0).sum())
+    sines = sum(math.sin(math.radians(d)) for d in [3.0] * 4 + [12.0] * 14)
+    jacking = 10.0 * 0.5 * (715.0 ** 2 - 600.0 ** 2) * sines           # q on the faceted half annulus
+    share = 2.0 * friction / (2.0 * jacking)
+    check(f"... the top body's axial balance: P / 2 {res[3] / 2:.10g} + the interfaces' axial shear {friction:.10g} "
+          f"= q A / 2 {jacking:.10g} N (1e-7); the friction takes {100 * share:.1f}% of the jacking force, P "
+          f"{res[3]:.7g} N against the bonded soil's {bonded[3]:.7g}",
+          converged == 1 and abs((res[3] / 2 + friction) / jacking - 1) < 1e-7 and 0.0 < share < 0.5
+          and res[3] < 2 * jacking < bonded[3], f"{res}, {friction}, {jacking}")
 
 
 def main():

@@ -687,8 +687,10 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         "!   top'). Its only supports are the joint" + ("" if full else ", the symmetry plane")
         + " and the prescribed displacement of its upper end."]) if not soil_top else [
         f"! - top pipe: full length {L:g} (z = {z_top:g}..{z_top + L:g}), in soil as the bottom pipe (--soil-around-top; thesis",
-        f"!   6.2 has soil round the bottom pipe only): the same 4 layers from z = {z_joint:g} to {z_top + L:g}, bonded to the",
-        f"!   packing and the top pipe, one ground with the bottom's (its nodes at z = {z_joint:g}; the packing's lower",
+        f"!   6.2 has soil round the bottom pipe only): the same 4 layers from z = {z_joint:g} to {z_top + L:g}, "
+        + ("bonded to the" if pipe_soil is None else "through the"),
+        ("!   packing and the top pipe" if pipe_soil is None else "!   same interfaces on the packing and the top pipe")
+        + f", one ground with the bottom's (its nodes at z = {z_joint:g}; the packing's lower",
         "!   outer edge, on the interface, is not the soil's)."]) + [
         f"! - concrete E = 40000, nu = 0.2; soil E = {soil_E:g}, nu = {nu_s:g} (thesis 6.1{'' if soil_E == 144.0 else ': E = 144'}); "
         + soil_law,

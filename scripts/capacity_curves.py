@@ -17,9 +17,10 @@ full Newton-Raphson. Two runs of each deck:
   the pipes first reaches FT (linear between the two steps that straddle it; 0 when the seating
   load already cracks them: "at seating");
 - cracking pipes (`--concrete FT FC GF`: CONCRETE, isotropic damage, Matsuoka-Nakai in
-  compression with PHI = PSI = 35): the force at **failure** is the last converged step's under
-  load control (the run stops where no step converges after the cut-backs: the limit load), or
-  "> q-max" when every step converged.
+  compression with PHI = PSI = 35): the force at **failure** is that of the last state in
+  equilibrium, which feps's stop line names (the run stops where a step does not converge after
+  its cut-backs: under load control the limit load; while the misalignment is imposed, where the
+  cracking pipe can no longer follow it), or "> q-max" when every step converged.
 
 The **Australian model** (thesis 7.2.1, `feps joint`: the library's model) gives the joint's
 largest normal stress sigma_max for a load P and deflection beta; its allowable force is the P at
@@ -101,11 +102,19 @@ def first_cracking(h5, ft, scale):
 
 
 def failure(stop, progress, q_max, seat, area):
-    """Force at failure: the last fully converged step's, from the progress lines (a failed run
-    writes no results; a cut-back step's accepted part is left out, so this is low by at most one
-    step), or inf when the run went through (stop None)."""
+    """Force at failure: the last state in equilibrium, which the stop line names ("stage NAME,
+    step k, load factor X": X is the completed stages plus the fraction of this one, the accepted
+    parts of the cut-back step included), else the last fully converged step's, from the progress
+    lines (a failed run writes no results; low by at most one step); inf when the run went through
+    (stop None)."""
     if stop is None:
         return math.inf
+    m = re.search(r"stage (seat|jack), step \d+, load factor ([0-9.Ee+-]+)", stop)
+    last = re.search(r"last state in equilibrium: load factor ([0-9.Ee+-]+)", stop)
+    if m:
+        fraction = float((last or m).group(1 if last else 2)) % 1.0
+        q = seat * q_max * fraction if m.group(1) == "seat" else seat * q_max + (1.0 - seat) * q_max * fraction
+        return q * area
     names = re.findall(r"^stage (\w+): \d+ steps", progress, re.M)   # in order (a geostatic stage first)
     q = 0.0
     for line in progress.splitlines():
@@ -138,6 +147,30 @@ def australian_allowable(feps, beta, a, E_p, geom, sigma_allow):
         if hi / lo < 1.0 + 1e-6:
             break
     return hi
+
+
+def plot(rows, sigma_allow, path):
+    """Force against beta, one colour per packing: first cracking, failure, the Australian force."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for k, G in enumerate(sorted({r["G_p"] for r in rows})):
+        sel = [r for r in rows if r["G_p"] == G]
+        b = [r["beta_deg"] for r in sel]
+        colour = f"C{k}"
+        ax.plot(b, [r["first_cracking_N"] / 1e3 if math.isfinite(r["first_cracking_N"]) else np.nan for r in sel],
+                "o-", color=colour, label=f"G_p {G:g}: first crack")
+        ax.plot(b, [r["failure_N"] / 1e3 if math.isfinite(r["failure_N"]) else np.nan for r in sel], "s--",
+                color=colour, label=f"G_p {G:g}: failure")
+        ax.plot(b, [r["australian_allowable_N"] / 1e3 for r in sel], ":", color=colour,
+                label=f"G_p {G:g}: Australian, {sigma_allow:g} MPa")
+    ax.set_xlabel("misalignment beta (deg)")
+    ax.set_ylabel("jacking force (kN)")
+    ax.set_yscale("log")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=150)
 
 
 def main():
@@ -213,24 +246,7 @@ def main():
         w.writeheader()
         w.writerows(rows)
     if args.plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(7, 4.5))
-        for k, G in enumerate(floats(args.packing_G)):
-            sel = [r for r in rows if r["G_p"] == G]
-            b = [r["beta_deg"] for r in sel]
-            colour = f"C{k}"
-            ax.plot(b, [r["first_cracking_N"] / 1e3 for r in sel], "o-", color=colour, label=f"G_p {G:g}: first crack")
-            ax.plot(b, [r["failure_N"] / 1e3 if math.isfinite(r["failure_N"]) else np.nan for r in sel], "s--",
-                    color=colour, label=f"G_p {G:g}: failure")
-            ax.plot(b, [r["australian_allowable_N"] / 1e3 for r in sel], ":", color=colour,
-                    label=f"G_p {G:g}: Australian, {sigma_allow:g} MPa")
-        ax.set_xlabel("misalignment beta (deg)")
-        ax.set_ylabel("jacking force (kN)")
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        fig.savefig(args.plot, dpi=150)
+        plot(rows, sigma_allow, args.plot)
     return 0
 
 

@@ -22,7 +22,9 @@
   move against the soil-round-the-bottom deck's as the bonded soil's restraint says
   (docs/verification.md, "Soil round the top pipe (issue 26 item 4)"); with --interface frictional
   the soil meets the pipes and packing through interfaces only, and the top body's axial balance
-  holds (the jacking force = the joint's normal force + the interfaces' axial shear, 1e-7);
+  holds (the jacking force = the joint's normal force + the interfaces' axial shear, 1e-7), also
+  in the ground's weight with cohesionless interfaces (c = 0), whose in-situ normal force on the
+  top body is Ripley's estimate's to 3 %;
 - bad options stop with exit status 2 naming the option.
 
     python3 test/cli/check_pipe_joint.py --feps FEPS --tmp FOLDER
@@ -380,54 +382,87 @@ def pipe_soil(tmp, feps, gen, bonded, keys):
     plus the axial shear of its interfaces with the soil, summed here from the interface points'
     tau2 (e2 along +z) and weights (each element a rectangle on the faceted surface: a quarter of
     its area a point); the friction takes a share of the jacking force, where the bonded soil added
-    to it (diagonal())."""
-    out = gen("top_friction.dat", "--soil-around-top", "--interface", "frictional", "--theta-step", "12",
-              "--wall-elements", "1", "--steps", "2", "--angle", "0.27")
+    to it (diagonal()). Then the same joint in the ground's weight with cohesionless interfaces
+    (c = 0): the GEOSTATIC stage's normal stress on the top body against Ripley's estimate."""
+    common = ["--soil-around-top", "--interface", "frictional", "--theta-step", "12", "--wall-elements", "1"]
+    out = gen("top_friction.dat", *common, "--steps", "2", "--angle", "0.27")
     text = open(out).read() if out else ""
     check("--interface frictional (model C): group pipe_soil of interface-quad4 with model B's interface law "
           "(Ks = 50 E_s / 144, Kn = 2 Ks, phi = 15, c = 0.05), the top end's nodes the pipe's only",
           "GROUP, pipe_soil, TYPE=interface-quad4, MATERIAL=pipe_soil" in text
           and "MATERIAL, pipe_soil, INTERFACE, KN=100, KS=50, PHI=15., PSI=15., C=0.05" in text
           and "NSET, top_end_nodes, CSYS=3, R=600.:715., Z=3765., TOL=0.01, GROUP=top_pipe" in text)
-    # the interfaces' sliding and opening need the exact tangent with the line search (without it full
-    # Newton-Raphson cuts stage 2's first step back without end)
-    text = re.sub(r"CONTROLS, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4, DIVERGENCE=0.1",
-                  "CONTROLS, METHOD=full-newton-raphson, MAXIT=100, DELTA1=1e-8, LINESEARCH=energy", text)
-    with open(out, "w") as f:
-        f.write(text.replace("STAGE, s3, STEPS=100,", "STAGE, s3, STEPS=1,"))
-    h5 = os.path.join(tmp, "top_friction.h5")
-    got = run([feps, out, "--quiet", "--output", h5])
-    if got.returncode != 0:
-        check("--soil-around-top --interface frictional: the deck runs", False, got.stderr[-300:])
+    res, sums, mesh = joint_with_friction(tmp, feps, out, "1e-8", keys)
+    if res is None:
         return
-    with h5py.File(h5) as f:
-        x = f["mesh/coordinates"][...]
-        groups = {g: np.unique(f[f"mesh/groups/{g}/connectivity"][...]) for g in
-                  ("soil", "bottom_pipe", "packing", "top_pipe")}
-        conn = f["mesh/groups/pipe_soil/connectivity"][...]
-        last = f["steps"][sorted(f["steps"].keys())[-1]]
-        traction = last["interface/pipe_soil"][...].reshape(len(conn), 4, 4)
-        a = f["summary"].attrs
-        res = [float(a[f"joint_design_{k}"]) for k in keys]
-        converged = int(a["converged"])
+    x, conn, groups = mesh
     solid = np.concatenate([groups["bottom_pipe"], groups["packing"], groups["top_pipe"]])
     radius = np.hypot(x[conn - 1, 0], x[conn - 1, 1])
     check(f"... mesh: {len(conn)} interface elements = 18 x (19 + 2 + 31) on r = 715, lower layer on the pipes and "
           "packing, upper on the soil; no node shared by the soil and a pipe",
           len(conn) == 18 * 52 and abs(radius - 715.0).max() < 1e-9 and np.isin(conn[:, :4], solid).all()
           and np.isin(conn[:, 4:], groups["soil"]).all() and not np.isin(groups["soil"], solid).any())
-    lower = x[conn[:, :4] - 1]
-    area = np.linalg.norm(lower[:, 1] - lower[:, 0], axis=1) * np.linalg.norm(lower[:, 3] - lower[:, 0], axis=1)
-    top = lower[:, :, 2].mean(axis=1) > 1250.0
-    friction = float((traction[top, :, 1].sum(axis=1) * area[top] / 4.0).sum())
     sines = sum(math.sin(math.radians(d)) for d in [3.0] * 4 + [12.0] * 14)
     jacking = 10.0 * 0.5 * (715.0 ** 2 - 600.0 ** 2) * sines           # q on the faceted half annulus
-    share = 2.0 * friction / (2.0 * jacking)
+    friction = sums[-1][0]
+    share = friction / jacking
     check(f"... the top body's axial balance: P / 2 {res[3] / 2:.10g} + the interfaces' axial shear {friction:.10g} "
           f"= q A / 2 {jacking:.10g} N (1e-7); the friction takes {100 * share:.1f}% of the jacking force, P "
           f"{res[3]:.7g} N against the bonded soil's {bonded[3]:.7g}",
-          converged == 1 and abs((res[3] / 2 + friction) / jacking - 1) < 1e-7 and 0.0 < share < 0.5
-          and res[3] < 2 * jacking < bonded[3], f"{res}, {friction}, {jacking}")
+          abs((res[3] / 2 + friction) / jacking - 1) < 1e-7 and 0.0 < share < 0.5 and res[3] < 2 * jacking < bonded[3],
+          f"{res}, {friction}, {jacking}")
+    # the ground's weight, 4 m of cover, c = 0: the in-situ stress closes the interfaces round both pipes
+    out = gen("top_friction_c0.dat", *common, "--steps", "4", "--angle", "0.09", "--gamma", "2e-5", "--k0", "0.5",
+              "--cover", "4000", "--soil-c", "0")
+    res, sums, _ = joint_with_friction(tmp, feps, out, "1e-6", keys) if out else (None, None, None)
+    if res is None:
+        return
+    # Ripley (thesis eq. 1.5.2): the K0 field round an undisturbed hole, integrated over the packing
+    # and the top pipe (2515 mm) of the half model: pi R (sigma_v + sigma_h) L / 2 at the axis's depth
+    sigma_v = 2e-5 * (4000.0 + 715.0)
+    ripley = math.pi * 715.0 * 1.5 * sigma_v * 2515.0 / 2.0
+    in_situ, (friction, _) = sums[0][1], sums[-1]
+    check(f"... in the ground's weight with c = 0 (GEOSTATIC, K0 0.5, 4 m of cover): the top body's interface normal "
+          f"force after the geostatic stage {in_situ:.7g} N = Ripley's pi R (sigma_v + sigma_h) L / 2 {ripley:.7g} N "
+          f"(3 %: the ground arches round the stiff pipe); jacked, P / 2 {res[3] / 2:.10g} + the skin friction "
+          f"{friction:.10g} = q A / 2 (1e-7)", abs(in_situ / ripley - 1.0) < 0.03
+          and abs((res[3] / 2 + friction) / jacking - 1) < 1e-7 and friction > 0.0, f"{in_situ}, {ripley}, {res}")
+
+
+def joint_with_friction(tmp, feps, deck, tolerance, keys):
+    """Run a --interface frictional deck of pipe_soil() to its end (full Newton-Raphson with the line
+    search to `tolerance`, one equilibrium step: the interfaces' sliding and opening need the exact
+    tangent with the line search; without it full Newton cuts stage 2's first step back without
+    end). Returns REPORT JOINT's `keys`, per result step the top body's (z > 1250) axial shear and
+    normal force on its pipe/soil interfaces (N), and the mesh; (None, None, None) when it fails."""
+    text = open(deck).read()
+    text = text.replace("CONTROLS, METHOD=initial-stiffness, MAXIT=10, DELTA1=1e-4, DIVERGENCE=0.1",
+                        f"CONTROLS, METHOD=full-newton-raphson, MAXIT=100, DELTA1={tolerance}, LINESEARCH=energy")
+    with open(deck, "w") as f:
+        f.write(text.replace("STAGE, s3, STEPS=100,", "STAGE, s3, STEPS=1,"))
+    h5 = deck[:-4] + ".h5"
+    got = run([feps, deck, "--quiet", "--output", h5])
+    if got.returncode != 0:
+        check(f"{os.path.basename(deck)}: the deck runs", False, got.stderr[-300:])
+        return None, None, None
+    with h5py.File(h5) as f:
+        x = f["mesh/coordinates"][...]
+        groups = {g: np.unique(f[f"mesh/groups/{g}/connectivity"][...]) for g in
+                  ("soil", "bottom_pipe", "packing", "top_pipe")}
+        conn = f["mesh/groups/pipe_soil/connectivity"][...]
+        lower = x[conn[:, :4] - 1]
+        area = np.linalg.norm(lower[:, 1] - lower[:, 0], axis=1) * np.linalg.norm(lower[:, 3] - lower[:, 0], axis=1)
+        top = lower[:, :, 2].mean(axis=1) > 1250.0
+        sums = []
+        for name in sorted(f["steps"].keys()):
+            traction = f["steps"][name]["interface/pipe_soil"][...].reshape(len(conn), 4, 4)[top]
+            sums.append((float((traction[:, :, 1].sum(axis=1) * area[top] / 4.0).sum()),
+                         float((-traction[:, :, 2].sum(axis=1) * area[top] / 4.0).sum())))
+        a = f["summary"].attrs
+        if int(a["converged"]) != 1:
+            check(f"{os.path.basename(deck)}: every stage converged", False)
+            return None, None, None
+        return [float(a[f"joint_design_{k}"]) for k in keys], sums, (x, conn, groups)
 
 
 def main():

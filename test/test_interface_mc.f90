@@ -212,11 +212,12 @@ contains
   !! and the nearest symmetric positive semi-definite matrix is S without its negative
   !! eigenvalue: l v v^T with l = (kn + sqrt(kn^2 + 4 a^2)) / 2, whose trace is l and whose
   !! determinant is 0. With psi = phi the tangent is symmetric and semi-definite and the
-  !! stand-in is the tangent itself. Tolerance 1e-12 relative.
+  !! stand-in is the tangent itself. The interface's own stand-in (`symmetric_stand_in`, what
+  !! the analysis factorizes) is that matrix without its coupling. Tolerance 1e-12 relative.
   subroutine test_psd_stand_in(error)
     type(error_t), allocatable, intent(out) :: error
     type(interface_mohr_coulomb_t) :: m
-    real(dp) :: sig(2), dt(2, 2), d(2, 2), kn, a, l
+    real(dp) :: sig(2), dt(2, 2), d(2, 2), psd(2, 2), kn, a, l
     integer :: st
     kn = 2000.0_dp
     m = make(kn, 1000.0_dp, 0.0_dp, 30.0_dp, 0.0_dp)
@@ -238,12 +239,28 @@ contains
     if (allocated(error)) return
     call check(error, d(1, 2) < 0.0_dp .and. d(1, 1) > 0.0_dp, 'coupling sign of S kept, shear stiffness gained')
     if (allocated(error)) return
+    ! the interface's own stand-in (what the analysis factorizes): that matrix without its
+    ! coupling, diag(l v1^2, l v2^2): trace l, a small shear stiffness along the slip
+    psd = d
+    d = dt
+    call m%symmetric_stand_in(d)
+    call check_vector(error, reshape(d, [4]), [psd(1, 1), 0.0_dp, 0.0_dp, psd(2, 2)], &
+                      'the interface''s stand-in: the nearest PSD matrix without its coupling', 1.0e-12_dp)
+    if (allocated(error)) return
+    call check(error, d(1, 1) > 0.0_dp .and. d(1, 1) < 0.2_dp * 1000.0_dp .and. d(2, 2) > 0.9_dp * kn, &
+               'a small shear stiffness along the slip (13% of ks at phi = 30), the normal nearly kn')
+    if (allocated(error)) return
     ! associated flow: the tangent is symmetric and semi-definite, the stand-in is itself
     m = make(kn, 1000.0_dp, 0.0_dp, 30.0_dp, 30.0_dp)
     call m%update([0.0_dp, -100.0_dp], [0.0_dp, -0.05_dp], [0.2_dp, -0.01_dp], state_elastic, sig, st, dt)
     d = dt
     call nearest_symmetric_psd(d)
     call check_vector(error, reshape(d, [4]), reshape(dt, [4]), 'psi = phi: unchanged', 1.0e-12_dp)
+    if (allocated(error)) return
+    d = dt
+    call m%symmetric_stand_in(d)
+    call check_vector(error, reshape(d, [4]), reshape(dt, [4]), 'psi = phi: the material''s stand-in unchanged', &
+                      1.0e-12_dp)
   end subroutine test_psd_stand_in
 
   !> SPEC sec2.3.4a on one point: kn = 2000, ks = 1000, tan phi = tan psi = 0.5, c = 0;

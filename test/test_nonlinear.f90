@@ -507,9 +507,8 @@ contains
   !! solution is homogeneous in the load), to 1e-10. An independent method, the elastic
   !! stiffness with BFGS updates (MAXIT = 400; it never factorizes a tangent), reaches the same
   !! interface stresses (to 1e-5 of the largest; both converged to DELTA1). Modified
-  !! Newton-Raphson factorizes the symmetric stand-in, which fails in step 2: after the cut-back
-  !! it retries with the elastic stiffness and carries the run through within its DIVERGENCE;
-  !! without cut-backs it stops, and its clear stop names both remedies.
+  !! Newton-Raphson factorizes the interface's symmetric stand-in and carries the run through
+  !! within its DIVERGENCE without a cut-back.
   subroutine test_non_dilatant_joint(error)
     type(error_t), allocatable, intent(out) :: error
     type(model_t) :: model
@@ -517,7 +516,6 @@ contains
     integer :: k
     type(analysis_summary_t) :: summary
     integer, parameter :: g = 5   ! if_up
-    character(len=:), allocatable :: msg
     real(dp) :: scale
     call read_deck('test/data/joint_psi0.dat', model, error)
     if (allocated(error)) return
@@ -547,18 +545,18 @@ contains
       if (allocated(error)) return
     end associate
 
-    ! Modified Newton-Raphson on the stand-in fails in step 2; its cut-back retries with the
-    ! elastic stiffness, which carries the run through, each step's unbalance within the
-    ! method's DIVERGENCE = 1e-2, so the stresses are within 1% of full Newton's (0.1-0.35%
-    ! measured).
+    ! Modified Newton-Raphson factorizes the interface's symmetric stand-in (the nearest positive
+    ! semi-definite matrix without its shear-normal blocks) and iterates through without a
+    ! cut-back, each step's unbalance within the method's DIVERGENCE = 1e-2, so the stresses are
+    ! within 1% of full Newton's (0.35% in step 1, 3e-6 later, measured). With the nearest
+    ! matrix itself it failed in step 2 and needed a cut-back to the elastic stiffness.
     call read_deck('test/data/joint_psi0.dat', model, error)
     if (allocated(error)) return
     model%stages(1)%controls%method = method_modified_newton_raphson
     call run_analysis(model, 'cholmod', mnr, summary, error)
     if (allocated(error)) return
-    call check(error, summary%cutbacks >= 1 .and. summary%factorizations >= 2, 'modified Newton-Raphson: ' // &
-               str(summary%cutbacks) // ' cut-backs and ' // str(summary%factorizations) // &
-               ' factorizations (a cut-back, then the elastic stiffness)')
+    call check(error, summary%cutbacks == 0, 'modified Newton-Raphson on the interface''s stand-in: ' // &
+               str(summary%cutbacks) // ' cut-backs')
     if (allocated(error)) return
     do k = 1, 4
       associate (sm => mnr%steps(k)%groups(g), sn => newton%steps(k)%groups(g))
@@ -569,18 +567,6 @@ contains
       end associate
     end do
 
-    ! Without cut-backs the stand-in's limit shows: a clear stop that names both remedies.
-    call read_deck('test/data/joint_psi0.dat', model, error)
-    if (allocated(error)) return
-    model%stages(1)%controls%method = method_modified_newton_raphson
-    model%stages(1)%controls%max_cutbacks = 0
-    call expect_clear_stop(model, bfgs, 'modified Newton-Raphson with psi = 0 and no cut-back converged: this ' // &
-                           'test no longer shows the stand-in''s limit', msg, error)
-    if (allocated(error)) return
-    call check(error, index(msg, 'non-symmetric (psi /= phi, or a gap closing)') > 0 .and. &
-               index(msg, 'METHOD=full-newton-raphson (exact tangent, LU)') > 0 .and. &
-               index(msg, 'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400') > 0, &
-               'the stop names the remedies: ' // msg)
   end subroutine test_non_dilatant_joint
 
   !> test/data/beam_tension_cap.dat: a plain-concrete cantilever pushed to 5 times its first

@@ -19,12 +19,12 @@ module feps_analysis_state
                            element_dofs, element_stiffness, element_strains, element_internal_force, &
                            scatter_element_matrix, rotate_matrix
   use feps_interface_orientation, only: check_interface_orientation
+  use feps_tangent_symmetry, only: nearest_symmetric_psd
   use feps_loads, only: resolve_face_sets, nodal_load_vector, to_equations
   use feps_material, only: material_slot_t
   use feps_material_params, only: material_error
   use feps_solid_element, only: solid_element_t
   use feps_point_state_store, only: point_state_store_t
-  use feps_tangent_symmetry, only: nearest_symmetric_psd
   use feps_solver_factory, only: new_linear_solver, new_lu_solver
   use feps_observer, only: observer_t
   use feps_equation_system, only: equation_system_t
@@ -759,9 +759,11 @@ contains
     type(error_t), allocatable :: lu_error
     integer :: ieq
     real(dp) :: t0
-    logical :: use_trial, nonsymmetric
+    logical :: use_trial, nonsymmetric, want_exact
     use_trial = .false.
     if (present(trial)) use_trial = trial
+    want_exact = .false.
+    if (present(exact)) want_exact = exact
     ! Non-symmetric points under full Newton: factorize the exact tangent (UMFPACK LU) and
     ! solve with it. Where it is singular (a body held only by faces sliding without
     ! dilation, a neutral equilibrium) the symmetric stand-in below is used instead.
@@ -796,8 +798,10 @@ contains
       an%eq%lu_singular = an%eq%lu_singular + 1
     end if
 
+    ! Full Newton whose exact tangent was singular takes the nearest positive semi-definite
+    ! matrices, which regularise it; the other methods each material's own stand-in.
     t0 = wall_clock()
-    call assemble_tangent(model, an, elastic, use_trial, .false., an%eq%a, nonsymmetric)
+    call assemble_tangent(model, an, elastic, use_trial, .false., an%eq%a, nonsymmetric, nearest=want_exact)
     summary%time_assembly = summary%time_assembly + wall_clock() - t0
     if (nonsymmetric) an%eq%symmetrized = .true.
 
@@ -861,20 +865,24 @@ contains
   end function any_nonsymmetric_tangent
 
   !> Assemble the tangent stiffness into `a`: the lower triangle with every non-symmetric point
-  !! tangent replaced by its nearest symmetric positive semi-definite stand-in, or (`exact`)
-  !! both triangles with the point tangents as they are. `nonsymmetric` tells whether any
-  !! point tangent was non-symmetric.
-  subroutine assemble_tangent(model, an, elastic, use_trial, exact, a, nonsymmetric)
+  !! tangent replaced by its material's symmetric stand-in (`symmetric_stand_in`; with
+  !! `nearest`, by the nearest symmetric positive semi-definite matrix), or (`exact`) both
+  !! triangles with the point tangents as they are. `nonsymmetric` tells whether any point
+  !! tangent was non-symmetric.
+  subroutine assemble_tangent(model, an, elastic, use_trial, exact, a, nonsymmetric, nearest)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     logical, intent(in) :: elastic, use_trial, exact
+    logical, intent(in), optional :: nearest
     type(csr_matrix_t), intent(inout) :: a
     logical, intent(out) :: nonsymmetric
     integer :: g, e, e0, e1, q, np, nn, nc
     real(dp), allocatable :: ke(:, :, :), d(:, :, :)
     integer, allocatable :: dofs(:, :)
-    logical :: from_states, found
+    logical :: from_states, found, psd
     nonsymmetric = .false.
+    psd = .false.
+    if (present(nearest)) psd = nearest
     a%val = 0.0_dp
     do g = 1, size(model%groups)
       if (.not. an%path%active(g)) cycle   ! not yet born: no stiffness
@@ -933,7 +941,12 @@ contains
             end if
             if (is_nonsymmetric(d(:, :, q))) then
               found = .true.
-              if (.not. exact) call nearest_symmetric_psd(d(:, :, q))
+              if (exact) cycle
+              if (psd) then
+                call nearest_symmetric_psd(d(:, :, q))
+              else
+                call an%materials(model%groups(g)%material)%m%symmetric_stand_in(d(:, :, q))
+              end if
             end if
           end do
           call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke)

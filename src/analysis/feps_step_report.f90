@@ -150,7 +150,7 @@ contains
       ! Non-associated flow: outside full Newton (which factorizes the exact tangent by LU) the
       ! factorized matrix is only a symmetric stand-in for the tangent, and as psi -> 0 the
       ! iterations stall (the 2D joint with psi = 0; docs/input-format.md, CONTROLS).
-      hint = hint // '; the tangent was non-symmetric (psi /= phi, or a gap closing) and only its nearest symmetric ' // &
+      hint = hint // '; the tangent was non-symmetric (psi /= phi, or a gap closing) and only a symmetric ' // &
         'stand-in was factorized: try STAGE ..., METHOD=full-newton-raphson (exact tangent, LU) or ' // &
         'METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400'
     end if

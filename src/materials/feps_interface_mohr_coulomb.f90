@@ -29,6 +29,7 @@ module feps_interface_mohr_coulomb
   use feps_model, only: material_spec_t
   use feps_material_params, only: check_known_keys, get_parameter, material_error
   use feps_material, only: material_t, state_elastic, state_plastic, state_open
+  use feps_tangent_symmetry, only: nearest_symmetric_psd
   implicit none
   private
 
@@ -56,6 +57,7 @@ module feps_interface_mohr_coulomb
     procedure :: update => mc_update
     procedure :: is_linear => mc_is_linear
     procedure :: symmetric_tangent => mc_symmetric_tangent
+    procedure :: symmetric_stand_in => mc_symmetric_stand_in
   end type interface_mohr_coulomb_t
 
 contains
@@ -233,6 +235,27 @@ contains
     class(interface_mohr_coulomb_t), intent(in) :: self
     mc_symmetric_tangent = self%psi == self%phi
   end function mc_symmetric_tangent
+
+  !> The symmetric stand-in of a non-associated (psi /= phi) tangent: the nearest symmetric
+  !! positive semi-definite matrix (the default) without its shear-normal couplings. That
+  !! matrix spreads the indefinite coupling of the friction to sigma_n (and of the dilation)
+  !! into both off-diagonal blocks; with them modified Euler diverged on cohesionless
+  !! interfaces under in-situ stress (docs/verification.md). Its diagonal blocks are positive
+  !! semi-definite, and so is the block-diagonal matrix; it keeps the small stiffness along the
+  !! slip (0.035 ks at phi = 15, psi = 0, kn = 2 ks) that holds a body held only by sliding
+  !! faces. Associated flow keeps the default (only a closing gap makes its tangent
+  !! non-symmetric).
+  subroutine mc_symmetric_stand_in(self, d)
+    class(interface_mohr_coulomb_t), intent(in) :: self
+    real(dp), intent(inout) :: d(:, :)
+    integer :: n
+    call nearest_symmetric_psd(d)
+    if (self%psi /= self%phi) then
+      n = size(d, 1)
+      d(1:n - 1, n) = 0.0_dp
+      d(n, 1:n - 1) = 0.0_dp
+    end if
+  end subroutine mc_symmetric_stand_in
 
   !> A Mohr-Coulomb interface from MATERIAL parameters KN, KS, PHI (required), C and PSI
   !! (default 0), angles in degrees. Checks kn > 0, ks >= 0 (0: full slip), c >= 0, 0 <= phi < 90 and

@@ -6,6 +6,7 @@ module feps_material
   use feps_kinds, only: dp
   use feps_model, only: material_params_t
   use feps_strings, only: sci
+  use feps_tangent_symmetry, only: nearest_symmetric_psd
   implicit none
   private
 
@@ -33,6 +34,7 @@ module feps_material
     procedure(update_interface), deferred :: update
     procedure(is_linear_interface), deferred :: is_linear
     procedure :: symmetric_tangent => material_symmetric_tangent
+    procedure :: symmetric_stand_in => material_symmetric_stand_in
     procedure :: state_note => material_state_note
     procedure :: state_size => material_state_size
     procedure :: section_area => material_section_area
@@ -93,6 +95,16 @@ contains
     class(material_t), intent(in) :: self
     material_symmetric_tangent = .true.
   end function material_symmetric_tangent
+
+  !> Replace a non-symmetric point tangent `d` by the symmetric matrix the symmetric solvers
+  !! factorize in its place: by default the nearest symmetric positive semi-definite one
+  !! (feps_tangent_symmetry). Only the iteration matrix changes, not the residual. A material
+  !! that knows a better stand-in for its own tangent overrides this.
+  subroutine material_symmetric_stand_in(self, d)
+    class(material_t), intent(in) :: self
+    real(dp), intent(inout) :: d(:, :)
+    call nearest_symmetric_psd(d)
+  end subroutine material_symmetric_stand_in
 
   !> A note for the user about points in `state` (empty: nothing to say). A material whose
   !! update is not smooth in some state overrides this to name the remedy.

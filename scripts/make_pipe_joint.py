@@ -1065,12 +1065,11 @@ def deck_of(a):
             raise ValueError(f"--{'full' if a.full else 'soil-around-top'} is model C's (two pipes, --packing > 0); "
                              "model B is a half model of one pipe in soil")
         kind = "F" if a.interface == "frictional" else ("P" if a.soil_phi else "S")
-        phi = a.soil_phi or 15.0
+        kn, ks, phi, psi_b, _ = pipe_soil_law(a, psi)
         force = a.jacking_force or (a.jacking_stress * math.pi * (p.r_out ** 2 - p.r_in ** 2) if a.jacking_stress
                                     else 2.0e6)
-        ks = 50.0 * a.soil_E / 144.0
-        return half_pipe_deck(kind, "E" if a.misalignment == "edge" else "D", a.soil_E, ks, 2.0 * ks, phi,
-                              phi if psi is None else psi, r_soil, a.refine, a.element, pipe=p, case=name,
+        return half_pipe_deck(kind, "E" if a.misalignment == "edge" else "D", a.soil_E, ks, kn, phi, psi_b, r_soil,
+                              a.refine, a.element, pipe=p, case=name,
                               soil_name=f"E_s = {a.soil_E:g} MPa", output=name, total=force / 2.0, steps=a.steps,
                               nu_s=a.soil_nu, c=a.soil_c, ground=ground)
     if not -1.0 < a.packing_nu < 0.5 or not 0.0 <= a.joint_psi <= a.joint_phi:
@@ -1089,14 +1088,13 @@ def deck_of(a):
                       rotation=45.0 if a.misalignment == "diagonal" else 0.0,
                       full=a.full or (a.misalignment == "diagonal" and a.gamma is not None),
                       soil_top=a.soil_around_top, capacity=None if a.capacity is None else (a.capacity, SEAT_STEPS),
-                      concrete=a.concrete, pipe_soil=pipe_soil_interface(a, psi))
+                      concrete=a.concrete, pipe_soil=pipe_soil_law(a, psi) if a.interface == "frictional" else None)
 
 
-def pipe_soil_interface(a, psi):
-    """Model C's pipe/soil interface (Kn, Ks, phi, psi, c) for --interface frictional, as model B's
-    (Ks = 50 E_s / 144, Kn = 2 Ks, phi = --soil-phi or 15 deg), or None (bonded)."""
-    if a.interface != "frictional":
-        return None
+def pipe_soil_law(a, psi):
+    """The pipe/soil interface (Kn, Ks, phi, psi, c) of --interface frictional, model B's and C's:
+    Ks = 50 E_s / 144, Kn = 2 Ks (the thesis's), phi = --soil-phi or 15 deg, psi = --soil-psi or
+    phi, c = --soil-c. (Model B's Matsuoka soil takes its phi and psi from here too.)"""
     ks, phi = 50.0 * a.soil_E / 144.0, a.soil_phi or 15.0
     return (2.0 * ks, ks, phi, phi if psi is None else psi, a.soil_c)
 

@@ -631,9 +631,9 @@ contains
     end if
     if (an%eq%symmetrized) call observer%progress('note: the tangent was non-symmetric at some points (non-' // &
                                                'associated flow, psi /= phi, or a gap closing within a step); ' // &
-                                               'a symmetric stand-in was factorized (the interfaces'' without ' // &
-                                               'the shear-normal coupling, else the nearest positive ' // &
-                                               'semi-definite matrix) and the exact residual iterated on')
+                                               'each material''s symmetric stand-in was factorized (by ' // &
+                                               'default the nearest positive semi-definite matrix) and the ' // &
+                                               'exact residual iterated on')
   end subroutine run_nonlinear_stages
 
   !> The layers of a GEOSTATIC stage's in-situ stress, checked before anything is solved (an

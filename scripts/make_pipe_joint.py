@@ -647,7 +647,9 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
     stride_r_b, stride_z_b = m.nt, m.nt * m.nr_bottom
     stride_r_t, stride_z_t = m.nt, m.nt * m.nr_top
     x_from = p.scaled_x(250.0)
-    soil_law = "all elastic." if phi_s is None else f"Matsuoka-Nakai phi = {phi_s:g}, psi = {psi_s:g}, c = {c_s:g}."
+    soil_law = ("all elastic." if phi_s is None else f"Matsuoka-Nakai phi = {phi_s:g}, psi = {psi_s:g}, c = {c_s:g}.") \
+        if concrete is None else ("pipes of CONCRETE (below), the rest elastic." if phi_s is None else
+                                  f"pipes of CONCRETE (below); soil phi = {phi_s:g}, psi = {psi_s:g}, c = {c_s:g}.")
     out = [
         f"! feps deck: numerical model C (thesis chapter 6), case {name}: packing G_p = {G:g} MPa,",
         f"! nu_p = {nu:g} (E_p = 2 G_p (1 + nu_p) = {E_p:g} MPa), misalignment beta = {beta:g} deg",
@@ -706,11 +708,14 @@ def joint_deck(G, nu, beta, r_soil=R_SOIL, steps=None, theta_step=THETA_STEP, so
         if not full else [
         "! - supports (thesis 6.2): soil outer surface fixed in x and y; z = 0 fixed in z.",
         f"! - loads: q = {q:.10g} MPa uniform on the top end; delta along theta = {rotation:g} deg on every node of the",
-        "!   top end (thesis 6.2: 'an equivalent displacement delta ... at the upper end'); free across it and in z."]) + [
+        "!   top end (thesis 6.2: 'an equivalent displacement delta ... at the upper end'); free across it and in z."]) + ([
         "!   Stage 1: 20% of q in 1 step, the end held at ux = 0 ('without rotation'); stage 2: the other 80%",
         f"!   and delta together in {steps} steps (thesis 6.3/6.4), initial stiffness, at most 10 iterations;",
         "!   stage 3: equilibrium iterations (see the solution controls below).",
-    ] + ([
+    ] if capacity is None else [
+        f"!   Stage seat: {capacity[0]:g} of q and delta together in {capacity[1]} steps; stage jack: the rest of q in",
+        f"!   {steps} steps, delta held; full Newton-Raphson (--capacity: see the solution controls below).",
+    ]) + ([
         f"! - mesh: hex8, {wall} elements through the wall; theta 4 x 3 deg at the loaded edge (theta = {rotation:g},",
         (f"!   x = +{ro:g}: sigma_max comes from the elements with theta < 6 deg, thesis 7.4.3), then " if rotation == 0.0
          else "!   the misalignment's direction: sigma_max comes from the elements within 6 deg of it), then ")

@@ -4,7 +4,7 @@ at failure against the misalignment angle and the packing's stiffness, beside th
 model's allowable force.
 
     python3 scripts/capacity_curves.py FEPS [--angles 0.05,0.1,0.2] [--packing-G 100,300,1000]
-        [--ft 4 --fc 40 --gf 0.1] [--allowable-stress MPa] [--q-max MPa] [--seat 0.05] [--steps 40]
+        [--ft 4 --fc 40 --gf N/mm] [--allowable-stress MPa] [--q-max MPa] [--seat 0.05] [--steps 40]
         [--outdir capacity] [--plot capacity.png] [-- GENERATOR OPTIONS]
 
 For every angle beta and packing G_p, scripts/make_pipe_joint.py writes the joint (model C: two
@@ -19,8 +19,9 @@ full Newton-Raphson. Two runs of each deck:
 - cracking pipes (`--concrete FT FC GF`: CONCRETE, isotropic damage, Matsuoka-Nakai in
   compression with PHI = PSI = 35): the force at **failure** is that of the last state in
   equilibrium, which feps's stop line names (the run stops where a step does not converge after
-  its cut-backs: under load control the limit load; while the misalignment is imposed, where the
-  cracking pipe can no longer follow it), or "> q-max" when every step converged.
+  its cut-backs: under load control the limit of the load-controlled path; while the misalignment
+  is imposed, the onset of an unstable crack, whose place hangs on GF: docs/verification.md,
+  "What the seating stops are"), or "> q-max" when every step converged.
 
 The **Australian model** (thesis 7.2.1, `feps joint`: the library's model) gives the joint's
 largest normal stress sigma_max for a load P and deflection beta; its allowable force is the P at
@@ -47,7 +48,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from feps_results import components, open_result, steps  # noqa: E402
 
-from make_pipe_joint import L_PIPE, PACKING, R_IN, R_OUT, SEAT_STEPS  # noqa: E402
+from make_pipe_joint import L_PIPE, PACKING, R_IN, R_OUT, SEAT_STEPS, model_code_gf  # noqa: E402
 
 PIPES = ("bottom_pipe", "top_pipe")
 
@@ -181,7 +182,8 @@ def main():
     ap.add_argument("--packing-nu", type=float, default=0.1)
     ap.add_argument("--ft", type=float, default=4.0, help="the concrete's tensile strength (MPa)")
     ap.add_argument("--fc", type=float, default=40.0, help="its compressive strength (MPa)")
-    ap.add_argument("--gf", type=float, default=0.1, help="its fracture energy (N/mm)")
+    ap.add_argument("--gf", type=float, help="its fracture energy (N/mm; default the fib Model Code 2010's "
+                    "0.073 FC^0.18)")
     ap.add_argument("--allowable-stress", type=float, help="the Australian model's allowable joint stress (MPa; "
                     "default FC / 2, an assumption)")
     ap.add_argument("--q-max", type=float, help="the largest jacking stress tried (MPa; default 1.2 FC: the "
@@ -197,6 +199,7 @@ def main():
     extra = argv[split + 1:]   # after --: make_pipe_joint.py's options (pipe, packing thickness, soil, mesh)
     feps = os.path.abspath(args.feps)
     sigma_allow = args.allowable_stress or args.fc / 2.0
+    args.gf = model_code_gf(args.fc) if args.gf is None else args.gf
     args.q_max = args.q_max or 1.2 * args.fc
     os.makedirs(args.outdir, exist_ok=True)
     gen = argparse.ArgumentParser(add_help=False)
@@ -209,6 +212,7 @@ def main():
     area = math.pi * (R * R - r * r)
     geom = {"L": known.pipe_length, "R": R, "r": r}
     rows = []
+    print(f"concrete FT = {args.ft:g}, FC = {args.fc:g} MPa, GF = {args.gf:.4g} N/mm; q up to {args.q_max:g} MPa")
     print(f"{'beta':>6} {'G_p':>6}  {'first cracking (kN)':>20}  {'failure (kN)':>14}  "
           f"{'Australian, sigma_max = ' + format(sigma_allow, 'g') + ' MPa (kN)':>40}  note")
     for G in floats(args.packing_G):

@@ -48,6 +48,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_chapter9 as ch9  # noqa: E402
+from make_pipe_joint import model_code_gf  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TABLE = os.path.join(os.path.dirname(ROOT), "shared", "benchmarks", "table8_lab.csv")
@@ -105,7 +106,7 @@ def deck(pipe, row, steps, travel, rough=False, contact=False, damage=None):
     """The deck of one pipe's test (the module's text gives every choice)."""
     fc = FC_PER_CUBE * cube(pipe)
     ft = FT_PER_FC * fc
-    gf = 0.073 * fc ** 0.18
+    gf = model_code_gf(fc)
     plate = row["load_type"]
     rebar = row["reinforcement"] == "yes"
     what = f"plate {plate}" + (", local reinforcement (RE1's hoops)" if rebar else "")

@@ -154,8 +154,8 @@ def generic(tmp, feps):
               "--steps", "40", "--concrete", "4", "40", "0.1")
     text = open(out).read() if out else ""
     check("--capacity 0.05 --concrete 4 40 0.1: stage seat (5 % of q and the misalignment, 5 steps), stage jack "
-          "(the rest, 40 steps), full Newton, the pipes' CONCRETE",
-          "CONTROLS, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-6\n" in text
+          "(the rest, 40 steps), full Newton with the line search, the pipes' CONCRETE",
+          "CONTROLS, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-6, LINESEARCH=energy\n" in text
           and "STAGE, seat, STEPS=5, LOAD=0.05, OUTPUT=1\nDISPLACE, top_end_nodes, X=4.3633\n" in text
           and "STAGE, jack, STEPS=40, LOAD=0.95, OUTPUT=1\n" in text and "STAGE, s2" not in text
           and "MATERIAL, concrete, CONCRETE, E=40000., NU=0.2, FT=4, FC=40, GF=0.1, PHI=35, PSI=35\n" in text)

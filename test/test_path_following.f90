@@ -38,20 +38,27 @@ contains
       new_unittest('softening bar: arc-length through the peak and down the closed-form softening line', &
                    test_softening_bar), &
       new_unittest('snap-back: the crack''s opening (NSET less FROM) followed, the top back on the closed form', &
-                   test_snap_back) &
+                   test_snap_back), &
+      new_unittest('softening bar: the tangent''s determinant positive up to the peak, negative past it', &
+                   test_softening_bar_stability) &
       ]
   end subroutine collect_path_following
 
-  !> Run deck `deck`, keeping every step written.
-  subroutine run_deck(deck, model, obs, summary, error)
+  !> Run deck `deck`, keeping every step written (CHOLMOD, or the solver named).
+  subroutine run_deck(deck, model, obs, summary, error, solver)
     character(len=*), intent(in) :: deck
     type(model_t), intent(out) :: model
     type(all_steps_t), intent(out) :: obs
     type(analysis_summary_t), intent(out) :: summary
     type(error_t), allocatable, intent(out) :: error
+    character(len=*), intent(in), optional :: solver
     call read_deck(deck, model, error)
     if (allocated(error)) return
-    call run_analysis(model, 'cholmod', obs, summary, error)
+    if (present(solver)) then
+      call run_analysis(model, solver, obs, summary, error)
+    else
+      call run_analysis(model, 'cholmod', obs, summary, error)
+    end if
   end subroutine run_deck
 
   !> The mean displacement in direction `dof` (1..3) of node set `name` at step i of obs.
@@ -202,6 +209,63 @@ contains
     call check(error, obs%steps(size(obs%steps))%load_factor * reference < 0.2_dp * area * ft, &
                'the load falls below a fifth of the peak')
   end subroutine test_softening_bar
+
+  !> test/data/crack_bar_arc.dat with the skyline solver, whose LDL^T factorizes the indefinite
+  !! tangent of the softening band (CHOLMOD's LL^T refuses it, and the path then takes the
+  !! elastic stiffness, whose sign says nothing). While the bar is elastic (u < u0) the tangent
+  !! is positive definite: every step's `tangent_sign` +1. Past the peak the load falls as u
+  !! grows, so the stretching mode's stiffness, E_t A / L with E_t = -f_t / (eps_u - eps_0), is
+  !! negative; the other modes of the cube shear it, and keep a positive stiffness while the
+  !! damaged shear modulus (1 - d) G = f_t (eps_u - eps) / (2 (eps_u - eps_0) eps) (nu = 0)
+  !! exceeds |E_t|, that is up to eps = eps_u / 3: there exactly one eigenvalue is negative, and
+  !! `tangent_sign` is -1. (Further down, more of the cube's modes soften and the parity may
+  !! change: feps writes the sign, not the count.) The same bar at nu = 0.2
+  !! (crack_bar_arc_nu.dat) has a non-symmetric softening tangent, factorized by UMFPACK's LU.
+  subroutine test_softening_bar_stability(error)
+    type(error_t), allocatable, intent(out) :: error
+    call check_bar_signs('test/data/crack_bar_arc.dat', 'skyline', 0.0_dp, error)
+    if (allocated(error)) return
+    call check_bar_signs('test/data/crack_bar_arc_nu.dat', 'cholmod', 0.2_dp, error)
+  end subroutine test_softening_bar_stability
+
+  !> One softening bar's signs (test_softening_bar_stability) with `solver`: the damaged shear
+  !! modulus (1 - d) E / (2 (1 + nu)) exceeds |E_t| up to eps = eps_u / (2 (1 + nu) + 1).
+  subroutine check_bar_signs(deck, solver, nu, error)
+    character(len=*), intent(in) :: deck, solver
+    real(dp), intent(in) :: nu
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: e = 30000.0_dp, length = 100.0_dp, ft = 2.97_dp, gf = 0.1_dp
+    type(model_t) :: model
+    type(all_steps_t) :: obs
+    type(analysis_summary_t) :: summary
+    real(dp) :: u0, uu, u
+    integer :: i, before, past
+    call run_deck(deck, model, obs, summary, error, solver=solver)
+    if (allocated(error)) return
+    u0 = ft * length / e
+    uu = 2.0_dp * gf / ft
+    before = 0
+    past = 0
+    associate (nodes => model%node_sets(model%find_node_set('top'))%nodes)
+      do i = 1, size(obs%steps)
+        u = sum(obs%steps(i)%displacement(3, nodes)) / size(nodes)
+        if (u < 0.999_dp * u0) then
+          call check(error, obs%steps(i)%tangent_sign, 1, deck // ' step ' // str(i) // ' (elastic, u = ' // &
+                     str(u) // '): the tangent''s determinant positive')
+          before = before + 1
+        else if (u > 1.001_dp * u0 .and. u < uu / (2.0_dp * (1.0_dp + nu) + 1.0_dp)) then
+          call check(error, obs%steps(i)%tangent_sign, -1, deck // ' step ' // str(i) // ' (softening, u = ' // &
+                     str(u) // '): one negative eigenvalue, the determinant negative')
+          past = past + 1
+        end if
+        if (allocated(error)) return
+      end do
+    end associate
+    call check(error, before >= 3 .and. past >= 4, deck // ': steps on both sides of the peak (' // str(before) // &
+               ', ' // str(past) // ')')
+    if (allocated(error) .or. nu == 0.0_dp) return
+    call check(error, summary%lu_factorizations > 0, deck // ': the non-symmetric tangent factorized by LU')
+  end subroutine check_bar_signs
 
   !> test/data/snap_back_bar.dat: the column's top displacement u at every step on the closed
   !! form against the load (to 1e-9 of the peak's u, L f_t / E), the crack's opening at each step

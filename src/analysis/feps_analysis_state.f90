@@ -768,6 +768,7 @@ contains
     ! solve with it. Where it is singular (a body held only by faces sliding without
     ! dilation, a neutral equilibrium) the symmetric stand-in below is used instead.
     an%eq%use_lu = .false.
+    an%eq%tangent_sign = 0
     nonsymmetric = .false.
     if (present(exact) .and. .not. elastic) then
       if (exact) nonsymmetric = any_nonsymmetric_tangent(model, an, use_trial)
@@ -786,6 +787,7 @@ contains
       summary%time_factorization = summary%time_factorization + wall_clock() - t0
       if (.not. allocated(lu_error)) then
         an%eq%use_lu = .true.
+        an%eq%tangent_sign = an%eq%lu%determinant_sign()
         summary%lu_factorizations = an%eq%lu%factorizations
         summary%lu_min_rcond = an%eq%lu_min_rcond()
         summary%factorizations = an%eq%solver%factorizations + an%eq%lu%factorizations
@@ -820,6 +822,8 @@ contains
       return
     end if
     summary%factorizations = an%eq%solver%factorizations + an%eq%lu%factorizations
+    ! the exact tangent itself, symmetric (a stand-in is no state's tangent)
+    if (want_exact .and. .not. elastic .and. .not. nonsymmetric) an%eq%tangent_sign = an%eq%solver%determinant_sign()
     if (.not. an%eq%warned_condition .and. an%eq%solver%min_pivot_ratio > 0.0_dp) then
       if (an%eq%solver%max_pivot_ratio / an%eq%solver%min_pivot_ratio > condition_warning) then
         an%eq%warned_condition = .true.

@@ -24,6 +24,10 @@ module feps_equation_system
     logical :: symmetrized = .false.                   !! some tangent was replaced by its symmetric stand-in
     logical :: warned_condition = .false.
     integer :: lu_singular = 0                         !! exact tangents found singular (the stand-in was used)
+    !> The sign of the determinant of the last matrix factorized when that was a state's exact
+    !! tangent (full Newton-Raphson's; set by factorize_tangent): +1, -1, or 0 when it was the
+    !! elastic stiffness, a symmetric stand-in, or its solver does not know the sign.
+    integer :: tangent_sign = 0
   contains
     procedure :: solve
     procedure :: lu_min_rcond

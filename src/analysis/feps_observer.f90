@@ -25,6 +25,9 @@ module feps_observer
     real(dp) :: load_factor = 0.0_dp         !! stage - 1 + fraction of the stage applied
     integer :: iterations = 0
     real(dp) :: residual = 0.0_dp            !! relative residual |R| / |P| at the end of the step
+    !> the sign of the determinant of the exact tangent last factorized in the step (full
+    !! Newton-Raphson): +1, -1 (an odd number of its eigenvalues below zero), 0 not known
+    integer :: tangent_sign = 0
     real(dp), allocatable :: displacement(:, :)  !! (3, nnode) global Cartesian
     real(dp), allocatable :: reaction(:, :)      !! (3, nnode) global Cartesian
     real(dp), allocatable :: applied_force(:, :) !! (3, nnode) external nodal forces applied so far

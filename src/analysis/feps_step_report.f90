@@ -246,6 +246,7 @@ contains
     res%load_factor = lf
     res%iterations = iters
     res%residual = rel
+    res%tangent_sign = an%eq%tangent_sign
     res%displacement = an%path%u
     res%applied_force = an%path%f_applied
     allocate (res%reaction(3, model%nnode), res%reaction_nodal(3, model%nnode))

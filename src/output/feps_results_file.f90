@@ -271,14 +271,16 @@ contains
     if (.not. allocated(error)) call write_string_attribute(group_id, 'xdmf_topology', info%xdmf_topology, error)
   end subroutine write_catalog_attributes
 
-  !> Group `/steps/<NNNN>` with attributes `load_factor`, `iterations` and `residual`.
-  subroutine begin_step(self, step, load_factor, iterations, residual, error)
+  !> Group `/steps/<NNNN>` with attributes `load_factor`, `iterations` and `residual`, and
+  !! `tangent_determinant_sign` where `tangent_sign` is given and not 0 (known).
+  subroutine begin_step(self, step, load_factor, iterations, residual, error, tangent_sign)
     class(results_file_t), intent(inout) :: self
     integer, intent(in) :: step
     real(dp), intent(in) :: load_factor
     integer, intent(in) :: iterations
     real(dp), intent(in) :: residual
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: tangent_sign   !! +1 or -1: the sign of the step's exact tangent's determinant
     integer(hid_t) :: group_id
     integer :: hdferr
     type(xdmf_step_t), allocatable :: grown(:)
@@ -309,6 +311,10 @@ contains
     call write_real_attribute(group_id, 'load_factor', load_factor, error)
     if (.not. allocated(error)) call write_int_attribute(group_id, 'iterations', iterations, error)
     if (.not. allocated(error)) call write_real_attribute(group_id, 'residual', residual, error)
+    if (present(tangent_sign)) then
+      if (tangent_sign /= 0 .and. .not. allocated(error)) &
+        call write_int_attribute(group_id, 'tangent_determinant_sign', tangent_sign, error)
+    end if
     call h5gclose_f(group_id, hdferr)
     if (allocated(error)) return
 

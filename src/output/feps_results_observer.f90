@@ -86,7 +86,8 @@ contains
     self%last_groups = res%groups
     self%steps_written = self%steps_written + 1
     associate (f => self%model%fields)
-      call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error)
+      call self%h5%begin_step(res%step, res%load_factor, res%iterations, res%residual, error, &
+                              tangent_sign=res%tangent_sign)
       if (f%on(field_displacement) .and. .not. allocated(error)) call write_field(field_displacement, res%displacement)
       if (f%on(field_reaction) .and. .not. allocated(error)) call write_field(field_reaction, res%reaction)
       if (f%on(field_applied_force) .and. .not. allocated(error)) call write_field(field_applied_force, res%applied_force)

@@ -35,6 +35,7 @@ module feps_cholmod_solver
     procedure :: factorize => cholmod_factorize
     procedure :: solve => cholmod_solve
     procedure :: name => cholmod_name
+    procedure :: determinant_sign => cholmod_determinant_sign
     procedure :: supervariables => cholmod_supervariables
     final :: cholmod_finalize
   end type cholmod_solver_t
@@ -174,6 +175,13 @@ contains
     character(len=:), allocatable :: name
     name = 'cholmod'
   end function cholmod_name
+
+  !> +1 after a factorization: LL^T, and a pivot not above pivot_tolerance fails it, so the
+  !! matrices it factorizes are positive definite; 0 without a factor.
+  pure integer function cholmod_determinant_sign(self)
+    class(cholmod_solver_t), intent(in) :: self
+    cholmod_determinant_sign = merge(1, 0, self%factorized)
+  end function cholmod_determinant_sign
 
   !> Vertices of the graph METIS ordered in the last analysis: the supervariables (groups of
   !! equations with identical pattern), or 0 if CHOLMOD's own ordering of the full graph was used.

@@ -26,6 +26,7 @@ module feps_linear_solver
     procedure(solve_interface), deferred :: solve
     procedure(name_interface), deferred :: name
     procedure :: zero_pivot_rule    !! what the solver takes for a zero pivot, for messages
+    procedure :: determinant_sign   !! the sign of the last factorized matrix's determinant, where known
   end type linear_solver_t
 
   abstract interface
@@ -75,5 +76,13 @@ contains
     character(len=:), allocatable :: text
     text = 'pivot below 1e-11 of its diagonal'
   end function zero_pivot_rule
+
+  !> The sign of the determinant of the matrix last factorized: +1, -1, or 0 where the solver
+  !! does not know it (the default). A solver that fails on every pivot not above
+  !! pivot_tolerance (CHOLMOD, skyline) factorizes positive definite matrices only: +1.
+  pure integer function determinant_sign(self)
+    class(linear_solver_t), intent(in) :: self
+    determinant_sign = 0
+  end function determinant_sign
 
 end module feps_linear_solver

@@ -28,6 +28,7 @@ module feps_skyline_solver
     integer(i8) :: matrix_nnz = 0           !! stored entries of the analysed pattern
     logical :: analyzed = .false.
     logical :: factorized = .false.
+    integer :: negative_pivots = 0          !! negative d_i of the last factorization (its negative eigenvalues)
     integer, allocatable :: perm(:)         !! perm(new) = old
     integer, allocatable :: iperm(:)        !! iperm(old) = new
     integer, allocatable :: first(:)        !! first row of each column (new numbering)
@@ -38,6 +39,7 @@ module feps_skyline_solver
     procedure :: factorize => skyline_factorize
     procedure :: solve => skyline_solve
     procedure :: name => skyline_name
+    procedure :: determinant_sign => skyline_determinant_sign
   end type skyline_solver_t
 
 contains
@@ -149,6 +151,7 @@ contains
       self%min_pivot_ratio = 1.0_dp
       self%max_pivot_ratio = 1.0_dp
     end if
+    self%negative_pivots = count(pivot < 0.0_dp)
     self%factorizations = self%factorizations + 1
     self%factorized = .true.
   end subroutine skyline_factorize
@@ -206,6 +209,15 @@ contains
     character(len=:), allocatable :: name
     name = 'skyline'
   end function skyline_name
+
+  !> The sign of det D = det A after a factorization, from the pivots' signs (Sylvester: as many
+  !! negative pivots as negative eigenvalues); only a matrix with a negative diagonal entry
+  !! passes pivot_tolerance with a negative pivot. 0 without a factor.
+  pure integer function skyline_determinant_sign(self)
+    class(skyline_solver_t), intent(in) :: self
+    skyline_determinant_sign = 0
+    if (self%factorized) skyline_determinant_sign = merge(-1, 1, mod(self%negative_pivots, 2) == 1)
+  end function skyline_determinant_sign
 
   !> Zero the profile and add the entries of `a` at their permuted positions.
   subroutine scatter_matrix(self, a, error)

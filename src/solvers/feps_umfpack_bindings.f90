@@ -6,7 +6,7 @@ module feps_umfpack_bindings
   private
 
   public :: feps_umf_create, feps_umf_free, feps_umf_factorize, feps_umf_solve, feps_umf_status, feps_umf_flops, &
-            feps_umf_rcond
+            feps_umf_rcond, feps_umf_determinant_sign
 
   !> Return codes of factorize and solve (must match the enum in the shim).
   integer(c_int), parameter, public :: umf_ok = 0          !! success
@@ -60,6 +60,13 @@ module feps_umfpack_bindings
       type(c_ptr), value :: handle
       real(c_double) :: rcond
     end function feps_umf_rcond
+
+    !> The sign of the last factorization's determinant: +1, -1, or 0 where UMFPACK gave none.
+    function feps_umf_determinant_sign(handle) result(sign) bind(C, name="feps_umf_determinant_sign")
+      import :: c_ptr, c_int
+      type(c_ptr), value :: handle
+      integer(c_int) :: sign
+    end function feps_umf_determinant_sign
 
     !> Floating-point operations of the last numeric factorization.
     function feps_umf_flops(handle) result(flops) bind(C, name="feps_umf_flops")

@@ -35,6 +35,7 @@ typedef struct {
     int status;               /* last UMFPACK status */
     double flops;             /* flops of the last numeric factorization */
     double rcond;             /* UMFPACK's reciprocal condition estimate of the last one */
+    int det_sign;             /* the sign of its determinant: +1, -1, 0 where not known */
 } feps_umf_handle;
 
 void *feps_umf_create(void)
@@ -116,7 +117,18 @@ int feps_umf_factorize(void *handle, int64_t n, const int64_t *row_ptr, const in
         if (h->numeric != NULL) umfpack_dl_free_numeric(&h->numeric);
         return FEPS_UMF_ERROR;
     }
+    /* det(A^T) = det(A): mantissa and exponent apart, so that it cannot overflow */
+    double mantissa = 0.0, exponent = 0.0;
+    h->det_sign = 0;
+    if (umfpack_dl_get_determinant(&mantissa, &exponent, h->numeric, h->info) == UMFPACK_OK)
+        h->det_sign = (mantissa > 0.0) - (mantissa < 0.0);
     return FEPS_UMF_OK;
+}
+
+/* The sign of the last numeric factorization's determinant (+1, -1; 0 where not known). */
+int feps_umf_determinant_sign(const void *handle)
+{
+    return handle == NULL ? 0 : ((const feps_umf_handle *)handle)->det_sign;
 }
 
 /* UMFPACK's reciprocal condition estimate of the last numeric factorization: min / max of

@@ -13,7 +13,8 @@ module feps_umfpack_solver
   use feps_sparse_matrix, only: csr_matrix_t
   use feps_linear_solver, only: linear_solver_t
   use feps_umfpack_bindings, only: feps_umf_create, feps_umf_free, feps_umf_factorize, feps_umf_solve, &
-                                   feps_umf_status, feps_umf_flops, feps_umf_rcond, umf_ok, umf_singular
+                                   feps_umf_status, feps_umf_flops, feps_umf_rcond, feps_umf_determinant_sign, &
+                                   umf_ok, umf_singular
   implicit none
   private
 
@@ -29,11 +30,13 @@ module feps_umfpack_solver
     logical :: factorized = .false.    !! a valid factorization is held
     real(dp) :: rcond = 0.0_dp         !! UMFPACK's reciprocal condition estimate of the last factorization
     real(dp) :: min_rcond = huge(1.0_dp)   !! the smallest rcond of the factorizations kept
+    integer :: det_sign = 0            !! the sign of the last factorization's determinant (0: not known)
   contains
     procedure :: analyze => umfpack_analyze
     procedure :: factorize => umfpack_factorize
     procedure :: solve => umfpack_solve
     procedure :: name => umfpack_name
+    procedure :: determinant_sign => umfpack_determinant_sign
     final :: umfpack_finalize
   end type umfpack_solver_t
 
@@ -53,6 +56,14 @@ contains
     character(len=:), allocatable :: name
     name = 'umfpack'
   end function umfpack_name
+
+  !> The sign of the determinant of the last factorization (UMFPACK's, from the LU factors and
+  !! the row scaling): +1 or -1; 0 without a factor.
+  pure integer function umfpack_determinant_sign(self)
+    class(umfpack_solver_t), intent(in) :: self
+    umfpack_determinant_sign = 0
+    if (self%factorized) umfpack_determinant_sign = self%det_sign
+  end function umfpack_determinant_sign
 
   !> LU factorization of the full matrix `a`; a singular matrix (a zero pivot, or a reciprocal
   !! condition estimate below lu_singular_rcond) fails with err_model.
@@ -86,6 +97,7 @@ contains
     self%factorized = .true.
     self%factorizations = self%factorizations + 1
     self%min_rcond = min(self%min_rcond, self%rcond)
+    self%det_sign = int(feps_umf_determinant_sign(self%handle))
   end subroutine umfpack_factorize
 
   !> Solve A x = b in place with the last factorization.

@@ -9,7 +9,8 @@ program feps_main
   use feps_paths, only: is_xdmf_name
   use feps_model, only: max_iterations_limit, max_total_steps
   use feps_files, only: report_file_size_limit
-  use feps_mumps_solver, only: mpi_built, mpi_start, mpi_stop, mumps_worker
+  use feps_mumps_solver, only: mpi_built, mpi_start, mpi_stop
+  use feps_parallel, only: silence_output
   use feps_blas, only: blas_description, choose_blas_kernels, factorization_threads, set_blas_threads
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
   use feps_element_table, only: element_table_lines
@@ -32,13 +33,10 @@ program feps_main
 
   call choose_blas_kernels()
   call set_threads()
-  ! MPI build: the ranks above 0 only take part in rank 0's MUMPS calls (feps_mumps_solver)
+  ! MPI build: every rank runs the same analysis, each on its own elements (feps_parallel);
+  ! the ranks above 0 print nothing and write no file, and all of them end with one status
   call mpi_start(rank, ranks)
-  if (rank > 0) then
-    status = mumps_worker()
-    call mpi_stop(status)
-    call c_exit(int(status, c_int))
-  end if
+  call silence_output()
   call report_file_size_limit()
   if (command_argument_count() >= 1) then
     if (argument(1) == 'joint') call leave(joint_command())
@@ -70,7 +68,7 @@ program feps_main
 
 contains
 
-  !> End the program with exit status `status`, the other MPI ranks with it.
+  !> End the program with exit status `status` (every MPI rank ends with the same).
   subroutine leave(status)
     integer, intent(in) :: status
     call mpi_stop(status)
@@ -530,6 +528,16 @@ contains
     end do
     write (output_unit, '(a)') 'ranks            ' // str(size(s%rank_memory_mb)) // &
       '; factorization memory per rank (MB):' // memory // '; factorization time per rank (s):' // time
+    if (.not. allocated(s%rank_elements)) return
+    memory = ''
+    time = ''
+    do r = 1, size(s%rank_elements)
+      memory = memory // ' ' // str(nint(s%rank_elements(r)))
+      write (buf, '(f0.2)') s%rank_element_seconds(r)
+      if (buf(1:1) == '.') buf = '0' // buf
+      time = time // ' ' // trim(buf)
+    end do
+    write (output_unit, '(a)') 'rank elements   ' // memory // '; assembly and update time per rank (s):' // time
   end subroutine print_ranks
 
   !> The summary of `feps --check`: the model's size and the solver's predictions.

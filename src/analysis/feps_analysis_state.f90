@@ -30,6 +30,9 @@ module feps_analysis_state
   use feps_equation_system, only: equation_system_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
   use feps_restart_data, only: restart_data_t
+  use feps_element_partition, only: element_partition_t, partition_elements
+  use feps_parallel, only: parallel_rank, parallel_ranks, sum_over_ranks, min_over_ranks, any_rank
+  use feps_linear_solver, only: linear_solver_t
   implicit none
   private
 
@@ -73,6 +76,7 @@ module feps_analysis_state
     type(group_state_t), allocatable :: states(:)
     type(linear_part_t) :: lin
     type(load_path_t) :: path
+    type(element_partition_t) :: part      !! this rank's elements (all of them on one rank)
   end type analysis_t
 
   !> Elements per chunk of the threaded element loops: their matrices (or forces) are made in
@@ -129,16 +133,102 @@ contains
     end if
     call check_later_supports(model, error)
     if (allocated(error)) return
-    call build_pattern(model, an%eq%map, an%eq%a)
-    if (allocated(an%eq%a_full%row_ptr)) deallocate (an%eq%a_full%row_ptr, an%eq%a_full%col, an%eq%a_full%val)
-    summary%matrix_nnz = an%eq%a%nnz()
     call new_linear_solver(solver_name, an%eq%solver, error)
     if (allocated(error)) return
     call new_lu_solver(solver_name, an%eq%lu)
     summary%solver = an%eq%solver%name()
+    call set_partition(model, an, error)
+    if (allocated(error)) return
+    call analyze_pattern(model, an, summary, error)
+  end subroutine set_up
+
+  !> The elements this rank works on: a block of each group's when the solver takes its matrix
+  !! from every rank (MUMPS on more than one rank), else all of them (feps_element_partition).
+  subroutine set_partition(model, an, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    type(error_t), allocatable, intent(out) :: error
+    integer :: g, largest
+    an%part = partition_elements([(size(model%groups(g)%connectivity, 2), g = 1, size(model%groups))], &
+                                 parallel_rank(), parallel_ranks(), &
+                                 an%eq%solver%takes_distributed_matrix() .and. an%eq%lu%takes_distributed_matrix())
+    if (.not. an%part%distributed) return
+    ! a rank's block of point states goes in one message, whose count is an int
+    do g = 1, size(model%groups)
+      largest = maxval(an%part%first(1:, g) - an%part%first(:an%part%ranks - 1, g))
+      if (real(largest, dp) * an%kernels(g)%npoints * an%kernels(g)%ncomp**2 >= real(huge(1), dp)) then
+        call fatal_error(error, err_model, model%deck_file // ': group ' // trim(model%groups(g)%name) // &
+                         ' has too many elements for ' // str(an%part%ranks) // ' ranks (a rank''s point ' // &
+                         'states are one message of at most 2**31 values): run it on more ranks')
+        return
+      end if
+    end do
+  end subroutine set_partition
+
+  !> The pattern of the stiffness for the current DOF map, and the solver's analysis of it (in an
+  !! element-partitioned run, of the entries this rank's elements give).
+  subroutine analyze_pattern(model, an, summary, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    type(analysis_summary_t), intent(inout) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    call build_pattern(model, an%eq%map, an%eq%a)
+    if (allocated(an%eq%a_full%row_ptr)) deallocate (an%eq%a_full%row_ptr, an%eq%a_full%col, an%eq%a_full%val)
+    summary%matrix_nnz = an%eq%a%nnz()
+    if (an%part%distributed) call an%eq%solver%set_local_entries(own_entries(model, an, an%eq%a, .false.))
     call an%eq%solver%analyze(an%eq%a, error)
     if (.not. allocated(error)) call check_factor_memory(model, an, error)
-  end subroutine set_up
+  end subroutine analyze_pattern
+
+  !> Both triangles of the stiffness's pattern, and the LU solver's analysis of it.
+  subroutine analyze_full_pattern(model, an, error)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: an
+    type(error_t), allocatable, intent(out) :: error
+    call full_pattern(an%eq%a, an%eq%a_full)
+    if (an%part%distributed) call an%eq%lu%set_local_entries(own_entries(model, an, an%eq%a_full, .true.))
+    call an%eq%lu%analyze(an%eq%a_full, error)
+  end subroutine analyze_full_pattern
+
+  !> The entries of `a` (lower triangle, or `both` triangles) that this rank's elements give.
+  function own_entries(model, an, a, both) result(own)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    type(csr_matrix_t), intent(in) :: a
+    logical, intent(in) :: both
+    logical, allocatable :: own(:)
+    type(csr_matrix_t) :: marks
+    real(dp), allocatable :: ones(:, :)
+    integer, allocatable :: dofs(:)
+    integer :: g, e
+    marks = a
+    marks%val = 0.0_dp
+    do g = 1, size(model%groups)
+      allocate (ones(3 * an%kernels(g)%nnodes, 3 * an%kernels(g)%nnodes), dofs(3 * an%kernels(g)%nnodes))
+      ones = 1.0_dp
+      do e = an%part%lo(g), an%part%hi(g)
+        call element_dofs(an%eq%map, model%groups(g)%connectivity(:, e), dofs)
+        call scatter_element_matrix(dofs, ones, marks, both_triangles=both)
+      end do
+      deallocate (ones, dofs)
+    end do
+    own = marks%val /= 0.0_dp
+  end function own_entries
+
+  !> A whole matrix held on every rank (restart data) as this rank's share of it: each entry
+  !! kept by the lowest rank whose elements give it, zero on the others, so that the solver's
+  !! sum over the ranks is the matrix.
+  subroutine keep_own_share(model, an, a, both)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    type(csr_matrix_t), intent(inout) :: a
+    logical, intent(in) :: both
+    integer, allocatable :: keeper(:)
+    if (.not. an%part%distributed) return
+    keeper = merge(an%part%rank, an%part%ranks, own_entries(model, an, a, both))
+    call min_over_ranks(keeper, size(keeper, kind=i8))
+    where (keeper /= an%part%rank) a%val = 0.0_dp
+  end subroutine keep_own_share
 
   !> A failed run (err_memory, exit status 1) when the memory the solver's analysis foresees for
   !! its factorization (memory_need_bytes: 8 bytes a factor nonzero, a lower bound, or the
@@ -221,11 +311,7 @@ contains
     end do
     an%eq%map = new
     summary%dofs = an%eq%map%neq
-    call build_pattern(model, an%eq%map, an%eq%a)
-    if (allocated(an%eq%a_full%row_ptr)) deallocate (an%eq%a_full%row_ptr, an%eq%a_full%col, an%eq%a_full%val)
-    summary%matrix_nnz = an%eq%a%nnz()
-    call an%eq%solver%analyze(an%eq%a, error)
-    if (.not. allocated(error)) call check_factor_memory(model, an, error)
+    call analyze_pattern(model, an, summary, error)
     if (allocated(error)) return
     if (.not. present(observer)) return
     if (nfreed > 0) then
@@ -653,7 +739,8 @@ contains
     integer :: g, e, e0, e1, np, nn, nc
     real(dp), allocatable :: fe(:, :)
     an%path%fint = 0.0_dp
-    call add_linear_forces(an, an%path%u_t, an%path%fint)
+    ! the linear part's forces once, on rank 0, when the ranks' forces are summed
+    if (an%part%rank == 0) call add_linear_forces(an, an%path%u_t, an%path%fint)
     do g = 1, size(model%groups)
       if (.not. an%states(g)%nonlinear .or. .not. an%path%active(g)) cycle
       np = an%kernels(g)%npoints
@@ -662,8 +749,8 @@ contains
       allocate (fe(3 * nn, force_chunk))
       associate (s => an%states(g), conn => model%groups(g)%connectivity)
         call s%impose(dps(g))
-        do e0 = 1, size(conn, 2), force_chunk
-          e1 = min(size(conn, 2), e0 + force_chunk - 1)
+        do e0 = an%part%lo(g), an%part%hi(g), force_chunk
+          e1 = min(an%part%hi(g), e0 + force_chunk - 1)
           !$omp parallel do schedule(static)
           do e = e0, e1
             call update_element(g, e, fe(:, e - e0 + 1))
@@ -676,6 +763,13 @@ contains
       end associate
       deallocate (fe)
     end do
+    if (an%part%distributed) then
+      call sum_over_ranks(an%path%fint, size(an%path%fint, kind=i8))
+      do g = 1, size(model%groups)
+        if (an%states(g)%nonlinear .and. an%path%active(g)) &
+          call an%part%share_trial(g, an%kernels(g)%npoints, an%states(g))
+      end do
+    end if
   contains
     !> Element e of group g: its points' trial states and its internal forces fe.
     subroutine update_element(g, e, fe)
@@ -776,8 +870,7 @@ contains
     if (nonsymmetric) then
       t0 = wall_clock()
       if (.not. allocated(an%eq%a_full%row_ptr)) then
-        call full_pattern(an%eq%a, an%eq%a_full)
-        call an%eq%lu%analyze(an%eq%a_full, error)
+        call analyze_full_pattern(model, an, error)
         if (allocated(error)) return
       end if
       call assemble_tangent(model, an, elastic, use_trial, .true., an%eq%a_full, nonsymmetric)
@@ -903,8 +996,8 @@ contains
         end if
         ! Element matrices of a chunk in parallel (threads), then added in element order: the
         ! matrix is bit-identical for any number of threads.
-        do e0 = 1, size(conn, 2), element_chunk
-          e1 = min(size(conn, 2), e0 + element_chunk - 1)
+        do e0 = an%part%lo(g), an%part%hi(g), element_chunk
+          e1 = min(an%part%hi(g), e0 + element_chunk - 1)
           found = .false.
           !$omp parallel do schedule(static) reduction(.or.:found)
           do e = e0, e1
@@ -919,6 +1012,7 @@ contains
       end associate
       deallocate (ke, d, dofs)
     end do
+    if (an%part%distributed) nonsymmetric = any_rank(nonsymmetric)
   contains
     !> Element e's matrix (in the nodal systems) and DOFs: from the elastic point matrices d, or
     !! (from_states) its points' tangents; found is set when one of them is non-symmetric.
@@ -1002,6 +1096,11 @@ contains
     end do
     data%a_val = an%eq%a%val
     if (allocated(an%eq%a_full%val)) data%a_full_val = an%eq%a_full%val
+    ! an element-partitioned run's ranks each hold their elements' share: the whole matrix
+    if (an%part%distributed) then
+      call sum_over_ranks(data%a_val, size(data%a_val, kind=i8))
+      if (allocated(data%a_full_val)) call sum_over_ranks(data%a_full_val, size(data%a_full_val, kind=i8))
+    end if
     data%use_lu = an%eq%use_lu
     data%symmetrized = an%eq%symmetrized
     data%warned_condition = an%eq%warned_condition
@@ -1033,11 +1132,7 @@ contains
       if (allocated(error)) return
       an%eq%map = map
       summary%dofs = an%eq%map%neq
-      call build_pattern(model, an%eq%map, an%eq%a)
-      if (allocated(an%eq%a_full%row_ptr)) deallocate (an%eq%a_full%row_ptr, an%eq%a_full%col, an%eq%a_full%val)
-      summary%matrix_nnz = an%eq%a%nnz()
-      call an%eq%solver%analyze(an%eq%a, error)
-      if (.not. allocated(error)) call check_factor_memory(model, an, error)
+      call analyze_pattern(model, an, summary, error)
       if (allocated(error)) return
     end if
     if (size(data%a_val) /= size(an%eq%a%val) .or. size(data%active) /= size(an%path%active) .or. &
@@ -1057,16 +1152,17 @@ contains
       an%states(g)%point_state_store_t = data%states(g)
     end do
     an%eq%a%val = data%a_val
+    call keep_own_share(model, an, an%eq%a, .false.)
     if (data%solver_factorizations > 0) then
       call an%eq%solver%factorize(an%eq%a, error)
       if (allocated(error)) return
     end if
     an%eq%solver%factorizations = data%solver_factorizations
     if (allocated(data%a_full_val)) then
-      call full_pattern(an%eq%a, an%eq%a_full)
-      call an%eq%lu%analyze(an%eq%a_full, error)
+      call analyze_full_pattern(model, an, error)
       if (allocated(error)) return
       an%eq%a_full%val = data%a_full_val
+      call keep_own_share(model, an, an%eq%a_full, .true.)
       if (data%use_lu) then
         call an%eq%lu%factorize(an%eq%a_full, error)
         if (allocated(error)) return

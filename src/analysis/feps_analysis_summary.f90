@@ -47,6 +47,8 @@ module feps_analysis_summary
     integer(i8), allocatable :: state_bytes(:)  !! per group: bytes of point state (0: elastic, none kept)
     real(dp), allocatable :: rank_memory_mb(:)       !! MUMPS over MPI: each rank's largest factorization memory (MB)
     real(dp), allocatable :: rank_factor_seconds(:)  !! and its time in the factorizations (s)
+    real(dp), allocatable :: rank_elements(:)        !! element-partitioned run: each rank's elements
+    real(dp), allocatable :: rank_element_seconds(:) !! and its time assembling and updating them (s)
   end type analysis_summary_t
 
   !> Above this max/min pivot ratio the results may have lost digits: say so.

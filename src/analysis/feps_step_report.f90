@@ -13,6 +13,7 @@ module feps_step_report
   use feps_material, only: state_open, state_elastic, state_tension
   use feps_observer, only: observer_t, step_result_t, group_result_t
   use feps_analysis_state, only: analysis_t, support_reaction, support_reaction_nodal
+  use feps_parallel, only: share_root_error
   implicit none
   private
 
@@ -275,6 +276,7 @@ contains
     call check_finite_results(model, res, error)
     if (allocated(error)) return
     call observer%write_step(res, error)
+    call share_root_error(error)   ! rank 0 writes: every rank stops where it fails
   end subroutine report_step
 
   !> Never hand over a step with a result that left double precision (NaN or Infinity in a

@@ -52,12 +52,14 @@ module feps_results_file
     integer(hid_t) :: link_plist = -1            ! creates missing intermediate groups
     logical :: is_open = .false.
     logical :: part_exists = .false.
+    logical :: silent = .false.                  ! writes nothing (`keep_silent`)
     integer :: node_count = 0                    ! 0 until write_mesh
     type(xdmf_group_t), allocatable :: groups(:)
     type(xdmf_step_t), allocatable :: steps(:)
     type(pending_cells_t), allocatable :: pending(:)  ! this step's element averages
   contains
     procedure :: create
+    procedure :: keep_silent
     procedure :: write_mesh
     procedure :: write_group
     procedure :: begin_step
@@ -93,6 +95,13 @@ contains
     if (len(name) < 4) name = repeat('0', 4 - len(name)) // name
   end function step_group_name
 
+  !> From now on write nothing and touch no file, every call succeeding: the ranks above 0 of an
+  !! MPI run, which compute what rank 0 does and leave the writing to it.
+  subroutine keep_silent(self)
+    class(results_file_t), intent(inout) :: self
+    self%silent = .true.
+  end subroutine keep_silent
+
   !> Start a results file: HDF5 file `path // '.part'`, renamed to `path` by `close`.
   subroutine create(self, path, error)
     class(results_file_t), intent(inout) :: self
@@ -100,6 +109,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer :: hdferr
 
+    if (self%silent) return
     if (self%is_open) then
       call fatal_error(error, err_internal, 'results file ' // self%path // ' is already open')
       return
@@ -155,6 +165,7 @@ contains
     real(dp), intent(in) :: coordinates(:, :)
     type(error_t), allocatable, intent(out) :: error
 
+    if (self%silent) return
     call require_open(self, error)
     if (allocated(error)) return
     if (size(coordinates, 1) /= 3) then
@@ -199,6 +210,7 @@ contains
     type(error_t), allocatable :: unknown
     real(dp), allocatable :: xg(:, :)
 
+    if (self%silent) return
     call require_open(self, error)
     if (allocated(error)) return
     call check_name(name, 'element group', error)
@@ -285,6 +297,7 @@ contains
     integer :: hdferr
     type(xdmf_step_t), allocatable :: grown(:)
 
+    if (self%silent) return
     call require_open(self, error)
     if (allocated(error)) return
     call flush_cells(self, error)
@@ -340,6 +353,7 @@ contains
     integer :: istep
     character(len=:), allocatable :: dataset, owner
 
+    if (self%silent) return
     call require_step(self, step, istep, error)
     if (allocated(error)) return
     call check_name(name, 'nodal field', error)
@@ -384,6 +398,7 @@ contains
     character(len=:), allocatable :: dataset, cell_dataset
     real(dp), allocatable :: averages(:, :)
 
+    if (self%silent) return
     call require_step(self, step, istep, error)
     if (allocated(error)) return
     call check_name(kind, 'Gauss-point field', error)
@@ -527,6 +542,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(hid_t) :: group_id
     integer :: hdferr
+    if (self%silent) return
     call open_summary(self, key, group_id, error)
     if (allocated(error)) return
     call write_string_attribute(group_id, key, value, error)
@@ -541,6 +557,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(hid_t) :: group_id
     integer :: hdferr
+    if (self%silent) return
     call refuse_non_finite_attribute('/summary', key, value, error)
     if (allocated(error)) return
     call open_summary(self, key, group_id, error)
@@ -559,6 +576,7 @@ contains
     integer(hid_t) :: group_id, space_id, attribute_id
     integer(hsize_t) :: dims(1)
     integer :: hdferr, ignored, i
+    if (self%silent) return
     do i = 1, size(values)
       call refuse_non_finite_attribute('/summary', key, values(i), error)
       if (allocated(error)) return
@@ -588,6 +606,7 @@ contains
     integer(hid_t) :: group_id
     integer :: hdferr2
 
+    if (self%silent) return
     call open_summary(self, key, group_id, error)
     if (allocated(error)) return
     call write_int8_attribute(group_id, key, value, error)
@@ -604,6 +623,7 @@ contains
     integer(hid_t) :: group_id
     integer :: hdferr
 
+    if (self%silent) return
     call open_mesh_group(self, name, group_id, error)
     if (allocated(error)) return
     call write_int8_attribute(group_id, key, value, error)
@@ -620,6 +640,7 @@ contains
     integer(hid_t) :: group_id
     integer :: hdferr
 
+    if (self%silent) return
     call refuse_non_finite_attribute('/mesh/groups/' // name, key, value, error)
     if (allocated(error)) return
     call open_mesh_group(self, name, group_id, error)
@@ -642,6 +663,7 @@ contains
     integer(hid_t) :: id
     integer :: hdferr
     character(len=:), allocatable :: path
+    if (self%silent) return
     call require_open(self, error)
     if (allocated(error)) return
     call check_name(name, kind // ' set', error)
@@ -685,6 +707,7 @@ contains
     integer(hid_t) :: group_id
     integer :: hdferr, i
 
+    if (self%silent) return
     call require_open(self, error)
     if (allocated(error)) return
     call check_name(name, 'material', error)
@@ -755,6 +778,7 @@ contains
     integer :: hdferr
     logical :: removed
 
+    if (self%silent) return
     call require_open(self, error)
     if (allocated(error)) return
     call flush_cells(self, error)
@@ -821,6 +845,7 @@ contains
     logical, intent(in), optional :: keep_earlier
     integer :: hdferr
     logical :: keep, removed
+    if (self%silent) return
     keep = .false.
     if (present(keep_earlier)) keep = keep_earlier
     if (self%is_open) call release_handles(self, hdferr)

@@ -25,6 +25,7 @@ module feps_program
   use feps_joint_report, only: joint_geometry_t, joint_summary_t, joint_geometry, joint_summary
   use feps_observer, only: group_result_t
   use feps_version, only: feps_release
+  use feps_parallel, only: parallel_rank, share_root_error
   use feps_mesh_only, only: mesh_jacobians, write_mesh_only, write_mesh
   implicit none
   private
@@ -132,7 +133,8 @@ contains
     if (model%mesh_only) then
       call mesh_jacobians(model, summary%min_jacobian, error)
       if (allocated(error)) return
-      if (len(output) > 0) call write_mesh_only(output, model, error)
+      if (len(output) > 0 .and. parallel_rank() == 0) call write_mesh_only(output, model, error)
+      call share_root_error(error)
       summary%wall_time = wall_clock() - t0
       return
     end if
@@ -182,14 +184,18 @@ contains
     end if
     obs%model => model
     if (present(sink)) obs%sink => sink
+    ! an MPI run's ranks above 0 compute all rank 0 does and write nothing (feps_parallel)
+    if (parallel_rank() > 0) call obs%h5%keep_silent()
     call obs%h5%create(output, error)
+    call share_root_error(error)
     if (allocated(error)) return
     obs%writing = .true.
-    if (model%restart_every > 0) then
+    if (model%restart_every > 0 .and. parallel_rank() == 0) then
       obs%restart_path = restart_file_name(output)
       summary%restart_file = obs%restart_path
     end if
     call write_mesh(obs%h5, model, error)
+    call share_root_error(error)
     if (.not. allocated(error)) then
       if (resuming .and. options%stop_after_step > 0) then
         call run_analysis(model, solver, obs, summary%analysis_summary_t, error, resume=resume, &
@@ -222,11 +228,13 @@ contains
       summary%group_elements(g) = size(model%groups(g)%connectivity, 2)
     end do
     call post_process(model, obs%last_displacement, obs%last_reaction, obs%last_groups, obs%h5, summary, error)
+    call share_root_error(error)
     if (allocated(error)) then
       call obs%h5%discard()
       return
     end if
     call write_sets(obs%h5, model, error)
+    call share_root_error(error)
     if (allocated(error)) then
       call obs%h5%discard()
       return
@@ -234,6 +242,7 @@ contains
     summary%wall_time = wall_clock() - t0
     call write_summary(obs%h5, model, summary, error)
     if (.not. allocated(error)) call obs%h5%close(error)
+    call share_root_error(error)
     if (allocated(error)) call obs%h5%discard()
   end subroutine run_feps
 
@@ -689,6 +698,10 @@ contains
       if (.not. allocated(error)) call h5%write_summary_reals('rank_memory_mb', summary%rank_memory_mb, error)
       if (.not. allocated(error)) call h5%write_summary_reals('rank_factorization_time', &
                                                               summary%rank_factor_seconds, error)
+    end if
+    if (.not. allocated(error) .and. allocated(summary%rank_elements)) then
+      call h5%write_summary_reals('rank_elements', summary%rank_elements, error)
+      if (.not. allocated(error)) call h5%write_summary_reals('rank_element_time', summary%rank_element_seconds, error)
     end if
     if (.not. allocated(error)) call h5%write_summary_int('matrix_nonzeros', summary%matrix_nnz, error)
     if (.not. allocated(error)) call h5%write_summary_real('time_assembly', summary%time_assembly, error)

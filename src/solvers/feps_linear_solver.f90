@@ -27,6 +27,8 @@ module feps_linear_solver
     procedure(name_interface), deferred :: name
     procedure :: zero_pivot_rule    !! what the solver takes for a zero pivot, for messages
     procedure :: determinant_sign   !! the sign of the last factorized matrix's determinant, where known
+    procedure :: takes_distributed_matrix  !! whether each rank may give only its elements' share of the matrix
+    procedure :: set_local_entries  !! which entries of the pattern this rank gives (before analyze)
   end type linear_solver_t
 
   abstract interface
@@ -84,5 +86,20 @@ contains
     class(linear_solver_t), intent(in) :: self
     determinant_sign = 0
   end function determinant_sign
+
+  !> Whether the solver takes the matrix as the sum of every MPI rank's share, each rank giving
+  !! the entries of its own elements (MUMPS on more than one rank): then the analysis
+  !! partitions the elements over the ranks. The default: one whole matrix, on this process.
+  logical function takes_distributed_matrix(self)
+    class(linear_solver_t), intent(in) :: self
+    takes_distributed_matrix = .false.
+  end function takes_distributed_matrix
+
+  !> Which entries of the next pattern to analyse this rank gives (`local`, one per entry of the
+  !! matrix's values); the solvers that take one whole matrix ignore it.
+  subroutine set_local_entries(self, local)
+    class(linear_solver_t), intent(inout) :: self
+    logical, intent(in) :: local(:)
+  end subroutine set_local_entries
 
 end module feps_linear_solver

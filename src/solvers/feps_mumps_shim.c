@@ -1,10 +1,11 @@
-/* MUMPS over MPI for feps (issue 29), master and workers.
+/* MUMPS over MPI for feps (issue 29).
  *
- * Rank 0 runs feps as always; the other ranks run only feps_mumps_worker(), which waits for rank
- * 0's commands and takes part in each MUMPS call (analysis, factorization, solve). The matrix
- * and the right-hand sides are given on rank 0 (MUMPS's centralised assembled input); MUMPS
- * distributes the factorization and the solves over every rank. So every driver, stage and
- * REPORT of feps works under MPI unchanged, and only rank 0 reads the deck, prints and writes.
+ * Every rank runs feps, the same analysis on the same replicated vectors, and makes each of
+ * these calls together with the others. On more than one rank each rank assembles only its own
+ * elements' share of the matrix and gives MUMPS those entries (distributed assembled input,
+ * ICNTL(18) = 3, which MUMPS sums); on one rank the matrix is whole (centralised input). The
+ * right-hand sides are rank 0's, and every rank gets the solution back. Only rank 0 prints and
+ * writes (feps_parallel).
  *
  * Built with MPI and MUMPS only when FEPS_MPI is defined (the MPI build, docs); otherwise every
  * function says that MPI is not there, and feps runs as one process. */
@@ -19,28 +20,36 @@ enum { MUMPS_OK = 0, MUMPS_NO_MPI = 1, MUMPS_BAD_INPUT = 2, MUMPS_FAILED = 3, MU
 #include <mpi.h>
 #include "dmumps_c.h"
 
-enum { CMD_END = 0, CMD_CREATE = 1, CMD_ANALYZE = 2, CMD_FACTORIZE = 3, CMD_SOLVE = 4, CMD_FREE = 5 };
 #define MAX_INSTANCES 16
 #define USE_COMM_WORLD -987654
 
 typedef struct {
     DMUMPS_STRUC_C id;
     int in_use;
-    MUMPS_INT *irn, *jcn;        /* rank 0: the pattern, 1-based (lower triangle) */
+    MUMPS_INT *irn, *jcn;        /* the pattern given, 1-based: whole on rank 0, or this rank's entries */
+    int64_t *pick;               /* distributed: the positions in the values of this rank's entries */
+    double *a_loc;               /* distributed: this rank's values, in the order of pick */
+    int distributed;
     double *rank_stats;          /* rank 0: per rank, the last factorization's memory (MB) and seconds */
 } instance;
 
 static instance instances[MAX_INSTANCES];
 static int started = 0, rank = 0, size = 1;
 
-static void command(int cmd, int which, int extra)
+static void release(instance *in)
 {
-    int message[3] = {cmd, which, extra};
-    if (size > 1) MPI_Bcast(message, 3, MPI_INT, 0, MPI_COMM_WORLD);
+    free(in->irn);
+    free(in->jcn);
+    free(in->pick);
+    free(in->a_loc);
+    in->irn = in->jcn = NULL;
+    in->pick = NULL;
+    in->a_loc = NULL;
 }
 
-/* The controls every rank gives MUMPS: quiet, centralised assembled input, dense centralised
- * right-hand side and solution, automatic ordering, null-pivot detection. */
+/* The controls every rank gives MUMPS: quiet, centralised assembled input (distributed where
+ * the analysis is given each rank's entries), dense centralised right-hand side and solution,
+ * automatic ordering, null-pivot detection. */
 static void set_controls(DMUMPS_STRUC_C *id)
 {
     id->icntl[0] = -1;           /* ICNTL(1) error messages: none (feps reports the errors) */
@@ -133,52 +142,28 @@ int feps_mpi_start(int *my_rank, int *ranks)
     return MUMPS_OK;
 }
 
+/* Every rank ends together (every rank reaches the end with the same status). */
 void feps_mpi_stop(int status)
 {
+    (void)status;
     if (!started) return;
-    if (rank == 0) {
-        for (int i = 0; i < MAX_INSTANCES; i++)
-            if (instances[i].in_use) {
-                command(CMD_FREE, i, 0);
-                free_on_all(i);
-                free(instances[i].irn);
-                free(instances[i].jcn);
-                instances[i].irn = instances[i].jcn = NULL;
-            }
-        command(CMD_END, 0, status);
-    }
+    for (int i = 0; i < MAX_INSTANCES; i++)
+        if (instances[i].in_use) {
+            free_on_all(i);
+            release(&instances[i]);
+        }
     MPI_Finalize();
     started = 0;
 }
 
-/* Ranks above 0: take part in rank 0's MUMPS calls until it ends; returns its exit status. */
-int feps_mumps_worker(void)
-{
-    for (;;) {
-        int message[3];
-        MPI_Bcast(message, 3, MPI_INT, 0, MPI_COMM_WORLD);
-        int which = message[1];
-        switch (message[0]) {
-        case CMD_END: return message[2];
-        case CMD_CREATE: create_on_all(which, message[2]); break;
-        case CMD_ANALYZE: run_job(which, 1); break;
-        case CMD_FACTORIZE: run_job(which, 2); break;
-        case CMD_SOLVE: run_job(which, 3); break;
-        case CMD_FREE: free_on_all(which); break;
-        default: return 1;
-        }
-    }
-}
-
-/* Rank 0: a MUMPS instance, sym 2 (general symmetric, LDL') or 0 (unsymmetric, LU), its factors
- * on disk when out_of_core is not 0; -1 when none is free or MUMPS cannot start. */
+/* A MUMPS instance, sym 2 (general symmetric, LDL') or 0 (unsymmetric, LU), its factors on disk
+ * when out_of_core is not 0; -1 when none is free or MUMPS cannot start. */
 int feps_mumps_create(int sym, int out_of_core)
 {
     if (!started) return -1;
     int mode = (sym & 15) | (out_of_core ? 16 : 0);
     for (int i = 0; i < MAX_INSTANCES; i++)
         if (!instances[i].in_use) {
-            command(CMD_CREATE, i, mode);
             if (create_on_all(i, mode) != MUMPS_OK) return -1;
             return i;
         }
@@ -208,11 +193,8 @@ double feps_mumps_memory_estimate(int which)
 void feps_mumps_free(int which)
 {
     if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return;
-    command(CMD_FREE, which, 0);
     free_on_all(which);
-    free(instances[which].irn);
-    free(instances[which].jcn);
-    instances[which].irn = instances[which].jcn = NULL;
+    release(&instances[which]);
 }
 
 static int result_of(const DMUMPS_STRUC_C *id)
@@ -223,52 +205,85 @@ static int result_of(const DMUMPS_STRUC_C *id)
     return MUMPS_FAILED;
 }
 
-/* The pattern of the lower triangle in compressed rows (1-based row_ptr and col): ordering and
- * symbolic analysis on every rank. */
-int feps_mumps_analyze(int which, int64_t n, const int64_t *row_ptr, const int32_t *col)
+/* The pattern (lower triangle, or both for LU) in compressed rows (1-based row_ptr and col):
+ * ordering and symbolic analysis, on every rank together. `distributed`: each rank gives the
+ * entries where local[k] is not 0 (its own elements'), and its values of them at each
+ * factorization; otherwise rank 0 gives the whole matrix. */
+int feps_mumps_analyze(int which, int64_t n, const int64_t *row_ptr, const int32_t *col, int distributed,
+                       const int32_t *local)
 {
     if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return MUMPS_BAD_INPUT;
     instance *in = &instances[which];
-    int64_t nnz = row_ptr[n] - 1;
-    free(in->irn);
-    free(in->jcn);
-    in->irn = malloc(sizeof(MUMPS_INT) * (size_t)(nnz > 0 ? nnz : 1));
-    in->jcn = malloc(sizeof(MUMPS_INT) * (size_t)(nnz > 0 ? nnz : 1));
-    if (in->irn == NULL || in->jcn == NULL) return MUMPS_NO_MEMORY;
-    for (int64_t i = 0; i < n; i++)
+    int64_t nnz = row_ptr[n] - 1, m = 0;
+    release(in);
+    in->distributed = distributed != 0;
+    if (in->distributed)
+        for (int64_t k = 0; k < nnz; k++) m += local[k] != 0;
+    else
+        m = rank == 0 ? nnz : 0;
+    in->irn = malloc(sizeof(MUMPS_INT) * (size_t)(m > 0 ? m : 1));
+    in->jcn = malloc(sizeof(MUMPS_INT) * (size_t)(m > 0 ? m : 1));
+    if (in->distributed) {
+        in->pick = malloc(sizeof(int64_t) * (size_t)(m > 0 ? m : 1));
+        in->a_loc = malloc(sizeof(double) * (size_t)(m > 0 ? m : 1));
+    }
+    int no_memory = in->irn == NULL || in->jcn == NULL ||
+                    (in->distributed && (in->pick == NULL || in->a_loc == NULL));
+    MPI_Allreduce(MPI_IN_PLACE, &no_memory, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (no_memory) return MUMPS_NO_MEMORY;
+    int64_t j = 0;
+    for (int64_t i = 0; i < n && m > 0; i++)
         for (int64_t k = row_ptr[i] - 1; k < row_ptr[i + 1] - 1; k++) {
-            in->irn[k] = (MUMPS_INT)(i + 1);
-            in->jcn[k] = (MUMPS_INT)col[k];
+            if (in->distributed && local[k] == 0) continue;
+            in->irn[j] = (MUMPS_INT)(i + 1);
+            in->jcn[j] = (MUMPS_INT)col[k];
+            if (in->distributed) in->pick[j] = k;
+            j++;
         }
     in->id.n = (MUMPS_INT)n;
-    in->id.nnz = nnz;
-    in->id.irn = in->irn;
-    in->id.jcn = in->jcn;
-    command(CMD_ANALYZE, which, 0);
+    if (in->distributed) {
+        in->id.icntl[17] = 3;    /* ICNTL(18): each rank gives its own entries, which MUMPS sums */
+        in->id.nnz_loc = m;
+        in->id.irn_loc = in->irn;
+        in->id.jcn_loc = in->jcn;
+    } else {
+        in->id.icntl[17] = 0;
+        in->id.nnz = m;
+        in->id.irn = in->irn;
+        in->id.jcn = in->jcn;
+    }
     run_job(which, 1);
     return result_of(&in->id);
 }
 
-/* Numerical factorization of the values `val` in the analysed pattern's order. */
+/* Numerical factorization of the values `val` in the analysed pattern's order (rank 0's whole
+ * matrix, or each rank's share of the matrix in a distributed analysis). */
 int feps_mumps_factorize(int which, double *val)
 {
     if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return MUMPS_BAD_INPUT;
     instance *in = &instances[which];
-    in->id.a = val;
-    command(CMD_FACTORIZE, which, 0);
+    if (in->distributed) {
+        for (int64_t j = 0; j < in->id.nnz_loc; j++) in->a_loc[j] = val[in->pick[j]];
+        in->id.a_loc = in->a_loc;
+    } else {
+        in->id.a = val;
+    }
     run_job(which, 2);
     in->id.a = NULL;
     if (in->id.infog[0] >= 0 && in->id.infog[27] > 0) return MUMPS_SINGULAR;   /* INFOG(28) null pivots */
     return result_of(&in->id);
 }
 
-/* The first null pivot's equation (1-based), 0 when MUMPS named none. */
+/* The first null pivot's equation (1-based), 0 when MUMPS named none: rank 0 holds the list,
+ * every rank gets its first entry. */
 int64_t feps_mumps_null_pivot(int which)
 {
     if (!started || which < 0 || which >= MAX_INSTANCES) return 0;
     instance *in = &instances[which];
-    if (in->id.infog[27] > 0 && in->id.pivnul_list != NULL) return in->id.pivnul_list[0];
-    return 0;
+    int64_t first = 0;
+    if (rank == 0 && in->id.infog[27] > 0 && in->id.pivnul_list != NULL) first = in->id.pivnul_list[0];
+    MPI_Bcast(&first, 1, MPI_INT64_T, 0, MPI_COMM_WORLD);
+    return first;
 }
 
 /* Factor entries (INFOG(29), or -INFOG(29) millions when negative) and flops (RINFOG(3)). */
@@ -287,7 +302,8 @@ double feps_mumps_flops(int which)
     return done > 0.0 ? done : instances[which].id.rinfog[0];   /* RINFOG(1): the estimate */
 }
 
-/* Solve in place: b holds nrhs right-hand sides of n each, one after another. */
+/* Solve in place: b holds nrhs right-hand sides of n each, one after another (rank 0's are
+ * solved; every rank gets the solutions). */
 int feps_mumps_solve(int which, int64_t n, int64_t nrhs, double *b)
 {
     if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return MUMPS_BAD_INPUT;
@@ -295,10 +311,15 @@ int feps_mumps_solve(int which, int64_t n, int64_t nrhs, double *b)
     in->id.rhs = b;
     in->id.nrhs = (MUMPS_INT)nrhs;
     in->id.lrhs = (MUMPS_INT)n;
-    command(CMD_SOLVE, which, 0);
     run_job(which, 3);
     in->id.rhs = NULL;
-    return result_of(&in->id);
+    int code = result_of(&in->id);
+    if (code == MUMPS_OK && size > 1)
+        for (int64_t i = 0; i < n * nrhs; i += 1 << 30) {
+            int m = (int)(n * nrhs - i < (1 << 30) ? n * nrhs - i : (1 << 30));
+            MPI_Bcast(b + i, m, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+        }
+    return code;
 }
 
 /* MUMPS's own error code (INFOG(1)) and detail (INFOG(2)), for messages. */
@@ -312,14 +333,14 @@ int feps_mumps_infog(int which, int k)
 
 int feps_mpi_start(int *my_rank, int *ranks) { *my_rank = 0; *ranks = 1; return MUMPS_NO_MPI; }
 void feps_mpi_stop(int status) { (void)status; }
-int feps_mumps_worker(void) { return 0; }
 int feps_mumps_create(int sym, int out_of_core) { (void)sym; (void)out_of_core; return -1; }
 int feps_mumps_ranks(void) { return 0; }
 double feps_mumps_rank_stat(int which, int r, int k) { (void)which; (void)r; (void)k; return 0.0; }
 double feps_mumps_memory_estimate(int which) { (void)which; return 0.0; }
 void feps_mumps_free(int which) { (void)which; }
-int feps_mumps_analyze(int which, int64_t n, const int64_t *row_ptr, const int32_t *col)
-{ (void)which; (void)n; (void)row_ptr; (void)col; return MUMPS_NO_MPI; }
+int feps_mumps_analyze(int which, int64_t n, const int64_t *row_ptr, const int32_t *col, int distributed,
+                       const int32_t *local)
+{ (void)which; (void)n; (void)row_ptr; (void)col; (void)distributed; (void)local; return MUMPS_NO_MPI; }
 int feps_mumps_factorize(int which, double *val) { (void)which; (void)val; return MUMPS_NO_MPI; }
 int64_t feps_mumps_null_pivot(int which) { (void)which; return 0; }
 int64_t feps_mumps_factor_entries(int which) { (void)which; return 0; }

@@ -1,6 +1,8 @@
-!> MUMPS over MPI (issue 29): the linear solver of `--solver mumps` in the MPI build. The matrix
-!! and right-hand sides are given on rank 0; MUMPS factorizes and solves on every rank
-!! (feps_mumps_shim.c, where the other ranks wait for rank 0's calls). LDL' of the symmetric
+!> MUMPS over MPI (issue 29): the linear solver of `--solver mumps` in the MPI build. Every rank
+!! makes each call together (feps_mumps_shim.c). On more than one rank each rank gives the
+!! entries of its own elements (`set_local_entries`, MUMPS's distributed input, which it sums),
+!! on one rank the whole matrix; the right-hand sides are rank 0's and every rank gets the
+!! solution. LDL' of the symmetric
 !! stiffness (MUMPS SYM = 2: its null-pivot detection names the equation of a singular stiffness,
 !! which SYM = 1, the positive definite mode, did not do), or LU of the exact non-symmetric
 !! tangent (SYM = 0, `unsymmetric`); the factors in memory or on disk (`out_of_core`, MUMPS's
@@ -14,7 +16,7 @@ module feps_mumps_solver
   implicit none
   private
 
-  public :: mumps_solver_t, mpi_built, mpi_start, mpi_stop, mumps_worker
+  public :: mumps_solver_t, mpi_built, mpi_start, mpi_stop
 
   !> Codes of feps_mumps_shim.c.
   integer(c_int), parameter :: mumps_ok = 0, mumps_no_mpi = 1, mumps_no_memory = 4, mumps_singular = 5
@@ -26,7 +28,10 @@ module feps_mumps_solver
     integer, private :: n = 0
     logical, private :: factorized = .false.
     real(dp), private :: memory_estimate_mb = 0.0_dp   !! MUMPS's, after the analysis (all ranks)
+    integer(c_int32_t), allocatable, private :: local(:)  !! 1 where this rank gives the entry (distributed)
   contains
+    procedure :: takes_distributed_matrix => mumps_takes_distributed_matrix
+    procedure :: set_local_entries => mumps_set_local_entries
     procedure :: memory_need_bytes => mumps_memory_need_bytes
     procedure :: analyze => mumps_analyze
     procedure :: factorize => mumps_factorize
@@ -48,9 +53,6 @@ module feps_mumps_solver
       import :: c_int
       integer(c_int), value :: status
     end subroutine feps_mpi_stop
-    integer(c_int) function feps_mumps_worker() bind(C, name='feps_mumps_worker')
-      import :: c_int
-    end function feps_mumps_worker
     integer(c_int) function feps_mumps_create(sym, out_of_core) bind(C, name='feps_mumps_create')
       import :: c_int
       integer(c_int), value :: sym, out_of_core
@@ -70,12 +72,15 @@ module feps_mumps_solver
       import :: c_int
       integer(c_int), value :: instance
     end subroutine feps_mumps_free
-    integer(c_int) function feps_mumps_analyze(instance, n, row_ptr, col) bind(C, name='feps_mumps_analyze')
+    integer(c_int) function feps_mumps_analyze(instance, n, row_ptr, col, distributed, local) &
+        bind(C, name='feps_mumps_analyze')
       import :: c_int, c_int32_t, c_int64_t
       integer(c_int), value :: instance
       integer(c_int64_t), value :: n
       integer(c_int64_t), intent(in) :: row_ptr(*)
       integer(c_int32_t), intent(in) :: col(*)
+      integer(c_int), value :: distributed
+      integer(c_int32_t), intent(in) :: local(*)
     end function feps_mumps_analyze
     integer(c_int) function feps_mumps_factorize(instance, val) bind(C, name='feps_mumps_factorize')
       import :: c_int, c_double
@@ -133,11 +138,18 @@ contains
     call feps_mpi_stop(int(status, c_int))
   end subroutine mpi_stop
 
-  !> The work of a rank above 0: MUMPS's calls, as rank 0 makes them, until rank 0 ends; the
-  !! exit status rank 0 ends with.
-  integer function mumps_worker() result(status)
-    status = int(feps_mumps_worker())
-  end function mumps_worker
+  !> On more than one rank, each rank gives MUMPS its own elements' entries (MUMPS sums them).
+  logical function mumps_takes_distributed_matrix(self)
+    class(mumps_solver_t), intent(in) :: self
+    mumps_takes_distributed_matrix = mpi_built() .and. feps_mumps_ranks() > 1
+  end function mumps_takes_distributed_matrix
+
+  !> The entries this rank gives of the next pattern analysed (its elements').
+  subroutine mumps_set_local_entries(self, local)
+    class(mumps_solver_t), intent(inout) :: self
+    logical, intent(in) :: local(:)
+    self%local = merge(1_c_int32_t, 0_c_int32_t, local)
+  end subroutine mumps_set_local_entries
 
   !> Ordering and symbolic analysis of the pattern of `a` (on every rank).
   subroutine mumps_analyze(self, a, error)
@@ -160,7 +172,14 @@ contains
       call fatal_error(error, err_solver, 'mumps: cannot start MUMPS (MPI not started, or out of memory)')
       return
     end if
-    code = feps_mumps_analyze(self%instance, int(a%n, c_int64_t), a%row_ptr, a%col)
+    if (.not. allocated(self%local)) allocate (self%local(0))
+    if (size(self%local) /= 0 .and. size(self%local) /= size(a%col)) then
+      call fatal_error(error, err_internal, 'mumps: the local entries do not fit the pattern')
+      return
+    end if
+    code = feps_mumps_analyze(self%instance, int(a%n, c_int64_t), a%row_ptr, a%col, &
+                              merge(1_c_int, 0_c_int, size(self%local) > 0), self%local)
+    deallocate (self%local)   ! each pattern is given its own
     if (code /= mumps_ok) then
       call failed(self, code, 'the ordering and analysis of ' // str(a%n) // ' equations', error)
       return

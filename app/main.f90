@@ -537,7 +537,12 @@ contains
       if (buf(1:1) == '.') buf = '0' // buf
       time = time // ' ' // trim(buf)
     end do
-    write (output_unit, '(a)') 'rank elements   ' // memory // '; assembly and update time per rank (s):' // time
+    write (output_unit, '(a)') 'rank elements   ' // memory // '; set-up, assembly and update time per rank (s):' // time
+    memory = ''
+    do r = 1, size(s%rank_peak_memory_mb)
+      memory = memory // ' ' // str(nint(s%rank_peak_memory_mb(r)))
+    end do
+    write (output_unit, '(a)') 'rank memory      peak resident per rank (MB):' // memory
   end subroutine print_ranks
 
   !> The summary of `feps --check`: the model's size and the solver's predictions.

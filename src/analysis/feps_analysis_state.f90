@@ -364,9 +364,10 @@ contains
         end do
         ! element matrices of a chunk in parallel, added in element order (bit-identical for any
         ! number of threads)
+        ! (this rank's elements: in an element-partitioned run K_lin is each rank's share)
         associate (conn => model%groups(g)%connectivity)
-          do e0 = 1, size(conn, 2), element_chunk
-            e1 = min(size(conn, 2), e0 + element_chunk - 1)
+          do e0 = an%part%lo(g), an%part%hi(g), element_chunk
+            e1 = min(an%part%hi(g), e0 + element_chunk - 1)
             !$omp parallel do schedule(static)
             do e = e0, e1
               call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke(:, :, e - e0 + 1))
@@ -452,7 +453,8 @@ contains
     end do
   end function nonlinear_groups
 
-  !> f <- f + K_lin u for the linear groups (global Cartesian components).
+  !> f <- f + K_lin u for the linear groups (global Cartesian components): in an
+  !! element-partitioned run, this rank's elements' share (the caller sums over the ranks).
   subroutine add_linear_forces(an, u, f)
     type(analysis_t), intent(in) :: an
     real(dp), intent(in) :: u(:, :)
@@ -669,6 +671,7 @@ contains
     allocate (f(3, model%nnode))
     f = 0.0_dp
     call add_linear_forces(an, an%path%u, f)
+    if (an%part%distributed) call sum_over_ranks(f, size(f, kind=i8))
     do g = 1, size(model%groups)
       if (.not. an%states(g)%nonlinear) cycle
       np = an%kernels(g)%npoints
@@ -739,8 +742,7 @@ contains
     integer :: g, e, e0, e1, np, nn, nc
     real(dp), allocatable :: fe(:, :)
     an%path%fint = 0.0_dp
-    ! the linear part's forces once, on rank 0, when the ranks' forces are summed
-    if (an%part%rank == 0) call add_linear_forces(an, an%path%u_t, an%path%fint)
+    call add_linear_forces(an, an%path%u_t, an%path%fint)   ! this rank's share: summed below
     do g = 1, size(model%groups)
       if (.not. an%states(g)%nonlinear .or. .not. an%path%active(g)) cycle
       np = an%kernels(g)%npoints

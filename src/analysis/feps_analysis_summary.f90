@@ -48,7 +48,8 @@ module feps_analysis_summary
     real(dp), allocatable :: rank_memory_mb(:)       !! MUMPS over MPI: each rank's largest factorization memory (MB)
     real(dp), allocatable :: rank_factor_seconds(:)  !! and its time in the factorizations (s)
     real(dp), allocatable :: rank_elements(:)        !! element-partitioned run: each rank's elements
-    real(dp), allocatable :: rank_element_seconds(:) !! and its time assembling and updating them (s)
+    real(dp), allocatable :: rank_element_seconds(:) !! and its time setting up, assembling and updating (s)
+    real(dp), allocatable :: rank_peak_memory_mb(:)  !! and its largest resident memory in the analysis (MB)
   end type analysis_summary_t
 
   !> Above this max/min pivot ratio the results may have lost digits: say so.

@@ -36,7 +36,7 @@ module feps_incremental_analysis
                               line_search_s_min, line_search_max_evaluations
   use feps_step_report, only: progress_line, time_text, collapse_error, report_step, report_open_interfaces, &
                               writes_step, name_step, newly_open_points, collect_point_notes, stop_error
-  use feps_parallel, only: share_root_error, sum_over_ranks
+  use feps_parallel, only: share_root_error, sum_over_ranks, peak_memory_mb
   implicit none
   private
 
@@ -130,7 +130,7 @@ contains
         summary%rank_factor_seconds = summary%rank_factor_seconds + an%eq%lu%rank_factor_seconds
       end if
     end if
-    if (an%part%distributed) call summarise_ranks(an, summary)
+    if (an%part%distributed .or. allocated(summary%rank_memory_mb)) call summarise_ranks(an, summary)
     summary%min_pivot_ratio = an%eq%solver%min_pivot_ratio
     summary%max_pivot_ratio = an%eq%solver%max_pivot_ratio
     summary%applied_force = sum(an%path%f_applied, dim=2)
@@ -145,18 +145,23 @@ contains
     end do
   end subroutine run_analysis
 
-  !> Each rank's elements and its time assembling and updating them, on every rank.
+  !> Each rank's elements, its time assembling and updating them and its largest resident
+  !! memory so far, on every rank.
   subroutine summarise_ranks(an, summary)
     type(analysis_t), intent(in) :: an
     type(analysis_summary_t), intent(inout) :: summary
     integer :: r
-    allocate (summary%rank_elements(an%part%ranks), summary%rank_element_seconds(an%part%ranks))
+    allocate (summary%rank_elements(an%part%ranks), summary%rank_element_seconds(an%part%ranks), &
+              summary%rank_peak_memory_mb(an%part%ranks))
     do r = 0, an%part%ranks - 1
       summary%rank_elements(r + 1) = real(sum(an%part%first(r + 1, :) - an%part%first(r, :)), dp)
     end do
     summary%rank_element_seconds = 0.0_dp
     summary%rank_element_seconds(an%part%rank + 1) = summary%time_assembly + summary%time_update
     call sum_over_ranks(summary%rank_element_seconds, size(summary%rank_element_seconds, kind=i8))
+    summary%rank_peak_memory_mb = 0.0_dp
+    summary%rank_peak_memory_mb(an%part%rank + 1) = peak_memory_mb()
+    call sum_over_ranks(summary%rank_peak_memory_mb, size(summary%rank_peak_memory_mb, kind=i8))
   end subroutine summarise_ranks
 
   !> The summary totals restart data carry (feps_restart_data's order).

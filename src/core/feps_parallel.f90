@@ -11,7 +11,7 @@ module feps_parallel
   private
 
   public :: parallel_rank, parallel_ranks, sum_over_ranks, min_over_ranks, any_rank
-  public :: gather_blocks, gather_int_blocks, share_root_error, silence_output
+  public :: gather_blocks, gather_int_blocks, share_root_error, silence_output, peak_memory_mb
 
   interface
     integer(c_int) function feps_par_rank() bind(C, name='feps_par_rank')
@@ -51,6 +51,9 @@ module feps_parallel
     end subroutine feps_par_from_root
     subroutine feps_par_silence() bind(C, name='feps_par_silence')
     end subroutine feps_par_silence
+    real(c_double) function feps_par_peak_memory_mb() bind(C, name='feps_par_peak_memory_mb')
+      import :: c_double
+    end function feps_par_peak_memory_mb
   end interface
 
 contains
@@ -120,6 +123,12 @@ contains
       deallocate (error)   ! rank 0's verdict is the run's: the other ranks write nothing
     end if
   end subroutine share_root_error
+
+  !> This process's largest resident memory so far (MB; 0 where the system does not say).
+  function peak_memory_mb() result(mb)
+    real(dp) :: mb
+    mb = real(feps_par_peak_memory_mb(), dp)
+  end function peak_memory_mb
 
   !> The ranks above 0 print nothing (feps_parallel_shim.c): rank 0's lines are the run's.
   subroutine silence_output()

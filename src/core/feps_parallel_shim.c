@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <fcntl.h>
 #include <unistd.h>
+#include <sys/resource.h>
 
 #ifdef FEPS_MPI
 #include <mpi.h>
@@ -123,6 +124,14 @@ int feps_par_any(int flag) { return flag != 0; }
 void feps_par_from_root(int32_t *v, int n) { (void)v; (void)n; }
 
 #endif
+
+/* This process's largest resident memory so far, in MB (getrusage: kB on Linux). */
+double feps_par_peak_memory_mb(void)
+{
+    struct rusage usage;
+    if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+    return (double)usage.ru_maxrss / 1024.0;
+}
 
 /* The ranks above 0 print nothing: their standard output and error go to /dev/null, so that
  * rank 0's lines are the run's only ones (every rank meets the same errors). */

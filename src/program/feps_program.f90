@@ -702,6 +702,7 @@ contains
     if (.not. allocated(error) .and. allocated(summary%rank_elements)) then
       call h5%write_summary_reals('rank_elements', summary%rank_elements, error)
       if (.not. allocated(error)) call h5%write_summary_reals('rank_element_time', summary%rank_element_seconds, error)
+      if (.not. allocated(error)) call h5%write_summary_reals('rank_peak_memory_mb', summary%rank_peak_memory_mb, error)
     end if
     if (.not. allocated(error)) call h5%write_summary_int('matrix_nonzeros', summary%matrix_nnz, error)
     if (.not. allocated(error)) call h5%write_summary_real('time_assembly', summary%time_assembly, error)

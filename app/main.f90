@@ -515,35 +515,39 @@ contains
   !> MUMPS over MPI: each rank's factorization memory (the largest of the run) and time (summed).
   subroutine print_ranks(s)
     type(run_summary_t), intent(in) :: s
-    character(len=:), allocatable :: memory, time
+    write (output_unit, '(a)') 'ranks            ' // str(size(s%rank_memory_mb)) // &
+      '; factorization memory per rank (MB):' // whole_numbers(s%rank_memory_mb) // &
+      '; factorization time per rank (s):' // seconds(s%rank_factor_seconds)
+    if (.not. allocated(s%rank_elements)) return
+    write (output_unit, '(a)') 'rank elements   ' // whole_numbers(s%rank_elements) // &
+      '; set-up, assembly and update time per rank (s):' // seconds(s%rank_element_seconds)
+    write (output_unit, '(a)') 'rank memory      peak resident per rank (MB):' // whole_numbers(s%rank_peak_memory_mb)
+  end subroutine print_ranks
+
+  !> ' v1 v2 ...', each rounded to a whole number.
+  function whole_numbers(v) result(text)
+    real(dp), intent(in) :: v(:)
+    character(len=:), allocatable :: text
+    integer :: r
+    text = ''
+    do r = 1, size(v)
+      text = text // ' ' // str(nint(v(r)))
+    end do
+  end function whole_numbers
+
+  !> ' t1 t2 ...' in seconds to two decimals.
+  function seconds(v) result(text)
+    real(dp), intent(in) :: v(:)
+    character(len=:), allocatable :: text
     character(len=32) :: buf
     integer :: r
-    memory = ''
-    time = ''
-    do r = 1, size(s%rank_memory_mb)
-      memory = memory // ' ' // str(nint(s%rank_memory_mb(r)))
-      write (buf, '(f0.2)') s%rank_factor_seconds(r)
+    text = ''
+    do r = 1, size(v)
+      write (buf, '(f0.2)') v(r)
       if (buf(1:1) == '.') buf = '0' // buf
-      time = time // ' ' // trim(buf)
+      text = text // ' ' // trim(buf)
     end do
-    write (output_unit, '(a)') 'ranks            ' // str(size(s%rank_memory_mb)) // &
-      '; factorization memory per rank (MB):' // memory // '; factorization time per rank (s):' // time
-    if (.not. allocated(s%rank_elements)) return
-    memory = ''
-    time = ''
-    do r = 1, size(s%rank_elements)
-      memory = memory // ' ' // str(nint(s%rank_elements(r)))
-      write (buf, '(f0.2)') s%rank_element_seconds(r)
-      if (buf(1:1) == '.') buf = '0' // buf
-      time = time // ' ' // trim(buf)
-    end do
-    write (output_unit, '(a)') 'rank elements   ' // memory // '; set-up, assembly and update time per rank (s):' // time
-    memory = ''
-    do r = 1, size(s%rank_peak_memory_mb)
-      memory = memory // ' ' // str(nint(s%rank_peak_memory_mb(r)))
-    end do
-    write (output_unit, '(a)') 'rank memory      peak resident per rank (MB):' // memory
-  end subroutine print_ranks
+  end function seconds
 
   !> The summary of `feps --check`: the model's size and the solver's predictions.
   subroutine print_check(s)

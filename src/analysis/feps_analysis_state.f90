@@ -142,20 +142,21 @@ contains
     call analyze_pattern(model, an, summary, error)
   end subroutine set_up
 
-  !> The elements this rank works on: a block of each group's when the solver takes its matrix
-  !! from every rank (MUMPS on more than one rank), else all of them (feps_element_partition).
+  !> The elements this rank works on: its part of METIS's partition when the solver takes its
+  !! matrix from every rank (MUMPS on more than one rank), else all of them
+  !! (feps_element_partition).
   subroutine set_partition(model, an, error)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     type(error_t), allocatable, intent(out) :: error
     integer :: g, largest
-    an%part = partition_elements([(size(model%groups(g)%connectivity, 2), g = 1, size(model%groups))], &
-                                 parallel_rank(), parallel_ranks(), &
-                                 an%eq%solver%takes_distributed_matrix() .and. an%eq%lu%takes_distributed_matrix())
-    if (.not. an%part%distributed) return
+    call partition_elements(model, an%kernels(:)%npoints, parallel_rank(), parallel_ranks(), &
+                            an%eq%solver%takes_distributed_matrix() .and. an%eq%lu%takes_distributed_matrix(), &
+                            an%part, error)
+    if (allocated(error) .or. .not. an%part%distributed) return
     ! a rank's block of point states goes in one message, whose count is an int
     do g = 1, size(model%groups)
-      largest = maxval(an%part%first(1:, g) - an%part%first(:an%part%ranks - 1, g))
+      largest = maxval(an%part%groups(g)%count)
       if (real(largest, dp) * an%kernels(g)%npoints * an%kernels(g)%ncomp**2 >= real(huge(1), dp)) then
         call fatal_error(error, err_model, model%deck_file // ': group ' // trim(model%groups(g)%name) // &
                          ' has too many elements for ' // str(an%part%ranks) // ' ranks (a rank''s point ' // &
@@ -200,14 +201,14 @@ contains
     type(csr_matrix_t) :: marks
     real(dp), allocatable :: ones(:, :)
     integer, allocatable :: dofs(:)
-    integer :: g, e
+    integer :: g, i
     marks = a
     marks%val = 0.0_dp
     do g = 1, size(model%groups)
       allocate (ones(3 * an%kernels(g)%nnodes, 3 * an%kernels(g)%nnodes), dofs(3 * an%kernels(g)%nnodes))
       ones = 1.0_dp
-      do e = an%part%lo(g), an%part%hi(g)
-        call element_dofs(an%eq%map, model%groups(g)%connectivity(:, e), dofs)
+      do i = 1, size(an%part%groups(g)%own)
+        call element_dofs(an%eq%map, model%groups(g)%connectivity(:, an%part%groups(g)%own(i)), dofs)
         call scatter_element_matrix(dofs, ones, marks, both_triangles=both)
       end do
       deallocate (ones, dofs)
@@ -330,7 +331,8 @@ contains
   subroutine init_states(model, an)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
-    integer :: g, np, nc, nn, q, e, e0, e1
+    integer :: g, np, nc, nn, q, i, i0, i1
+    integer, allocatable :: own(:)
     real(dp), allocatable :: ke(:, :, :), d(:, :, :)
     integer, allocatable :: dofs(:, :)
     allocate (an%states(size(model%groups)))
@@ -365,17 +367,18 @@ contains
         ! element matrices of a chunk in parallel, added in element order (bit-identical for any
         ! number of threads)
         ! (this rank's elements: in an element-partitioned run K_lin is each rank's share)
+        own = an%part%own(g)
         associate (conn => model%groups(g)%connectivity)
-          do e0 = an%part%lo(g), an%part%hi(g), element_chunk
-            e1 = min(an%part%hi(g), e0 + element_chunk - 1)
+          do i0 = 1, size(own), element_chunk
+            i1 = min(size(own), i0 + element_chunk - 1)
             !$omp parallel do schedule(static)
-            do e = e0, e1
-              call element_stiffness(an%kernels(g), model%coords(:, conn(:, e)), d, ke(:, :, e - e0 + 1))
-              call element_dofs(an%lin%map, conn(:, e), dofs(:, e - e0 + 1))
+            do i = i0, i1
+              call element_stiffness(an%kernels(g), model%coords(:, conn(:, own(i))), d, ke(:, :, i - i0 + 1))
+              call element_dofs(an%lin%map, conn(:, own(i)), dofs(:, i - i0 + 1))
             end do
             !$omp end parallel do
-            do e = e0, e1
-              call scatter_element_matrix(dofs(:, e - e0 + 1), ke(:, :, e - e0 + 1), an%lin%k)
+            do i = i0, i1
+              call scatter_element_matrix(dofs(:, i - i0 + 1), ke(:, :, i - i0 + 1), an%lin%k)
             end do
           end do
         end associate
@@ -739,7 +742,8 @@ contains
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     real(dp), intent(in) :: dps(:)
-    integer :: g, e, e0, e1, np, nn, nc
+    integer :: g, e, i, i0, i1, np, nn, nc
+    integer, allocatable :: own(:)
     real(dp), allocatable :: fe(:, :)
     an%path%fint = 0.0_dp
     call add_linear_forces(an, an%path%u_t, an%path%fint)   ! this rank's share: summed below
@@ -751,15 +755,17 @@ contains
       allocate (fe(3 * nn, force_chunk))
       associate (s => an%states(g), conn => model%groups(g)%connectivity)
         call s%impose(dps(g))
-        do e0 = an%part%lo(g), an%part%hi(g), force_chunk
-          e1 = min(an%part%hi(g), e0 + force_chunk - 1)
+        own = an%part%own(g)
+        do i0 = 1, size(own), force_chunk
+          i1 = min(size(own), i0 + force_chunk - 1)
           !$omp parallel do schedule(static)
-          do e = e0, e1
-            call update_element(g, e, fe(:, e - e0 + 1))
+          do i = i0, i1
+            call update_element(g, own(i), fe(:, i - i0 + 1))
           end do
           !$omp end parallel do
-          do e = e0, e1
-            an%path%fint(:, conn(:, e)) = an%path%fint(:, conn(:, e)) + reshape(fe(:, e - e0 + 1), [3, nn])
+          do i = i0, i1
+            e = own(i)
+            an%path%fint(:, conn(:, e)) = an%path%fint(:, conn(:, e)) + reshape(fe(:, i - i0 + 1), [3, nn])
           end do
         end do
       end associate
@@ -975,7 +981,8 @@ contains
     logical, intent(in), optional :: nearest
     type(csr_matrix_t), intent(inout) :: a
     logical, intent(out) :: nonsymmetric
-    integer :: g, e, e0, e1, q, np, nn, nc
+    integer :: g, i, i0, i1, q, np, nn, nc
+    integer, allocatable :: own(:)
     real(dp), allocatable :: ke(:, :, :), d(:, :, :)
     integer, allocatable :: dofs(:, :)
     logical :: from_states, found, psd
@@ -998,17 +1005,18 @@ contains
         end if
         ! Element matrices of a chunk in parallel (threads), then added in element order: the
         ! matrix is bit-identical for any number of threads.
-        do e0 = an%part%lo(g), an%part%hi(g), element_chunk
-          e1 = min(an%part%hi(g), e0 + element_chunk - 1)
+        own = an%part%own(g)
+        do i0 = 1, size(own), element_chunk
+          i1 = min(size(own), i0 + element_chunk - 1)
           found = .false.
           !$omp parallel do schedule(static) reduction(.or.:found)
-          do e = e0, e1
-            call element_matrix(g, e, from_states, d, ke(:, :, e - e0 + 1), dofs(:, e - e0 + 1), found)
+          do i = i0, i1
+            call element_matrix(g, own(i), from_states, d, ke(:, :, i - i0 + 1), dofs(:, i - i0 + 1), found)
           end do
           !$omp end parallel do
           nonsymmetric = nonsymmetric .or. found
-          do e = e0, e1
-            call scatter_element_matrix(dofs(:, e - e0 + 1), ke(:, :, e - e0 + 1), a, both_triangles=exact)
+          do i = i0, i1
+            call scatter_element_matrix(dofs(:, i - i0 + 1), ke(:, :, i - i0 + 1), a, both_triangles=exact)
           end do
         end do
       end associate

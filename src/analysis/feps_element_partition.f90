@@ -1,101 +1,202 @@
 !> The elements each rank works on in an element-partitioned run (issue 29: `mpirun -np N feps
-!! DECK --solver mumps`): each group's elements in N contiguous blocks of nearly equal size, rank
-!! r the r-th. A rank updates its own elements' points and assembles its own element matrices;
-!! MUMPS sums the ranks' matrices and the internal forces are summed over the ranks
-!! (feps_parallel), after which every rank takes every other rank's block of point states, so
-!! commit, restore, the step report and the results see the whole model on every rank.
-!!
-!! Contiguous blocks, not a METIS partition of the element graph: the internal forces are summed
-!! as whole vectors and MUMPS orders and distributes the matrix itself, so a block's shape saves
-!! no messages here, and a block's points are one contiguous slice of the point-state arrays, sent
-!! as it is. The meshes feps makes number their elements in sweeps, so the blocks are slabs.
+!! DECK --solver mumps`): METIS's partition of the mesh's dual graph (all groups together, each
+!! element weighted by its number of points, neighbours sharing a node), so each rank's elements
+!! form compact regions of nearly equal work. A rank updates its own elements' points and
+!! assembles its own element matrices; MUMPS sums the ranks' matrices and the internal forces are
+!! summed over the ranks (feps_parallel), after which every rank takes every other rank's points
+!! (`share_trial`), so commit, restore, the step report and the results see the whole model on
+!! every rank. On one rank every element is its own, in mesh order.
 module feps_element_partition
-  use feps_kinds, only: i8
-  use feps_parallel, only: gather_blocks, gather_int_blocks
+  use feps_kinds, only: dp, i8
+  use feps_error, only: error_t, fatal_error, err_internal, str
+  use feps_model, only: model_t
+  use feps_metis, only: partition_mesh
+  use feps_parallel, only: gather_blocks, broadcast_from_root
   use feps_point_state_store, only: point_state_store_t
   implicit none
   private
 
   public :: partition_elements
 
+  !> Elements of one group: this rank's (ascending), and all of them ordered rank by rank.
+  type :: group_share_t
+    integer, allocatable :: own(:)        !! this rank's elements, ascending
+    integer, allocatable :: by_rank(:)    !! every element: rank 0's ascending, then rank 1's, ...
+    integer, allocatable :: count(:)      !! (0:ranks-1) each rank's number of elements
+  end type group_share_t
+
   type, public :: element_partition_t
     logical :: distributed = .false.     !! more than one rank, each on its own elements
     integer :: rank = 0
     integer :: ranks = 1
-    !> Rank r's elements of group g are first(r, g) .. first(r + 1, g) - 1 (r = 0 .. ranks - 1).
-    integer, allocatable :: first(:, :)
+    type(group_share_t), allocatable :: groups(:)
   contains
-    procedure :: lo => partition_lo
-    procedure :: hi => partition_hi
+    procedure :: own => partition_own
+    procedure :: elements_of_rank => partition_elements_of_rank
     procedure :: share_trial => partition_share_trial
   end type element_partition_t
 
 contains
 
-  !> The blocks of `elements(g)` elements of each group g over `ranks` ranks, for rank `rank`;
-  !! one rank (or not `distributed`): every element is this rank's.
-  pure function partition_elements(elements, rank, ranks, distributed) result(part)
-    integer, intent(in) :: elements(:)
+  !> The elements of `model` over `ranks` ranks (METIS, computed on rank 0 and sent to the
+  !! others), for rank `rank`; one rank (or not `distributed`): every element is this rank's.
+  !! npoints(g): the points of an element of group g, its weight.
+  subroutine partition_elements(model, npoints, rank, ranks, distributed, part, error)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: npoints(:)
     integer, intent(in) :: rank, ranks
     logical, intent(in) :: distributed
-    type(element_partition_t) :: part
-    integer :: g, r
+    type(element_partition_t), intent(out) :: part
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: owner(:), element_nodes(:), weights(:), status(:)
+    integer(i8), allocatable :: element_ptr(:)
+    integer :: g, e, id, nelem, r, k
+    logical :: ok
     part%distributed = distributed .and. ranks > 1
     part%rank = merge(rank, 0, part%distributed)
     part%ranks = merge(ranks, 1, part%distributed)
-    allocate (part%first(0:part%ranks, size(elements)))
-    do g = 1, size(elements)
-      do r = 0, part%ranks
-        part%first(r, g) = 1 + int(int(r, i8) * elements(g) / part%ranks)
-      end do
+    nelem = model%nelem()
+    allocate (owner(nelem), part%groups(size(model%groups)))
+    owner = 0
+    if (part%distributed) then
+      status = [1]
+      if (part%rank == 0) then
+        allocate (element_ptr(nelem + 1), weights(nelem))
+        element_ptr(1) = 1
+        id = 0
+        do g = 1, size(model%groups)
+          do e = 1, size(model%groups(g)%connectivity, 2)
+            id = id + 1
+            element_ptr(id + 1) = element_ptr(id) + size(model%groups(g)%connectivity, 1)
+            weights(id) = npoints(g)
+          end do
+        end do
+        allocate (element_nodes(element_ptr(nelem + 1) - 1))
+        id = 0
+        do g = 1, size(model%groups)
+          do e = 1, size(model%groups(g)%connectivity, 2)
+            id = id + 1
+            element_nodes(element_ptr(id):element_ptr(id + 1) - 1) = model%groups(g)%connectivity(:, e)
+          end do
+        end do
+        call partition_mesh(model%nnode, element_ptr, element_nodes, weights, 1, part%ranks, owner, ok)
+        status = merge([0], [1], ok)
+      end if
+      call broadcast_from_root(status)
+      if (status(1) /= 0) then
+        call fatal_error(error, err_internal, 'METIS could not partition the ' // str(nelem) // &
+                         ' elements over ' // str(part%ranks) // ' ranks')
+        return
+      end if
+      call broadcast_from_root(owner)
+    end if
+    id = 0
+    do g = 1, size(model%groups)
+      associate (share => part%groups(g), n => size(model%groups(g)%connectivity, 2))
+        allocate (share%count(0:part%ranks - 1), share%by_rank(n))
+        share%count = 0
+        do e = 1, n
+          share%count(owner(id + e)) = share%count(owner(id + e)) + 1
+        end do
+        share%own = pack([(e, e = 1, n)], owner(id + 1:id + n) == part%rank)
+        k = 0
+        do r = 0, part%ranks - 1
+          do e = 1, n
+            if (owner(id + e) /= r) cycle
+            k = k + 1
+            share%by_rank(k) = e
+          end do
+        end do
+        id = id + n
+      end associate
     end do
-  end function partition_elements
+  end subroutine partition_elements
 
-  !> This rank's first element of group g.
-  pure integer function partition_lo(self, g) result(e)
+  !> This rank's elements of group g, ascending.
+  pure function partition_own(self, g) result(own)
     class(element_partition_t), intent(in) :: self
     integer, intent(in) :: g
-    e = self%first(self%rank, g)
-  end function partition_lo
+    integer, allocatable :: own(:)
+    own = self%groups(g)%own
+  end function partition_own
 
-  !> This rank's last element of group g (lo - 1 when it has none).
-  pure integer function partition_hi(self, g) result(e)
+  !> The number of elements of rank r (0-based), over every group.
+  pure integer function partition_elements_of_rank(self, r) result(n)
     class(element_partition_t), intent(in) :: self
-    integer, intent(in) :: g
-    e = self%first(self%rank + 1, g) - 1
-  end function partition_hi
+    integer, intent(in) :: r
+    integer :: g
+    n = 0
+    do g = 1, size(self%groups)
+      n = n + self%groups(g)%count(r)
+    end do
+  end function partition_elements_of_rank
 
-  !> Every rank takes every other rank's block of group g's trial point states (`npoints` per
-  !! element): stress, strain, flag, internal variables and tangent, copied as they are.
+  !> Every rank takes every other rank's trial point states of group g (`npoints` per
+  !! element): stress, strain, flag, internal variables and tangent, copied as they are. Each
+  !! rank's points go as one block (its elements ascending), placed back element by element.
   subroutine partition_share_trial(self, g, npoints, store)
     class(element_partition_t), intent(in) :: self
     integer, intent(in) :: g, npoints
     class(point_state_store_t), intent(inout) :: store
+    real(dp), allocatable :: flags(:, :)
     if (.not. self%distributed .or. .not. allocated(store%sig_t)) return
-    call gather_blocks(store%sig_t, counts(size(store%sig_t, 1)), displs(size(store%sig_t, 1)))
-    call gather_blocks(store%eps_t, counts(size(store%eps_t, 1)), displs(size(store%eps_t, 1)))
-    call gather_int_blocks(store%state_t, counts(1), displs(1))
-    if (size(store%vars_t, 1) > 0) &
-      call gather_blocks(store%vars_t, counts(size(store%vars_t, 1)), displs(size(store%vars_t, 1)))
-    call gather_blocks(store%dtan_t, counts(size(store%dtan_t, 1) * size(store%dtan_t, 2)), &
-                       displs(size(store%dtan_t, 1) * size(store%dtan_t, 2)))
+    call share_real(store%sig_t)
+    call share_real(store%eps_t)
+    flags = reshape(real(store%state_t, dp), [1, size(store%state_t)])   ! small integers: exact
+    call share_real(flags)
+    store%state_t = nint(flags(1, :))
+    if (size(store%vars_t, 1) > 0) call share_real(store%vars_t)
+    call share_tangents(store%dtan_t)
   contains
+    !> x(:, points): this rank's columns into a buffer ordered rank by rank, gathered, put back.
+    subroutine share_real(x)
+      real(dp), intent(inout) :: x(:, :)
+      real(dp), allocatable :: buffer(:, :)
+      allocate (buffer(size(x, 1), size(x, 2)))
+      call to_buffer_real(x, buffer)
+      call gather_blocks(buffer, counts(size(x, 1)), displs(size(x, 1)))
+      call from_buffer_real(buffer, x)
+    end subroutine share_real
+    subroutine share_tangents(x)
+      real(dp), intent(inout) :: x(:, :, :)
+      real(dp), allocatable :: flat(:, :)
+      flat = reshape(x, [size(x, 1) * size(x, 2), size(x, 3)])
+      call share_real(flat)
+      x = reshape(flat, shape(x))
+    end subroutine share_tangents
+    subroutine to_buffer_real(x, buffer)
+      real(dp), intent(in) :: x(:, :)
+      real(dp), intent(inout) :: buffer(:, :)
+      integer :: k, e, first
+      first = sum(self%groups(g)%count(:self%rank - 1)) * npoints
+      do k = 1, size(self%groups(g)%own)
+        e = self%groups(g)%own(k)
+        buffer(:, first + (k - 1) * npoints + 1:first + k * npoints) = x(:, (e - 1) * npoints + 1:e * npoints)
+      end do
+    end subroutine to_buffer_real
+    subroutine from_buffer_real(buffer, x)
+      real(dp), intent(in) :: buffer(:, :)
+      real(dp), intent(inout) :: x(:, :)
+      integer :: k, e
+      do k = 1, size(self%groups(g)%by_rank)
+        e = self%groups(g)%by_rank(k)
+        x(:, (e - 1) * npoints + 1:e * npoints) = buffer(:, (k - 1) * npoints + 1:k * npoints)
+      end do
+    end subroutine from_buffer_real
     !> Each rank's number of values, `per_point` a point.
     pure function counts(per_point) result(c)
       integer, intent(in) :: per_point
       integer(i8) :: c(self%ranks)
-      integer :: r
-      do r = 0, self%ranks - 1
-        c(r + 1) = int(self%first(r + 1, g) - self%first(r, g), i8) * npoints * per_point
-      end do
+      c = int(self%groups(g)%count, i8) * npoints * per_point
     end function counts
-    !> Where each rank's values start (0-based).
+    !> Where each rank's values start (0-based): the ranks' blocks one after another.
     pure function displs(per_point) result(d)
       integer, intent(in) :: per_point
       integer(i8) :: d(self%ranks)
       integer :: r
-      do r = 0, self%ranks - 1
-        d(r + 1) = int(self%first(r, g) - 1, i8) * npoints * per_point
+      d(1) = 0
+      do r = 2, self%ranks
+        d(r) = d(r - 1) + int(self%groups(g)%count(r - 2), i8) * npoints * per_point
       end do
     end function displs
   end subroutine partition_share_trial

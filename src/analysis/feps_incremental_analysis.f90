@@ -154,7 +154,7 @@ contains
     allocate (summary%rank_elements(an%part%ranks), summary%rank_element_seconds(an%part%ranks), &
               summary%rank_peak_memory_mb(an%part%ranks))
     do r = 0, an%part%ranks - 1
-      summary%rank_elements(r + 1) = real(sum(an%part%first(r + 1, :) - an%part%first(r, :)), dp)
+      summary%rank_elements(r + 1) = real(an%part%elements_of_rank(r), dp)
     end do
     summary%rank_element_seconds = 0.0_dp
     summary%rank_element_seconds(an%part%rank + 1) = summary%time_assembly + summary%time_update

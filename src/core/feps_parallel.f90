@@ -11,7 +11,7 @@ module feps_parallel
   private
 
   public :: parallel_rank, parallel_ranks, sum_over_ranks, min_over_ranks, any_rank
-  public :: gather_blocks, gather_int_blocks, share_root_error, silence_output, peak_memory_mb
+  public :: gather_blocks, broadcast_from_root, share_root_error, silence_output, peak_memory_mb
 
   interface
     integer(c_int) function feps_par_rank() bind(C, name='feps_par_rank')
@@ -35,11 +35,6 @@ module feps_parallel
       real(c_double), intent(inout) :: x(*)
       integer(c_int64_t), intent(in) :: counts(*), displs(*)
     end function feps_par_gather_real
-    integer(c_int) function feps_par_gather_int(x, counts, displs) bind(C, name='feps_par_gather_int')
-      import :: c_int, c_int32_t, c_int64_t
-      integer(c_int32_t), intent(inout) :: x(*)
-      integer(c_int64_t), intent(in) :: counts(*), displs(*)
-    end function feps_par_gather_int
     integer(c_int) function feps_par_any(flag) bind(C, name='feps_par_any')
       import :: c_int
       integer(c_int), value :: flag
@@ -99,13 +94,11 @@ contains
     code = feps_par_gather_real(x, int(counts, c_int64_t), int(displs, c_int64_t))
   end subroutine gather_blocks
 
-  !> gather_blocks for an integer array.
-  subroutine gather_int_blocks(x, counts, displs)
-    integer, intent(inout) :: x(*)
-    integer(i8), intent(in) :: counts(:), displs(:)
-    integer(c_int) :: code
-    code = feps_par_gather_int(x, int(counts, c_int64_t), int(displs, c_int64_t))
-  end subroutine gather_int_blocks
+  !> Every rank gets rank 0's v.
+  subroutine broadcast_from_root(v)
+    integer, intent(inout) :: v(:)
+    call feps_par_from_root(v, int(size(v), c_int))
+  end subroutine broadcast_from_root
 
   !> After a step only rank 0 takes (writing the results): every rank takes rank 0's verdict,
   !! so that all of them stop at the same place; the other ranks' error carries rank 0's code

@@ -95,9 +95,6 @@ static int gather(void *x, const int64_t *counts, const int64_t *displs, MPI_Dat
 int feps_par_gather_real(double *x, const int64_t *counts, const int64_t *displs)
 { return gather(x, counts, displs, MPI_DOUBLE); }
 
-int feps_par_gather_int(int32_t *x, const int64_t *counts, const int64_t *displs)
-{ return gather(x, counts, displs, MPI_INT32_T); }
-
 int feps_par_any(int flag)
 {
     int any = flag != 0;
@@ -117,8 +114,6 @@ int feps_par_size(void) { return 1; }
 void feps_par_sum(double *x, int64_t n) { (void)x; (void)n; }
 void feps_par_min_int(int32_t *x, int64_t n) { (void)x; (void)n; }
 int feps_par_gather_real(double *x, const int64_t *counts, const int64_t *displs)
-{ (void)x; (void)counts; (void)displs; return 0; }
-int feps_par_gather_int(int32_t *x, const int64_t *counts, const int64_t *displs)
 { (void)x; (void)counts; (void)displs; return 0; }
 int feps_par_any(int flag) { return flag != 0; }
 void feps_par_from_root(int32_t *v, int n) { (void)v; (void)n; }

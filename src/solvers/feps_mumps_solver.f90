@@ -166,6 +166,10 @@ contains
       call fatal_error(error, err_internal, 'mumps: analyze called without a pattern')
       return
     end if
+    ! a new pattern (supports that change) gets a new instance: MUMPS 5.5 analysing a second
+    ! centralised pattern on the same instance found it structurally singular
+    if (self%instance >= 0) call feps_mumps_free(self%instance)
+    self%instance = -1
     if (self%instance < 0) self%instance = feps_mumps_create(merge(0_c_int, 2_c_int, self%unsymmetric), &
                                                             merge(1_c_int, 0_c_int, self%out_of_core))
     if (self%instance < 0) then

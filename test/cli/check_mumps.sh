@@ -135,20 +135,27 @@ got=$?
 [ "$got" -eq 2 ] && grep -q "^feps: error:.*singular at node.*MUMPS.s null pivot" "$tmp/err" && [ ! -e "$tmp/sing.h5" ] \
   && ok "an unconstrained model under MUMPS: exit 2, named, no results file" \
   || bad "an unconstrained model under MUMPS: exit $got: $(head -c 300 "$tmp/err")"
-# The elements partitioned over the ranks (each rank assembles and updates its own block; the
-# forces are summed and the point states exchanged): /summary's rank_elements are balanced blocks
-# that add up to the model's elements, and every driver and stage feature on 2 and 4 ranks gives
+# The elements partitioned over the ranks by METIS (each rank assembles and updates its own; the
+# forces are summed and the point states exchanged): /summary's rank_elements are balanced and
+# add up to the model's elements, and every driver and stage feature on 2 and 4 ranks gives
 # the 1-rank MUMPS answer (the same solver: only the partition differs) to 1e-9, each kind of
 # field relative to its largest value over the run: arc length through a slip peak and along its
 # plateau (block_arc), a cracking cube pulled by prescribed displacements to separation with full
 # Newton and line search (crack_bar_5_nu), groups born between stages (activate_block),
 # prestressed bars (prestress_block), bars born in a yielded band (band_birth_yielded), supports
-# that change (sec2_3_4_lift), interface friction (friction_pull), GEOSTATIC with a surface load
-# (k0_reset). Not here: block_displacement's PATH=DISPLACEMENT, whose plateau (every point
+# held and released between stages (stage_supports_incremental), a soil column built in two lifts
+# with its weight (soil_column_lifts), interface friction (friction_pull), GEOSTATIC with a surface
+# load (k0_reset). The cracking cube to its stage's DELTA1 = 1e-7 instead: near complete
+# separation its full Newton iterations take different paths on 1 and 2 ranks (step 21: 108 and
+# 33 iterations with cut-backs, the same displacements to 4e-15 at its end), so its points'
+# stresses agree to the tolerance they were converged to, not to round-off. Not here: block_displacement's PATH=DISPLACEMENT, whose plateau (every point
 # sliding) is a neutral equilibrium: its shear shares differ by 4e-8 between 1 and 4 ranks (as
 # between CHOLMOD and MUMPS on one rank, 2e-6), after agreeing to 2e-13 up to the plateau.
-for deck in block_arc crack_bar_5_nu activate_block prestress_block band_birth_yielded sec2_3_4_lift \
-            friction_pull k0_reset; do
+for case in block_arc crack_bar_5_nu:1e-7 activate_block prestress_block band_birth_yielded \
+            stage_supports_incremental soil_column_lifts friction_pull k0_reset; do
+  deck=${case%%:*}
+  tol=1e-9
+  [ "$deck" != "$case" ] && tol=${case#*:}
   "${mpi[@]}" 1 "$feps_mpi" "test/data/$deck.dat" --quiet --solver mumps --output "$tmp/$deck.1.h5" >"$tmp/out" 2>&1 \
     || { bad "$deck on 1 rank: $(tail -n 2 "$tmp/out")"; continue; }
   for np in 2 4; do
@@ -178,13 +185,15 @@ for n in names:
 s = new['summary'].attrs
 blocks = [int(e) for e in s['rank_elements']]
 total = sum(len(g['connectivity']) for g in new['mesh/groups'].values())
-# each group in blocks that differ by one element at most
-balanced = len(blocks) == ranks and max(blocks) - min(blocks) <= len(new['mesh/groups']) and sum(blocks) == total
+# METIS balances the ranks' points (elements of different kinds weigh differently) within a few
+# per cent: no rank above 1.15 times the mean where there are elements enough to share
+balanced = len(blocks) == ranks and sum(blocks) == total and (total < 20 * ranks or max(blocks) <= 1.15 * total / ranks)
 print(f"{worst:.3e} {where}; elements per rank {blocks} of {total}{'' if balanced else ' NOT BALANCED'}")
 EOF2
 )
-    python3 -c "import sys; sys.exit(float(sys.argv[1]) > 1e-9)" "${got%% *}" && [[ "$got" != *"NOT BALANCED"* ]] \
-      && ok "$deck on $np ranks = on 1 rank to ${got}" || bad "$deck on $np ranks against 1 rank: $got"
+    python3 -c "import sys; sys.exit(float(sys.argv[1]) > float(sys.argv[2]))" "${got%% *}" "$tol" \
+      && [[ "$got" != *"NOT BALANCED"* ]] \
+      && ok "$deck on $np ranks = on 1 rank to ${got} (within $tol)" || bad "$deck on $np ranks against 1 rank (to $tol): $got"
   done
 done
 

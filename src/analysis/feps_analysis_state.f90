@@ -32,7 +32,6 @@ module feps_analysis_state
   use feps_restart_data, only: restart_data_t
   use feps_element_partition, only: element_partition_t, partition_elements
   use feps_parallel, only: parallel_rank, parallel_ranks, sum_over_ranks, min_over_ranks, any_rank
-  use feps_linear_solver, only: linear_solver_t
   implicit none
   private
 
@@ -150,7 +149,9 @@ contains
     type(analysis_t), intent(inout) :: an
     type(error_t), allocatable, intent(out) :: error
     integer :: g, largest
-    call partition_elements(model, an%kernels(:)%npoints, parallel_rank(), parallel_ranks(), &
+    integer, allocatable :: npoints(:)
+    npoints = [(an%kernels(g)%npoints, g = 1, size(an%kernels))]   ! contiguous (no array temporary)
+    call partition_elements(model, npoints, parallel_rank(), parallel_ranks(), &
                             an%eq%solver%takes_distributed_matrix() .and. an%eq%lu%takes_distributed_matrix(), &
                             an%part, error)
     if (allocated(error) .or. .not. an%part%distributed) return

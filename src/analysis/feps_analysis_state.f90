@@ -148,20 +148,21 @@ contains
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     type(error_t), allocatable, intent(out) :: error
-    integer :: g, largest
+    integer :: g
     integer, allocatable :: npoints(:)
     npoints = [(an%kernels(g)%npoints, g = 1, size(an%kernels))]   ! contiguous (no array temporary)
     call partition_elements(model, npoints, parallel_rank(), parallel_ranks(), &
                             an%eq%solver%takes_distributed_matrix() .and. an%eq%lu%takes_distributed_matrix(), &
                             an%part, error)
     if (allocated(error) .or. .not. an%part%distributed) return
-    ! a rank's block of point states goes in one message, whose count is an int
+    ! a group's point states are exchanged in one call, whose counts and offsets are ints
     do g = 1, size(model%groups)
-      largest = maxval(an%part%groups(g)%count)
-      if (real(largest, dp) * an%kernels(g)%npoints * an%kernels(g)%ncomp**2 >= real(huge(1), dp)) then
+      if (.not. carries_state(model, an, g)) cycle
+      if (real(size(model%groups(g)%connectivity, 2), dp) * an%kernels(g)%npoints * an%kernels(g)%ncomp**2 &
+          >= real(huge(1), dp)) then
         call fatal_error(error, err_model, model%deck_file // ': group ' // trim(model%groups(g)%name) // &
-                         ' has too many elements for ' // str(an%part%ranks) // ' ranks (a rank''s point ' // &
-                         'states are one message of at most 2**31 values): run it on more ranks')
+                         ' has too many points for an MPI run (its point states are exchanged in one call ' // &
+                         'of at most 2**31 values): split it into several groups')
         return
       end if
     end do
@@ -326,6 +327,17 @@ contains
     end if
   end subroutine change_supports
 
+  !> Whether group g carries point state (group_state_t%nonlinear): a nonlinear material, a
+  !! group born in a later stage or prestressed, or any group of a model with a GEOSTATIC
+  !! stage, which resets the displacements after it (every stress must be a point's own).
+  logical function carries_state(model, an, g)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: an
+    integer, intent(in) :: g
+    carries_state = .not. an%materials(model%groups(g)%material)%m%is_linear() .or. &
+                    model%groups(g)%activate_stage > 1 .or. model%is_prestressed(g) .or. model%geostatic_stage > 0
+  end function carries_state
+
   !> Point states of the groups that carry them (zero, with the elastic tangent), the
   !! assembled stiffness of the linear part, the active groups of stage 1, and zero
   !! displacements and forces.
@@ -341,10 +353,7 @@ contains
       np = an%kernels(g)%npoints * size(model%groups(g)%connectivity, 2)
       nc = an%kernels(g)%ncomp
       associate (s => an%states(g))
-        ! A GEOSTATIC stage resets the displacements after it: every stress must be a point's own.
-        s%nonlinear = .not. an%materials(model%groups(g)%material)%m%is_linear() .or. &
-                      model%groups(g)%activate_stage > 1 .or. model%is_prestressed(g) .or. &
-                      model%geostatic_stage > 0
+        s%nonlinear = carries_state(model, an, g)
         if (.not. s%nonlinear) then
           an%lin%present = .true.
           cycle

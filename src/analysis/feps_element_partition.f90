@@ -138,51 +138,37 @@ contains
     class(element_partition_t), intent(in) :: self
     integer, intent(in) :: g, npoints
     class(point_state_store_t), intent(inout) :: store
-    real(dp), allocatable :: flags(:, :)
+    real(dp), allocatable :: flags(:)
+    integer :: points
     if (.not. self%distributed .or. .not. allocated(store%sig_t)) return
-    call share_real(store%sig_t)
-    call share_real(store%eps_t)
-    flags = reshape(real(store%state_t, dp), [1, size(store%state_t)])   ! small integers: exact
-    call share_real(flags)
-    store%state_t = nint(flags(1, :))
-    if (size(store%vars_t, 1) > 0) call share_real(store%vars_t)
-    call share_tangents(store%dtan_t)
+    points = size(store%state_t)
+    call share_real(store%sig_t, size(store%sig_t, 1))
+    call share_real(store%eps_t, size(store%eps_t, 1))
+    flags = real(store%state_t, dp)   ! small integers: exact
+    call share_real(flags, 1)
+    store%state_t = nint(flags)
+    if (size(store%vars_t, 1) > 0) call share_real(store%vars_t, size(store%vars_t, 1))
+    call share_real(store%dtan_t, size(store%dtan_t, 1) * size(store%dtan_t, 2))
   contains
-    !> x(:, points): this rank's columns into a buffer ordered rank by rank, gathered, put back.
-    subroutine share_real(x)
-      real(dp), intent(inout) :: x(:, :)
+    !> x(rows, points) (any contiguous array of `rows` values a point, a tangent's too): this
+    !! rank's points into a buffer ordered rank by rank, gathered, and every point put back.
+    subroutine share_real(x, rows)
+      integer, intent(in) :: rows
+      real(dp), intent(inout) :: x(rows, points)
       real(dp), allocatable :: buffer(:, :)
-      allocate (buffer(size(x, 1), size(x, 2)))
-      call to_buffer_real(x, buffer)
-      call gather_blocks(buffer, counts(size(x, 1)), displs(size(x, 1)))
-      call from_buffer_real(buffer, x)
-    end subroutine share_real
-    subroutine share_tangents(x)
-      real(dp), intent(inout) :: x(:, :, :)
-      real(dp), allocatable :: flat(:, :)
-      flat = reshape(x, [size(x, 1) * size(x, 2), size(x, 3)])
-      call share_real(flat)
-      x = reshape(flat, shape(x))
-    end subroutine share_tangents
-    subroutine to_buffer_real(x, buffer)
-      real(dp), intent(in) :: x(:, :)
-      real(dp), intent(inout) :: buffer(:, :)
       integer :: k, e, first
+      allocate (buffer(rows, points))
       first = sum(self%groups(g)%count(:self%rank - 1)) * npoints
       do k = 1, size(self%groups(g)%own)
         e = self%groups(g)%own(k)
         buffer(:, first + (k - 1) * npoints + 1:first + k * npoints) = x(:, (e - 1) * npoints + 1:e * npoints)
       end do
-    end subroutine to_buffer_real
-    subroutine from_buffer_real(buffer, x)
-      real(dp), intent(in) :: buffer(:, :)
-      real(dp), intent(inout) :: x(:, :)
-      integer :: k, e
+      call gather_blocks(buffer, counts(rows), displs(rows))
       do k = 1, size(self%groups(g)%by_rank)
         e = self%groups(g)%by_rank(k)
         x(:, (e - 1) * npoints + 1:e * npoints) = buffer(:, (k - 1) * npoints + 1:k * npoints)
       end do
-    end subroutine from_buffer_real
+    end subroutine share_real
     !> Each rank's number of values, `per_point` a point.
     pure function counts(per_point) result(c)
       integer, intent(in) :: per_point

@@ -67,24 +67,25 @@ void feps_par_min_int(int32_t *x, int64_t n)
     }
 }
 
-/* Rank r's block is x[displs[r] .. displs[r] + counts[r]): every rank gets every block. A block
- * beyond an int's count is a broken invariant (feps checks the blocks' sizes when it partitions
- * the elements): every rank stops, with one line from the rank that found it. */
+/* Rank r's block is x[displs[r] .. displs[r] + counts[r]): every rank gets every block. A count
+ * or offset beyond an int is a broken invariant (feps checks each group's size when it
+ * partitions the elements): every rank stops, with one line from the rank that found it. */
 static int gather(void *x, const int64_t *counts, const int64_t *displs, MPI_Datatype type)
 {
     int size = feps_par_size();
     if (size < 2) return 0;
     int *c = malloc(sizeof(int) * (size_t)size), *d = malloc(sizeof(int) * (size_t)size);
-    int too_big = c == NULL || d == NULL;
-    for (int r = 0; r < size && !too_big; r++) {
-        if (counts[r] > INT_MAX || displs[r] > INT_MAX) too_big = 1;
-        else { c[r] = (int)counts[r]; d[r] = (int)displs[r]; }
-    }
-    int any_too_big = too_big;
-    MPI_Allreduce(&too_big, &any_too_big, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-    if (any_too_big) {
-        if (too_big) fprintf(stderr, "feps: error: internal: a block of point states beyond 2**31 values\n");
+    if (c == NULL || d == NULL) {
+        fprintf(stderr, "feps: error: out of memory exchanging the point states\n");
         MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    for (int r = 0; r < size; r++) {
+        if (counts[r] > INT_MAX || displs[r] > INT_MAX) {
+            fprintf(stderr, "feps: error: internal: a block of point states beyond 2**31 values\n");
+            MPI_Abort(MPI_COMM_WORLD, 1);
+        }
+        c[r] = (int)counts[r];
+        d[r] = (int)displs[r];
     }
     MPI_Allgatherv(MPI_IN_PLACE, 0, type, x, c, d, type, MPI_COMM_WORLD);
     free(c);

@@ -419,6 +419,8 @@ def plans(quick, check=False):
             ("hex8", 0, "modified-newton-raphson", 400, 1e-6, "cholmod"),
             ("hex8", 0, "initial-stiffness", 25, 1e-4, "cholmod"),
             ("hex8", 0, "full-newton-raphson", 100, 1e-6, "cholmod")]
+    # the converged answer in few steps: full Newton in 1-10 steps (issue 28 item 4)
+    fe1 += [("hex8", 0, "full-newton-raphson", s, 1e-6, "cholmod") for s in (1, 2, 5, 10)]
     # model C (21864 DOFs, 1-10 min a run on the shared machine): stage 2's steps (stage s3, the
     # equilibrium stage, gets the same number); initial stiffness below 250 steps stops in s3
     modelc = [("hex8", 0, "initial-stiffness", 50, 1e-4, "cholmod"),

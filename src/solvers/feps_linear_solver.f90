@@ -81,7 +81,7 @@ contains
 
   !> The sign of the determinant of the matrix last factorized: +1, -1, or 0 where the solver
   !! does not know it (the default). CHOLMOD's LL^T factorizes positive definite matrices only
-  !! (+1); skyline counts its negative LDL^T pivots; UMFPACK asks its LU.
+  !! (+1); skyline counts its negative LDL^T pivots; UMFPACK asks its LU; MUMPS its determinant.
   pure integer function determinant_sign(self)
     class(linear_solver_t), intent(in) :: self
     determinant_sign = 0

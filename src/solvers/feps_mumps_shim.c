@@ -62,6 +62,8 @@ static void set_controls(DMUMPS_STRUC_C *id)
     id->icntl[19] = 0;           /* ICNTL(20) dense right-hand side */
     id->icntl[20] = 0;           /* ICNTL(21) centralised solution */
     id->icntl[23] = 1;           /* ICNTL(24) detect null pivots: names the equation */
+    id->icntl[32] = 1;           /* ICNTL(33) the determinant, for its sign (the stability
+                                  * check); the factors' arithmetic is unchanged */
     id->cntl[2] = 1e-11;         /* CNTL(3): a pivot row below 1e-11 of the matrix's norm is null
                                   * (CHOLMOD's rule is 1e-11 of the equation's own diagonal) */
 }
@@ -286,6 +288,18 @@ int64_t feps_mumps_null_pivot(int which)
     return first;
 }
 
+/* The sign of the last factorized matrix's determinant (RINFOG(12) times 2^INFOG(34), ICNTL(33)),
+ * root node included, which INFOG(12)'s count of negative pivots leaves out on several ranks
+ * unless ScaLAPACK is given up for it: 1 or -1, 0 when unknown. Rank 0's, sent to every rank. */
+int feps_mumps_determinant_sign(int which)
+{
+    if (!started || which < 0 || which >= MAX_INSTANCES || !instances[which].in_use) return 0;
+    double mantissa = instances[which].id.rinfog[11];
+    int sign = mantissa > 0.0 ? 1 : (mantissa < 0.0 ? -1 : 0);
+    MPI_Bcast(&sign, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    return sign;
+}
+
 /* Factor entries (INFOG(29), or -INFOG(29) millions when negative) and flops (RINFOG(3)). */
 int64_t feps_mumps_factor_entries(int which)
 {
@@ -343,6 +357,7 @@ int feps_mumps_analyze(int which, int64_t n, const int64_t *row_ptr, const int32
 { (void)which; (void)n; (void)row_ptr; (void)col; (void)distributed; (void)local; return MUMPS_NO_MPI; }
 int feps_mumps_factorize(int which, double *val) { (void)which; (void)val; return MUMPS_NO_MPI; }
 int64_t feps_mumps_null_pivot(int which) { (void)which; return 0; }
+int feps_mumps_determinant_sign(int which) { (void)which; return 0; }
 int64_t feps_mumps_factor_entries(int which) { (void)which; return 0; }
 double feps_mumps_flops(int which) { (void)which; return 0.0; }
 int feps_mumps_solve(int which, int64_t n, int64_t nrhs, double *b)

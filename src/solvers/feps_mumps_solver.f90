@@ -27,6 +27,7 @@ module feps_mumps_solver
     integer(c_int), private :: instance = -1     !! the shim's MUMPS instance, -1 before analyze
     integer, private :: n = 0
     logical, private :: factorized = .false.
+    integer, private :: det_sign = 0             !! the sign of the factor's determinant (ICNTL(33))
     real(dp), private :: memory_estimate_mb = 0.0_dp   !! MUMPS's, after the analysis (all ranks)
     integer(c_int32_t), allocatable, private :: local(:)  !! 1 where this rank gives the entry (distributed)
   contains
@@ -38,6 +39,7 @@ module feps_mumps_solver
     procedure :: solve => mumps_solve
     procedure :: name => mumps_name
     procedure :: zero_pivot_rule => mumps_zero_pivot_rule
+    procedure :: determinant_sign => mumps_determinant_sign
     final :: mumps_finalize
   end type mumps_solver_t
 
@@ -105,6 +107,10 @@ module feps_mumps_solver
       integer(c_int64_t), value :: n, nrhs
       real(c_double), intent(inout) :: b(*)
     end function feps_mumps_solve
+    integer(c_int) function feps_mumps_determinant_sign(instance) bind(C, name='feps_mumps_determinant_sign')
+      import :: c_int
+      integer(c_int), value :: instance
+    end function feps_mumps_determinant_sign
     integer(c_int) function feps_mumps_infog(instance, k) bind(C, name='feps_mumps_infog')
       import :: c_int
       integer(c_int), value :: instance, k
@@ -220,6 +226,7 @@ contains
     end if
     self%flops = feps_mumps_flops(self%instance)
     self%factor_nnz = feps_mumps_factor_entries(self%instance)
+    self%det_sign = int(feps_mumps_determinant_sign(self%instance))
     self%factorized = .true.
     self%factorizations = self%factorizations + 1
     call record_ranks(self)
@@ -309,6 +316,14 @@ contains
     character(len=:), allocatable :: text
     text = 'MUMPS''s null pivot: its row below 1e-11 of the matrix''s norm'
   end function mumps_zero_pivot_rule
+
+  !> The sign of the last factorized matrix's determinant (MUMPS's RINFOG(12), ICNTL(33)): -1 past
+  !! a limit point or bifurcation of an exact tangent; 0 before a factorization.
+  pure integer function mumps_determinant_sign(self)
+    class(mumps_solver_t), intent(in) :: self
+    mumps_determinant_sign = 0
+    if (self%factorized) mumps_determinant_sign = self%det_sign
+  end function mumps_determinant_sign
 
   !> Release the MUMPS instance on every rank.
   subroutine mumps_finalize(self)

@@ -9,6 +9,7 @@
 # file. The default build refuses --solver mumps with one line and exit 2. MUMPS's LU of the
 # non-symmetric tangents (joint_psi0, full Newton) equals UMFPACK's, with each rank's memory and
 # time in /summary; --out-of-core (factors on disk) gives the same answer and leaves no file.
+# MUMPS's determinant gives the exact tangent's sign at each step as skyline and UMFPACK do.
 # Installs MUMPS and OpenMPI (scripts/setup.sh --mpi) and builds the MPI build (build_mpi.sh).
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -97,6 +98,34 @@ EOF
   else
     bad "joint_psi0, MUMPS LU on $np rank(s): $(tail -n 3 "$tmp/out")"
   fi
+done
+
+# The sign of the exact tangent's determinant (the stability check, /steps/NNNN
+# tangent_determinant_sign) from MUMPS's determinant (ICNTL(33)) equals skyline's (LDL^T pivots)
+# on the softening bar and UMFPACK's (LU) on the bar with nu = 0.2 at every step of the
+# arc-length path: + before the peak, - past it; on 2 ranks one rank holds no element.
+signs() {
+  python3 - "$1" <<'EOF'
+import sys, h5py
+steps = h5py.File(sys.argv[1], 'r')['steps']
+print(''.join({1: '+', -1: '-'}.get(int(steps[k].attrs.get('tangent_determinant_sign', 0)), '0')
+              for k in sorted(steps, key=int)))
+EOF
+}
+for pair in "crack_bar_arc skyline skyline" "crack_bar_arc_nu cholmod UMFPACK"; do
+  set -- $pair
+  "$feps" "test/data/$1.dat" --quiet --solver "$2" --output "$tmp/$1.ref.h5" >"$tmp/out" 2>&1 || bad "$1: the $2 run failed"
+  want=$(signs "$tmp/$1.ref.h5")
+  for np in 1 2; do
+    if "${mpi[@]}" "$np" "$feps_mpi" "test/data/$1.dat" --quiet --solver mumps --output "$tmp/$1.$np.h5" >"$tmp/out" 2>&1; then
+      got=$(signs "$tmp/$1.$np.h5")
+      [ "$got" = "$want" ] && [[ "$want" == *+* ]] && [[ "$want" == *-* ]] \
+        && ok "$1 on $np rank(s): the determinant's sign at every step = $3's ($got)" \
+        || bad "$1 on $np rank(s): the determinant's signs $got against $3's $want"
+    else
+      bad "$1, MUMPS on $np rank(s): $(tail -n 3 "$tmp/out")"
+    fi
+  done
 done
 
 # --out-of-core: the factors on disk (in MUMPS_OOC_TMPDIR), the same answer; MUMPS removes its

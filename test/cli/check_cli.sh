@@ -15,8 +15,12 @@ case $feps in /*) feps_abs=$feps ;; *) feps_abs=$PWD/$feps ;; esac
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 pass=0; fail=0
-ok() { pass=$((pass + 1)); echo "  ok   $1"; }
-bad() { fail=$((fail + 1)); echo "  FAIL $1"; }
+# each check's time (since the check before it ended) goes to $tmp/timings; the slowest are
+# listed at the end, so CI's time can be traced to its checks
+last=${EPOCHREALTIME/./}
+timed() { local now=${EPOCHREALTIME/./}; echo "$(((now - last) / 1000000)).$(printf '%06d' $(((now - last) % 1000000))) ${1:0:90}" >>"$tmp/timings"; last=$now; }
+ok() { pass=$((pass + 1)); echo "  ok   $1"; timed "$1"; }
+bad() { fail=$((fail + 1)); echo "  FAIL $1"; timed "$1"; }
 
 expect_status() {  # name expected-status command...
   local name=$1 want=$2; shift 2
@@ -688,15 +692,7 @@ python3 scripts/make_model_b.py --outdir "$tmp/mb" >/dev/null && diff -r input/m
 sys.exit(m.deck("FE1").replace("OUTPUT, modelB_FE1.h5", "OUTPUT, modelB.h5") != open("input/modelB.dat").read())' \
   && ok "make_model_b.py's defaults = input/modelB and input/modelB.dat" \
   || bad "make_model_b.py's defaults = input/modelB and input/modelB.dat"
-# make_pipe_joint.py, the generator make_model_b.py and make_model_c.py are presets of (issue 26
-# item 4): the presets write the decks of the generators before the merge byte for byte (every
-# thesis case, the mesh-study and grid options), the generator's command line writes the thesis's
-# models, a DN 2400 deck runs on the pipe's mesh, the --gamma records, the diagonal misalignment
-# (whole ring and half model against the edge quarter), --soil-around-top (its weight against the
-# geometry) (test/cli/check_pipe_joint.py).
-python3 test/cli/check_pipe_joint.py --feps "$feps" --tmp "$tmp/pj" >"$tmp/out" 2>&1 \
-  && ok "check_pipe_joint.py: $(grep -c '^  ok' "$tmp/out") checks of make_pipe_joint.py and its presets" \
-  || bad "check_pipe_joint.py: $(grep -v '^  ok' "$tmp/out" | head -c 600)"
+# make_pipe_joint.py and its presets: test/cli/check_pipe_joint.py, run by .ci/run on the release build.
 # The model B mesh study's decks (make_model_b.py --refine, --element): a lattice of
 # (4k + 1 + 1 + 8k) r x (54k + 1) theta x (48k + 1) z nodes for hex20:k with interfaces, the same
 # lattice as hex8:2k; both pass --check.
@@ -1321,5 +1317,7 @@ for x in "${xmfs[@]}"; do [ -e "${x%.xmf}.meshio.xdmf" ] && meshios+=("${x%.xmf}
   && ok "check_meshio.py: the ${#meshios[@]} meshio files beside them: $(grep -c ': ok with' "$tmp/out") read back as their HDF5 files hold them; skipped: $(grep ': skipped' "$tmp/out" | sed 's|^.*/||; s|: skipped.*block of | (|; s| (no.*|)|' | tr '\n' ' ')" \
   || bad "check_meshio.py: ${#meshios[@]} meshio files for ${#xmfs[@]} XDMF files: $(grep -v ': ok with' "$tmp/out" | head -c 400)"
 
+echo "the slowest checks (seconds, each since the check before it):"
+sort -rn "$tmp/timings" | head -n 12 | awk '{printf "  %7.1f  %s\n", $1, substr($0, index($0, " ") + 1)}'
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Checks of scripts/make_pipe_joint.py and its presets make_model_b.py and make_model_c.py (issue
-26 item 4), run by test/cli/check_cli.sh:
+26 item 4), run by .ci/run on the release build (its runs take 1.5 min there, 3.5 min in debug):
 
 - the presets write byte for byte the decks that the generators before the merge wrote (commit
   OLD, read with git show): every thesis case of models B and C and the mesh-study and grid
@@ -27,7 +27,9 @@
   top body is Ripley's estimate's to 3 %;
 - bad options stop with exit status 2 naming the option.
 
-    python3 test/cli/check_pipe_joint.py --feps FEPS --tmp FOLDER
+    python3 test/cli/check_pipe_joint.py --feps FEPS [--tmp FOLDER]
+
+FOLDER keeps the decks and results (default: a temporary folder, removed at the end).
 
 Prints one line per check ('  ok   ...' or '  FAIL ...'); exit status 1 when any failed.
 """
@@ -38,6 +40,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 
 import h5py
 import numpy as np
@@ -472,11 +475,13 @@ def joint_with_friction(tmp, feps, deck, tolerance, keys):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--feps", required=True)
-    ap.add_argument("--tmp", required=True)
+    ap.add_argument("--tmp", help="a folder for the decks and results, kept (default: a temporary one)")
     a = ap.parse_args()
-    os.makedirs(a.tmp, exist_ok=True)
-    identity(a.tmp)
-    generic(a.tmp, os.path.abspath(a.feps))
+    with tempfile.TemporaryDirectory(prefix="check_pipe_joint.") as scratch:
+        tmp = a.tmp or scratch
+        os.makedirs(tmp, exist_ok=True)
+        identity(tmp)
+        generic(tmp, os.path.abspath(a.feps))
     print(f"check_pipe_joint: {len(FAILED)} failed")
     return 1 if FAILED else 0
 

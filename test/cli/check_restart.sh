@@ -3,9 +3,10 @@
 # uninterrupted run at every later step. Each case runs a deck (a) uninterrupted with restart
 # data every few steps, (b) stopped after step K (--stop-after-step, the test aid that stands
 # for a run that dies; one case is killed with SIGKILL instead) and (c) continued from (b)'s
-# checkpoint file; restart_compare.py then compares every dataset and attribute of the
-# continued results with (a)'s (timings aside) and the restart data of every later step (the
-# whole state: displacements, point states, matrix values, counters). Cases: friction with
+# checkpoint file (FE1 and model C continue from (a)'s own data); restart_compare.py then
+# compares every dataset and attribute of the continued results with (a)'s (timings aside) and
+# the restart data of every later step (the whole state: displacements, point states, matrix
+# values, counters). Cases: friction with
 # full Newton-Raphson and LINESEARCH=energy (LU tangents), BFGS, every solution method on a
 # deck whose supports change between stages, a post-tensioned bar, a group born in stage 2,
 # FE1 (400 steps) and a model C case (three stages), with restart points mid-stage and at
@@ -28,21 +29,28 @@ bad() { fail=$((fail + 1)); echo "  FAIL $1"; }
 compare=test/cli/restart_compare.py
 
 # case NAME DECK EVERY "K1 K2 ..." [options...]: uninterrupted with restart data every EVERY
-# steps; for each K a run stopped after K and one continued from the stopped run's data.
+# steps; for each K a run stopped after K and one continued from the stopped run's data. With
+# own=1 the continued run starts from the uninterrupted run's own data of step K, and no run is
+# stopped (the thesis decks: a stopped run would repeat K steps to write the data that the
+# uninterrupted run wrote at step K; the small decks check the stopped runs).
 case_() {
   local name=$1 deck=$2 every=$3 ks=$4; shift 4
   "$feps" "$deck" -q -o "$tmp/$name.h5" --restart-every "$every" "$@" >"$tmp/out" 2>&1 \
     || { bad "$name: the uninterrupted run: $(head -c 300 "$tmp/out")"; return; }
-  local k
+  local k from
   for k in $ks; do
-    "$feps" "$deck" -q -o "$tmp/${name}_stop$k.h5" --restart-every "$every" --stop-after-step "$k" "$@" \
-      >"$tmp/out" 2>&1
-    if [ $? -ne 1 ] || [ -e "$tmp/${name}_stop$k.h5" ] || [ -e "$tmp/${name}_stop$k.h5.part" ] \
-       || [ ! -e "$tmp/${name}_stop$k.restart.h5" ]; then
-      bad "$name: stopped after $k: exit 1, no results, the checkpoint kept: $(head -c 300 "$tmp/out")"
-      continue
+    from=$tmp/$name.restart.h5
+    if [ -z "${own:-}" ]; then
+      from=$tmp/${name}_stop$k.restart.h5
+      "$feps" "$deck" -q -o "$tmp/${name}_stop$k.h5" --restart-every "$every" --stop-after-step "$k" "$@" \
+        >"$tmp/out" 2>&1
+      if [ $? -ne 1 ] || [ -e "$tmp/${name}_stop$k.h5" ] || [ -e "$tmp/${name}_stop$k.h5.part" ] \
+         || [ ! -e "$from" ]; then
+        bad "$name: stopped after $k: exit 1, no results, the checkpoint kept: $(head -c 300 "$tmp/out")"
+        continue
+      fi
     fi
-    "$feps" "$deck" -q -o "$tmp/${name}_cont$k.h5" --restart "$tmp/${name}_stop$k.restart.h5" --step "$k" \
+    "$feps" "$deck" -q -o "$tmp/${name}_cont$k.h5" --restart "$from" --step "$k" \
       --restart-every "$every" "$@" >"$tmp/out" 2>&1 \
       || { bad "$name: continued after $k: $(head -c 300 "$tmp/out")"; continue; }
     python3 "$compare" "$tmp/$name.h5" "$tmp/${name}_cont$k.h5" "$k" >"$tmp/cmp" 2>&1 \
@@ -71,9 +79,10 @@ case_ post test/data/prestress_post.dat 1 "4 7"
 # A group born in stage 2.
 case_ birth test/data/activate_block.dat 1 "1"
 # FE1 (400 steps of initial stiffness) after step 390, and model C (stages of 1, 250 and 100
-# steps) mid-stage 2 (150) and at the boundary of stages 2 and 3 (251).
-case_ FE1 input/modelB/FE1.dat 130 "390"
-case_ modelC input/modelC/C_G300_nu0.1_b0.09.dat 251 "251"
+# steps) at the boundary of stages 2 and 3 (251), from the uninterrupted runs' data; model C
+# stopped mid-stage 2 (150) and continued from the file's last point.
+own=1 case_ FE1 input/modelB/FE1.dat 130 "390"
+own=1 case_ modelC input/modelC/C_G300_nu0.1_b0.09.dat 251 "251"
 "$feps" input/modelC/C_G300_nu0.1_b0.09.dat -q -o "$tmp/mc150.h5" --restart-every 150 --stop-after-step 150 \
   >/dev/null 2>&1
 "$feps" input/modelC/C_G300_nu0.1_b0.09.dat -q -o "$tmp/mc150_cont.h5" --restart "$tmp/mc150.restart.h5" \

@@ -153,6 +153,7 @@ contains
     options%method = ''
     options%fields = ''
     options%restart = ''
+    options%tolerance = ''
     seen = ' '
     n = command_argument_count()
     i = 0
@@ -169,7 +170,7 @@ contains
         status = 0
         return
       case ('-q', '--quiet', '--check', '--strict', '--out-of-core', '-o', '--output', '--solver', '--method', &
-            '--maxit', '--fields', &
+            '--maxit', '--steps', '--tolerance', '--fields', &
             '--restart', '--step', '--restart-every', '--stop-after-step', '--threads')
         name = arg
         if (arg == '-q') name = '--quiet'
@@ -211,6 +212,16 @@ contains
           options%method = value
         case ('--fields')
           options%fields = value
+        case ('--tolerance')
+          options%tolerance = value       ! read and checked with the deck's rule (feps_program)
+        case ('--steps')
+          options%steps = whole_number(value)
+          if (options%steps < 1 .or. options%steps > max_total_steps) then
+            write (error_unit, '(a)') 'feps: error: --steps takes a whole number from 1 to ' // &
+              str(max_total_steps) // ', not "' // value // '"'
+            status = 2
+            return
+          end if
         case ('--restart')
           options%restart = value
         case ('--step', '--restart-every', '--stop-after-step')
@@ -307,8 +318,10 @@ contains
       text = 'a whole number from 1 to ' // str(max_iterations_limit)
     case ('--restart')
       text = 'a checkpoint file name'
-    case ('--step', '--restart-every', '--stop-after-step')
+    case ('--step', '--restart-every', '--stop-after-step', '--steps')
       text = 'a whole number of steps'
+    case ('--tolerance')
+      text = 'a number from 0 up (DELTA1)'
     case ('--threads')
       text = 'a whole number of threads'
     case default
@@ -370,8 +383,8 @@ contains
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
       'usage: feps DECK [--output FILE] [--solver skyline|cholmod|mumps [--out-of-core]] [--method NAME]', &
-      '                 [--maxit N] [--fields LIST] [--check] [--strict] [--quiet]', &
-      '                 [--restart-every N] [--restart FILE [--step N]] [--threads N]', &
+      '                 [--maxit N] [--steps N] [--tolerance X] [--fields LIST] [--check] [--strict]', &
+      '                 [--quiet] [--restart-every N] [--restart FILE [--step N]] [--threads N]', &
       '       feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--json] ...', &
       '       feps elements', &
       '       feps --help | --version', &
@@ -390,6 +403,11 @@ contains
       '      --maxit N        at most N iterations per step in every stage, 1 to ' // str(max_iterations_limit) // &
       ' (overrides', &
       '                       the deck''s MAXIT; euler and modified-euler keep their one iteration)', &
+      '      --steps N        N equal steps in every stage under load or displacement control', &
+      '                       (overrides the deck''s STEPS; arc-length stages keep theirs)', &
+      '      --tolerance X    the relative residual every step must reach, a number from 0 up', &
+      '                       (overrides the deck''s DELTA1). The converged answer fast:', &
+      '                       --method full-newton-raphson --steps 1 --tolerance 1e-6', &
       '      --fields LIST    the result fields to write, comma-separated as the FIELDS record names', &
       '                       them (overrides the deck''s FIELDS), e.g. all,nodal_principal', &
       '      --check          check the deck and the model: everything a run checks before its', &

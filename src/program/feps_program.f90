@@ -8,7 +8,8 @@ module feps_program
   use feps_error, only: error_t, fatal_error, input_error, err_input, err_input_file, err_model, err_internal, &
                         err_solver, err_memory, str
   use feps_model, only: model_t, report_t, method_names, method_euler, method_modified_euler, method_newton_raphson, &
-                        method_full_newton_raphson, line_search_refusal, known_fields
+                        method_full_newton_raphson, line_search_refusal, known_fields, path_arc_length, &
+                        max_total_steps
   use feps_deck, only: read_deck
   use feps_strings, only: to_lower, shown, utf8_text_length, gib_text
   use feps_files, only: file_kind, file_kind_text, folder_of, folder_writable, file_missing, file_regular, &
@@ -39,6 +40,8 @@ module feps_program
     character(len=:), allocatable :: solver
     character(len=:), allocatable :: method     !! overrides every stage's METHOD when not empty
     integer :: max_iterations = 0               !! overrides every stage's MAXIT when positive
+    integer :: steps = 0                        !! overrides STEPS of every stage not under arc length when positive
+    character(len=:), allocatable :: tolerance  !! overrides every stage's DELTA1 when not empty (a number >= 0)
     character(len=:), allocatable :: fields     !! overrides the deck's FIELDS when not empty: names, comma-separated
     logical :: quiet = .false.
     logical :: check_only = .false.             !! check the deck and the model, solve nothing, write nothing
@@ -158,6 +161,16 @@ contains
       end if
     end if
     if (options%max_iterations > 0) call override_max_iterations(model, options%max_iterations)
+    if (options%steps > 0) then
+      call override_steps(model, options%steps, error)
+      if (allocated(error)) return
+    end if
+    if (allocated(options%tolerance)) then
+      if (len(options%tolerance) > 0) then
+        call override_tolerance(model, options%tolerance, error)
+        if (allocated(error)) return
+      end if
+    end if
     if (allocated(options%fields)) then
       if (len(options%fields) > 0) then
         call override_fields(model, options%fields, error)
@@ -353,6 +366,47 @@ contains
       end associate
     end do
   end subroutine override_max_iterations
+
+  !> --steps N: every stage under load or displacement control takes N equal steps in place of
+  !! its STEPS (the speed-accuracy trade without editing the deck, docs/tradeoff.md). An
+  !! arc-length stage keeps its STEPS: there they count arcs of length ARC, which would cut the
+  !! path short. All stages' steps together stay within max_total_steps.
+  subroutine override_steps(model, steps, error)
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: steps
+    type(error_t), allocatable, intent(out) :: error
+    integer :: s, total
+    total = 0
+    do s = 1, size(model%stages)
+      if (model%stages(s)%path /= path_arc_length) model%stages(s)%steps = steps
+      if (model%stages(s)%steps > max_total_steps - total) then
+        call fatal_error(error, err_input, '--steps ' // str(steps) // ': the stages would take more than ' // &
+                         str(max_total_steps) // ' steps together')
+        return
+      end if
+      total = total + model%stages(s)%steps
+    end do
+  end subroutine override_steps
+
+  !> --tolerance X: every stage's DELTA1 (the relative residual a step must reach), a number
+  !! from 0 up as the deck's DELTA1 takes it.
+  subroutine override_tolerance(model, text, error)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: text
+    type(error_t), allocatable, intent(out) :: error
+    real(dp) :: value
+    logical :: ok
+    integer :: s
+    call real_from_text(text, value, ok)
+    if (.not. ok .or. value < 0.0_dp) then
+      call fatal_error(error, err_input, '--tolerance takes a number from 0 up (every stage''s DELTA1), not "' // &
+                       shown(text) // '"')
+      return
+    end if
+    do s = 1, size(model%stages)
+      model%stages(s)%controls%delta1 = value
+    end do
+  end subroutine override_tolerance
 
   !> Nodes beyond double precision (a DATAIN increment or a coordinate system that overflows or
   !! gives no direction) are bad input: name the first, before anything is computed or

@@ -127,7 +127,7 @@ hostile() {  # name want-status stem command...: the command's stderr is one lin
     bad "$name: exit $got (want $want), $(wc -l <"$tmp/err") lines, left: $left: $(head -c 300 "$tmp/err")"
   fi
 }
-for opt in --output --method --solver --maxit --fields; do
+for opt in --output --method --solver --maxit --steps --tolerance --fields; do
   hostile "$opt '' is refused" 2 "$tmp/empty" "$feps" test/data/cube.dat "$opt" '' --output "$tmp/empty.h5"
 done
 hostile "an option given twice is refused" 2 "$tmp/twice" "$feps" test/data/cube.dat --output "$tmp/twice.h5" -o "$tmp/twice2.h5"
@@ -231,6 +231,45 @@ names = []
 a.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
 assert names and all(a[n][...].tobytes() == b[n][...].tobytes() for n in names)
 " "$tmp/t1.h5" "$tmp/t2.h5" && ok "--threads 2: every dataset bit-identical to one thread's" || bad "--threads 2 differs from one thread"
+# --steps N and --tolerance X override every stage's STEPS (arc-length stages keep theirs) and
+# DELTA1: the same bits as the deck edited so (and not those of --steps alone: at DELTA1 = 1e-3
+# full Newton stops sooner than at the deck's 1e-9); bad values are one line, exit 2, no file.
+sed 's/STAGE, press, STEPS=1, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-9/STAGE, press, STEPS=3, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-3/; s/STAGE, pull, STEPS=10, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-9/STAGE, pull, STEPS=3, METHOD=full-newton-raphson, MAXIT=50, DELTA1=1e-3/' \
+  test/data/friction_pull.dat >"$tmp/friction_pull_3.dat"
+"$feps" "$tmp/friction_pull_3.dat" --quiet --output "$tmp/fp_deck.h5" \
+  && "$feps" test/data/friction_pull.dat --quiet --steps 3 --tolerance 1e-3 --output "$tmp/fp_flags.h5" \
+  && "$feps" test/data/friction_pull.dat --quiet --steps 3 --output "$tmp/fp_steps.h5" \
+  && python3 -c "
+import sys, h5py
+a, b, c = (h5py.File(f) for f in sys.argv[1:4])
+names = []
+a.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+assert sorted(a['steps']) == sorted(b['steps']) and len(a['steps']) == 6
+assert names and all(a[n][...].tobytes() == b[n][...].tobytes() for n in names)
+assert any(a[n][...].tobytes() != c[n][...].tobytes() for n in names)
+" "$tmp/fp_deck.h5" "$tmp/fp_flags.h5" "$tmp/fp_steps.h5" \
+  && ok "--steps 3 --tolerance 1e-3: every dataset bit-identical to the deck with STEPS=3, DELTA1=1e-3" \
+  || bad "--steps 3 --tolerance 1e-3 against the deck edited so"
+"$feps" test/data/crack_bar_arc.dat --quiet --steps 2 --output "$tmp/arc_steps.h5" \
+  && python3 -c 'import sys, h5py; sys.exit(len(h5py.File(sys.argv[1])["steps"]) != 30)' "$tmp/arc_steps.h5" \
+  && ok "--steps 2: an arc-length stage keeps its 30 steps" || bad "--steps 2 on an arc-length stage"
+for v in 0 many 10000001; do
+  expect_status "--steps $v" 2 "$feps" test/data/cube.dat --steps "$v" --output "$tmp/st.h5"
+  [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q -- "--steps takes a whole number from 1 to 10000000, not \"$v\"" "$tmp/err" \
+    && [ ! -e "$tmp/st.h5" ] && ok "--steps $v: one line saying what it takes, no result file" \
+    || bad "--steps $v: $(head -c 300 "$tmp/err")"
+done
+expect_status "--steps beyond the steps of all stages" 2 "$feps" test/data/slide_1dof_support_change.dat --steps 5000001 \
+  --output "$tmp/st.h5"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q -- "--steps 5000001: the stages would take more than 10000000 steps" "$tmp/err" \
+  && [ ! -e "$tmp/st.h5" ] && ok "--steps over two stages past 10000000: one line, no result file" \
+  || bad "--steps over two stages: $(head -c 300 "$tmp/err")"
+for v in -1e-6 nan 1e-320 tight; do
+  expect_status "--tolerance $v" 2 "$feps" test/data/cube.dat --tolerance "$v" --output "$tmp/tol.h5"
+  [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q -- "--tolerance takes a number from 0 up .*not \"$v\"" "$tmp/err" \
+    && [ ! -e "$tmp/tol.h5" ] && ok "--tolerance $v: one line saying what it takes, no result file" \
+    || bad "--tolerance $v: $(head -c 300 "$tmp/err")"
+done
 # --fields replaces the deck's FIELDS; a misspelt name is one line, exit 2, no result file.
 expect_status "bad --fields" 2 "$feps" test/data/cube.dat --fields displacement,stresses --output "$tmp/f.h5"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q -- '--fields: unknown field "stresses"' "$tmp/err" && [ ! -e "$tmp/f.h5" ] \

@@ -129,6 +129,14 @@ refused "restart data of another model" "restart data of another model" \
 refused "restart data of the same deck under another method" "restart data of another model" \
   "$feps" test/data/slide_1dof_support_change.dat -o "$tmp/refused.h5" --restart "$tmp/support_euler.restart.h5" \
   --method initial-stiffness
+"$feps" test/data/friction_pull.dat -q -o "$tmp/flags.h5" --steps 4 --tolerance 1e-3 --restart-every 1 \
+  --stop-after-step 3 >/dev/null 2>&1
+refused "restart data written under --steps 4 --tolerance 1e-3, resumed with --steps 4 alone" \
+  "restart data of another model" \
+  "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/flags.restart.h5" --steps 4
+"$feps" test/data/friction_pull.dat -q -o "$tmp/flags_cont.h5" --steps 4 --tolerance 1e-3 \
+  --restart "$tmp/flags.restart.h5" >"$tmp/out" 2>&1 \
+  && ok "... and resumed with both: exit 0" || bad "resumed with --steps 4 --tolerance 1e-3: $(head -c 300 "$tmp/out")"
 refused "a missing restart file" "no such file" \
   "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/no_such.restart.h5"
 refused "a step the restart file does not hold" "holds no restart data of step 99 (--step; it holds steps 1 2" \

@@ -16,7 +16,8 @@ module feps_incremental_analysis
   use feps_error, only: error_t, fatal_error, input_error, err_solver, err_model, err_input, str
   use feps_clock, only: wall_clock
   use feps_strings, only: to_upper
-  use feps_model, only: model_t, stage_t, controls_t, method_names, path_load, path_arc_length, path_names
+  use feps_model, only: model_t, stage_t, controls_t, method_names, path_load, path_arc_length, path_names, &
+                        method_euler, method_modified_euler
   use feps_loads, only: nodal_load_vector
   use feps_observer, only: observer_t
   use feps_analysis_summary, only: analysis_summary_t, condition_warning
@@ -266,7 +267,8 @@ contains
       associate (st => model%stages(s), c => model%stages(s)%controls)
         line = 'stage ' // st%name // ': ' // str(st%steps) // ' steps, ' // &
                trim(merge('linear (one solve)     ', method_names(c%method), summary%linear))
-        if (.not. summary%linear) line = line // ', at most ' // str(c%max_iterations) // ' iterations per step'
+        if (.not. summary%linear) line = line // ', at most ' // str(c%max_iterations) // &
+                                         ' iterations per step' // residual_target(c)
         write (buf, '(3(1x,es10.3))') f
         line = line // '; load increment' // trim(buf) // ' N; ' // str(count(duc /= 0.0_dp)) // ' DOFs moved'
         do g = 1, size(model%groups)
@@ -508,7 +510,7 @@ contains
         if (allocated(error)) return
         call observer%progress('stage ' // st%name // ': ' // str(st%steps) // ' steps, method ' // &
                                trim(method_names(c%method)) // ', at most ' // str(c%max_iterations) // &
-                               ' iterations per step')
+                               ' iterations per step' // residual_target(c))
         if (st%path /= path_load) then
           call observer%progress('stage ' // st%name // ': PATH=' // trim(path_names(st%path)) // &
                                  ', the load factor of the stage''s loads follows the path')
@@ -718,6 +720,22 @@ contains
 
   !> What the last accepted state was, for a stop's message: in equilibrium (within the
   !! stage's tolerance), or accepted out of balance (the unbalanced force carried).
+  !> What a step iterates to, for the stage lines: `, to a relative residual of 1.00E-04` (DELTA1,
+  !! which --tolerance sets; `or 5.00E-01 N` with DELTA2). Nothing for the Euler methods, which
+  !! take one iteration whatever the residual.
+  pure function residual_target(c) result(text)
+    type(controls_t), intent(in) :: c
+    character(len=:), allocatable :: text
+    character(len=12) :: buf
+    text = ''
+    if (c%method == method_euler .or. c%method == method_modified_euler) return
+    write (buf, '(es9.2)') c%delta1
+    text = ', to a relative residual of ' // trim(adjustl(buf))
+    if (c%delta2 <= 0.0_dp) return
+    write (buf, '(es9.2)') c%delta2
+    text = text // ' or ' // trim(adjustl(buf)) // ' N'
+  end function residual_target
+
   function last_state(f, c) result(text)
     type(factor_state_t), intent(in) :: f
     type(controls_t), intent(in) :: c

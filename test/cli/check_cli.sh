@@ -250,6 +250,10 @@ assert any(a[n][...].tobytes() != c[n][...].tobytes() for n in names)
 " "$tmp/fp_deck.h5" "$tmp/fp_flags.h5" "$tmp/fp_steps.h5" \
   && ok "--steps 3 --tolerance 1e-3: every dataset bit-identical to the deck with STEPS=3, DELTA1=1e-3" \
   || bad "--steps 3 --tolerance 1e-3 against the deck edited so"
+"$feps" input/modelB.dat --check --method full-newton-raphson --steps 1 --tolerance 1e-6 >"$tmp/out" 2>&1 \
+  && grep -q "^stage load: 1 steps, full-newton-raphson, at most 50 iterations per step, to a relative residual of 1.00E-06;" \
+     "$tmp/out" && ok "--check shows --steps 1 --tolerance 1e-6 in the stage line" \
+  || bad "--check with --steps 1 --tolerance 1e-6: $(grep '^stage' "$tmp/out")"
 "$feps" test/data/crack_bar_arc.dat --quiet --steps 2 --output "$tmp/arc_steps.h5" \
   && python3 -c 'import sys, h5py; sys.exit(len(h5py.File(sys.argv[1])["steps"]) != 30)' "$tmp/arc_steps.h5" \
   && ok "--steps 2: an arc-length stage keeps its 30 steps" || bad "--steps 2 on an arc-length stage"
@@ -426,7 +430,7 @@ python3 test/cli/fuzz_input.py --feps "$tmp/stall" --cases 1 --timeout 1 --run -
 # --check: the whole model checked and factorized once, no step taken, no file written.
 expect_status "--check input/modelB.dat" 0 "$feps" input/modelB.dat --check --output "$tmp/chk.h5"
 grep -q "^checked " "$tmp/out" && grep -q "^dofs  *15049$" "$tmp/out" && grep -q "nonlinear: 1 stage(s), 400 steps" "$tmp/out" \
-  && grep -q "^stage load: 400 steps, initial-stiffness, at most 10 iterations per step; load increment" "$tmp/out" \
+  && grep -q "^stage load: 400 steps, initial-stiffness, at most 10 iterations per step, to a relative residual of 1.00E-04; load increment" "$tmp/out" \
   && [ ! -e "$tmp/chk.h5" ] && [ ! -e "$tmp/chk.h5.part" ] && [ ! -e "$tmp/chk.xmf" ] \
   && ok "--check reports the model and writes no file" || bad "--check reports the model and writes no file: $(cat "$tmp/out")"
 

@@ -718,8 +718,6 @@ contains
     summary%unbalanced_tolerance = st%controls%delta1
   end subroutine note_unbalanced
 
-  !> What the last accepted state was, for a stop's message: in equilibrium (within the
-  !! stage's tolerance), or accepted out of balance (the unbalanced force carried).
   !> What a step iterates to, for the stage lines: `, to a relative residual of 1.00E-04` (DELTA1,
   !! which --tolerance sets; `or 5.00E-01 N` with DELTA2). Nothing for the Euler methods, which
   !! take one iteration whatever the residual.
@@ -736,6 +734,8 @@ contains
     text = text // ' or ' // trim(adjustl(buf)) // ' N'
   end function residual_target
 
+  !> What the last accepted state was, for a stop's message: in equilibrium (within the
+  !! stage's tolerance), or accepted out of balance (the unbalanced force carried).
   function last_state(f, c) result(text)
     type(factor_state_t), intent(in) :: f
     type(controls_t), intent(in) :: c

@@ -214,17 +214,9 @@ contains
           options%fields = value
         case ('--tolerance')
           options%tolerance = value       ! read and checked with the deck's rule (feps_program)
-        case ('--steps')
-          options%steps = whole_number(value)
-          if (options%steps < 1 .or. options%steps > max_total_steps) then
-            write (error_unit, '(a)') 'feps: error: --steps takes a whole number from 1 to ' // &
-              str(max_total_steps) // ', not "' // value // '"'
-            status = 2
-            return
-          end if
         case ('--restart')
           options%restart = value
-        case ('--step', '--restart-every', '--stop-after-step')
+        case ('--step', '--restart-every', '--stop-after-step', '--steps')
           ! a step count: whole_number gives 0 for anything else
           if (whole_number(value) < 1 .or. whole_number(value) > max_total_steps) then
             write (error_unit, '(a)') 'feps: error: ' // name // ' takes a whole number from 1 to ' // &
@@ -235,6 +227,7 @@ contains
           if (name == '--step') options%restart_step = whole_number(value)
           if (name == '--restart-every') options%restart_every = whole_number(value)
           if (name == '--stop-after-step') options%stop_after_step = whole_number(value)
+          if (name == '--steps') options%steps = whole_number(value)
         case ('--threads')
           threads = whole_number(value)
           if (threads < 1 .or. threads > 4096) then

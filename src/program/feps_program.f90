@@ -117,9 +117,7 @@ contains
     summary%bbox(:, 2) = maxval(model%coords, dim=2)
 
     output = model%output_file
-    if (allocated(options%output)) then
-      if (len(options%output) > 0) output = options%output
-    end if
+    if (given(options%output)) output = options%output
     if (len(output) == 0 .and. .not. model%mesh_only) output = default_output(options%deck)
     summary%output = output
     ! The memory the model will need, before any of it is taken (a mesh near the size limit
@@ -143,9 +141,7 @@ contains
     end if
 
     solver = model%solver
-    if (allocated(options%solver)) then
-      if (len(options%solver) > 0) solver = options%solver
-    end if
+    if (given(options%solver)) solver = options%solver
     if (options%out_of_core) then
       if (solver /= 'mumps') then
         call fatal_error(error, err_input, '--out-of-core keeps MUMPS''s factors on disk: it needs the mumps ' // &
@@ -154,34 +150,27 @@ contains
       end if
       solver = 'mumps-ooc'
     end if
-    if (allocated(options%method)) then
-      if (len(options%method) > 0) then
-        call override_method(model, options%method, error)
-        if (allocated(error)) return
-      end if
+    if (given(options%method)) then
+      call override_method(model, options%method, error)
+      if (allocated(error)) return
     end if
     if (options%max_iterations > 0) call override_max_iterations(model, options%max_iterations)
     if (options%steps > 0) then
       call override_steps(model, options%steps, error)
       if (allocated(error)) return
     end if
-    if (allocated(options%tolerance)) then
-      if (len(options%tolerance) > 0) then
-        call override_tolerance(model, options%tolerance, error)
-        if (allocated(error)) return
-      end if
+    if (given(options%tolerance)) then
+      call override_tolerance(model, options%tolerance, error)
+      if (allocated(error)) return
     end if
-    if (allocated(options%fields)) then
-      if (len(options%fields) > 0) then
-        call override_fields(model, options%fields, error)
-        if (allocated(error)) return
-      end if
+    if (given(options%fields)) then
+      call override_fields(model, options%fields, error)
+      if (allocated(error)) return
     end if
     call check_reports(model, error)
     if (allocated(error)) return
     if (options%restart_every > 0) model%restart_every = options%restart_every
-    resuming = .false.
-    if (allocated(options%restart)) resuming = len(options%restart) > 0
+    resuming = given(options%restart)
     if (resuming .and. .not. options%check_only) then
       ! The restart data are read (and their step checked) before the results are started.
       call read_restart_point(options%restart, options%restart_step, resume, error)
@@ -366,6 +355,13 @@ contains
       end associate
     end do
   end subroutine override_max_iterations
+
+  !> Whether a string option was given (set and not empty: empty means "as the deck says").
+  pure logical function given(option)
+    character(len=:), allocatable, intent(in) :: option
+    given = .false.
+    if (allocated(option)) given = len(option) > 0
+  end function given
 
   !> --steps N: every stage under load or displacement control takes N equal steps in place of
   !! its STEPS (the speed-accuracy trade without editing the deck, docs/tradeoff.md). An

@@ -9,6 +9,8 @@ module test_cholmod
   use feps_cholmod_solver, only: cholmod_solver_t, count_supervariables
   use feps_skyline_solver, only: skyline_solver_t
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
+  use feps_blas, only: blas_threads, set_blas_threads
+  use omp_lib, only: omp_get_max_threads, omp_set_num_threads
   implicit none
   private
 
@@ -33,7 +35,9 @@ contains
       new_unittest("UMFPACK: non-symmetric Laplacian plus convection against dgesv; singular is err_model", &
                    test_umfpack), &
       new_unittest("skyline, CHOLMOD and UMFPACK give one solution of an SPD system", test_three_solvers), &
-      new_unittest("symmetric product: the one-loop form's bits, the dense product to 1e-14", test_multiply_order) &
+      new_unittest("symmetric product: the one-loop form's bits, the dense product to 1e-14", test_multiply_order), &
+      new_unittest("feps's own supernodal solves: cholmod_l_solve's x to 1e-13, the same bits on 1-4 threads", &
+                   test_own_solves) &
     ]
   end subroutine collect_cholmod
 
@@ -764,5 +768,52 @@ contains
       deallocate (b)
     end do
   end subroutine test_node_ordering_vs_skyline
+
+  !> feps's own forward and back substitution with CHOLMOD's supernodal factor (issue 28), on
+  !! the 5-point Laplacian of a 120 x 120 grid (14 400 equations; METIS's nested dissection
+  !! gives a tree that splits among threads): the x of CHOLMOD's own cholmod_l_solve to 1e-13
+  !! relative (the two add the forward pass's contributions in another order), A x = b to 1e-12
+  !! of |b|, and the same bits with 1, 2, 3 and 4 threads (the BLAS on one thread throughout,
+  !! since its thread count changes the factor itself at round-off).
+  subroutine test_own_solves(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(cholmod_solver_t) :: solver
+    type(csr_matrix_t) :: a
+    real(dp), allocatable :: b(:), x(:, :), reference(:), ax(:)
+    integer :: k, t, threads, blas
+    a = laplacian_2d(120)
+    b = [(sin(0.01_dp * k) + 0.3_dp * cos(0.37_dp * k), k = 1, a%n)]
+    allocate (x(a%n, 4), ax(a%n))
+    threads = omp_get_max_threads()
+    blas = blas_threads()
+    call set_blas_threads(1)
+    do t = 1, 4
+      call omp_set_num_threads(t)
+      call analyze_and_factorize(solver, a, error)
+      if (allocated(error)) exit
+      call check(error, solver%solve_threads(), t, 'threads of the own solves')
+      if (allocated(error)) exit
+      x(:, t) = b
+      call solver%solve(x(:, t), error)
+      if (allocated(error)) exit
+    end do
+    if (.not. allocated(error)) then
+      reference = b
+      call solver%library_solve(reference, error)
+    end if
+    call omp_set_num_threads(threads)
+    call set_blas_threads(blas)
+    if (allocated(error)) return
+    call check(error, maxval(abs(x(:, 1) - reference)) / maxval(abs(reference)), 0.0_dp, &
+               'own solve against cholmod_l_solve', abs=1.0e-13_dp)
+    if (allocated(error)) return
+    call a%multiply(x(:, 1), ax)
+    call check(error, maxval(abs(ax - b)) / maxval(abs(b)), 0.0_dp, 'A x - b', abs=1.0e-12_dp)
+    if (allocated(error)) return
+    do t = 2, 4
+      call check(error, all(x(:, t) == x(:, 1)), 'the same bits on ' // str(t) // ' threads as on one')
+      if (allocated(error)) return
+    end do
+  end subroutine test_own_solves
 
 end module test_cholmod

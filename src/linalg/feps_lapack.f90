@@ -5,7 +5,7 @@ module feps_lapack
   implicit none
   private
 
-  public :: dposv, dsyev, dgesv, dgemm, dpotrf
+  public :: dposv, dsyev, dgesv, dgemm, dpotrf, dgemv, dtrsv
 
   interface
     !> Solve A X = B for symmetric positive definite A by Cholesky factorization.
@@ -44,6 +44,25 @@ module feps_lapack
       real(dp), intent(in) :: a(lda, *), b(ldb, *)
       real(dp), intent(inout) :: c(ldc, *)
     end subroutine dgemm
+
+    !> y = alpha op(A) x + beta y.
+    subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+      import :: dp
+      character(len=1), intent(in) :: trans
+      integer, intent(in) :: m, n, lda, incx, incy
+      real(dp), intent(in) :: alpha, beta
+      real(dp), intent(in) :: a(lda, *), x(*)
+      real(dp), intent(inout) :: y(*)
+    end subroutine dgemv
+
+    !> x = op(A)^-1 x for a triangular A.
+    subroutine dtrsv(uplo, trans, diag, n, a, lda, x, incx)
+      import :: dp
+      character(len=1), intent(in) :: uplo, trans, diag
+      integer, intent(in) :: n, lda, incx
+      real(dp), intent(in) :: a(lda, *)
+      real(dp), intent(inout) :: x(*)
+    end subroutine dtrsv
 
     !> Cholesky factorization of a symmetric positive definite matrix.
     subroutine dpotrf(uplo, n, a, lda, info)

@@ -5,7 +5,7 @@ module feps_blas
   implicit none
   private
 
-  public :: blas_description, choose_blas_kernels, factorization_threads, set_blas_threads
+  public :: blas_description, choose_blas_kernels, factorization_threads, set_blas_threads, blas_threads
 
   interface
     subroutine feps_blas_describe(buf, len) bind(C, name="feps_blas_describe")
@@ -21,6 +21,10 @@ module feps_blas
       import :: c_int
       integer(c_int), value :: n
     end subroutine feps_blas_set_threads
+    function feps_blas_get_threads() result(n) bind(C, name="feps_blas_get_threads")
+      import :: c_int
+      integer(c_int) :: n
+    end function feps_blas_get_threads
   end interface
 
 contains
@@ -47,6 +51,11 @@ contains
     integer, intent(in) :: threads
     call feps_blas_set_threads(int(max(1, threads), c_int))
   end subroutine set_blas_threads
+
+  !> OpenBLAS's thread count now (1 with another BLAS).
+  integer function blas_threads()
+    blas_threads = int(feps_blas_get_threads())
+  end function blas_threads
 
   !> Start this program again with the OpenBLAS kernels this CPU runs, when OpenBLAS chose older
   !! ones and the user did not choose (OPENBLAS_CORETYPE). Returns when nothing is to be done or

@@ -152,3 +152,11 @@ void feps_blas_set_threads(int n)
     *(void **)&set = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
     if (set != NULL && n >= 1) set(n);
 }
+
+/* OpenBLAS's thread count; 1 with another BLAS (which feps does not thread). */
+int feps_blas_get_threads(void)
+{
+    int (*get)(void) = NULL;
+    *(void **)&get = dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
+    return get != NULL ? get() : 1;
+}

@@ -9,7 +9,7 @@ module feps_cholmod_bindings
   public :: feps_chol_create, feps_chol_free, feps_chol_analyze, feps_chol_factorize, feps_chol_solve
   public :: feps_chol_flops, feps_chol_lnz, feps_chol_status, feps_chol_failed_column
   public :: feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column
-  public :: feps_chol_supervariables, feps_chol_count_supervariables
+  public :: feps_chol_supervariables, feps_chol_count_supervariables, feps_chol_supernodes
 
   !> Return codes of analyze, factorize and solve (must match the enum in the shim).
   integer(c_int), parameter, public :: chol_ok = 0            !! success
@@ -114,6 +114,17 @@ module feps_cholmod_bindings
       type(c_ptr), value :: handle
       integer(c_int64_t) :: count
     end function feps_chol_supervariables
+
+    !> The numeric supernodal LL' factor's arrays (CHOLMOD's L->super, pi, px, s, x and Perm,
+    !! 0-based): 1 with the pointers set, 0 when the factor is not supernodal (or absent).
+    function feps_chol_supernodes(handle, nsuper, super, pi, px, rows, x, perm) result(found) &
+        bind(C, name="feps_chol_supernodes")
+      import :: c_ptr, c_int, c_int64_t
+      type(c_ptr), value :: handle
+      integer(c_int64_t), intent(out) :: nsuper
+      type(c_ptr), intent(out) :: super, pi, px, rows, x, perm
+      integer(c_int) :: found
+    end function feps_chol_supernodes
 
     !> Number of groups of equations with identical pattern (row and column, diagonal included)
     !! of a lower triangle CSR pattern; -1 if the pattern is invalid, -2 if out of memory.

@@ -580,6 +580,28 @@ int feps_chol_solve(void *handle, int64_t n, int64_t nrhs, double *b)
     return FEPS_CHOL_OK;
 }
 
+/* The numeric supernodal LL' factor's arrays (0-based, as CHOLMOD keeps them), for feps's own
+ * triangular solves (feps_supernodal_solve.f90): returns 1 and sets the pointers, or 0 when there
+ * is no such factor (none yet, or a simplicial one), in which case the caller solves with
+ * feps_chol_solve. The pointers stay valid until the next analyze, factorize or free. */
+int feps_chol_supernodes(void *handle, int64_t *nsuper, int64_t **super, int64_t **pi, int64_t **px,
+                         int64_t **rows, double **x, int64_t **perm)
+{
+    const feps_chol_handle *h = handle;
+    *nsuper = 0;
+    if (h == NULL || !h->factorized || h->l == NULL) return 0;
+    const cholmod_factor *l = h->l;
+    if (!l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL || l->x == NULL || l->nsuper < 1) return 0;
+    *nsuper = (int64_t)l->nsuper;
+    *super = l->super;
+    *pi = l->pi;
+    *px = l->px;
+    *rows = l->s;
+    *x = l->x;
+    *perm = l->Perm;
+    return 1;
+}
+
 double feps_chol_flops(void *handle)
 {
     const feps_chol_handle *h = handle;

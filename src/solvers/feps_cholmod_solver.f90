@@ -13,7 +13,9 @@ module feps_cholmod_solver
   use feps_cholmod_bindings, only: feps_chol_create, feps_chol_free, feps_chol_analyze, &
     feps_chol_factorize, feps_chol_solve, feps_chol_flops, feps_chol_lnz, feps_chol_status, &
     feps_chol_failed_column, feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column, &
-    feps_chol_supervariables, feps_chol_count_supervariables, chol_ok, chol_bad_input, chol_not_posdef, chol_not_ready
+    feps_chol_supervariables, feps_chol_count_supervariables, feps_chol_supernodes, chol_ok, chol_bad_input, &
+    chol_not_posdef, chol_not_ready
+  use feps_supernodal_solve, only: supernodal_solve_t
   implicit none
   private
 
@@ -30,10 +32,15 @@ module feps_cholmod_solver
     integer(i8) :: nnz = 0           !! stored entries of the analysed pattern
     logical :: factorized = .false.  !! a valid factor is available for solve
     integer(i8) :: graph_vertices = 0 !! supervariables METIS ordered; 0 for the fallback
+    !> feps's own solves with a supernodal factor (threaded, the same bits for any number of
+    !! threads); without a plan (no factor, or a simplicial one) CHOLMOD solves
+    type(supernodal_solve_t) :: plan
   contains
     procedure :: analyze => cholmod_analyze
     procedure :: factorize => cholmod_factorize
     procedure :: solve => cholmod_solve
+    procedure :: library_solve => cholmod_library_solve
+    procedure :: solve_threads => cholmod_solve_threads
     procedure :: name => cholmod_name
     procedure :: determinant_sign => cholmod_determinant_sign
     procedure :: supervariables => cholmod_supervariables
@@ -50,6 +57,7 @@ contains
     integer(c_int) :: code
 
     self%factorized = .false.
+    call self%plan%clear()
     self%n = 0
     self%nnz = 0
     self%graph_vertices = 0
@@ -96,6 +104,7 @@ contains
     integer :: equation
 
     self%factorized = .false.
+    call self%plan%clear()
     if (.not. c_associated(self%handle) .or. self%n == 0) then
       call fatal_error(error, err_internal, 'cholmod: factorize called before analyze')
       return
@@ -143,14 +152,24 @@ contains
     end if
     self%factorized = .true.
     self%factorizations = self%factorizations + 1
+    call plan_solves(self)
   end subroutine cholmod_factorize
+
+  !> Plan feps's own solves with the new factor, when it is supernodal.
+  subroutine plan_solves(self)
+    type(cholmod_solver_t), intent(inout) :: self
+    type(c_ptr) :: super, pi, px, rows, x, perm
+    integer(c_int64_t) :: nsuper
+    call self%plan%clear()
+    if (feps_chol_supernodes(self%handle, nsuper, super, pi, px, rows, x, perm) /= 1) return
+    call self%plan%setup(self%n, nsuper, super, pi, px, rows, x, perm)
+  end subroutine plan_solves
 
   !> Solve A x = b in place; size(b) = n * nrhs holds nrhs right-hand sides one after another.
   subroutine cholmod_solve(self, b, error)
     class(cholmod_solver_t), intent(inout) :: self
     real(dp), intent(inout) :: b(:)
     type(error_t), allocatable, intent(out) :: error
-    integer(c_int) :: code
     integer(i8) :: nrhs
 
     if (.not. self%factorized) then
@@ -163,12 +182,37 @@ contains
                        str(self%n))
       return
     end if
-    code = feps_chol_solve(self%handle, int(self%n, c_int64_t), nrhs, b)
+    if (self%plan%ready()) then
+      call self%plan%solve(b)
+      return
+    end if
+    call self%library_solve(b, error)
+  end subroutine cholmod_solve
+
+  !> CHOLMOD's solve (`cholmod_l_solve`) with the current factor, in place: what solve does
+  !! without a supernodal factor, and the reference feps's own solves are checked against.
+  subroutine cholmod_library_solve(self, b, error)
+    class(cholmod_solver_t), intent(inout) :: self
+    real(dp), intent(inout) :: b(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
+    if (.not. self%factorized) then
+      call fatal_error(error, err_internal, 'cholmod: solve called without a valid factorization')
+      return
+    end if
+    code = feps_chol_solve(self%handle, int(self%n, c_int64_t), size(b, kind=i8) / self%n, b)
     if (code /= chol_ok) then
       call fatal_error(error, err_solver, 'cholmod: solve failed (CHOLMOD status ' // &
                        str(int(feps_chol_status(self%handle))) // ')')
     end if
-  end subroutine cholmod_solve
+  end subroutine cholmod_library_solve
+
+  !> Threads of feps's own supernodal solves with the current factor; 0 when CHOLMOD solves.
+  pure integer function cholmod_solve_threads(self)
+    class(cholmod_solver_t), intent(in) :: self
+    cholmod_solve_threads = 0
+    if (self%plan%ready()) cholmod_solve_threads = self%plan%thread_count()
+  end function cholmod_solve_threads
 
   pure function cholmod_name(self) result(name)
     class(cholmod_solver_t), intent(in) :: self
@@ -227,6 +271,7 @@ contains
     if (c_associated(self%handle)) call feps_chol_free(self%handle)
     self%handle = c_null_ptr
     self%factorized = .false.
+    call self%plan%clear()
   end subroutine cholmod_finalize
 
 end module feps_cholmod_solver

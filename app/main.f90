@@ -322,10 +322,10 @@ contains
     end select
   end function value_kind
 
-  !> Threads of the element loops (OpenMP) and of the factorization (OpenBLAS).
-  !! Element loops: --threads N; else OMP_NUM_THREADS when set; else one. One by default because
-  !! more measured no faster on FE1 on 16 cores and slower on the shared 2-core machines
-  !! (docs/performance.md); the results are the same for any number.
+  !> Threads of the element loops and CHOLMOD's solves (OpenMP) and of the factorization (OpenBLAS).
+  !! Element loops and solves: --threads N; else OMP_NUM_THREADS when set; else one. One by
+  !! default because a waiting OpenMP thread slowed FE1 twofold on a 2-core machine whose other
+  !! core was taken (docs/performance.md); the results are the same for any number.
   !! Factorization: at most factorization_threads(cores) (three quarters of a machine above 4
   !! cores: all 16 of 16 measured 10x slower than 12), and no more than --threads N or
   !! OMP_NUM_THREADS; OPENBLAS_NUM_THREADS or GOTO_NUM_THREADS, when set, stand as set. The

@@ -3,15 +3,21 @@
 # the median wall time of each with their ratio (docs/performance.md: a refactoring may not slow
 # FE1 or the 200k mesh by more than 3%). The machine is shared: alternating runs see the same load.
 #
-#   bash scripts/bench_compare.sh OLD_FEPS NEW_FEPS [--repeat N] DECK [DECK ...]
+#   bash scripts/bench_compare.sh OLD_FEPS NEW_FEPS [--repeat N] [--args "FEPS OPTIONS"] DECK [DECK ...]
 #
+# --args gives both builds the same options (e.g. "--threads 2").
 # Prints one line per deck: deck, median old (s), median new (s), new / old, and the load average.
 set -euo pipefail
-usage() { echo "usage: bash scripts/bench_compare.sh OLD_FEPS NEW_FEPS [--repeat N] DECK [DECK ...]" >&2; exit 2; }
+usage() { echo "usage: bash scripts/bench_compare.sh OLD_FEPS NEW_FEPS [--repeat N] [--args \"FEPS OPTIONS\"] DECK [DECK ...]" >&2; exit 2; }
 [ $# -ge 3 ] || usage
 old=$1 new=$2; shift 2
 repeat=5
-if [ "${1:-}" = --repeat ]; then repeat=${2:-}; shift 2; fi
+args=()
+while [ "${1:-}" = --repeat ] || [ "${1:-}" = --args ]; do
+  [ $# -ge 2 ] || usage
+  if [ "$1" = --repeat ]; then repeat=$2; else read -ra args <<<"$2"; fi
+  shift 2
+done
 [[ "$repeat" =~ ^[1-9][0-9]*$ ]] || usage
 for f in "$old" "$new"; do [ -x "$f" ] || { echo "bench_compare.sh: $f is not an executable" >&2; exit 2; }; done
 [ $# -ge 1 ] || usage
@@ -25,7 +31,7 @@ for deck in "$@"; do
     for which in old new; do
       exe=$old; [ $which = new ] && exe=$new
       s=$(date +%s.%N)
-      "$exe" "$deck" --quiet --output "$tmp/r.h5" >/dev/null 2>&1 || { echo "bench_compare.sh: $exe $deck failed" >&2; exit 1; }
+      "$exe" "$deck" ${args[@]+"${args[@]}"} --quiet --output "$tmp/r.h5" >/dev/null 2>&1 || { echo "bench_compare.sh: $exe $deck failed" >&2; exit 1; }
       e=$(date +%s.%N)
       awk -v s="$s" -v e="$e" 'BEGIN {print e - s}' >>"$tmp/$which"
     done

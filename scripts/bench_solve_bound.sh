@@ -4,13 +4,15 @@
 # bytes over the rate one core reads memory. This measures, on one core and one BLAS thread:
 # the read rate of arrays of 1 MiB, 4 MiB (cache) and of the factor's size and twice it, and
 # dgemv N and T over the factor's bytes as a matrix 32 columns wide (a supernode's width), the
-# rate the BLAS reaches on the solve's own operation. Each figure: the median of 7 timings.
+# rate the BLAS reaches on the solve's own operation; then the factor's size read by two cores at
+# once, each its half (the threaded solves, issue 28). Each figure: the median of 7 timings.
 #
 #   bash scripts/bench_solve_bound.sh [FACTOR_BYTES]
 #
 # FACTOR_BYTES: the factor's values and row indices (CHOLMOD's xsize x 8 + ssize x 8); the
 # default, 49 723 408, is FE1's (input/modelB/FE1.dat: xsize 6 122 570, ssize 92 856).
-# Prints one line per measurement, then the bound: 2 x FACTOR_BYTES / the read rate at that size.
+# Prints one line per measurement, then the bound: 2 x FACTOR_BYTES / the read rate at that size,
+# on one core and on two.
 set -euo pipefail
 bytes=${1:-49723408}
 [[ "$bytes" =~ ^[1-9][0-9]*$ ]] || { echo "usage: bash scripts/bench_solve_bound.sh [FACTOR_BYTES]" >&2; exit 2; }
@@ -19,6 +21,7 @@ cat >"$tmp/bound.c" <<'EOF'
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
+#include <omp.h>
 extern void dgemv_(const char *, const int *, const int *, const double *, const double *,
                    const int *, const double *, const int *, const double *, double *, const int *);
 extern void openblas_set_num_threads(int) __attribute__((weak));
@@ -54,6 +57,30 @@ static double read_seconds(const double *a, size_t n)
     return t[3];
 }
 
+/* The same with two threads, each reading its half at the same time. */
+static double read2_seconds(const double *a, size_t n)
+{
+    double t[7];
+    volatile double sink = 0.0;
+    int reps = (int)(4e8 / n) + 1;
+    for (int r = 0; r < 7; r++) {
+        double t0 = now(), total = 0.0;
+#pragma omp parallel num_threads(2) reduction(+ : total)
+        {
+            size_t half = n / 2, first = omp_get_thread_num() * half;
+            double s[8] = {0};
+            for (int k = 0; k < reps; k++)
+                for (size_t i = first; i + 8 <= first + half; i += 8)
+                    for (int j = 0; j < 8; j++) s[j] += a[i + j];
+            for (int j = 0; j < 8; j++) total += s[j];
+        }
+        t[r] = (now() - t0) / reps;
+        sink += total;
+    }
+    qsort(t, 7, sizeof(double), by_value);
+    return t[3];
+}
+
 static double gemv_seconds(const char *trans, const double *a, int m, int k, double *x, double *y)
 {
     double t[7], one = 1.0;
@@ -72,7 +99,7 @@ int main(int argc, char **argv)
     if (openblas_set_num_threads) openblas_set_num_threads(1);
     size_t factor = (size_t)atoll(argv[1]) / 8;
     size_t sizes[4] = {(size_t)1 << 17, (size_t)1 << 19, factor, 2 * factor};
-    double factor_rate = 0.0;
+    double factor_rate = 0.0, factor_rate2 = 0.0;
     for (int s = 0; s < 4; s++) {
         size_t n = sizes[s];
         double *a = malloc(n * sizeof(double));
@@ -93,13 +120,19 @@ int main(int argc, char **argv)
             }
             free(x);
             free(y);
+            double t2 = read2_seconds(a, n);
+            factor_rate2 = n * 8 / t2;
+            printf("read   %10.2f MB  %8.3f ms  %6.1f GB/s  on two cores, a half each\n", n * 8 / 1e6, t2 * 1e3,
+                   n * 8 / t2 / 1e9);
         }
         free(a);
     }
     printf("bound: 2 x %.2f MB / %.1f GB/s = %.3f ms per solve\n", factor * 8 / 1e6, factor_rate / 1e9,
            2.0 * factor * 8 / factor_rate * 1e3);
+    printf("bound on two cores: 2 x %.2f MB / %.1f GB/s = %.3f ms per solve\n", factor * 8 / 1e6,
+           factor_rate2 / 1e9, 2.0 * factor * 8 / factor_rate2 * 1e3);
     return 0;
 }
 EOF
-cc -O3 -march=native -o "$tmp/bound" "$tmp/bound.c" -lblas
+cc -O3 -march=native -fopenmp -o "$tmp/bound" "$tmp/bound.c" -lblas
 "$tmp/bound" "$bytes"

@@ -36,6 +36,7 @@ contains
                    test_umfpack), &
       new_unittest("skyline, CHOLMOD and UMFPACK give one solution of an SPD system", test_three_solvers), &
       new_unittest("symmetric product: the one-loop form's bits, the dense product to 1e-14", test_multiply_order), &
+      new_unittest("symmetric product on 1-4 threads: the one-loop form's bits", test_multiply_threads), &
       new_unittest("feps's own supernodal solves: cholmod_l_solve's x to 1e-13, the same bits on 1-4 threads", &
                    test_own_solves) &
     ]
@@ -88,6 +89,43 @@ contains
     call check(error, maxval(abs(y - matmul(dense, x)) / scale) <= 1.0e-14_dp, &
                'csr_multiply differs from the dense product by more than 1e-14')
   end subroutine test_multiply_order
+
+  !> csr_multiply on a matrix large enough for its threaded form (the 5-point Laplacian of a
+  !! 200 x 200 grid, 119 600 stored entries, its values and x spanning 16 orders of magnitude):
+  !! on 1, 2, 3 and 4 threads the bits of the one-loop form, whose every y(j) takes its terms
+  !! in row order.
+  subroutine test_multiply_threads(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(csr_matrix_t) :: a
+    real(dp), allocatable :: x(:), y(:), y_loop(:)
+    integer :: i, j, t, threads
+    integer(i8) :: k
+    a = laplacian_2d(200)
+    do k = 1, a%nnz()
+      a%val(k) = a%val(k) * 10.0_dp**modulo(7 * k, 16_i8) * (1.0_dp + 0.3_dp * sin(real(k, dp)))
+    end do
+    allocate (y(a%n), y_loop(a%n))
+    x = [(cos(0.37_dp * i) * 10.0_dp**modulo(5 * i, 16), i = 1, a%n)]
+    y_loop = 0.0_dp
+    do i = 1, a%n
+      do k = a%row_ptr(i), a%row_ptr(i + 1) - 1
+        j = a%col(k)
+        y_loop(i) = y_loop(i) + a%val(k) * x(j)
+        if (j /= i) y_loop(j) = y_loop(j) + a%val(k) * x(i)
+      end do
+    end do
+    call check(error, a%nnz() >= 100000_i8, 'the matrix is large enough for the threaded form')
+    if (allocated(error)) return
+    threads = omp_get_max_threads()
+    do t = 1, 4
+      call omp_set_num_threads(t)
+      call a%multiply(x, y)
+      if (any(y /= y_loop)) exit
+    end do
+    call omp_set_num_threads(threads)
+    call check(error, all(y == y_loop), 'csr_multiply on ' // str(min(t, 4)) // ' threads differs from ' // &
+               'the one-loop form in some bit')
+  end subroutine test_multiply_threads
 
   !> The 2D Laplacian of a 9 x 9 grid with a varying diagonal (SPD) solved by skyline (LDL^T,
   !! RCM), CHOLMOD (LL^T, METIS) and UMFPACK (LU of both triangles, as full Newton factorizes a

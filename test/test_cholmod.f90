@@ -54,7 +54,6 @@ contains
     real(dp) :: dense(n, n), x(n), y(n), y_loop(n), y_reverse(n), scale(n)
     type(csr_matrix_t) :: a
     integer :: i, j
-    integer(i8) :: k
     dense = 0.0_dp
     do i = 1, n
       x(i) = sin(0.37_dp * i) * 10.0_dp**modulo(7 * i, 17 - 8)
@@ -67,14 +66,7 @@ contains
     end do
     a = dense_to_csr(dense)
     call a%multiply(x, y)
-    y_loop = 0.0_dp
-    do i = 1, n
-      do k = a%row_ptr(i), a%row_ptr(i + 1) - 1
-        j = a%col(k)
-        y_loop(i) = y_loop(i) + a%val(k) * x(j)
-        if (j /= i) y_loop(j) = y_loop(j) + a%val(k) * x(i)
-      end do
-    end do
+    y_loop = one_loop_product(a, x)
     y_reverse = 0.0_dp
     do i = 1, n
       do j = n, 1, -1
@@ -98,7 +90,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(csr_matrix_t) :: a
     real(dp), allocatable :: x(:), y(:), y_loop(:)
-    integer :: i, j, t, threads
+    integer :: i, t, threads
     integer(i8) :: k
     a = laplacian_2d(200)
     do k = 1, a%nnz()
@@ -106,14 +98,7 @@ contains
     end do
     allocate (y(a%n), y_loop(a%n))
     x = [(cos(0.37_dp * i) * 10.0_dp**modulo(5 * i, 16), i = 1, a%n)]
-    y_loop = 0.0_dp
-    do i = 1, a%n
-      do k = a%row_ptr(i), a%row_ptr(i + 1) - 1
-        j = a%col(k)
-        y_loop(i) = y_loop(i) + a%val(k) * x(j)
-        if (j /= i) y_loop(j) = y_loop(j) + a%val(k) * x(i)
-      end do
-    end do
+    y_loop = one_loop_product(a, x)
     call check(error, a%nnz() >= 100000_i8, 'the matrix is large enough for the threaded form')
     if (allocated(error)) return
     threads = omp_get_max_threads()
@@ -126,6 +111,24 @@ contains
     call check(error, all(y == y_loop), 'csr_multiply on ' // str(min(t, 4)) // ' threads differs from ' // &
                'the one-loop form in some bit')
   end subroutine test_multiply_threads
+
+  !> A x in the form that updates y in memory entry by entry: each y(j) takes row j's own
+  !! terms, then one term from each later row, in row order (the order csr_multiply keeps).
+  pure function one_loop_product(a, x) result(y)
+    type(csr_matrix_t), intent(in) :: a
+    real(dp), intent(in) :: x(:)
+    real(dp) :: y(a%n)
+    integer :: i, j
+    integer(i8) :: k
+    y = 0.0_dp
+    do i = 1, a%n
+      do k = a%row_ptr(i), a%row_ptr(i + 1) - 1
+        j = a%col(k)
+        y(i) = y(i) + a%val(k) * x(j)
+        if (j /= i) y(j) = y(j) + a%val(k) * x(i)
+      end do
+    end do
+  end function one_loop_product
 
   !> The 2D Laplacian of a 9 x 9 grid with a varying diagonal (SPD) solved by skyline (LDL^T,
   !! RCM), CHOLMOD (LL^T, METIS) and UMFPACK (LU of both triangles, as full Newton factorizes a

@@ -170,23 +170,13 @@ contains
     class(cholmod_solver_t), intent(inout) :: self
     real(dp), intent(inout) :: b(:)
     type(error_t), allocatable, intent(out) :: error
-    integer(i8) :: nrhs
-
-    if (.not. self%factorized) then
-      call fatal_error(error, err_internal, 'cholmod: solve called without a valid factorization')
-      return
-    end if
-    nrhs = size(b, kind=i8) / self%n
-    if (nrhs < 1 .or. nrhs * self%n /= size(b, kind=i8)) then
-      call fatal_error(error, err_internal, 'cholmod: right-hand side size is not a multiple of ' // &
-                       str(self%n))
-      return
-    end if
+    call check_solve(self, b, error)
+    if (allocated(error)) return
     if (self%plan%ready()) then
       call self%plan%solve(b)
-      return
+    else
+      call solve_with_cholmod(self, b, error)
     end if
-    call self%library_solve(b, error)
   end subroutine cholmod_solve
 
   !> CHOLMOD's solve (`cholmod_l_solve`) with the current factor, in place: what solve does
@@ -195,17 +185,40 @@ contains
     class(cholmod_solver_t), intent(inout) :: self
     real(dp), intent(inout) :: b(:)
     type(error_t), allocatable, intent(out) :: error
-    integer(c_int) :: code
+    call check_solve(self, b, error)
+    if (allocated(error)) return
+    call solve_with_cholmod(self, b, error)
+  end subroutine cholmod_library_solve
+
+  !> A solve needs a factor and whole right-hand sides.
+  subroutine check_solve(self, b, error)
+    class(cholmod_solver_t), intent(in) :: self
+    real(dp), intent(in) :: b(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: nrhs
     if (.not. self%factorized) then
       call fatal_error(error, err_internal, 'cholmod: solve called without a valid factorization')
       return
     end if
+    nrhs = size(b, kind=i8) / self%n
+    if (nrhs < 1 .or. nrhs * self%n /= size(b, kind=i8)) then
+      call fatal_error(error, err_internal, 'cholmod: right-hand side size is not a multiple of ' // &
+                       str(self%n))
+    end if
+  end subroutine check_solve
+
+  !> cholmod_l_solve through the shim, in place.
+  subroutine solve_with_cholmod(self, b, error)
+    class(cholmod_solver_t), intent(inout) :: self
+    real(dp), intent(inout) :: b(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: code
     code = feps_chol_solve(self%handle, int(self%n, c_int64_t), size(b, kind=i8) / self%n, b)
     if (code /= chol_ok) then
       call fatal_error(error, err_solver, 'cholmod: solve failed (CHOLMOD status ' // &
                        str(int(feps_chol_status(self%handle))) // ')')
     end if
-  end subroutine cholmod_library_solve
+  end subroutine solve_with_cholmod
 
   !> Threads of feps's own supernodal solves with the current factor; 0 when CHOLMOD solves.
   pure integer function cholmod_solve_threads(self)

@@ -195,10 +195,7 @@ contains
     real(dp), intent(inout) :: w(*)
     integer :: nscol, nsrow, k1, g, i
     integer(i8) :: p, p0
-    k1 = int(super(k)) + 1
-    nscol = int(super(k + 1) - super(k))
-    p0 = pi(k)
-    nsrow = int(pi(k + 1) - p0)
+    call extent(k, super, pi, k1, nscol, nsrow, p0)
     w(1:nscol) = y(k1:k1 + nscol - 1)
     do g = gather_ptr(k), gather_ptr(k + 1) - 1
       do p = gather_range(1, g), gather_range(2, g)
@@ -222,10 +219,7 @@ contains
     real(dp), intent(inout) :: w(*)
     integer :: nscol, nsrow, k1
     integer(i8) :: p, p0
-    k1 = int(super(k)) + 1
-    nscol = int(super(k + 1) - super(k))
-    p0 = pi(k)
-    nsrow = int(pi(k + 1) - p0)
+    call extent(k, super, pi, k1, nscol, nsrow, p0)
     w(1:nscol) = y(k1:k1 + nscol - 1)
     do p = p0 + nscol + 1, p0 + nsrow
       w(p - p0) = y(rows(p) + 1)
@@ -235,6 +229,19 @@ contains
     call dtrsv('L', 'T', 'N', nscol, lx(px(k) + 1), nsrow, w, 1)
     y(k1:k1 + nscol - 1) = w(1:nscol)
   end subroutine backward
+
+  !> Supernode k's first column k1, its columns and rows, and p0, where its row indices start
+  !! (0-based).
+  pure subroutine extent(k, super, pi, k1, nscol, nsrow, p0)
+    integer, intent(in) :: k
+    integer(c_int64_t), intent(in) :: super(:), pi(:)
+    integer, intent(out) :: k1, nscol, nsrow
+    integer(i8), intent(out) :: p0
+    k1 = int(super(k)) + 1
+    nscol = int(super(k + 1) - super(k))
+    p0 = pi(k)
+    nsrow = int(pi(k + 1) - p0)
+  end subroutine extent
 
   !> For each supernode, the ranges of buf it gathers: the runs of the rows below each
   !! supernode d that fall in its columns, in ascending d.

@@ -10,7 +10,7 @@ module test_cholmod
   use feps_skyline_solver, only: skyline_solver_t
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_blas, only: blas_threads, set_blas_threads
-  use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+  use omp_lib, only: omp_get_max_threads, omp_set_num_threads, omp_get_max_active_levels, omp_set_max_active_levels
   implicit none
   private
 
@@ -815,7 +815,8 @@ contains
   !! gives a tree that splits among threads): the x of CHOLMOD's own cholmod_l_solve to 1e-13
   !! relative (the two add the forward pass's contributions in another order), A x = b to 1e-12
   !! of |b|, and the same bits with 1, 2, 3 and 4 threads (the BLAS on one thread throughout,
-  !! since its thread count changes the factor itself at round-off).
+  !! since its thread count changes the factor itself at round-off), and with four planned
+  !! where OpenMP gives one (inside another parallel region).
   subroutine test_own_solves(error)
     type(error_t), allocatable, intent(out) :: error
     type(cholmod_solver_t) :: solver
@@ -824,7 +825,7 @@ contains
     integer :: k, t, threads, blas
     a = laplacian_2d(120)
     b = [(sin(0.01_dp * k) + 0.3_dp * cos(0.37_dp * k), k = 1, a%n)]
-    allocate (x(a%n, 4), ax(a%n))
+    allocate (x(a%n, 5), ax(a%n))
     threads = omp_get_max_threads()
     blas = blas_threads()
     call set_blas_threads(1)
@@ -842,6 +843,11 @@ contains
       reference = b
       call solver%library_solve(reference, error)
     end if
+    if (.not. allocated(error)) then
+      ! the plan of four threads, run where OpenMP gives it one (a region inside a region)
+      x(:, 5) = b
+      call solve_inside_a_region(solver, x(:, 5), error)
+    end if
     call omp_set_num_threads(threads)
     call set_blas_threads(blas)
     if (allocated(error)) return
@@ -855,6 +861,24 @@ contains
       call check(error, all(x(:, t) == x(:, 1)), 'the same bits on ' // str(t) // ' threads as on one')
       if (allocated(error)) return
     end do
+    call check(error, all(x(:, 5) == x(:, 1)), 'the same bits when four threads are planned and one is given')
   end subroutine test_own_solves
+
+  !> Solve inside a parallel region of two threads (one of them solving), where nested regions
+  !! get one thread: every share of the tree must still be solved.
+  subroutine solve_inside_a_region(solver, x, error)
+    type(cholmod_solver_t), intent(inout) :: solver
+    real(dp), intent(inout) :: x(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: levels
+    levels = omp_get_max_active_levels()
+    call omp_set_max_active_levels(1)
+    !$omp parallel num_threads(2) shared(solver, x, error)
+    !$omp single
+    call solver%solve(x, error)
+    !$omp end single
+    !$omp end parallel
+    call omp_set_max_active_levels(levels)
+  end subroutine solve_inside_a_region
 
 end module test_cholmod

@@ -27,7 +27,7 @@ module feps_supernodal_solve
   use feps_kinds, only: dp, i8
   use feps_lapack, only: dgemv, dtrsv
   use feps_blas, only: blas_threads, set_blas_threads
-  !$ use omp_lib, only: omp_get_max_threads, omp_get_thread_num
+  !$ use omp_lib, only: omp_get_max_threads, omp_get_thread_num, omp_get_num_threads
   implicit none
   private
 
@@ -140,7 +140,7 @@ contains
   subroutine plan_solve(self, b)
     class(supernodal_solve_t), intent(inout) :: self
     real(dp), intent(inout) :: b(:)
-    integer :: i, t, k, blas
+    integer :: i, t, k, blas, part, team
     integer(i8) :: off
     blas = blas_threads()
     if (blas > 1) call set_blas_threads(1)
@@ -149,12 +149,16 @@ contains
         self%y(k) = b(off + self%perm(k) + 1)
       end do
       if (self%threads > 1) then
-        !$omp parallel num_threads(self%threads) private(t, i)
+        !$omp parallel num_threads(self%threads) private(t, i, part, team)
         t = 1
+        team = 1
         !$ t = omp_get_thread_num() + 1
-        do i = self%part_ptr(t), self%part_ptr(t + 1) - 1
-          call forward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%gather_ptr, &
-                       self%gather_range, self%y, self%buf, self%w(:, t))
+        !$ team = omp_get_num_threads()
+        do part = t, self%threads, team   ! every part, should OpenMP give fewer threads
+          do i = self%part_ptr(part), self%part_ptr(part + 1) - 1
+            call forward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%gather_ptr, &
+                         self%gather_range, self%y, self%buf, self%w(:, t))
+          end do
         end do
         !$omp end parallel
       end if
@@ -166,11 +170,15 @@ contains
         call backward(self%top_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, 1))
       end do
       if (self%threads > 1) then
-        !$omp parallel num_threads(self%threads) private(t, i)
+        !$omp parallel num_threads(self%threads) private(t, i, part, team)
         t = 1
+        team = 1
         !$ t = omp_get_thread_num() + 1
-        do i = self%part_ptr(t + 1) - 1, self%part_ptr(t), -1
-          call backward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, t))
+        !$ team = omp_get_num_threads()
+        do part = t, self%threads, team
+          do i = self%part_ptr(part + 1) - 1, self%part_ptr(part), -1
+            call backward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, t))
+          end do
         end do
         !$omp end parallel
       end if

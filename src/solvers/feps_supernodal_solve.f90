@@ -289,28 +289,31 @@ contains
   !> Share the elimination tree among the threads: whole subtrees to each (greedy, largest
   !! first, by the values they hold), splitting the largest at its root, which then joins the
   !! top, until the shares are within `balance` of each other, the largest is a leaf or the
-  !! splits run out.
+  !! splits run out; of the cuts seen, the one whose top plus largest share is least.
   !! One thread: every supernode in the top.
   subroutine share_tree(self, parent)
     type(supernodal_solve_t), intent(inout) :: self
     integer, intent(in) :: parent(:)
-    real(dp), allocatable :: work(:), load(:)
-    integer, allocatable :: child_ptr(:), child(:), frontier(:), owner(:), stack(:), fill(:)
+    real(dp), allocatable :: own(:), work(:), load(:)
+    integer, allocatable :: child_ptr(:), child(:), frontier(:), best_frontier(:), owner(:), stack(:), fill(:)
     logical, allocatable :: in_top(:)
-    integer :: k, nf, i, j, t, largest, top, count_top, splits
+    integer :: k, nf, best_nf, i, j, t, largest, top, count_top, splits
     integer :: ns
+    real(dp) :: top_work, best_cost
     ns = self%nsuper
-    allocate (work(ns), in_top(ns), owner(ns))
-    do k = 1, ns
-      work(k) = real(self%pi(k + 1) - self%pi(k), dp) * real(self%super(k + 1) - self%super(k) + 1, dp)
+    allocate (own(ns), in_top(ns), owner(ns))
+    do k = 1, ns           ! values read, and one more per row for its index
+      own(k) = real(self%pi(k + 1) - self%pi(k), dp) * real(self%super(k + 1) - self%super(k) + 1, dp)
     end do
+    work = own
     do k = 1, ns           ! subtree sums: a parent comes after its children
       if (parent(k) > 0) work(parent(k)) = work(parent(k)) + work(k)
     end do
     in_top = .true.
     owner = 0
     if (self%threads > 1) then
-      allocate (child_ptr(ns + 1), child(ns), fill(ns), frontier(ns), load(self%threads), stack(ns))
+      allocate (child_ptr(ns + 1), child(ns), fill(ns), frontier(ns), best_frontier(ns), load(self%threads), &
+                stack(ns))
       fill = 0
       do k = 1, ns
         if (parent(k) > 0) fill(parent(k)) = fill(parent(k)) + 1
@@ -333,20 +336,34 @@ contains
           frontier(nf) = k
         end if
       end do
+      top_work = 0.0_dp
+      best_cost = huge(1.0_dp)
       do splits = 0, max_splits * self%threads
         call sort_by_work(frontier(1:nf), work)
         call assign(frontier(1:nf), work, load, owner)
-        if (maxval(load) <= balance * sum(load) / self%threads .or. splits == max_splits * self%threads) exit
+        ! a solve's time, counted in values read: the top's on one thread, then the largest share
+        if (top_work + maxval(load) < best_cost) then
+          best_cost = top_work + maxval(load)
+          best_nf = nf
+          best_frontier(1:nf) = frontier(1:nf)
+        end if
+        if (maxval(load) <= balance * sum(load) / self%threads) exit
         largest = frontier(1)
         if (child_ptr(largest + 1) == child_ptr(largest)) exit
+        top_work = top_work + own(largest)
         frontier(1:nf - 1) = frontier(2:nf)
         nf = nf - 1
         do j = child_ptr(largest), child_ptr(largest + 1) - 1
           nf = nf + 1
           frontier(nf) = child(j)
         end do
-        owner(largest) = 0
       end do
+      ! the best cut seen: each split moves a supernode to the serial top, so beyond some point
+      ! splitting more (for a closer balance) makes the solve slower
+      nf = best_nf
+      frontier(1:nf) = best_frontier(1:nf)
+      call sort_by_work(frontier(1:nf), work)
+      call assign(frontier(1:nf), work, load, owner)
       ! everything below a frontier supernode goes with it
       do i = 1, nf
         top = 1

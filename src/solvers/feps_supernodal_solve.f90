@@ -140,7 +140,7 @@ contains
   subroutine plan_solve(self, b)
     class(supernodal_solve_t), intent(inout) :: self
     real(dp), intent(inout) :: b(:)
-    integer :: i, t, k, blas, part, team
+    integer :: i, k, blas
     integer(i8) :: off
     blas = blas_threads()
     if (blas > 1) call set_blas_threads(1)
@@ -148,20 +148,7 @@ contains
       do k = 1, self%n
         self%y(k) = b(off + self%perm(k) + 1)
       end do
-      if (self%threads > 1) then
-        !$omp parallel num_threads(self%threads) private(t, i, part, team)
-        t = 1
-        team = 1
-        !$ t = omp_get_thread_num() + 1
-        !$ team = omp_get_num_threads()
-        do part = t, self%threads, team   ! every part, should OpenMP give fewer threads
-          do i = self%part_ptr(part), self%part_ptr(part + 1) - 1
-            call forward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%gather_ptr, &
-                         self%gather_range, self%y, self%buf, self%w(:, t))
-          end do
-        end do
-        !$omp end parallel
-      end if
+      if (self%threads > 1) call solve_shares(self, forward_pass=.true.)
       do i = 1, size(self%top_nodes)
         call forward(self%top_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%gather_ptr, &
                      self%gather_range, self%y, self%buf, self%w(:, 1))
@@ -169,25 +156,39 @@ contains
       do i = size(self%top_nodes), 1, -1
         call backward(self%top_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, 1))
       end do
-      if (self%threads > 1) then
-        !$omp parallel num_threads(self%threads) private(t, i, part, team)
-        t = 1
-        team = 1
-        !$ t = omp_get_thread_num() + 1
-        !$ team = omp_get_num_threads()
-        do part = t, self%threads, team
-          do i = self%part_ptr(part + 1) - 1, self%part_ptr(part), -1
-            call backward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, t))
-          end do
-        end do
-        !$omp end parallel
-      end if
+      if (self%threads > 1) call solve_shares(self, forward_pass=.false.)
       do k = 1, self%n
         b(off + self%perm(k) + 1) = self%y(k)
       end do
     end do
     if (blas > 1) call set_blas_threads(blas)
   end subroutine plan_solve
+
+  !> The threads' shares of the tree, each on its thread: the forward pass (ascending) or the
+  !! back pass (descending).
+  subroutine solve_shares(self, forward_pass)
+    type(supernodal_solve_t), intent(inout) :: self
+    logical, intent(in) :: forward_pass
+    integer :: i, t, part, team
+    !$omp parallel num_threads(self%threads) private(t, i, part, team)
+    t = 1
+    team = 1
+    !$ t = omp_get_thread_num() + 1
+    !$ team = omp_get_num_threads()
+    do part = t, self%threads, team   ! every share, should OpenMP give fewer threads
+      if (forward_pass) then
+        do i = self%part_ptr(part), self%part_ptr(part + 1) - 1
+          call forward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%gather_ptr, &
+                       self%gather_range, self%y, self%buf, self%w(:, t))
+        end do
+      else
+        do i = self%part_ptr(part + 1) - 1, self%part_ptr(part), -1
+          call backward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, t))
+        end do
+      end if
+    end do
+    !$omp end parallel
+  end subroutine solve_shares
 
   !> Forward pass at supernode k: gather what the supernodes below sent to its rows, solve its
   !! diagonal block, and keep its contributions to the rows below (-L21 x1) in buf. The BLAS

@@ -115,7 +115,8 @@ fi
 git -C "$root" show "$base:src/solvers/feps_cholmod_shim.c" > shim_base.c
 gcc -O2 -shared -fPIC dump.c -o dump.so -ldl
 gcc -O2 -DSHIM='"shim_base.c"' driver.c -o driver_base $libs
-gcc -O2 -DSHIM="\"$root/src/solvers/feps_cholmod_shim.c\"" driver.c -o driver_new $libs
+gcc -O2 -DSHIM="\"$root/src/solvers/feps_cholmod_shim.c\"" driver.c "$root/src/solvers/feps_blas_shim.c" \
+  -o driver_new $libs
 
 if [ ! -f "matrix_$size.bin" ]; then
   (cd "$root" && fpm build --profile release >/dev/null)

@@ -145,18 +145,37 @@ int feps_blas_choose_kernels(void)
     return -1;
 }
 
-/* Set OpenBLAS's thread count (the factorization's; solves run on one). Nothing with another BLAS. */
+/* OpenBLAS's thread controls, looked up once (NULL with another BLAS): the factorization gets
+ * its threads through them, and every solve sets one thread and back (feps_cholmod_shim.c,
+ * feps_supernodal_solve.f90), so the lookup is not repeated per call. */
+static void thread_controls(void (**set)(int), int (**get)(void))
+{
+    static int looked_up = 0;
+    static void (*set_fn)(int) = NULL;
+    static int (*get_fn)(void) = NULL;
+    if (!looked_up) {
+        *(void **)&set_fn = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+        *(void **)&get_fn = dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
+        looked_up = 1;
+    }
+    *set = set_fn;
+    *get = get_fn;
+}
+
+/* Set OpenBLAS's thread count. Nothing with another BLAS. */
 void feps_blas_set_threads(int n)
 {
-    void (*set)(int) = NULL;
-    *(void **)&set = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+    void (*set)(int);
+    int (*get)(void);
+    thread_controls(&set, &get);
     if (set != NULL && n >= 1) set(n);
 }
 
 /* OpenBLAS's thread count; 1 with another BLAS (which feps does not thread). */
 int feps_blas_get_threads(void)
 {
-    int (*get)(void) = NULL;
-    *(void **)&get = dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
+    void (*set)(int);
+    int (*get)(void);
+    thread_controls(&set, &get);
     return get != NULL ? get() : 1;
 }

@@ -12,8 +12,6 @@
  * Return codes of analyze/factorize/solve: see FEPS_CHOL_* below (0 = success).
  * Column numbers handed back to Fortran are original (unpermuted) and 1-based.
  */
-#define _GNU_SOURCE             /* RTLD_DEFAULT */
-#include <dlfcn.h>
 #include <float.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -523,27 +521,13 @@ int feps_chol_factorize(void *handle, const double *val)
     return FEPS_CHOL_OK;
 }
 
-/* OpenBLAS's thread count, when the BLAS is OpenBLAS (looked up at run time, so that any other
- * BLAS links too). A solve with one right-hand side is a sequence of small triangular solves and
- * matrix-vector products, one per supernode: more threads there only spin between calls (FE1,
- * 1 316 solves, ran 1.2-1.5x faster with one BLAS thread than with two, issue 28), while the
- * factorization's dense updates gain from them. So solves run on one thread. */
-typedef void (*blas_set_threads_fn)(int);
-typedef int (*blas_get_threads_fn)(void);
-
-static void blas_thread_controls(blas_set_threads_fn *set, blas_get_threads_fn *get)
-{
-    static int looked_up = 0;
-    static blas_set_threads_fn set_fn = NULL;
-    static blas_get_threads_fn get_fn = NULL;
-    if (!looked_up) {
-        *(void **)&set_fn = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
-        *(void **)&get_fn = dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
-        looked_up = 1;
-    }
-    *set = set_fn;
-    *get = get_fn;
-}
+/* A solve with one right-hand side is a sequence of small triangular solves and matrix-vector
+ * products, one per supernode: more BLAS threads there only spin between calls (FE1, 1 316
+ * solves, ran 1.2-1.5x faster with one BLAS thread than with two, issue 28), while the
+ * factorization's dense updates gain from them. So solves run on one BLAS thread, set through
+ * feps_blas_shim.c (nothing with a BLAS other than OpenBLAS). */
+void feps_blas_set_threads(int n);
+int feps_blas_get_threads(void);
 
 int feps_chol_solve(void *handle, int64_t n, int64_t nrhs, double *b)
 {
@@ -564,13 +548,10 @@ int feps_chol_solve(void *handle, int64_t n, int64_t nrhs, double *b)
     rhs.dtype = CHOLMOD_DOUBLE;
 
     cholmod_common *c = &h->common;
-    blas_set_threads_fn set_threads;
-    blas_get_threads_fn get_threads;
-    blas_thread_controls(&set_threads, &get_threads);
-    int threads = (set_threads != NULL && get_threads != NULL) ? get_threads() : 1;
-    if (threads > 1) set_threads(1);
+    int threads = feps_blas_get_threads();
+    if (threads > 1) feps_blas_set_threads(1);
     cholmod_dense *x = cholmod_l_solve(CHOLMOD_A, h->l, &rhs, c);
-    if (threads > 1) set_threads(threads);
+    if (threads > 1) feps_blas_set_threads(threads);
     if (x == NULL || c->status < CHOLMOD_OK) {
         if (x != NULL) cholmod_l_free_dense(&x, c);
         return FEPS_CHOL_CHOLMOD_ERROR;

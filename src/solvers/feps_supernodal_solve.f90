@@ -76,7 +76,8 @@ contains
     integer(c_int64_t), intent(in) :: nsuper
     type(c_ptr), intent(in) :: super, pi, px, rows, x, perm
     integer, allocatable :: col_super(:), parent(:)
-    integer :: k, nscol, nsrow
+    integer :: k, k1, nscol, nsrow
+    integer(i8) :: p0
     call self%clear()
     if (nsuper < 1 .or. n < 1) return
     self%n = n
@@ -93,11 +94,10 @@ contains
       col_super(self%super(k) + 1:self%super(k + 1)) = k
       self%max_rows = max(self%max_rows, int(self%pi(k + 1) - self%pi(k)))
     end do
-    do k = 1, self%nsuper
-      nscol = int(self%super(k + 1) - self%super(k))
-      nsrow = int(self%pi(k + 1) - self%pi(k))
+    do k = 1, self%nsuper   ! the parent: the supernode of the first row below the diagonal block
+      call extent(k, self%super, self%pi, k1, nscol, nsrow, p0)
       parent(k) = 0
-      if (nsrow > nscol) parent(k) = col_super(self%rows(self%pi(k) + nscol + 1) + 1)
+      if (nsrow > nscol) parent(k) = col_super(self%rows(p0 + nscol + 1) + 1)
     end do
     call build_gather_lists(self, col_super)
     self%threads = 1

@@ -321,7 +321,7 @@ for size in "${size_list[@]}"; do
   run_feps "$size" "$deck" 1 >/dev/null
   dofs=$(awk '/^dofs/ {print $2}' "$outdir/runs/${size}_feps_1.out")
   inp=$outdir/runs/${size}.inp
-  python3 "$root/scripts/export_inp.py" "$outdir/runs/${size}_feps_1.h5" "$deck" -o "$inp" >&2
+  python3 "$root/scripts/export_inp.py" "$outdir/runs/${size}_feps_1.h5" -o "$inp" >&2
   t=$(run_ccx "$size" "$inp" 1 "$dofs")
   compare "$outdir/runs/${size}_feps_1.h5" "$outdir/runs/${size}_ccx_1/model.dat" "$outdir/compare_$size.txt" >&2
   residual_check "$outdir/runs/${size}_feps_1.h5" "$inp" "$outdir/runs/${size}_residual" "$outdir/compare_$size.txt" >&2

@@ -83,6 +83,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from feps_cli import feps_option  # noqa: E402
+from feps_results import point_weights  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -411,21 +412,14 @@ def map_expanded(con, coords, slaves, x):
 
 # ------------------------------------------------------------------------------ comparison
 
-def point_weights(xe, itype="interface-quad4"):
-    """Weights of an interface element's points. quad4, 2x2 Gauss or nodal alike: a quarter of its
-    (rectangular) lower face each. line3 (ends, then the middle; length per mm of thickness):
-    Gauss 5/9, 8/9, 5/9 of half the length (points at s = -sqrt(3/5), 0, sqrt(3/5)); nodal
-    Simpson L/6, L/6, 2L/3 in node order."""
-    if itype.startswith("interface-line3"):
-        le = np.linalg.norm(xe[1] - xe[0])
-        if itype.endswith("-nodal"):
-            return le * np.array([1.0, 1.0, 4.0]) / 6.0
-        return le / 2.0 * np.array([5.0, 8.0, 5.0]) / 9.0
-    area = np.linalg.norm(np.cross(xe[1] - xe[0], xe[3] - xe[0]))
-    return np.full(4, area / 4.0)
+def simpson_weights(xe):
+    """The weights of a line3 face's ends and middle under feps's nodal rule (Simpson: L/6, L/6,
+    2L/3, length per mm of thickness): the tributary lengths of its upper nodes, also for a run
+    with the Gauss rule, whose file holds the Gauss points' weights instead."""
+    return np.linalg.norm(xe[1] - xe[0]) * np.array([1.0, 1.0, 4.0]) / 6.0
 
 
-def compare(itype, pull, feps_h5, ccx_dir, g=FAMILIES["solid"]):
+def compare(pull, feps_h5, ccx_dir, g=FAMILIES["solid"]):
     """Rows of the comparison table per written step, and what the distributions need."""
     fr = feps_results(feps_h5)
     cd = ccx_dat(os.path.join(ccx_dir, "ccx.dat"))
@@ -438,7 +432,7 @@ def compare(itype, pull, feps_h5, ccx_dir, g=FAMILIES["solid"]):
     lower, upper = joint[:, :npair], joint[:, npair:]
     if np.abs(x[lower - 1] - x[upper - 1]).max() > 1e-9:
         sys.exit("compare: the interface's two layers do not coincide (deck numbering)")
-    wts = np.concatenate([point_weights(x[c - 1], itype) for c in lower])
+    wts = point_weights(h, "joint")          # each interface point's area, feps's rule
     # tributary area of each slave (upper) node: a quarter of each face it belongs to (3D), the
     # Simpson weights of each line (plane strain): the weights of feps's nodal rule
     # spring: the area of ccx's node-to-surface spring at each slave node. For the 3D quad4 faces
@@ -448,7 +442,7 @@ def compare(itype, pull, feps_h5, ccx_dir, g=FAMILIES["solid"]):
     trib, spring = {}, {}
     for c in upper:
         if npair == 3:
-            a = point_weights(x[c - 1], "interface-line3-nodal")
+            a = simpson_weights(x[c - 1])
             b = np.array([0.26, 0.26, 0.48]) * np.linalg.norm(x[c[1] - 1] - x[c[0] - 1])
         else:
             a = np.full(4, np.linalg.norm(np.cross(x[c[1] - 1] - x[c[0] - 1], x[c[3] - 1] - x[c[0] - 1])) / 4.0)
@@ -636,7 +630,7 @@ def main():
         if "Job finished" not in log:
             sys.exit(f"bench_calculix_friction: ccx failed, see {d}/ccx.out")
         ccx_iters = len(re.findall(r"^ iteration \d+", log, re.M))
-        rows, dist, line, pair, x = compare(itype, a.pull, os.path.join(d, "feps.h5"), d, g)
+        rows, dist, line, pair, x = compare(a.pull, os.path.join(d, "feps.h5"), d, g)
         summary += fmt_table(case, rows, g)
         fe = open(os.path.join(d, "feps.out")).read()
         m = re.search(r"analysis\s+(.*)", fe)

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Write a CalculiX (Abaqus-style) .inp of a linear feps model from feps's results file.
 
-  python3 scripts/export_inp.py run.h5 deck.dat -o model.inp
+  python3 scripts/export_inp.py run.h5 -o model.inp
 
-Everything but the supports' directions comes from the HDF5 file feps wrote for the deck
+Everything comes from the HDF5 file feps wrote for the deck
 (docs/output-format.md), so node and element numbers are feps's own (CalculiX node n is feps
 node n) and nothing of feps's physics is computed again here:
 - the mesh: /mesh/coordinates, /mesh/groups/<g>/connectivity; hex8 -> C3D8 (2x2x2 Gauss),
@@ -12,13 +12,14 @@ node n) and nothing of feps's physics is computed again here:
 - the materials: /materials/<name> (kind elastic, E or G, nu);
 - the loads: /steps/<last>/applied_force, the nodal forces feps applied (nodal loads and the
   consistent forces of its pressures and tractions), as *CLOAD;
-- the supports' nodes: /sets/nodes/<set> as the run resolved them.
-The deck gives only the directions of its FIX records (the file has the nodes of each set,
-not which directions a FIX holds).
+- the supports: /constraints/<k> (each FIX record's set and direction, as the run read them)
+  and the nodes of each set, /sets/nodes/<set>, as the run resolved them.
+The deck itself is not read.
 
 Only what a linear run with one load case needs is accepted: ELASTIC materials, solid groups
-hex8/hex20/hex20r, one stage. Anything else (interfaces, bars, DISPLACE, RELEASE, PRESTRESS,
-FIX in a nodal system, several stages) is refused, with the deck's line where it is the deck's.
+hex8/hex20/hex20r, one stage, supports that hold in the global system. Anything else
+(interfaces, bars, DISPLACE, RELEASE, a FIX in a cylindrical or nodal system, several stages)
+is refused, naming the deck's line where a record is the cause.
 The step asks for the displacements of all nodes in the .dat file (*NODE PRINT, which
 scripts/bench_calculix.sh compares with feps's node by node) and for no other output.
 A model the exporter cannot translate exits with status 1; a file that is missing or cannot
@@ -34,47 +35,37 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
 
 CCX_TYPE = {"hex8": "C3D8", "hex20": "C3D20", "hex20r": "C3D20R"}
-DOF = {"X": 1, "UX": 1, "1": 1, "Y": 2, "UY": 2, "2": 2, "Z": 3, "UZ": 3, "3": 3}
-REFUSED = {"DISPLACE": "prescribed displacements", "RELEASE": "released supports",
-           "PRESTRESS": "prestress"}
+REFUSED = {"displace": "DISPLACE (prescribed displacements)", "release": "RELEASE (released supports)"}
 
 
 class ExportError(Exception):
     pass
 
 
-def deck_fixes(path):
-    """[(set name, [dofs 1..3])] of the deck's FIX records; ExportError naming the line for a FIX
-    in a nodal system or a record the exporter cannot write."""
-    fixes = []
-    with open(path) as f:
-        for lineno, line in enumerate(f, start=1):
-            fields = [x.strip() for x in line.split("!", 1)[0].split(",")]
-            key = fields[0].upper()
-            if key in REFUSED:
-                raise ExportError(f"{path}:{lineno}: {key} ({REFUSED[key]}) is not exported")
-            if key != "FIX":
-                continue
-            dofs = set()
-            for x in filter(None, (v.upper() for v in fields[2:])):
-                if x.startswith("CSYS="):
-                    if int(x[5:]) not in (1, 2):
-                        raise ExportError(f"{path}:{lineno}: FIX in a nodal system is not exported")
-                elif x == "ALL":
-                    dofs |= {1, 2, 3}
-                elif x in DOF:
-                    dofs.add(DOF[x])
-                else:
-                    raise ExportError(f"{path}:{lineno}: FIX direction {x!r} is not exported")
-            fixes.append((fields[1], sorted(dofs)))
-    return fixes
+def fixes(h):
+    """[(set name, dof 1..3)] of the run's FIX records (/constraints); ExportError naming the deck's
+    line for a record the exporter cannot write."""
+    fr.require(h, "constraints", " (a result of a feps that did not write its supports: run the deck again)")
+    out = []
+    for k in sorted(h["constraints"]):
+        a = h[f"constraints/{k}"].attrs
+        kind, where = fr.text(a["kind"]), fr.text(a["source"])
+        if kind in REFUSED:
+            raise ExportError(f"{where}: {REFUSED[kind]} is not exported")
+        if int(a["csys"]) != 2 and int(a["csys"]) != 1:
+            raise ExportError(f"{where}: FIX in a cylindrical or nodal system is not exported")
+        if int(a["active_from"]) > 1:
+            raise ExportError(f"{where}: a FIX of a later stage is not exported")
+        out.append((fr.text(a["set"]), int(a["dof"])))
+    return out
 
 
-def build(h5path, deckpath):
+def build(h5path):
     """(coords, groups {name: (type, material, conn)}, materials {name: (E, nu)}, fixed {node:
-    dofs}, forces (nnode, 3))."""
-    fixes = deck_fixes(deckpath)
+    dofs}, forces (nnode, 3), the deck's name)."""
     with fr.open_result(h5path) as h:
+        held = fixes(h)
+        deck = fr.summary(h).get("input_file", h5path)
         coords = fr.coordinates(h)
         groups, materials = {}, {}
         for name in fr.groups(h):
@@ -95,11 +86,11 @@ def build(h5path, deckpath):
                    "or FIELDS left out applied_force)")
         forces = h[f"steps/{step}/applied_force"][...]
         fixed = {}
-        for name, dofs in fixes:
+        for name, dof in held:
             fr.require(h, f"sets/nodes/{name}", f" (the node set of FIX, {name})")
             for n in h[f"sets/nodes/{name}"][...].ravel():
-                fixed.setdefault(int(n), set()).update(dofs)
-    return coords, groups, materials, fixed, forces
+                fixed.setdefault(int(n), set()).add(dof)
+    return coords, groups, materials, fixed, forces, deck
 
 
 def num(v):
@@ -147,26 +138,26 @@ def write_inp(out, coords, groups, materials, fixed, forces, source):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("h5", help="feps results HDF5 file of the deck")
-    p.add_argument("deck", help="the feps deck (the directions of its FIX records)")
+    p.add_argument("deck", nargs="?", help="not read (the supports come from the results file); "
+                   "accepted so that older command lines still work")
     p.add_argument("-o", "--output", required=True, help=".inp file to write")
     a = p.parse_args()
-    for path, what in ((a.h5, "HDF5 file"), (a.deck, "deck")):
-        if not os.path.isfile(path):
-            print(f"export_inp: error: no {what} {path}", file=sys.stderr)
-            return 2
+    if not os.path.isfile(a.h5):
+        print(f"export_inp: error: no HDF5 file {a.h5}", file=sys.stderr)
+        return 2
     try:
-        coords, groups, materials, fixed, forces = build(a.h5, a.deck)
+        coords, groups, materials, fixed, forces, deck = build(a.h5)
     except (ExportError, KeyError) as exc:
         print(f"export_inp: error: {exc}", file=sys.stderr)
         return 1
     except (OSError, ValueError) as exc:
-        # a deck that cannot be read, or a file that is not HDF5
+        # a file that is not HDF5
         print(f"export_inp: error: cannot read {getattr(exc, 'filename', None) or a.h5}: "
               f"{getattr(exc, 'strerror', None) or exc}", file=sys.stderr)
         return 2
     try:
         with open(a.output, "w") as out:
-            write_inp(out, coords, groups, materials, fixed, forces, a.deck)
+            write_inp(out, coords, groups, materials, fixed, forces, deck)
     except OSError as exc:
         print(f"export_inp: error: cannot write {a.output}: {exc.strerror or exc}", file=sys.stderr)
         return 1

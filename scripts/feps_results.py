@@ -9,8 +9,8 @@
 
 Everything about an element group comes from the result schema feps writes (its element
 catalog's attributes on /mesh/groups/<group>: family, dimension, points_per_element,
-result_field, components, xdmf_topology; the integration points /mesh/groups/<group>/points;
-each dataset's `components`), never from a table of element types of this module's own. The
+result_field, components, xdmf_topology; the integration points /mesh/groups/<group>/points
+and the measure each stands for, point_weights; each dataset's `components`), never from a table of element types of this module's own. The
 nodal averages are feps's own fields (nodal_stress, nodal_principal, nodal_interface): nothing
 here extrapolates. (An independent copy of feps's rules, for the checks only, is
 test/reference/element_rules.py.)
@@ -133,6 +133,17 @@ def cylindrical(x):
     theta = np.degrees(np.arctan2(x[:, 1], x[:, 0])) % 360.0
     # keep 180 on the negative x axis (y = -0.0 would give -180 -> 180 anyway)
     return r, theta, x[:, 2]
+
+
+def point_weights(f, group):
+    """The measure (volume, area or length) each integration point of a group stands for, in the
+    row order of its Gauss-point datasets: `/mesh/groups/<group>/point_weights`, from the library's
+    own rules and Jacobians."""
+    path = f"mesh/groups/{group}/point_weights"
+    if path not in f:
+        raise ValueError(f"{f.filename}: no {path} (a result of a feps older than point weights: "
+                         f"run the deck again)")
+    return f[path][:, 0]
 
 
 def gauss_points(f, group, dataset=None):

@@ -50,36 +50,16 @@ FT = 5.0
 HIGH_TENSION_FRACTION = 0.8
 THICKNESS_RATIO = 25.0 / 14.3
 
-_G = 1.0 / np.sqrt(3.0)
-# hex8 2x2x2 Gauss points, first natural coordinate fastest (feps_gauss cube_rule)
-GAUSS_XI = np.array([[i, j, k] for k in (-_G, _G) for j in (-_G, _G) for i in (-_G, _G)])
-NODE_XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
-                    [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], dtype=float)
-
-
-def hex8_gauss_points(coords, conn):
-    """Gauss-point positions (nelem*8, 3) and volumes (nelem*8,) of hex8 elements (element-major,
-    in feps's point order)."""
-    xe = coords[conn - 1]                                          # (nelem, 8, 3)
-    f = 1.0 + GAUSS_XI[:, None, :] * NODE_XI[None, :, :]           # (8 gp, 8 nodes, 3)
-    n = 0.125 * f[..., 0] * f[..., 1] * f[..., 2]                  # (gp, node)
-    dn = np.stack([0.125 * NODE_XI[None, :, 0] * f[..., 1] * f[..., 2],
-                   0.125 * NODE_XI[None, :, 1] * f[..., 0] * f[..., 2],
-                   0.125 * NODE_XI[None, :, 2] * f[..., 0] * f[..., 1]], axis=-1)   # (gp, node, 3)
-    x = np.einsum("gn,enc->egc", n, xe)
-    jac = np.einsum("gnd,enc->egcd", dn, xe)                        # dx_c / dxi_d
-    vol = np.linalg.det(jac)                                        # Gauss weights are 1
-    return x.reshape(-1, 3), vol.reshape(-1)
-
 
 def read_pipe(path):
-    """Last step's s1 of group pipe, Gauss-point positions and volumes, node radii."""
+    """Last step's s1 of group pipe, Gauss-point positions and volumes (feps's own), node radii."""
     with h5py.File(path, "r") as f:
         step = fr.last_step(f)
         s1 = f[f"steps/{step}/principal/pipe"][:, 0]
         coords = f["mesh/coordinates"][...]
         conn = f["mesh/groups/pipe/connectivity"][...]
-    x, vol = hex8_gauss_points(coords, conn)
+        x = fr.gauss_points(f, "pipe")
+        vol = fr.point_weights(f, "pipe")
     node_r = np.unique(np.round(np.hypot(coords[conn - 1, 0], coords[conn - 1, 1]), 6))
     return s1, x, vol, node_r
 

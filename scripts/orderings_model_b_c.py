@@ -37,7 +37,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import orderings_model_a_ch9 as model_a  # noqa: E402  (hex8 Gauss points)
+import orderings_model_a_ch9 as model_a  # noqa: E402  (the pipe's points and weights)
 from feps_cli import Error, guard  # noqa: E402
 from make_model_c import case_name  # noqa: E402
 from postprocess_model_c import peak_tension_pipes  # noqa: E402

@@ -30,7 +30,8 @@ contains
       new_unittest('every catalog type: K u equals the internal force of D B u', test_consistent), &
       new_unittest('every catalog type: a rigid translation strains nothing', test_translation), &
       new_unittest('a 2D interface embeds its x-y kernels in 3 DOFs per node', test_embedding), &
-      new_unittest('every catalog type: body forces add up to b times its volume or length', test_body_force)]
+      new_unittest('every catalog type: body forces add up to b times its volume or length', test_body_force), &
+      new_unittest('every catalog type: point weights add up to its measure (closed form)', test_point_weights)]
   end subroutine collect_element_contract
 
   !> The catalog's names, one per element.
@@ -235,6 +236,65 @@ contains
       deallocate (fe)
     end do
   end subroutine test_body_force
+
+  !> The points' weights (point_weights) of each type on its reference element under the
+  !! affine map add up to the closed-form measure: the natural domain's (a cube of side 2: 8; the
+  !! unit tetrahedron: 1/6; the wedge, unit triangle times 2: 1; the unit triangle: 1/2; a square
+  !! of side 2: 4; a line of length 2: 2) times the map's volume, area or length scale. Every
+  !! weight is positive.
+  subroutine test_point_weights(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=32), allocatable :: names(:)
+    character(len=:), allocatable :: name
+    class(element_t), allocatable :: element
+    real(dp), allocatable :: xe(:, :), w(:)
+    real(dp) :: natural, scale, c(3), m(3, 3)
+    integer :: k
+    names = catalog_names()
+    m = a_map
+    do k = 1, size(names)
+      name = trim(names(k))
+      call new_element(name, element, error)
+      if (allocated(error)) return
+      call reference_nodes(element, xe, error)
+      if (allocated(error)) return
+      allocate (w(element%npoints()))
+      call element%point_weights(xe, w)
+      select type (element)
+      class is (solid_element_t)
+        if (element%ndim() == 2) then
+          natural = 0.5_dp                                   ! tri6: the unit triangle
+          scale = m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)
+        else
+          scale = m(1, 1) * (m(2, 2) * m(3, 3) - m(2, 3) * m(3, 2)) - m(1, 2) * (m(2, 1) * m(3, 3) - m(2, 3) * &
+                  m(3, 1)) + m(1, 3) * (m(2, 1) * m(3, 2) - m(2, 2) * m(3, 1))
+          natural = 8.0_dp
+          if (index(name, 'tet') == 1) natural = 1.0_dp / 6.0_dp
+          if (index(name, 'wedge') == 1) natural = 1.0_dp
+        end if
+      type is (interface_element_t)
+        if (element%ndim() == 2) then
+          natural = 2.0_dp
+          scale = norm2(m(1:2, 1))
+        else
+          natural = 4.0_dp
+          if (index(name, 'interface-tri') == 1) natural = 0.5_dp
+          c = [m(2, 1) * m(3, 2) - m(3, 1) * m(2, 2), m(3, 1) * m(1, 2) - m(1, 1) * m(3, 2), &
+               m(1, 1) * m(2, 2) - m(2, 1) * m(1, 2)]
+          scale = norm2(c)
+        end if
+      class default                                          ! a bar along the first axis
+        natural = 2.0_dp
+        scale = norm2(m(:, 1))
+      end select
+      call check(error, minval(w) > 0.0_dp, name // ': every weight is positive')
+      if (allocated(error)) return
+      call check(error, sum(w), natural * scale, name // ': the weights add up to the measure', &
+                 rel=1.0e-13_dp)
+      if (allocated(error)) return
+      deallocate (w)
+    end do
+  end subroutine test_point_weights
 
   !> interface-line2 and line3 (both rules): the contract's stiffness, internal force, strains
   !! and point coordinates are stiffness_nd, ... on the x-y coordinates, placed at the x and y DOFs.

@@ -4,8 +4,9 @@ module test_result_schema
   use feps_kinds, only: dp
   use feps_testing, only: error_t, unittest_t, new_unittest, check
   use feps_result_schema, only: result_fields
-  use feps_h5_testing, only: run_and_open, close_and_delete, read_real, read_int, file_text, string_attribute
-  use hdf5, only: hid_t
+  use feps_h5_testing, only: run_and_open, close_and_delete, read_real, read_int, file_text, string_attribute, &
+                              int_attribute
+  use hdf5, only: hid_t, h5lexists_f
   use feps_solid_element, only: solid_element_t
   use feps_element_catalog, only: new_solid_element
   implicit none
@@ -26,8 +27,10 @@ contains
                    test_applied_force), &
       new_unittest('stress_cyl of the hex20 Lame cylinder against the closed form', test_stress_cyl), &
       new_unittest('nodal_stress_cyl at the bore of the hex20 Lame cylinder', test_nodal_stress_cyl), &
+      new_unittest('point_weights of the hex20 Lame cylinder add up to its volume', test_point_weights), &
       new_unittest('point_state of a concrete cantilever past its tensile strength', test_point_state), &
-      new_unittest('model B SE1: the resolved node and face sets', test_sets)]
+      new_unittest('model B SE1: the resolved node and face sets', test_sets), &
+      new_unittest('model B SE1: its FIX records as /constraints', test_constraints)]
   end subroutine collect_result_schema
 
   !> Every field of the schema has its row `/steps/<NNNN>/<name>...` in the manual's table of
@@ -117,6 +120,31 @@ contains
       if (allocated(error)) return
     end do
   end subroutine test_stress_cyl
+
+  !> /mesh/groups/wall/point_weights of test/data/lame_hex20.dat (a quarter of the annulus
+  !! a..b, 50 mm long, 16 hex20 around it): one positive weight per Gauss point, adding up to
+  !! pi/4 (b^2 - a^2) 50 within 1e-5 (the elements' quadratic edges only approximate their
+  !! 11.25 deg arcs, a relative error of order h^4; measured 3.1e-6 short).
+  subroutine test_point_weights(error)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), parameter :: pi = acos(-1.0_dp), length = 50.0_dp
+    integer(hid_t) :: file_id
+    real(dp), allocatable :: w(:, :), xg(:, :)
+    call run_and_open('test/data/lame_hex20.dat', 'schema_weights', file_id, error)
+    if (allocated(error)) return
+    call read_real(file_id, '/mesh/groups/wall/point_weights', w, error)
+    if (.not. allocated(error)) call read_real(file_id, '/mesh/groups/wall/points', xg, error)
+    if (.not. allocated(error)) call check(error, string_attribute(file_id, '/mesh/groups/wall/point_weights', &
+                                                                     'components') == 'weight', &
+                                           'point_weights components')
+    call close_and_delete(file_id, 'schema_weights')
+    if (allocated(error)) return
+    call check(error, size(w, 1) == 1 .and. size(w, 2) == size(xg, 2), 'one weight per point')
+    if (allocated(error)) return
+    call check(error, minval(w) > 0.0_dp, 'every weight is positive')
+    if (allocated(error)) return
+    call check(error, sum(w), pi / 4.0_dp * (b**2 - a**2) * length, 'the weights add up to the volume', rel=1.0e-5_dp)
+  end subroutine test_point_weights
 
   !> nodal_stress_cyl of the hex20 Lame cylinder: stt at the bore nodes against s_t(a) within
   !! 5e-4 (as test_stress_recovery's hoop stress rotated by hand: measured 2.2e-4).
@@ -226,5 +254,39 @@ contains
       end do
     end subroutine check_faces
   end subroutine test_sets
+
+  !> input/modelB/SE1.dat's three FIX records (lines 55-57: soil_outer X, Y; symmetry Y; anchor
+  !! Z; global system) as /constraints/0001-0004, one per direction, in the deck's order, with
+  !! their sets, directions, kind, stage and source line; nothing more.
+  subroutine test_constraints(error)
+    type(error_t), allocatable, intent(out) :: error
+    character(len=*), parameter :: sets(4) = [character(len=10) :: 'soil_outer', 'soil_outer', 'symmetry', 'anchor']
+    integer, parameter :: dofs(4) = [1, 2, 2, 3], lines(4) = [55, 55, 56, 57]
+    integer(hid_t) :: file_id
+    character(len=:), allocatable :: path, source
+    integer :: k
+    logical :: more
+    call run_and_open('input/modelB/SE1.dat', 'schema_constraints', file_id, error)
+    if (allocated(error)) return
+    do k = 1, 4
+      path = '/constraints/000' // achar(iachar('0') + k)
+      call check(error, string_attribute(file_id, path, 'set') == trim(sets(k)), path // ': set ' // trim(sets(k)))
+      if (.not. allocated(error)) call check(error, int_attribute(file_id, path, 'dof'), dofs(k), path // ': dof')
+      if (.not. allocated(error)) call check(error, string_attribute(file_id, path, 'kind') == 'fix', path // ': kind fix')
+      if (.not. allocated(error)) call check(error, int_attribute(file_id, path, 'csys'), 2, path // ': global system')
+      if (.not. allocated(error)) call check(error, int_attribute(file_id, path, 'active_from'), 1, path // ': stage 1 on')
+      if (.not. allocated(error)) then
+        source = string_attribute(file_id, path, 'source')
+        call check(error, index(source, 'SE1.dat:' // achar(iachar('0') + lines(k) / 10) // &
+                                achar(iachar('0') + mod(lines(k), 10))) > 0, path // ': source ' // source)
+      end if
+      if (allocated(error)) exit
+    end do
+    if (.not. allocated(error)) then
+      call h5lexists_f(file_id, '/constraints/0005', more, k)
+      call check(error, .not. more, 'no fifth constraint')
+    end if
+    call close_and_delete(file_id, 'schema_constraints')
+  end subroutine test_constraints
 
 end module test_result_schema

@@ -42,6 +42,7 @@ module feps_bar_element
     procedure :: internal_force
     procedure :: strains
     procedure :: point_coordinates
+    procedure :: point_weights
     procedure :: min_jacobian
     procedure :: jacobian_message => bar_jacobian_message
     ! the bar family
@@ -311,6 +312,19 @@ contains
       end do
     end do
   end subroutine point_coordinates
+
+  !> w |dx/ds| at each Gauss point: the length it stands for.
+  pure subroutine point_weights(self, xe, w)
+    class(bar_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    real(dp), intent(out) :: w(:)        !! (ngauss)
+    real(dp) :: t(bar_ndim), jac, dn(max_bar_nodes), wg
+    integer :: g
+    do g = 1, self%ngauss()
+      call gauss_point(self, xe, g, t, jac, dn, wg)
+      w(g) = wg * jac
+    end do
+  end subroutine point_weights
 
   !> Length of the bar by the element's own rule: the sum of wdet over the Gauss points, i.e.
   !! the length the stiffness and internal forces integrate over (exact for a straight bar).

@@ -33,6 +33,7 @@ module feps_element
     procedure(force_interface), deferred :: internal_force  !! sum of B^T sig over the points
     procedure(strains_interface), deferred :: strains       !! B ue at the points
     procedure(coordinates_interface), deferred :: point_coordinates  !! global positions of the points
+    procedure(weights_interface), deferred :: point_weights  !! the measure each point stands for
     procedure(jacobian_interface), deferred :: min_jacobian !! mesh check: <= 0 rejects the element
     procedure :: jacobian_message
     procedure :: body_force => element_body_force   !! consistent nodal forces of a uniform body force
@@ -86,6 +87,17 @@ module feps_element
       real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
       real(dp), intent(out) :: xg(:, :)    !! (3, npoints)
     end subroutine coordinates_interface
+
+    !> The weight times the Jacobian of each point, `w(npoints)` in the order of its results: the
+    !! share of the element's measure the point stands for (a solid: volume, mm3, or the area of a
+    !! unit-thick plane-strain slice; an interface: area, or length per unit thickness in 2D; a
+    !! bar: length). They add up to the measure its stiffness integrates over.
+    pure subroutine weights_interface(self, xe, w)
+      import :: element_t, dp
+      class(element_t), intent(in) :: self
+      real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+      real(dp), intent(out) :: w(:)        !! (npoints)
+    end subroutine weights_interface
 
     !> The smallest Jacobian of the element's mapping (a solid: the determinant; an interface or
     !! a bar: its signed surface or line Jacobian); the caller rejects values <= 0.

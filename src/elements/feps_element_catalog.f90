@@ -140,13 +140,15 @@ contains
 
   !> Global coordinates `xg(3, npoints * nelem)` of the integration points of the elements
   !! `connectivity(:, e)` of type `type_name`, element by element in the row order of the
-  !! results' point datasets (interfaces: on their lower layer; plane strain: z = 0).
-  subroutine point_coordinates(type_name, coords, connectivity, xg, error)
+  !! results' point datasets (interfaces: on their lower layer; plane strain: z = 0), and, when
+  !! asked for, the measure each stands for, `w(npoints * nelem)` (element_t's point_weights).
+  subroutine point_coordinates(type_name, coords, connectivity, xg, error, w)
     character(len=*), intent(in) :: type_name
     real(dp), intent(in) :: coords(:, :)          !! (3, nnode)
     integer, intent(in) :: connectivity(:, :)     !! (nnodes, nelem)
     real(dp), allocatable, intent(out) :: xg(:, :)
     type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable, intent(out), optional :: w(:)
     class(element_t), allocatable :: element
     integer :: e, np
     call new_element(type_name, element, error)
@@ -154,8 +156,10 @@ contains
     np = element%npoints()
     allocate (xg(3, np * size(connectivity, 2)))
     xg = 0.0_dp
+    if (present(w)) allocate (w(np * size(connectivity, 2)))
     do e = 1, size(connectivity, 2)
       call element%point_coordinates(coords(:, connectivity(:, e)), xg(:, (e - 1) * np + 1:e * np))
+      if (present(w)) call element%point_weights(coords(:, connectivity(:, e)), w((e - 1) * np + 1:e * np))
     end do
   end subroutine point_coordinates
 

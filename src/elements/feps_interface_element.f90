@@ -100,6 +100,7 @@ module feps_interface_element
     procedure :: internal_force
     procedure :: strains
     procedure :: point_coordinates
+    procedure :: point_weights
     procedure :: min_jacobian
     procedure :: jacobian_message => interface_jacobian_message
     procedure :: stresses_of_tensors => interface_stresses_of_tensors
@@ -114,6 +115,7 @@ module feps_interface_element
     procedure :: internal_force_nd
     procedure :: strains_nd
     procedure :: point_coordinates_nd
+    procedure :: point_weights_nd
     procedure :: area
     procedure :: min_jacobian_nd
   end type interface_element_t
@@ -539,21 +541,35 @@ contains
     end do
   end subroutine point_coordinates_nd
 
-  !> Area of the lower layer (length in 2D): sum of wdet over the chosen rule.
-  pure real(dp) function area(self, xe)
+  !> wdet at each point of the chosen rule, from `xe(ndim, nnodes)`: the area of the lower layer
+  !! it stands for (length per unit thickness in 2D).
+  pure subroutine point_weights_nd(self, xe, wts)
     class(interface_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
+    real(dp), intent(out) :: wts(:)      !! (ngauss)
     real(dp) :: s(2, max_interface_points), w(max_interface_points)
     real(dp) :: n(max_interface_pairs), dn(2, max_interface_pairs), nstar(3), jac, frame(3, 3)
     integer :: p, nd, g
     p = self%npairs()
     nd = self%ndim()
     call self%integration_rule(s, w)
-    area = 0.0_dp
     do g = 1, self%ngauss()
       call self%shape(s(:, g), n, dn)
       call local_frame(nd, p, xe, dn, frame, jac, nstar)
-      area = area + w(g) * jac
+      wts(g) = w(g) * jac
+    end do
+  end subroutine point_weights_nd
+
+  !> Area of the lower layer (length in 2D): sum of wdet over the chosen rule.
+  pure real(dp) function area(self, xe)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
+    real(dp) :: wts(max_interface_points)
+    integer :: g
+    call self%point_weights_nd(xe, wts(1:self%ngauss()))
+    area = 0.0_dp
+    do g = 1, self%ngauss()
+      area = area + wts(g)
     end do
   end function area
 
@@ -658,6 +674,14 @@ contains
       call point_coordinates_nd(self, xe(1:2, :), xg(1:2, :))
     end if
   end subroutine point_coordinates
+
+  !> The area each point stands for (`point_weights_nd`) from `xe(3, nnodes)`.
+  pure subroutine point_weights(self, xe, w)
+    class(interface_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
+    real(dp), intent(out) :: w(:)        !! (ngauss)
+    call self%point_weights_nd(xe(1:self%ndim(), :), w)
+  end subroutine point_weights
 
   !> The tractions of the Cartesian stress tensors `tensors(3, 3, ngauss)` given at the points on
   !! the interface's plane, in its local frame: e_i . sigma . n for every row e_i of the frame

@@ -45,6 +45,7 @@ module feps_solid_element
     procedure :: internal_force
     procedure :: strains
     procedure :: point_coordinates
+    procedure :: point_weights
     procedure :: min_jacobian
     ! common to every solid
     procedure :: shape_gradients
@@ -410,6 +411,21 @@ contains
       wda(g) = w(g) * da
     end do
   end subroutine face_integration
+
+  !> detJ w at each Gauss point: the volume it stands for (a plane-strain solid: the area of a
+  !! unit-thick slice, through its own shape_gradients).
+  pure subroutine point_weights(self, xe, w)
+    class(solid_element_t), intent(in) :: self
+    real(dp), intent(in) :: xe(:, :)   !! (3, nen)
+    real(dp), intent(out) :: w(:)      !! (ngauss)
+    real(dp) :: xi(3, self%ngauss()), n(size(xe, 2)), dndx(3, size(xe, 2)), detj
+    integer :: g
+    call self%gauss_rule(xi, w)
+    do g = 1, size(w)
+      call self%shape_gradients(xe, xi(:, g), n, dndx, detj)
+      w(g) = detj * w(g)
+    end do
+  end subroutine point_weights
 
   !> Volume of the element (sum of detJ w over the volume rule).
   pure real(dp) function volume(self, xe)

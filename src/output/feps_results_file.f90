@@ -17,6 +17,7 @@ module feps_results_file
   use feps_error, only: error_t, fatal_error, err_io, err_internal, err_solver, str
   use feps_element_catalog, only: element_info_t, element_info, family_name, point_coordinates
   use feps_result_schema, only: field_name, family_field
+  use feps_model, only: constraint_t
   use feps_xdmf, only: xdmf_group_t, xdmf_field_t, xdmf_step_t, write_xdmf, write_meshio_xdmf, xdmf_topology_path, &
                        count_words, word
   use feps_paths, only: is_xdmf_name, xdmf_file_name, meshio_file_name
@@ -73,6 +74,7 @@ module feps_results_file
     procedure :: write_group_real
     procedure :: write_material
     procedure :: write_set
+    procedure :: write_constraint
     procedure :: close => close_file
     procedure :: discard
   end type results_file_t
@@ -200,7 +202,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: material   !! its material's name (attribute `material`)
     real(dp), intent(in), optional :: coordinates(:, :)  !! (3, nnode) the mesh: with it a catalog type's
-                                                         !! integration points go to `points`
+                                                         !! integration points go to `points`, the
+                                                         !! measure each stands for to `point_weights`
     integer, intent(in), optional :: element_ids(:)      !! the deck's element ids: written to `element_ids`
                                                          !! (nelem x 1) unless they are 1, 2, ..., nelem
     integer(hid_t) :: group_id, dataset_id
@@ -208,7 +211,7 @@ contains
     type(xdmf_group_t), allocatable :: grown(:)
     type(element_info_t) :: info
     type(error_t), allocatable :: unknown
-    real(dp), allocatable :: xg(:, :)
+    real(dp), allocatable :: xg(:, :), wg(:)
 
     if (self%silent) return
     call require_open(self, error)
@@ -249,9 +252,15 @@ contains
       call write_int_dataset(self, xdmf_topology_path(name), connectivity(:cell_nodes, :) - 1, error)
       if (allocated(error)) return
       if (present(coordinates)) then
-        call point_coordinates(element_type, coordinates, connectivity, xg, error)
+        call point_coordinates(element_type, coordinates, connectivity, xg, error, wg)
         if (allocated(error)) return
         call write_real_dataset(self, '/mesh/groups/' // name // '/points', xg, 'x y z', error, dataset_id)
+        if (allocated(error)) return
+        call write_int_attribute(dataset_id, 'points_per_element', info%npoints, error)
+        call h5dclose_f(dataset_id, hdferr)
+        if (allocated(error)) return
+        call write_real_dataset(self, '/mesh/groups/' // name // '/point_weights', reshape(wg, [1, size(wg)]), &
+                                'weight', error, dataset_id)
         if (allocated(error)) return
         call write_int_attribute(dataset_id, 'points_per_element', info%npoints, error)
         call h5dclose_f(dataset_id, hdferr)
@@ -681,6 +690,54 @@ contains
     if (present(group) .and. .not. allocated(error)) call write_string_attribute(id, 'group', group, error)
     call h5dclose_f(id, hdferr)
   end subroutine write_set
+
+  !> Support record k (from 1, in the deck's order) as the run read it, so that an exporter
+  !! needs no second reading of the deck: the group `/constraints/<kkkk>` with the attributes
+  !! `kind` (`fix`, `displace` or `release`), `set` (its node set, `/sets/nodes/<set>`), `dof`
+  !! (1, 2 or 3: the direction in coordinate system `csys`), `csys`, `value` (the prescribed
+  !! displacement, mm; 0 for fix and release), `stage` (0: scaled by each stage's load; s: an
+  !! increment in stage s), `active_from` (the first stage it acts in), `total` (1: a DISPLACE
+  !! with MODE=TOTAL) and `source` (the deck's file and line, `file:line`). A row of a LIST
+  !! record acts on one node, which has no set: `set` is empty and `node` names it.
+  subroutine write_constraint(self, k, c, set_name, error, node)
+    class(results_file_t), intent(inout) :: self
+    integer, intent(in) :: k
+    type(constraint_t), intent(in) :: c
+    character(len=*), intent(in) :: set_name
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: node
+    integer(hid_t) :: id
+    integer :: hdferr
+    character(len=4) :: number
+    character(len=:), allocatable :: path, kind, source
+    if (self%silent) return
+    call require_open(self, error)
+    if (allocated(error)) return
+    write (number, '(i4.4)') k
+    path = '/constraints/' // number
+    call h5gcreate_f(self%file_id, path, id, hdferr, lcpl_id=self%link_plist)
+    if (hdferr < 0) then
+      call fatal_error(error, err_io, 'cannot create group ' // path // ' in ' // self%part_path)
+      return
+    end if
+    kind = 'fix'
+    if (c%prescribed) kind = 'displace'
+    if (c%release) kind = 'release'
+    source = ''
+    if (allocated(c%file)) source = c%file
+    source = source // ':' // str(c%line)
+    call write_string_attribute(id, 'kind', kind, error)
+    if (.not. allocated(error)) call write_string_attribute(id, 'set', set_name, error)
+    if (.not. allocated(error)) call write_int_attribute(id, 'dof', c%dof, error)
+    if (.not. allocated(error)) call write_int_attribute(id, 'csys', c%csys, error)
+    if (.not. allocated(error)) call write_real_attribute(id, 'value', c%value, error)
+    if (.not. allocated(error)) call write_int_attribute(id, 'stage', c%stage, error)
+    if (.not. allocated(error)) call write_int_attribute(id, 'active_from', c%active_from, error)
+    if (.not. allocated(error)) call write_int_attribute(id, 'total', merge(1, 0, c%total), error)
+    if (.not. allocated(error)) call write_string_attribute(id, 'source', source, error)
+    if (present(node) .and. .not. allocated(error)) call write_int_attribute(id, 'node', node, error)
+    call h5gclose_f(id, hdferr)
+  end subroutine write_constraint
 
   !> Open `/mesh/groups/<name>` of the open file (the caller closes it).
   subroutine open_mesh_group(self, name, group_id, error)

@@ -700,8 +700,9 @@ contains
 
 
   !> The deck's selections as the run resolved them, `/sets/nodes/<name>` and
-  !! `/sets/faces/<name>` (the nodes and faces that supports, loads and REPORTs act on), so that
-  !! a script or an exporter needs no second reading of the deck.
+  !! `/sets/faces/<name>` (the nodes and faces that supports, loads and REPORTs act on), and its
+  !! support records, `/constraints/<kkkk>`, so that a script or an exporter needs no second
+  !! reading of the deck.
   subroutine write_sets(h5, model, error)
     type(results_file_t), intent(inout) :: h5
     type(model_t), intent(in) :: model
@@ -724,6 +725,17 @@ contains
         members(1, :) = set%element
         members(2, :) = set%face
         call h5%write_set('faces', set%name, members, error, group=model%groups(set%group)%name)
+      end associate
+      if (allocated(error)) return
+    end do
+    if (.not. allocated(model%constraints)) return
+    do k = 1, size(model%constraints)
+      associate (c => model%constraints(k), set => model%node_sets(model%constraints(k)%node_set))
+        if (set%listed) then
+          call h5%write_constraint(k, c, '', error, node=set%nodes(1))
+        else
+          call h5%write_constraint(k, c, set%name, error)
+        end if
       end associate
       if (allocated(error)) return
     end do

@@ -674,20 +674,55 @@ PY
   && grep -q "post-tension tendons 1.000E+01 N (bonded next stage)" "$tmp/out" && grep -q "stage more: .*born: tendons" "$tmp/out" \
   && ok "--check names the post-tension and the bonding stage" || bad "--check names the post-tension: $(cat "$tmp/out")"
 
-# The CalculiX exporter takes a thesis deck (its PARAMETERS are labels), writes any load feps
-# applied (the results file's applied_force: a bilinear pressure too) and refuses, with the
-# deck's line, what it cannot write (prescribed displacements).
-python3 scripts/export_inp.py "$tmp/b_cholmod.h5" input/modelB/SE1.dat -o "$tmp/se1.inp" >"$tmp/out" 2>&1 \
-  && grep -q "^\*STEP" "$tmp/se1.inp" && ok "export_inp.py writes model B SE1" || bad "export_inp.py writes model B SE1: $(cat "$tmp/out")"
+# The CalculiX exporter reads only the results file (the deck's supports are in /constraints):
+# a thesis deck's run (its PARAMETERS are labels), any load feps applied (the results file's
+# applied_force: a bilinear pressure too); it refuses, with the deck's line, what it cannot
+# write (prescribed displacements, supports in a cylindrical system).
+python3 scripts/export_inp.py "$tmp/b_cholmod.h5" -o "$tmp/se1.inp" >"$tmp/out" 2>&1 \
+  && grep -q "^\*STEP" "$tmp/se1.inp" && grep -q "^\*BOUNDARY" "$tmp/se1.inp" \
+  && ok "export_inp.py writes model B SE1" || bad "export_inp.py writes model B SE1: $(cat "$tmp/out")"
+python3 - "$tmp/se1.inp" <<'PY' && ok "export_inp.py: SE1's supports are its FIX records' sets and directions" \
+  || bad "export_inp.py: SE1's supports are not its FIX records' sets and directions"
+import sys
+import h5py
+sys.path.insert(0, "scripts")
+import feps_results as fr
+# independent of the exporter: the deck's own FIX lines (model B SE1: soil_outer X Y, symmetry Y,
+# anchor Z, all in the global system) and the node sets the run resolved
+dofs = {"soil_outer": (1, 2), "symmetry": (2,), "anchor": (3,)}
+with h5py.File(sys.argv[1].replace("se1.inp", "b_cholmod.h5")) as h:
+    want = {(int(n), d) for s, ds in dofs.items() for n in h[f"sets/nodes/{s}"][...].ravel() for d in ds}
+got, on = set(), False
+for line in open(sys.argv[1]):
+    if line.startswith("*"):
+        on = line.startswith("*BOUNDARY")
+    elif on:
+        n, d = line.split(",")[:2]
+        got.add((int(n), int(d)))
+sys.exit(0 if got == want and want else 1)
+PY
 "$feps" test/data/bilinear_load.dat --output "$tmp/bl.h5" --quiet >/dev/null 2>&1
-python3 scripts/export_inp.py "$tmp/bl.h5" test/data/bilinear_load.dat -o "$tmp/bl.inp" >"$tmp/out" 2>&1 \
+python3 scripts/export_inp.py "$tmp/bl.h5" -o "$tmp/bl.inp" >"$tmp/out" 2>&1 \
   && grep -q "resultant 0 0 -900 N" "$tmp/out" && grep -q "^14, 3, -" "$tmp/bl.inp" \
   && ok "export_inp.py writes the bilinear pressure's forces" || bad "export_inp.py writes the bilinear pressure: $(cat "$tmp/out")"
-"$feps" test/data/cube.dat --output "$tmp/cube_x.h5" --quiet >/dev/null 2>&1
-printf 'DISPLACE, top, Z=-0.1\n' >"$tmp/displace.dat"
-python3 scripts/export_inp.py "$tmp/cube_x.h5" "$tmp/displace.dat" -o "$tmp/d.inp" >"$tmp/out" 2>&1; got=$?
-[ "$got" -eq 1 ] && grep -q "displace.dat:1: DISPLACE (prescribed displacements) is not exported" "$tmp/out" && [ ! -e "$tmp/d.inp" ] \
+python3 scripts/export_inp.py "$tmp/bl.h5" test/data/bilinear_load.dat -o "$tmp/bl2.inp" >/dev/null 2>&1 \
+  && cmp -s "$tmp/bl.inp" "$tmp/bl2.inp" && ok "export_inp.py: a deck after the results file (the older form) changes nothing" \
+  || bad "export_inp.py: the older form with a deck writes another file"
+sed '/^PRESSURE/d' test/data/cube.dat >"$tmp/displace.dat"
+printf 'NSET, top_nodes, Z=10.\nDISPLACE, top_nodes, Z=-0.01\n' >>"$tmp/displace.dat"
+"$feps" "$tmp/displace.dat" --output "$tmp/cube_d.h5" --quiet >/dev/null 2>&1
+line=$(grep -n "^DISPLACE" "$tmp/displace.dat" | cut -d: -f1)
+python3 scripts/export_inp.py "$tmp/cube_d.h5" -o "$tmp/d.inp" >"$tmp/out" 2>&1; got=$?
+[ "$got" -eq 1 ] && grep -q "displace.dat:$line: DISPLACE (prescribed displacements) is not exported" "$tmp/out" \
+  && [ ! -e "$tmp/d.inp" ] \
   && ok "export_inp.py refuses DISPLACE naming the line" || bad "export_inp.py refuses DISPLACE naming the line: $(cat "$tmp/out")"
+"$feps" test/data/lame_hex20.dat --output "$tmp/lame_x.h5" --quiet >/dev/null 2>&1
+python3 scripts/export_inp.py "$tmp/lame_x.h5" -o "$tmp/l.inp" >"$tmp/out" 2>&1; got=$?
+line=$(grep -n "^FIX" test/data/lame_hex20.dat | head -1 | cut -d: -f1)
+[ "$got" -eq 1 ] && grep -q "lame_hex20.dat:$line: FIX in a cylindrical or nodal system is not exported" "$tmp/out" \
+  && [ ! -e "$tmp/l.inp" ] \
+  && ok "export_inp.py refuses a FIX in a cylindrical system naming the line" \
+  || bad "export_inp.py refuses a cylindrical FIX: $(cat "$tmp/out")"
 
 # A campaign with a bad deck stops before running anything (feps --check on every deck first).
 camp="check_cli_$$"
@@ -1175,7 +1210,7 @@ expect_line "plot_campaign.py --logx with nu_p = -0.3" 1 "row a: column 'nu_p' i
 python3 scripts/plot_campaign.py "$tmp/pc.csv" --x nu_p --y sigma_max -o "$tmp/new/folder/pc.png" >/dev/null 2>&1 \
   && [ -s "$tmp/new/folder/pc.png" ] && ok "plot_campaign.py -o makes a missing folder" || bad "plot_campaign.py -o makes a missing folder"
 expect_line "export_inp.py, a missing HDF5 file" 2 "export_inp: error: no HDF5 file" \
-  python3 scripts/export_inp.py "$tmp/no.h5" input/modelB/SE1.dat -o "$tmp/x.inp"
+  python3 scripts/export_inp.py "$tmp/no.h5" -o "$tmp/x.inp"
 python3 scripts/export_inp.py --help | grep -q -- "--print-nodes" && bad "export_inp.py --help: no --print-nodes" \
   || ok "export_inp.py --help: no --print-nodes"
 # A unit slip (E in Pa) is a warning, not an error: one stderr line naming file, line, field and

@@ -378,7 +378,7 @@ class Checker:
         checked = 0
         for row in ex.table:
             path, shape, content = row[0].strip("`"), row[1], row[2]
-            if path in ("/summary", "/materials/<name>", "/steps/<NNNN>"):
+            if path in ("/summary", "/materials/<name>", "/steps/<NNNN>", "/constraints/<kkkk>"):
                 checked += check_attribute_row(files, path, content)
                 continue
             datasets = [(f, name) for f in files for name in expand(f, path)]
@@ -545,7 +545,8 @@ def check_shape(f, name, ds, shape, content):
     nnode = f["mesh/coordinates"].shape[0]
     dims = [s.strip() for s in shape.split(" x ")]
     rows, cols = ds.shape
-    group = name.split("/")[-2] if name.endswith(("connectivity", "topology", "points", "element_ids")) else name.split("/")[-1]
+    group = name.split("/")[-2] if name.endswith(("connectivity", "topology", "points", "point_weights", "element_ids")) \
+        else name.split("/")[-1]
     conn = f[f"mesh/groups/{group}/connectivity"] if f"mesh/groups/{group}/connectivity" in f else None
     if dims[0] == "nnode":
         assert rows == nnode, f"{name}: {rows} rows, nnode = {nnode}"
@@ -581,6 +582,22 @@ def check_attribute_row(files, path, content):
             assert not missing, f"/summary lacks {missing}"
             assert len({n in f["summary"].attrs for n in searched}) == 1, f"/summary has one of {searched}"
         assert any(searched[0] in f["summary"].attrs for f in files), f"no file has {searched}"
+        return len(names)
+    if path == "/constraints/<kkkk>":
+        # every attribute the row lists (`node` only on a LIST row's), on every record of every
+        # file, and the records numbered 0001, 0002, ... in the deck's order
+        names = [n for n in re.findall(r"`([a-z_]+)`", content)
+                 if n not in ("fix", "displace", "release", "node", "file")]
+        seen = 0
+        for f in files:
+            keys = sorted(f["constraints"]) if "constraints" in f else []
+            assert keys == [f"{k:04d}" for k in range(1, len(keys) + 1)], f"/constraints: {keys}"
+            for k in keys:
+                attrs = f["constraints"][k].attrs
+                assert all(n in attrs for n in names), f"/constraints/{k}: {list(attrs)}, the table lists {names}"
+                assert text(attrs["kind"]) in ("fix", "displace", "release"), f"/constraints/{k}: kind"
+                seen += 1
+        assert seen, "no file has /constraints"
         return len(names)
     if path == "/steps/<NNNN>":
         names = ("load_factor", "iterations", "residual")

@@ -10,12 +10,14 @@
 #   bash scripts/bench_calculix.sh --sizes se1 --repeat 5
 #   bash scripts/bench_calculix.sh --sizes 200k --feps-only 1m  # + feps alone on the 1M mesh
 #
-# Sizes: `se1` is input/modelB/SE1.dat (model B, elastic soil, graded hex8 mesh); other names
-# are presets of scripts/make_pipe_mesh.py (uniform model-B-like meshes; 200k is the issue's).
+# Sizes: `se1` is input/modelB/SE1.dat (model B, elastic soil, graded hex8 mesh); `se1-hex20`,
+# `se1-wedge6` and `se1-wedge15` the same mesh in those elements (scripts/make_model_b.py
+# --element; C3D20, C3D6, C3D15 in ccx); other names are presets of scripts/make_pipe_mesh.py
+# (uniform model-B-like meshes; 200k is the issue's).
 # A case is run --repeat times (default 3) if its first ccx run took less than --long seconds
-# (default 20), otherwise --repeat-long times (default 2). Threads: feps's CHOLMOD uses
-# OpenBLAS's default (2 on this machine); ccx gets OMP_NUM_THREADS=2 (SPOOLES and its
-# assembly). Writes runs.csv, compare_<size>.txt, dgemm.txt, summary.md and machine.txt into
+# (default 20), otherwise --repeat-long times (default 2). Threads (--threads, default 2): feps
+# gets --threads N (its element loops and solves; its factorization at most N BLAS threads),
+# ccx OMP_NUM_THREADS=N (SPOOLES and its assembly). Writes runs.csv, compare_<size>.txt, dgemm.txt, summary.md and machine.txt into
 # the results folder (default results/calculix-<date>, which git ignores).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -114,7 +116,8 @@ run_feps() {  # size deck run -> prints the elapsed seconds; keeps the HDF5 of r
   local size=$1 deck=$2 run=$3 tag=$outdir/runs/${1}_feps_$3 load1 rc=0 status=ok
   load1=$(cut -d' ' -f1 /proc/loadavg)
   echo "bench: $size feps run $run (load $load1) ..." >&2
-  /usr/bin/time -v -o "$tag.time" "$feps" "$deck" --solver cholmod --output "$tag.h5" >"$tag.out" 2>"$tag.err" || rc=$?
+  /usr/bin/time -v -o "$tag.time" "$feps" "$deck" --solver cholmod --threads "$threads" --output "$tag.h5" \
+    >"$tag.out" 2>"$tag.err" || rc=$?
   ((rc == 0)) || status="failed-rc$rc"
   local times dofs flops
   times=$(grep -E '^times' "$tag.out" | sed -E 's/.*assembly ([0-9.]+) s, factorization ([0-9.]+) s, solve ([0-9.]+) s.*/\1,\2,\3/' || true)
@@ -305,6 +308,10 @@ EOF
 deck_of() {  # size -> deck path (writes the pipe meshes)
   if [ "$1" = se1 ]; then
     echo "$root/input/modelB/SE1.dat"
+  elif [[ "$1" =~ ^se1-(hex20|wedge6|wedge15)$ ]]; then
+    mkdir -p "$outdir/meshes"
+    python3 "$root/scripts/make_model_b.py" --outdir "$outdir/meshes" --cases SE1 --element "${BASH_REMATCH[1]}" >/dev/null
+    echo "$outdir/meshes/SE1_${BASH_REMATCH[1]}_r1.dat"
   else
     [ -f "$root/scripts/make_pipe_mesh.py" ] || { echo "bench_calculix: scripts/make_pipe_mesh.py is missing" >&2; exit 1; }
     mkdir -p "$outdir/meshes"

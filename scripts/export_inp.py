@@ -6,9 +6,11 @@
 Everything comes from the HDF5 file feps wrote for the deck
 (docs/output-format.md), so node and element numbers are feps's own (CalculiX node n is feps
 node n) and nothing of feps's physics is computed again here:
-- the mesh: /mesh/coordinates, /mesh/groups/<g>/connectivity; hex8 -> C3D8 (2x2x2 Gauss),
-  hex20 -> C3D20 (3x3x3), hex20r -> C3D20R (2x2x2); the node order of feps's hex8 and hex20
-  is Abaqus's;
+- the mesh: /mesh/coordinates, /mesh/groups/<g>/connectivity, each group's element as the
+  catalog's `abaqus_type` attribute names it (hex8 C3D8, hex20 C3D20, hex20r C3D20R, tet4
+  C3D4, tet10 C3D10, wedge6 C3D6, wedge15 C3D15: the same node order; the hexahedra and
+  tetrahedra integrate as CalculiX does, the wedges do not (feps 3 x 2 and 6 x 3 points, ccx 2
+  and 9: docs/verification.md, "Tetrahedra and wedges"), so their results differ by that);
 - the materials: /materials/<name> (kind elastic, E or G, nu);
 - the loads: /steps/<last>/applied_force, the nodal forces feps applied (nodal loads and the
   consistent forces of its pressures and tractions), as *CLOAD;
@@ -16,9 +18,10 @@ node n) and nothing of feps's physics is computed again here:
   and the nodes of each set, /sets/nodes/<set>, as the run resolved them.
 The deck itself is not read.
 
-Only what a linear run with one load case needs is accepted: ELASTIC materials, solid groups
-hex8/hex20/hex20r, one stage, supports that hold in the global system. Anything else
-(interfaces, bars, DISPLACE, RELEASE, a FIX in a cylindrical or nodal system, several stages)
+Only what a linear run with one load case needs is accepted: ELASTIC materials, 3D solid groups
+whose type has an Abaqus equivalent, one stage, supports that hold in the global system.
+Anything else (interfaces, bars, plane strain, hex8b, DISPLACE, RELEASE, a FIX in a cylindrical
+or nodal system, several stages)
 is refused, naming the deck's line where a record is the cause.
 The step asks for the displacements of all nodes in the .dat file (*NODE PRINT, which
 scripts/bench_calculix.sh compares with feps's node by node) and for no other output.
@@ -34,7 +37,6 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import feps_results as fr  # noqa: E402
 
-CCX_TYPE = {"hex8": "C3D8", "hex20": "C3D20", "hex20r": "C3D20R"}
 REFUSED = {"displace": "DISPLACE (prescribed displacements)", "release": "RELEASE (released supports)"}
 
 
@@ -61,7 +63,7 @@ def fixes(h):
 
 
 def build(h5path):
-    """(coords, groups {name: (type, material, conn)}, materials {name: (E, nu)}, fixed {node:
+    """(coords, groups {name: (CalculiX type, material, conn)}, materials {name: (E, nu)}, fixed {node:
     dofs}, forces (nnode, 3), the deck's name)."""
     with fr.open_result(h5path) as h:
         held = fixes(h)
@@ -69,11 +71,12 @@ def build(h5path):
         coords = fr.coordinates(h)
         groups, materials = {}, {}
         for name in fr.groups(h):
-            etype = fr.element_type(h, name)
-            if etype not in CCX_TYPE:
+            etype, attrs = fr.element_type(h, name), h[f"mesh/groups/{name}"].attrs
+            ccx = fr.text(attrs["abaqus_type"]) if "abaqus_type" in attrs else ""
+            if not ccx or fr.text(attrs["family"]) != "solid" or int(attrs["dimension"]) != 3:
                 raise ExportError(f"group {name}: element type {etype!r} has no CalculiX equivalent in the exporter")
-            mat = fr.text(h[f"mesh/groups/{name}"].attrs["material"])
-            groups[name] = (etype, mat, fr.connectivity(h, name) + 1)
+            mat = fr.text(attrs["material"])
+            groups[name] = (ccx, mat, fr.connectivity(h, name) + 1)
             attrs = h[f"materials/{mat}"].attrs
             if fr.text(attrs["kind"]) != "elastic":
                 raise ExportError(f"material {mat}: only elastic materials are exported (got {fr.text(attrs['kind'])})")
@@ -109,8 +112,8 @@ def write_inp(out, coords, groups, materials, fixed, forces, source):
     for i, x in enumerate(coords, start=1):
         w(f"{i}, {num(x[0])}, {num(x[1])}, {num(x[2])}\n")
     first = 1
-    for name, (etype, _, conn) in groups.items():
-        w(f"*ELEMENT, TYPE={CCX_TYPE[etype]}, ELSET={name}\n")
+    for name, (ccx, _, conn) in groups.items():
+        w(f"*ELEMENT, TYPE={ccx}, ELSET={name}\n")
         for e, row in enumerate(conn, start=first):
             nodes = [str(int(n)) for n in row]
             # At most 16 entries on a data line: C3D20 continues on a second line.

@@ -290,6 +290,8 @@ contains
                                                             field_name(family_field(info%family)), error)
     if (.not. allocated(error)) call write_string_attribute(group_id, 'components', info%component_names, error)
     if (.not. allocated(error)) call write_string_attribute(group_id, 'xdmf_topology', info%xdmf_topology, error)
+    if (len(info%abaqus_type) > 0 .and. .not. allocated(error)) &
+      call write_string_attribute(group_id, 'abaqus_type', info%abaqus_type, error)
   end subroutine write_catalog_attributes
 
   !> Group `/steps/<NNNN>` with attributes `load_factor`, `iterations` and `residual`, and

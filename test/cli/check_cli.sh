@@ -701,6 +701,12 @@ for line in open(sys.argv[1]):
         got.add((int(n), int(d)))
 sys.exit(0 if got == want and want else 1)
 PY
+python3 scripts/make_model_b.py --outdir "$tmp/wedge" --cases SE1 --element wedge6 >/dev/null 2>&1
+"$feps" "$tmp/wedge/SE1_wedge6_r1.dat" --output "$tmp/se1_wedge6.h5" --quiet >/dev/null 2>&1
+python3 scripts/export_inp.py "$tmp/se1_wedge6.h5" -o "$tmp/se1_wedge6.inp" >"$tmp/out" 2>&1 \
+  && [ "$(grep -c '^\*ELEMENT, TYPE=C3D6,' "$tmp/se1_wedge6.inp")" -eq 2 ] && ! grep -q "TYPE=C3D8" "$tmp/se1_wedge6.inp" \
+  && ok "export_inp.py writes a wedge6 mesh as C3D6 (the group's abaqus_type)" \
+  || bad "export_inp.py writes a wedge6 mesh as C3D6: $(cat "$tmp/out")"
 "$feps" test/data/bilinear_load.dat --output "$tmp/bl.h5" --quiet >/dev/null 2>&1
 python3 scripts/export_inp.py "$tmp/bl.h5" -o "$tmp/bl.inp" >"$tmp/out" 2>&1 \
   && grep -q "resultant 0 0 -900 N" "$tmp/out" && grep -q "^14, 3, -" "$tmp/bl.inp" \

@@ -11,8 +11,9 @@
 #   bash scripts/bench_calculix.sh --sizes 200k --feps-only 1m  # + feps alone on the 1M mesh
 #
 # Sizes: `se1` is input/modelB/SE1.dat (model B, elastic soil, graded hex8 mesh); `se1-hex20`,
-# `se1-wedge6` and `se1-wedge15` the same mesh in those elements (scripts/make_model_b.py
-# --element; C3D20, C3D6, C3D15 in ccx); other names are presets of scripts/make_pipe_mesh.py
+# `se1-wedge6`, `se1-wedge15`, `se1-tet4` and `se1-tet10` the same mesh in those elements
+# (scripts/make_model_b.py --element; C3D20, C3D6, C3D15, C3D4, C3D10 in ccx); other names are
+# presets of scripts/make_pipe_mesh.py
 # (uniform model-B-like meshes; 200k is the issue's).
 # A case is run --repeat times (default 3) if its first ccx run took less than --long seconds
 # (default 20), otherwise --repeat-long times (default 2). Threads (--threads, default 2): feps
@@ -308,7 +309,7 @@ EOF
 deck_of() {  # size -> deck path (writes the pipe meshes)
   if [ "$1" = se1 ]; then
     echo "$root/input/modelB/SE1.dat"
-  elif [[ "$1" =~ ^se1-(hex20|wedge6|wedge15)$ ]]; then
+  elif [[ "$1" =~ ^se1-(hex20|wedge6|wedge15|tet4|tet10)$ ]]; then
     mkdir -p "$outdir/meshes"
     python3 "$root/scripts/make_model_b.py" --outdir "$outdir/meshes" --cases SE1 --element "${BASH_REMATCH[1]}" >/dev/null
     echo "$outdir/meshes/SE1_${BASH_REMATCH[1]}_r1.dat"

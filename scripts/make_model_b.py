@@ -112,8 +112,8 @@ def main():
     ap.add_argument("--refine", type=int, default=1,
                     help="split every element into refine^3 (mesh convergence study; default 1)")
     ap.add_argument("--element", choices=ELEMENTS, default="hex8",
-                    help="hex8 (the decks), hex20 with 8-pair interfaces, or each hexahedron cut into "
-                         "two wedge6 or wedge15 (default hex8)")
+                    help="hex8 (the decks), hex20 with 8-pair interfaces, each hexahedron cut into "
+                         "two wedge6 or wedge15, or six tet4 or tet10 (kinds S and P only; default hex8)")
     grid = ap.add_argument_group("parametric grid (every combination)")
     grid.add_argument("--kinds", default="F", help="soil models: S elastic, F interfaces, P Matsuoka (default F)")
     grid.add_argument("--loads", default="E", help="E edge, D diagonal (default E)")
@@ -148,10 +148,14 @@ def main():
         ap.error(f"--refine {args.refine}: must be 1 or more")
     cases = list(dict.fromkeys(cases))
     suffix = mesh_suffix(args.refine, args.element)
+    try:    # every deck before any file: a case the element cannot mesh writes nothing
+        texts = [deck(case, args.soil_radius, args.refine, args.element) for case in cases]
+    except ValueError as e:
+        ap.error(f"--element {args.element}: {e}")
     os.makedirs(args.outdir, exist_ok=True)
-    for case in cases:
+    for case, text in zip(cases, texts):
         with open(os.path.join(args.outdir, f"{case}{suffix}.dat"), "w") as f:
-            f.write(deck(case, args.soil_radius, args.refine, args.element))
+            f.write(text)
     if not args.cases and not suffix and args.soil_radius == 2000.0 and args.outdir == os.path.join(ROOT, "input", "modelB"):
         text = deck("FE1").replace("OUTPUT, modelB_FE1.h5", "OUTPUT, modelB.h5")
         with open(os.path.join(ROOT, "input", "modelB.dat"), "w") as f:

@@ -91,7 +91,7 @@ WALL_ELEMENTS = 2          # hex8 through the pipe wall (--wall-elements: the me
 # model B (thesis 5.2): theta 6 x 10, 6 x 7.5, 15 x 5 deg; z from each end 4 x 50, 3 x 100, 5 x 150
 B_THETA = [(6, 10.0, "theta = 0 .. 60"), (6, 7.5, "theta = 105"), (15, 5.0, "theta = 180")]
 B_Z = [(4, 50.0), (3, 100.0), (5, 150.0), (5, 150.0), (3, 100.0), (4, 50.0)]
-ELEMENTS = ("hex8", "hex20", "wedge6", "wedge15")
+ELEMENTS = ("hex8", "hex20", "wedge6", "wedge15", "tet4", "tet10")
 
 
 def model_code_gf(fc):
@@ -279,14 +279,21 @@ def half_pipe_deck(kind, load, es, ks, kn, phi, psi, r_soil=R_SOIL, refine=1, el
     splits every element of the decks' mesh into refine^3 and `element` = 'hex20' uses 20-node
     hexahedra and 8-pair interfaces on that mesh (the mesh convergence study, docs/verification.md);
     'wedge6' and 'wedge15' cut each hexahedron into two wedges along its (r, theta) diagonal, so the
-    faces at r = const (the interfaces) stay quadrilaterals and the pipe's ends become triangles.
+    faces at r = const (the interfaces) stay quadrilaterals and the pipe's ends become triangles;
+    'tet4' and 'tet10' cut it into six tetrahedra around its (r, theta, z) diagonal (Kuhn's split:
+    every shared face is cut along the same diagonal from both sides; tet10's mid-edge nodes are
+    lattice nodes, as hex20's), kinds S and P only (their faces at r = const are triangles, which
+    the interfaces of kind F do not take).
     refs: the thesis's values for the REPORT records (edge: (angle,), diagonal: (total, rigid))."""
     p, g = pipe or Pipe(packing=0.0), ground or Ground()
     if element not in ELEMENTS or refine < 1:
         raise ValueError(f"element {element!r}, refine {refine}: one of {', '.join(ELEMENTS)}, refine >= 1")
     ri, ro, L, x0 = p.r_in, p.r_out, p.length, p.scaled_x(220.0)
     interfaces = kind == "F"
-    quadratic = element in ("hex20", "wedge15")
+    if interfaces and element.startswith("tet"):
+        raise ValueError(f"element {element} has triangular faces at r = const: kind F's quadrilateral "
+                         "interfaces do not fit them (use kind S or P, or a wedge)")
+    quadratic = element in ("hex20", "wedge15", "tet10")
     wedges = element.startswith("wedge")
     m = refine * (2 if quadratic else 1)        # lattice intervals per interval of the decks' mesh
     step = 2 if quadratic else 1                # lattice intervals per element
@@ -398,12 +405,35 @@ def half_pipe_deck(kind, load, es, ks, kn, phi, psi, r_soil=R_SOIL, refine=1, el
             pair.append(nodes)
         return pair
 
+    def kuhn_tets(base):
+        """The first cell's six tetrahedra (C3D4 / C3D10 order, positive volume) around its
+        diagonal from lattice offset (0, 0, 0) to (step, step, step): one per order in which the
+        path between them takes the three axes; tet10's mid-edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4."""
+        tets = []
+        for axes in ((0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)):
+            path = [(0, 0, 0)]
+            for a in axes:
+                path.append(tuple(v + (step if k == a else 0) for k, v in enumerate(path[-1])))
+            a, b, c, d = path
+            u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
+            if (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+                    + u[2] * (v[0] * w[1] - v[1] * w[0])) < 0:
+                b, c = c, b
+            corners = [a, b, c, d]
+            if quadratic:
+                corners += [tuple((p[k] + q[k]) // 2 for k in range(3))
+                            for p, q in ((a, b), (b, c), (c, a), (a, d), (b, d), (c, d))]
+            tets.append([node(*q, base) for q in corners])
+        return tets
+
     def element_block(nodes, copies):
         first_el = ", ".join(str(n) for n in nodes)
         k = len(nodes)
         return [f"A, {k}, {first_el},"] + [f"%, {n}, *, {k}, {inc}," for n, inc in copies if n] + ["E,"]
 
     def solid_blocks(base, copies):
+        if element.startswith("tet"):
+            return [line for nodes in kuhn_tets(base) for line in element_block(nodes, copies)]
         if not wedges:
             return element_block(solid(base), copies)
         return [line for nodes in wedge_pair(base) for line in element_block(nodes, copies)]

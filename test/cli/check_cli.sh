@@ -808,6 +808,19 @@ sys.exit(not (abs(angle[0] / angle[1] - 1) < 1e-3 and abs(umax[0] / umax[1] - 1)
   "$tmp/mb_wedge/w.h5" "$tmp/mb_wedge/h.h5" \
   && ok "model B SE1 in wedge15 against hex20: deflection angle and largest displacement within 1e-3" \
   || bad "model B SE1 in wedge15 against hex20: deflection angle and largest displacement within 1e-3"
+# tet4 (make_model_b.py --element tet4: six tetrahedra per hex8, Kuhn's split) meshes SE1 with every
+# Jacobian positive (the run passes the mesh check) and refuses kind F, whose quadrilateral
+# interfaces its triangular faces cannot take, before writing any deck.
+python3 scripts/make_model_b.py --outdir "$tmp/mb_tet" --cases SE1 --element tet4 >/dev/null \
+  && "$feps" "$tmp/mb_tet/SE1_tet4_r1.dat" --quiet --output "$tmp/mb_tet/t.h5" >/dev/null 2>&1 \
+  && [ "$(python3 -c 'import sys, h5py; f = h5py.File(sys.argv[1]); print(f["mesh/groups/pipe/connectivity"].shape[0])' \
+          "$tmp/mb_tet/t.h5")" -eq $((6 * 1296)) ] \
+  && ok "model B SE1 in tet4: six tetrahedra per hexahedron, every Jacobian positive" \
+  || bad "model B SE1 in tet4 does not run"
+python3 scripts/make_model_b.py --outdir "$tmp/mb_tet_f" --cases SE1,FE1 --element tet4 >"$tmp/out" 2>"$tmp/err"; got=$?
+[ "$got" -eq 2 ] && grep -q "quadrilateral interfaces do not fit" "$tmp/err" && ! grep -q Traceback "$tmp/err" \
+  && [ ! -e "$tmp/mb_tet_f" ] && ok "make_model_b.py --element tet4 with kind F: exit 2 naming the reason, no deck written" \
+  || bad "make_model_b.py --element tet4 with kind F: exit $got: $(head -c 300 "$tmp/err")"
 # The study reads its quantities from a run: on the decks' own mesh the peak nodal tension is at
 # its point A (r 600, theta 110, z 0), so the two columns must agree. Both ends carry the same
 # load, so the mirror point at z = 2500 has the same peak to rounding and may come out first.

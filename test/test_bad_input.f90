@@ -57,6 +57,8 @@ contains
       new_unittest('MODE= of an unknown word', test_mode_unknown), &
       new_unittest('a FORCE, LIST row with an unknown DOF', test_force_list_bad_dof), &
       new_unittest('a FORCE, LIST row on an undefined node', test_force_list_undefined_node), &
+      new_unittest('a later FORCE, LIST row on an undefined node: its own line and field', &
+                   test_force_list_undefined_node_later_row), &
       new_unittest('a DISPLACE, LIST row short of its value', test_displace_list_short_row), &
       new_unittest('a NODES table: a node number given twice', test_lists_duplicate_node), &
       new_unittest('ELEMENTS tables: an element id given twice', test_lists_duplicate_element), &
@@ -410,6 +412,17 @@ contains
                          'field 3', &
                          'node 99 is not defined'], error)
   end subroutine test_force_list_undefined_node
+
+  !> The third row of a FORCE, LIST, on line 25, names an undefined node: the message names
+  !! that line and the row's node field (9), as it did when each row kept a copy of the whole
+  !! record (a LIST of n rows now keeps two fields per row, not n records of 3n fields).
+  subroutine test_force_list_undefined_node_later_row(error)
+    type(error_t), allocatable, intent(out) :: error
+    call expect_failure('test/data/bad/force_list_undefined_node_later_row.dat', err_input, &
+                        [character(len=60) :: 'force_list_undefined_node_later_row.dat:25:', &
+                         'field 9', &
+                         'node 99 is not defined'], error)
+  end subroutine test_force_list_undefined_node_later_row
 
   !> Issue 25's loads per node: a DISPLACE, LIST row short of its value.
   subroutine test_displace_list_short_row(error)

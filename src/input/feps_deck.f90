@@ -558,16 +558,14 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(error_t), allocatable, intent(out) :: error
     type(record_t) :: head
-    type(node_set_t) :: s
-    type(node_set_t), allocatable :: stmp(:)
-    type(record_t), allocatable :: rtmp(:)
-    type(region_t) :: r
-    type(nodal_load_t) :: l
-    type(nodal_load_t), allocatable :: ltmp(:)
-    type(constraint_t) :: c
-    type(constraint_t), allocatable :: ctmp(:)
-    integer :: first, cs, nrow, j, i, node, dof, iset
-    real(dp) :: v
+    type(node_set_t), allocatable :: new_sets(:)
+    type(record_t), allocatable :: new_records(:)
+    type(region_t), allocatable :: new_regions(:)
+    type(nodal_load_t), allocatable :: loads(:)
+    type(constraint_t), allocatable :: constraints(:)
+    integer, allocatable :: nodes(:), dofs(:), set_of(:), new_fields(:)
+    real(dp), allocatable :: values(:)
+    integer :: first, cs, nrow, j, i, dof, nnew, iset
     logical :: force, total
 
     force = keyword(rec) == 'FORCE'
@@ -593,9 +591,13 @@ contains
                        'dof, value": the last row is short of a field', nfields(rec) + 1)
       return
     end if
+    ! Every row is read first and the model grows once per record: appending row by row
+    ! copied the arrays each time, n^2 in the rows (minutes for the supports of an imported
+    ! model).
+    allocate (nodes(nrow), dofs(nrow), values(nrow))
     do j = 1, nrow
       i = first + 3 * (j - 1)
-      call get_int(rec, i, 1, max_mesh_nodes, node, error, 'node number')
+      call get_int(rec, i, 1, max_mesh_nodes, nodes(j), error, 'node number')
       if (allocated(error)) return
       call dof_index(to_upper(field_text(rec, i + 1)), model%systems(cs)%kind, dof)
       if (dof == 0) then
@@ -604,52 +606,81 @@ contains
                          i + 1)
         return
       end if
-      call get_real(rec, i + 2, v, error)
+      dofs(j) = dof
+      call get_real(rec, i + 2, values(j), error)
       if (allocated(error)) return
-      ! the node's own set ('/' is in no name a deck gives)
-      iset = model%find_node_set('LIST/node ' // str(node))
-      if (iset == 0) then
-        s%name = 'LIST/node ' // str(node)
-        s%nodes = [node]
-        s%listed = .true.
-        stmp = [model%node_sets, s]
-        call move_alloc(stmp, model%node_sets)
-        iset = size(model%node_sets)
-        st%set_group = [character(len=name_len) :: st%set_group, '']
-        st%set_regions = [st%set_regions, r]
-        st%set_node = [st%set_node, -2]
-        st%set_field = [st%set_field, i]
-        rtmp = [st%set_records, rec]
-        call move_alloc(rtmp, st%set_records)
-      end if
-      if (force) then
-        l%stage = st%current_stage
-        l%file = rec%file
-        l%line = field_line(rec, i)
-        l%field = i
-        l%node_set = iset
-        l%csys = cs
-        l%components = 0.0_dp
-        l%components(dof) = v
-        l%given = .false.
-        l%given(dof) = .true.
-        l%total = total
-        ltmp = [model%nodal_loads, l]
-        call move_alloc(ltmp, model%nodal_loads)
-      else
-        c%node_set = iset
-        c%csys = cs
-        c%dof = dof
-        c%value = v
-        c%stage = st%current_stage
-        c%prescribed = .true.
-        c%total = total
-        c%file = rec%file
-        c%line = field_line(rec, i)
-        ctmp = [model%constraints, c]
-        call move_alloc(ctmp, model%constraints)
-      end if
     end do
+    ! each node's own one-node set ('LIST/node n': '/' is in no name a deck gives), shared by
+    ! every LIST row on that node: the last such set of an earlier record, else a new one
+    allocate (set_of(maxval(nodes)))
+    set_of = 0
+    if (allocated(model%node_sets)) then
+      do iset = 1, size(model%node_sets)
+        associate (set => model%node_sets(iset))
+          if (set%listed .and. size(set%nodes) == 1) then
+            if (set%nodes(1) <= size(set_of)) set_of(set%nodes(1)) = iset
+          end if
+        end associate
+      end do
+    end if
+    allocate (new_sets(nrow), new_records(nrow), new_regions(nrow), new_fields(nrow))
+    nnew = 0
+    iset = 0
+    if (allocated(model%node_sets)) iset = size(model%node_sets)
+    do j = 1, nrow
+      if (set_of(nodes(j)) /= 0) cycle
+      i = first + 3 * (j - 1)
+      nnew = nnew + 1
+      set_of(nodes(j)) = iset + nnew
+      new_sets(nnew)%name = 'LIST/node ' // str(nodes(j))
+      new_sets(nnew)%nodes = [nodes(j)]
+      new_sets(nnew)%listed = .true.
+      new_fields(nnew) = i
+      ! only what a message about this node needs: its keyword, and its field's line, which
+      ! field_line gives for field i
+      new_records(nnew)%file = rec%file
+      new_records(nnew)%line = rec%line
+      new_records(nnew)%fields = [rec%fields(1), rec%fields(i)]
+    end do
+    model%node_sets = [model%node_sets, new_sets(1:nnew)]
+    st%set_group = [character(len=name_len) :: st%set_group, [(repeat(' ', name_len), j = 1, nnew)]]
+    st%set_regions = [st%set_regions, new_regions(1:nnew)]
+    st%set_node = [st%set_node, [(-2, j = 1, nnew)]]
+    st%set_field = [st%set_field, new_fields(1:nnew)]
+    st%set_records = [st%set_records, new_records(1:nnew)]
+    if (force) then
+      allocate (loads(nrow))
+      do j = 1, nrow
+        i = first + 3 * (j - 1)
+        loads(j)%stage = st%current_stage
+        loads(j)%file = rec%file
+        loads(j)%line = field_line(rec, i)
+        loads(j)%field = i
+        loads(j)%node_set = set_of(nodes(j))
+        loads(j)%csys = cs
+        loads(j)%components = 0.0_dp
+        loads(j)%components(dofs(j)) = values(j)
+        loads(j)%given = .false.
+        loads(j)%given(dofs(j)) = .true.
+        loads(j)%total = total
+      end do
+      model%nodal_loads = [model%nodal_loads, loads]
+    else
+      allocate (constraints(nrow))
+      do j = 1, nrow
+        i = first + 3 * (j - 1)
+        constraints(j)%node_set = set_of(nodes(j))
+        constraints(j)%csys = cs
+        constraints(j)%dof = dofs(j)
+        constraints(j)%value = values(j)
+        constraints(j)%stage = st%current_stage
+        constraints(j)%prescribed = .true.
+        constraints(j)%total = total
+        constraints(j)%file = rec%file
+        constraints(j)%line = field_line(rec, i)
+      end do
+      model%constraints = [model%constraints, constraints]
+    end if
   end subroutine read_listed_values
 
   !> The rows `element, face` of FSET, name, LIST, GROUP=g: element ids as the group numbers

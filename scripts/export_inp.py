@@ -54,7 +54,7 @@ def fixes(h):
         kind, where = fr.text(a["kind"]), fr.text(a["source"])
         if kind in REFUSED:
             raise ExportError(f"{where}: {REFUSED[kind]} is not exported")
-        if int(a["csys"]) != 2 and int(a["csys"]) != 1:
+        if int(a["csys"]) not in (1, 2):          # DATAIN's global Cartesian systems
             raise ExportError(f"{where}: FIX in a cylindrical or nodal system is not exported")
         if int(a["active_from"]) > 1:
             raise ExportError(f"{where}: a FIX of a later stage is not exported")
@@ -71,11 +71,12 @@ def build(h5path):
         coords = fr.coordinates(h)
         groups, materials = {}, {}
         for name in fr.groups(h):
-            etype, attrs = fr.element_type(h, name), h[f"mesh/groups/{name}"].attrs
-            ccx = fr.text(attrs["abaqus_type"]) if "abaqus_type" in attrs else ""
-            if not ccx or fr.text(attrs["family"]) != "solid" or int(attrs["dimension"]) != 3:
-                raise ExportError(f"group {name}: element type {etype!r} has no CalculiX equivalent in the exporter")
-            mat = fr.text(attrs["material"])
+            group = h[f"mesh/groups/{name}"].attrs
+            ccx = fr.text(group["abaqus_type"]) if "abaqus_type" in group else ""
+            if not ccx or fr.text(group["family"]) != "solid" or int(group["dimension"]) != 3:
+                raise ExportError(f"group {name}: element type {fr.element_type(h, name)!r} has no CalculiX "
+                                  "equivalent in the exporter")
+            mat = fr.text(group["material"])
             groups[name] = (ccx, mat, fr.connectivity(h, name) + 1)
             attrs = h[f"materials/{mat}"].attrs
             if fr.text(attrs["kind"]) != "elastic":

@@ -331,12 +331,12 @@ contains
   pure real(dp) function length(self, xe)
     class(bar_element_t), intent(in) :: self
     real(dp), intent(in) :: xe(:, :)     !! (3, nnodes)
-    real(dp) :: t(bar_ndim), jac, dn(max_bar_nodes), w
+    real(dp) :: w(self%ngauss())
     integer :: g
+    call self%point_weights(xe, w)
     length = 0.0_dp
-    do g = 1, self%ngauss()
-      call gauss_point(self, xe, g, t, jac, dn, w)
-      length = length + w * jac
+    do g = 1, size(w)
+      length = length + w(g)
     end do
   end function length
 

@@ -614,19 +614,16 @@ contains
     ! every LIST row on that node: the last such set of an earlier record, else a new one
     allocate (set_of(maxval(nodes)))
     set_of = 0
-    if (allocated(model%node_sets)) then
-      do iset = 1, size(model%node_sets)
-        associate (set => model%node_sets(iset))
-          if (set%listed .and. size(set%nodes) == 1) then
-            if (set%nodes(1) <= size(set_of)) set_of(set%nodes(1)) = iset
-          end if
-        end associate
-      end do
-    end if
+    do iset = 1, size(model%node_sets)
+      associate (set => model%node_sets(iset))
+        if (set%listed) then
+          if (set%nodes(1) <= size(set_of)) set_of(set%nodes(1)) = iset
+        end if
+      end associate
+    end do
     allocate (new_sets(nrow), new_records(nrow), new_regions(nrow), new_fields(nrow))
     nnew = 0
-    iset = 0
-    if (allocated(model%node_sets)) iset = size(model%node_sets)
+    iset = size(model%node_sets)
     do j = 1, nrow
       if (set_of(nodes(j)) /= 0) cycle
       i = first + 3 * (j - 1)

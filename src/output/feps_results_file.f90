@@ -206,7 +206,7 @@ contains
                                                          !! measure each stands for to `point_weights`
     integer, intent(in), optional :: element_ids(:)      !! the deck's element ids: written to `element_ids`
                                                          !! (nelem x 1) unless they are 1, 2, ..., nelem
-    integer(hid_t) :: group_id, dataset_id
+    integer(hid_t) :: group_id
     integer :: hdferr, cell_nodes
     type(xdmf_group_t), allocatable :: grown(:)
     type(element_info_t) :: info
@@ -254,16 +254,10 @@ contains
       if (present(coordinates)) then
         call point_coordinates(element_type, coordinates, connectivity, xg, error, wg)
         if (allocated(error)) return
-        call write_real_dataset(self, '/mesh/groups/' // name // '/points', xg, 'x y z', error, dataset_id)
+        call write_points_dataset(self, '/mesh/groups/' // name // '/points', xg, 'x y z', info%npoints, error)
         if (allocated(error)) return
-        call write_int_attribute(dataset_id, 'points_per_element', info%npoints, error)
-        call h5dclose_f(dataset_id, hdferr)
-        if (allocated(error)) return
-        call write_real_dataset(self, '/mesh/groups/' // name // '/point_weights', reshape(wg, [1, size(wg)]), &
-                                'weight', error, dataset_id)
-        if (allocated(error)) return
-        call write_int_attribute(dataset_id, 'points_per_element', info%npoints, error)
-        call h5dclose_f(dataset_id, hdferr)
+        call write_points_dataset(self, '/mesh/groups/' // name // '/point_weights', reshape(wg, [1, size(wg)]), &
+                                  'weight', info%npoints, error)
         if (allocated(error)) return
       end if
     end if
@@ -277,6 +271,22 @@ contains
     grown(size(grown))%element_count = size(connectivity, 2)
     call move_alloc(grown, self%groups)
   end subroutine write_group
+
+  !> A dataset with one row per integration point (element-major) and its attribute
+  !! `points_per_element`.
+  subroutine write_points_dataset(self, path, values, components, points_per_element, error)
+    type(results_file_t), intent(in) :: self
+    character(len=*), intent(in) :: path, components
+    real(dp), intent(in) :: values(:, :)
+    integer, intent(in) :: points_per_element
+    type(error_t), allocatable, intent(out) :: error
+    integer(hid_t) :: dataset_id
+    integer :: hdferr
+    call write_real_dataset(self, path, values, components, error, dataset_id)
+    if (allocated(error)) return
+    call write_int_attribute(dataset_id, 'points_per_element', points_per_element, error)
+    call h5dclose_f(dataset_id, hdferr)
+  end subroutine write_points_dataset
 
   !> The element catalog's answers for a group's type, as attributes of its HDF5 group.
   subroutine write_catalog_attributes(group_id, info, error)

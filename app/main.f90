@@ -10,6 +10,7 @@ program feps_main
   use feps_model, only: max_iterations_limit, max_total_steps
   use feps_files, only: report_file_size_limit
   use feps_mumps_solver, only: mpi_built, mpi_start, mpi_stop
+  use feps_cholmod_solver, only: mixed_tolerance
   use feps_parallel, only: silence_output
   use feps_blas, only: blas_description, choose_blas_kernels, factorization_threads, set_blas_threads
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
@@ -169,8 +170,8 @@ contains
         write (output_unit, '(a)') 'feps ' // feps_version, 'blas ' // blas_description()
         status = 0
         return
-      case ('-q', '--quiet', '--check', '--strict', '--out-of-core', '-o', '--output', '--solver', '--method', &
-            '--maxit', '--steps', '--tolerance', '--fields', &
+      case ('-q', '--quiet', '--check', '--strict', '--out-of-core', '--mixed-precision', '-o', '--output', &
+            '--solver', '--method', '--maxit', '--steps', '--tolerance', '--fields', &
             '--restart', '--step', '--restart-every', '--stop-after-step', '--threads')
         name = arg
         if (arg == '-q') name = '--quiet'
@@ -193,6 +194,9 @@ contains
           cycle
         else if (name == '--out-of-core') then
           options%out_of_core = .true.
+          cycle
+        else if (name == '--mixed-precision') then
+          options%mixed_precision = .true.
           cycle
         end if
         if (i == n) then
@@ -375,9 +379,9 @@ contains
     write (output_unit, '(a)') &
       'feps ' // feps_version // ' - finite elements for concrete jacking pipes, joints and soil', &
       '', &
-      'usage: feps DECK [--output FILE] [--solver skyline|cholmod|mumps [--out-of-core]] [--method NAME]', &
-      '                 [--maxit N] [--steps N] [--tolerance X] [--fields LIST] [--check] [--strict]', &
-      '                 [--quiet] [--restart-every N] [--restart FILE [--step N]] [--threads N]', &
+      'usage: feps DECK [--output FILE] [--solver skyline|cholmod|mumps [--out-of-core]] [--mixed-precision]', &
+      '                 [--method NAME] [--maxit N] [--steps N] [--tolerance X] [--fields LIST] [--check]', &
+      '                 [--strict] [--quiet] [--restart-every N] [--restart FILE [--step N]] [--threads N]', &
       '       feps joint --beta DEG | --Z MM  --a MM --Ep MPa [--P N] [--json] ...', &
       '       feps elements', &
       '       feps --help | --version', &
@@ -390,6 +394,10 @@ contains
       '                       mumps (multifrontal, over MPI: mpirun -np N feps ..., in the MPI build)', &
       '      --out-of-core    with mumps: the factors on disk, in MUMPS_OOC_TMPDIR (else TMPDIR, else', &
       '                       /tmp), for models whose factor does not fit in memory', &
+      '      --mixed-precision  with cholmod: the solves of a nonlinear run read a single-precision', &
+      '                       copy of the factor (half the bytes); each step''s iterations correct', &
+      '                       the solves against their double-precision residual, so steps converge', &
+      '                       as before (docs/tradeoff.md). A linear model stays in double precision', &
       '      --method NAME    solve every stage by one method: euler, modified-euler, newton-raphson,', &
       '                       modified-newton-raphson, initial-stiffness, full-newton-raphson', &
       '                       (overrides the deck)', &
@@ -450,6 +458,7 @@ contains
       if (s%unused_nodes > 0) write (output_unit, '(a)') 'unused nodes     ' // str(s%unused_nodes) // &
         ' (in no element; no DOFs)'
       write (output_unit, '(a)') 'solver           ' // s%solver
+      if (s%solver == 'cholmod-mixed') call print_mixed_precision(s)
       if (allocated(s%rank_memory_mb)) call print_ranks(s)
       write (output_unit, '(a)') 'blas             ' // s%blas
       if (s%linear) then
@@ -522,6 +531,20 @@ contains
       text = sci(j, 5, 12)
     end if
   end function jacobian_text
+
+  !> How the mixed-precision solves went: the largest test-solve error of the factors solved in
+  !! single precision, and the factors solved in double precision instead.
+  subroutine print_mixed_precision(s)
+    type(run_summary_t), intent(in) :: s
+    character(len=:), allocatable :: line
+    line = 'mixed precision  ' // str(s%single_precision_factors) // ' of ' // str(s%factorizations) // &
+      ' factors solved in single precision from their third solve on'
+    if (s%single_precision_factors > 0) line = line // ' (test solves within ' // &
+      trim(adjustl(sci(s%test_solve_error, 2, 9))) // ' relative)'
+    if (s%precision_fallbacks > 0) line = line // '; ' // str(s%precision_fallbacks) // &
+      ' kept in double precision (test solve above ' // trim(adjustl(sci(mixed_tolerance, 1, 8))) // ')'
+    write (output_unit, '(a)') line
+  end subroutine print_mixed_precision
 
   !> MUMPS over MPI: each rank's factorization memory (the largest of the run) and time (summed).
   subroutine print_ranks(s)

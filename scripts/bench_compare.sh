@@ -3,19 +3,26 @@
 # the median wall time of each with their ratio (docs/performance.md: a refactoring may not slow
 # FE1 or the 200k mesh by more than 3%). The machine is shared: alternating runs see the same load.
 #
-#   bash scripts/bench_compare.sh OLD_FEPS NEW_FEPS [--repeat N] [--args "FEPS OPTIONS"] DECK [DECK ...]
+#   bash scripts/bench_compare.sh OLD_FEPS NEW_FEPS [--repeat N] [--args "FEPS OPTIONS"]
+#        [--new-args "FEPS OPTIONS"] DECK [DECK ...]
 #
-# --args gives both builds the same options (e.g. "--threads 2").
+# --args gives both builds the same options (e.g. "--threads 2"); --new-args gives NEW more, so
+# that one build can be compared with itself under an option (e.g. "--mixed-precision").
 # Prints one line per deck: deck, median old (s), median new (s), new / old, and the load average.
 set -euo pipefail
-usage() { echo "usage: bash scripts/bench_compare.sh OLD_FEPS NEW_FEPS [--repeat N] [--args \"FEPS OPTIONS\"] DECK [DECK ...]" >&2; exit 2; }
+usage() { echo "usage: bash scripts/bench_compare.sh OLD_FEPS NEW_FEPS [--repeat N] [--args \"FEPS OPTIONS\"] [--new-args \"FEPS OPTIONS\"] DECK [DECK ...]" >&2; exit 2; }
 [ $# -ge 3 ] || usage
 old=$1 new=$2; shift 2
 repeat=5
 args=()
-while [ "${1:-}" = --repeat ] || [ "${1:-}" = --args ]; do
+new_args=()
+while [ "${1:-}" = --repeat ] || [ "${1:-}" = --args ] || [ "${1:-}" = --new-args ]; do
   [ $# -ge 2 ] || usage
-  if [ "$1" = --repeat ]; then repeat=$2; else read -ra args <<<"$2"; fi
+  case $1 in
+    --repeat) repeat=$2 ;;
+    --args) read -ra args <<<"$2" ;;
+    *) read -ra new_args <<<"$2" ;;
+  esac
   shift 2
 done
 [[ "$repeat" =~ ^[1-9][0-9]*$ ]] || usage
@@ -29,9 +36,10 @@ for deck in "$@"; do
   : >"$tmp/old"; : >"$tmp/new"
   for ((i = 1; i <= repeat; i++)); do
     for which in old new; do
-      exe=$old; [ $which = new ] && exe=$new
+      exe=$old; more=()
+      [ $which = new ] && { exe=$new; more=(${new_args[@]+"${new_args[@]}"}); }
       s=$(date +%s.%N)
-      "$exe" "$deck" ${args[@]+"${args[@]}"} --quiet --output "$tmp/r.h5" >/dev/null 2>&1 || { echo "bench_compare.sh: $exe $deck failed" >&2; exit 1; }
+      "$exe" "$deck" ${args[@]+"${args[@]}"} ${more[@]+"${more[@]}"} --quiet --output "$tmp/r.h5" >/dev/null 2>&1 || { echo "bench_compare.sh: $exe $deck failed" >&2; exit 1; }
       e=$(date +%s.%N)
       awk -v s="$s" -v e="$e" 'BEGIN {print e - s}' >>"$tmp/$which"
     done

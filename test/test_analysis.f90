@@ -60,7 +60,9 @@ contains
       new_unittest('PRESSURE on a cylindrical bore: resultant and moment in closed form', &
                    test_bore_pressure_resultant), &
       new_unittest('PRESSURE varying in THETA from 180 to 270 deg: the 0-90 deg load turned by 180 deg', &
-                   test_theta_ramp_third_quadrant) &
+                   test_theta_ramp_third_quadrant), &
+      new_unittest('mixed precision: initial stiffness within 1e-7 of double; BFGS, an ill-conditioned and a ' // &
+                   'linear model unchanged', test_mixed_precision) &
       ]
   end subroutine collect_analysis
 
@@ -891,5 +893,80 @@ contains
     call check(error, maxval(abs(q3%applied_force(3, :) - q1%applied_force(3, :))), 0.0_dp, &
                'theta ramp 180-270 deg: z nodal forces', abs=1.0e-10_dp * scale)
   end subroutine test_theta_ramp_third_quadrant
+
+  !> The 'cholmod-mixed' solver against 'cholmod' on four decks:
+  !! - slide_1dof_unload_is.dat (initial stiffness, 157 iterations on 12 factors): factors
+  !!   solved three times or more use their single-precision copy; the iterations are the
+  !!   same and the displacements within 1e-7 of the largest (measured: 1.1e-8): each step's
+  !!   iterations correct the solves against their double-precision residual, to DELTA1;
+  !! - block_shear.dat (ACCELERATION=bfgs): BFGS asks for exact solves, so no copy is made and
+  !!   every bit is the double run's;
+  !! - sec2_3_4_lift.dat (a stiff interface on soft blocks): its factor's test solve is off by
+  !!   0.17, above the tolerance, so it stays in double precision: every bit the same;
+  !! - cube.dat (linear: one solve per stage): solved in double precision as 'cholmod'.
+  subroutine test_mixed_precision(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(model_t) :: model
+    type(all_steps_t) :: double, mixed
+    type(analysis_summary_t) :: sd, sm
+    integer :: k
+    call run_both('test/data/slide_1dof_unload_is.dat', error)
+    if (allocated(error)) return
+    call check(error, sm%solver == 'cholmod-mixed', 'the solver: ' // sm%solver)
+    if (allocated(error)) return
+    call check(error, sm%single_precision_factors > 0, 'factors solved in single precision: ' // &
+               str(sm%single_precision_factors))
+    if (allocated(error)) return
+    call check(error, sm%iterations, sd%iterations, 'iterations')
+    if (allocated(error)) return
+    do k = 1, size(double%steps)
+      associate (ud => double%steps(k)%displacement, um => mixed%steps(k)%displacement)
+        call check(error, maxval(abs(um - ud)), 0.0_dp, 'step ' // str(k) // ': displacements', &
+                   abs=1.0e-7_dp * maxval(abs(ud)))
+      end associate
+      if (allocated(error)) return
+    end do
+    call run_both('test/data/block_shear.dat', error)
+    if (allocated(error)) return
+    call check(error, sm%single_precision_factors, 0, 'BFGS: no factor solved in single precision')
+    if (allocated(error)) return
+    call same_bits('BFGS')
+    if (allocated(error)) return
+    call run_both('test/data/sec2_3_4_lift.dat', error)
+    if (allocated(error)) return
+    call check(error, sm%precision_fallbacks, 1, 'the ill-conditioned factor kept in double precision')
+    if (allocated(error)) return
+    call same_bits('an ill-conditioned factor')
+    if (allocated(error)) return
+    call run_both('test/data/cube.dat', error)
+    if (allocated(error)) return
+    call check(error, sm%solver == 'cholmod', 'a linear model''s solver: ' // sm%solver)
+    if (allocated(error)) return
+    call same_bits('a linear model')
+  contains
+    subroutine run_both(deck, error)
+      character(len=*), intent(in) :: deck
+      type(error_t), allocatable, intent(out) :: error
+      double = all_steps_t()
+      mixed = all_steps_t()
+      call read_deck(deck, model, error)
+      if (.not. allocated(error)) call run_analysis(model, 'cholmod', double, sd, error)
+      if (allocated(error)) return
+      call read_deck(deck, model, error)
+      if (.not. allocated(error)) call run_analysis(model, 'cholmod-mixed', mixed, sm, error)
+      if (allocated(error)) return
+      call check(error, size(mixed%steps), size(double%steps), deck // ': steps written')
+    end subroutine run_both
+    subroutine same_bits(what)
+      character(len=*), intent(in) :: what
+      logical :: same
+      integer :: j
+      same = .true.
+      do j = 1, size(double%steps)
+        same = same .and. all(double%steps(j)%displacement == mixed%steps(j)%displacement)
+      end do
+      call check(error, same, what // ': every step''s displacements bit-identical to the double run''s')
+    end subroutine same_bits
+  end subroutine test_mixed_precision
 
 end module test_analysis

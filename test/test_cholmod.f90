@@ -6,7 +6,7 @@ module test_cholmod
   use feps_sparse_matrix, only: csr_matrix_t, full_pattern
   use feps_lapack, only: dposv, dgemm, dgesv
   use feps_umfpack_solver, only: umfpack_solver_t
-  use feps_cholmod_solver, only: cholmod_solver_t, count_supervariables
+  use feps_cholmod_solver, only: cholmod_solver_t, count_supervariables, mixed_tolerance
   use feps_skyline_solver, only: skyline_solver_t
   use feps_testing, only: error_t, unittest_t, new_unittest, check, test_failed
   use feps_blas, only: blas_threads, set_blas_threads
@@ -38,7 +38,11 @@ contains
       new_unittest("symmetric product: the one-loop form's bits, the dense product to 1e-14", test_multiply_order), &
       new_unittest("symmetric product on 1-4 threads: the one-loop form's bits", test_multiply_threads), &
       new_unittest("feps's own supernodal solves: cholmod_l_solve's x to 1e-13, the same bits on 1-4 threads", &
-                   test_own_solves) &
+                   test_own_solves), &
+      new_unittest("mixed precision: the solve within kappa u_single of x, the same bits on 1-4 threads", &
+                   test_mixed_solves), &
+      new_unittest("mixed precision: an ill-conditioned factor (kappa 1e9) stays in double precision", &
+                   test_mixed_fallback) &
     ]
   end subroutine collect_cholmod
 
@@ -863,6 +867,126 @@ contains
     end do
     call check(error, all(x(:, 5) == x(:, 1)), 'the same bits when four threads are planned and one is given')
   end subroutine test_own_solves
+
+  !> Mixed precision ('cholmod-mixed') on the 5-point Laplacian of a 120 x 120 grid, b = A x
+  !! for a smooth x. A factor's first two solves are the double-precision ones (bit for bit);
+  !! from its third on they read a single-precision copy. A backward-stable solve in single
+  !! precision is within about kappa u of x, u = 2^-24 the unit round-off of single precision
+  !! and kappa = sin^2(120 pi / 242) / sin^2(pi / 242) = 5.93e3 the condition number (the
+  !! grid's extreme eigenvalues); the check allows kappa u (3.5e-4) and needs more than the
+  !! double solve's accuracy (1e-10), so it fails if the copy is not used (measured: 1.3e-6).
+  !! An exact solve (BFGS's) is the double one; the same bits on 1-4 threads.
+  subroutine test_mixed_solves(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(cholmod_solver_t) :: solver, reference
+    type(csr_matrix_t) :: a
+    real(dp), allocatable :: b(:), x(:, :), x_true(:), x_double(:), x_exact(:)
+    real(dp) :: kappa, err
+    integer :: k, t, threads, blas
+    a = laplacian_2d(120)
+    x_true = [(sin(0.01_dp * k) + 0.3_dp * cos(0.37_dp * k), k = 1, a%n)]
+    allocate (b(a%n), x(a%n, 4))
+    call a%multiply(x_true, b)
+    kappa = (sin(120 * pi / 242) / sin(pi / 242))**2
+    solver = cholmod_solver_t(mixed=.true.)
+    call check(error, solver%name() == 'cholmod-mixed', 'the solver''s name')
+    if (allocated(error)) return
+    threads = omp_get_max_threads()
+    blas = blas_threads()
+    call set_blas_threads(1)
+    call analyze_and_factorize(reference, a, error)
+    if (.not. allocated(error)) then
+      x_double = b
+      call reference%solve(x_double, error)
+    end if
+    do t = 1, 4
+      if (allocated(error)) exit
+      call omp_set_num_threads(t)
+      call analyze_and_factorize(solver, a, error)
+      do k = 1, 3   ! the third solve of the factor reads the copy
+        if (allocated(error)) exit
+        x(:, t) = b
+        call solver%solve(x(:, t), error)
+        if (k == 1 .and. t == 1 .and. .not. allocated(error)) &
+          call check(error, all(x(:, 1) == x_double), 'a factor''s first solve in double precision')
+      end do
+    end do
+    if (.not. allocated(error)) then
+      x_exact = b
+      solver%exact_solves = .true.
+      call solver%solve(x_exact, error)
+      solver%exact_solves = .false.
+    end if
+    call omp_set_num_threads(threads)
+    call set_blas_threads(blas)
+    if (allocated(error)) return
+    err = maxval(abs(x(:, 1) - x_true)) / maxval(abs(x_true))
+    call check(error, err <= kappa * 2.0_dp**(-24), 'mixed solve within kappa u of x: ' // str(err))
+    if (allocated(error)) return
+    call check(error, err > 1.0e-10_dp, 'the mixed solve is less accurate than a double one: ' // str(err))
+    if (allocated(error)) return
+    call check(error, solver%lower_precision_factors, 4, 'factors solved in single precision')
+    if (allocated(error)) return
+    call check(error, solver%test_solve_error <= kappa * 2.0_dp**(-24), 'the test solves'' error')
+    if (allocated(error)) return
+    call check(error, all(x_exact == x_double), 'an exact solve is the double one, bit for bit')
+    if (allocated(error)) return
+    do t = 2, 4
+      call check(error, all(x(:, t) == x(:, 1)), 'the same bits on ' // str(t) // ' threads as on one')
+      if (allocated(error)) return
+    end do
+  end subroutine test_mixed_solves
+
+  !> Mixed precision on a dense SPD matrix of 200 equations with eigenvalues 1 .. 1e9
+  !! (A = Q diag(lambda) Q, Q a Householder reflection): kappa = 1e9, so the single-precision
+  !! copy of its factor alone may put the solution off by kappa u = 60. (A grid's Laplacian,
+  !! even of two materials 1e8 apart, stays within 1e-5: Cholesky of such matrices is
+  !! accurate well beyond its condition number.) The test solve must find the error above
+  !! mixed_tolerance and keep the factor in double precision: the third solve equals the
+  !! double solver's bit for bit.
+  subroutine test_mixed_fallback(error)
+    type(error_t), allocatable, intent(out) :: error
+    type(cholmod_solver_t) :: solver, reference
+    type(csr_matrix_t) :: a
+    real(dp), allocatable :: b(:), x(:), x_double(:), v(:), lambda(:)
+    integer, parameter :: n = 200
+    integer :: i, j, k
+    v = [(sin(1.7_dp * k) + 0.1_dp, k = 1, n)]
+    v = v / norm2(v)
+    lambda = [(10.0_dp**(9.0_dp * (k - 1) / (n - 1)), k = 1, n)]
+    a = dense_to_csr(reshape([((entry(i, j), i = 1, n), j = 1, n)], [n, n]))
+    b = [(cos(0.3_dp * k), k = 1, n)]
+    solver = cholmod_solver_t(mixed=.true.)
+    call analyze_and_factorize(reference, a, error)
+    if (allocated(error)) return
+    x_double = b
+    call reference%solve(x_double, error)
+    if (allocated(error)) return
+    call analyze_and_factorize(solver, a, error)
+    do k = 1, 3
+      if (allocated(error)) return
+      x = b
+      call solver%solve(x, error)
+    end do
+    if (allocated(error)) return
+    call check(error, solver%precision_fallbacks, 1, 'the factor kept in double precision; test solve ' // &
+               str(solver%mixed_error))
+    if (allocated(error)) return
+    call check(error, solver%lower_precision_factors, 0, 'no factor solved in single precision')
+    if (allocated(error)) return
+    call check(error, all(x == x_double), 'the third solve is the double one, bit for bit')
+  contains
+    !> (Q diag(lambda) Q)_ij with Q = I - 2 v v^T.
+    pure real(dp) function entry(i, j)
+      integer, intent(in) :: i, j
+      real(dp) :: qi(n), qj(n)
+      qi = -2.0_dp * v(i) * v
+      qi(i) = qi(i) + 1.0_dp
+      qj = -2.0_dp * v(j) * v
+      qj(j) = qj(j) + 1.0_dp
+      entry = sum(qi * lambda * qj)
+    end function entry
+  end subroutine test_mixed_fallback
 
   !> Solve inside a parallel region of two threads (one of them solving), where nested regions
   !! get one thread: every share of the tree must still be solved.

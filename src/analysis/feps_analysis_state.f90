@@ -12,7 +12,7 @@ module feps_analysis_state
   use feps_clock, only: wall_clock
   use feps_files, only: memory_limit_bytes
   use feps_strings, only: gib_text
-  use feps_model, only: model_t
+  use feps_model, only: model_t, path_load
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
   use feps_sparse_matrix, only: csr_matrix_t, full_pattern
   use feps_assembly, only: group_kernel_t, build_kernels, build_materials, build_pattern, check_jacobians, &
@@ -132,7 +132,15 @@ contains
     end if
     call check_later_supports(model, error)
     if (allocated(error)) return
-    call new_linear_solver(solver_name, an%eq%solver, error)
+    ! a path-following stage finds its load factor by iteration, also in a linear model
+    summary%linear = is_linear_model(model, an%materials) .and. all(model%stages%path == path_load)
+    ! mixed precision leans on a step's iterations to correct its solves: a linear model's one
+    ! solve per stage has none, so it stays in double precision
+    if (summary%linear .and. solver_name == 'cholmod-mixed') then
+      call new_linear_solver('cholmod', an%eq%solver, error)
+    else
+      call new_linear_solver(solver_name, an%eq%solver, error)
+    end if
     if (allocated(error)) return
     call new_lu_solver(solver_name, an%eq%lu)
     summary%solver = an%eq%solver%name()

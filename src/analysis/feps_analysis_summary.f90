@@ -43,6 +43,9 @@ module feps_analysis_summary
     real(dp) :: applied_force(3) = 0.0_dp
     real(dp) :: reaction_force(3) = 0.0_dp
     character(len=:), allocatable :: solver
+    integer :: single_precision_factors = 0  !! mixed precision: factors solved in single precision
+    real(dp) :: test_solve_error = 0.0_dp    !! and the largest relative error of their test solves
+    integer :: precision_fallbacks = 0       !! factors tested and solved in double precision instead
     logical :: condition_warning = .false.   !! max/min pivot ratio passed condition_warning
     integer(i8), allocatable :: state_bytes(:)  !! per group: bytes of point state (0: elastic, none kept)
     real(dp), allocatable :: rank_memory_mb(:)       !! MUMPS over MPI: each rank's largest factorization memory (MB)

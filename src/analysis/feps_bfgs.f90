@@ -49,7 +49,11 @@ contains
         alpha(i) = rho(i) * dot_product(s_hist(:, i), r)
         r = r - alpha(i) * y_hist(:, i)
       end do
+      ! the secant updates hold the factor as H0 = K^-1 exactly: no lower-precision solve here
+      ! (with mixed-precision solves test/data/block_shear.dat's BFGS stalled near 1e-5)
+      solver%exact_solves = .true.
       call solver%solve(r, error)
+      solver%exact_solves = .false.
       if (allocated(error)) return
       do i = 1, self%npairs
         beta = rho(i) * dot_product(y_hist(:, i), r)

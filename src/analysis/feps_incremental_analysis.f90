@@ -93,8 +93,6 @@ contains
     an%path%f_applied = 0.0_dp
     summary%time_assembly = wall_clock() - t0
 
-    ! a path-following stage finds its load factor by iteration, also in a linear model
-    summary%linear = is_linear_model(model, an%materials) .and. all(model%stages%path == path_load)
     if (summary%linear) then
       if (present(resume)) then
         call fatal_error(error, err_input, resume%source // ': a linear model is solved in one solve per ' // &
@@ -103,6 +101,8 @@ contains
       end if
       call observer%progress('linear model (all materials elastic, no interfaces): one factorization, ' // &
                              'one solve per stage')
+      if (solver_name == 'cholmod-mixed') call observer%progress('note: mixed precision is for nonlinear ' // &
+        'runs, whose iterations correct each solve: a linear model is solved once, in double precision')
       if (model%restart_every > 0) call observer%progress('note: no restart data: a linear model is solved ' // &
                                                           'in one solve per stage')
       call run_linear_stages(model, an, observer, summary, error)
@@ -120,6 +120,9 @@ contains
 
     summary%factor_nnz = an%eq%solver%factor_nnz
     summary%flops = an%eq%solver%flops
+    summary%single_precision_factors = an%eq%solver%lower_precision_factors
+    summary%test_solve_error = an%eq%solver%test_solve_error
+    summary%precision_fallbacks = an%eq%solver%precision_fallbacks
     if (allocated(an%eq%solver%rank_memory_mb)) then
       summary%rank_memory_mb = an%eq%solver%rank_memory_mb
       summary%rank_factor_seconds = an%eq%solver%rank_factor_seconds
@@ -233,7 +236,6 @@ contains
     t0 = wall_clock()
     call set_up(model, solver_name, an, summary, error)
     if (allocated(error)) return
-    summary%linear = is_linear_model(model, an%materials) .and. all(model%stages%path == path_load)
     call check_path_restart(model, .false., error)
     if (allocated(error)) return
     call init_states(model, an)

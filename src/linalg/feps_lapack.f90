@@ -1,11 +1,11 @@
 !> Explicit interfaces to the LAPACK and BLAS routines feps calls (double precision,
 !! reference argument lists, default-integer LP64 build).
 module feps_lapack
-  use feps_kinds, only: dp
+  use feps_kinds, only: dp, sp
   implicit none
   private
 
-  public :: dposv, dsyev, dgesv, dgemm, dpotrf, dgemv, dtrsv
+  public :: dposv, dsyev, dgesv, dgemm, dpotrf, dgemv, dtrsv, sgemv, strsv
 
   interface
     !> Solve A X = B for symmetric positive definite A by Cholesky factorization.
@@ -63,6 +63,25 @@ module feps_lapack
       real(dp), intent(in) :: a(lda, *)
       real(dp), intent(inout) :: x(*)
     end subroutine dtrsv
+
+    !> y = alpha op(A) x + beta y in single precision.
+    subroutine sgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+      import :: sp
+      character(len=1), intent(in) :: trans
+      integer, intent(in) :: m, n, lda, incx, incy
+      real(sp), intent(in) :: alpha, beta
+      real(sp), intent(in) :: a(lda, *), x(*)
+      real(sp), intent(inout) :: y(*)
+    end subroutine sgemv
+
+    !> x = op(A)^-1 x for a triangular A in single precision.
+    subroutine strsv(uplo, trans, diag, n, a, lda, x, incx)
+      import :: sp
+      character(len=1), intent(in) :: uplo, trans, diag
+      integer, intent(in) :: n, lda, incx
+      real(sp), intent(in) :: a(lda, *)
+      real(sp), intent(inout) :: x(*)
+    end subroutine strsv
 
     !> Cholesky factorization of a symmetric positive definite matrix.
     subroutine dpotrf(uplo, n, a, lda, info)

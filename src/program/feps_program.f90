@@ -47,6 +47,7 @@ module feps_program
     logical :: check_only = .false.             !! check the deck and the model, solve nothing, write nothing
     logical :: strict = .false.                 !! a run that ends out of balance fails (exit 1, no results)
     logical :: out_of_core = .false.            !! --out-of-core: MUMPS's factors on disk (solver mumps only)
+    logical :: mixed_precision = .false.        !! --mixed-precision: CHOLMOD's solves in single precision
     character(len=:), allocatable :: restart    !! --restart FILE: continue from its restart data when not empty
     integer :: restart_step = 0                 !! --step N: the restart point (0: the last in the file)
     integer :: restart_every = 0                !! --restart-every N: overrides the deck's RESTART when positive
@@ -149,6 +150,14 @@ contains
         return
       end if
       solver = 'mumps-ooc'
+    end if
+    if (options%mixed_precision) then
+      if (solver /= 'cholmod') then
+        call fatal_error(error, err_input, '--mixed-precision solves with a single-precision copy of CHOLMOD''s ' // &
+                         'factor: it needs the cholmod solver, not ' // solver)
+        return
+      end if
+      solver = 'cholmod-mixed'
     end if
     if (given(options%method)) then
       call override_method(model, options%method, error)
@@ -751,6 +760,12 @@ contains
     if (.not. allocated(error)) call h5%write_summary_string('input_file', model%deck_file, error)
     if (.not. allocated(error)) call h5%write_summary_string('solver', summary%solver, error)
     if (.not. allocated(error)) call h5%write_summary_string('blas', summary%blas, error)
+    if (.not. allocated(error) .and. summary%solver == 'cholmod-mixed') then
+      call h5%write_summary_int('single_precision_factors', int(summary%single_precision_factors, i8), error)
+      if (.not. allocated(error)) call h5%write_summary_real('test_solve_error', summary%test_solve_error, error)
+      if (.not. allocated(error)) call h5%write_summary_int('precision_fallbacks', &
+                                                            int(summary%precision_fallbacks, i8), error)
+    end if
     if (.not. allocated(error)) call h5%write_summary_real('wall_time', summary%wall_time, error)
     if (.not. allocated(error)) call h5%write_summary_int('dofs', int(summary%dofs, i8), error)
     if (.not. allocated(error)) call h5%write_summary_int('factor_nonzeros', summary%factor_nnz, error)

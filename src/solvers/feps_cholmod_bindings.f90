@@ -7,6 +7,7 @@ module feps_cholmod_bindings
   private
 
   public :: feps_chol_create, feps_chol_free, feps_chol_analyze, feps_chol_factorize, feps_chol_solve
+  public :: feps_chol_multiply
   public :: feps_chol_flops, feps_chol_lnz, feps_chol_status, feps_chol_failed_column
   public :: feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column
   public :: feps_chol_supervariables, feps_chol_count_supervariables, feps_chol_supernodes
@@ -48,6 +49,16 @@ module feps_cholmod_bindings
       real(c_double), intent(in) :: val(*)
       integer(c_int) :: code
     end function feps_chol_factorize
+
+    !> y = A x with the matrix last factorized.
+    function feps_chol_multiply(handle, n, x, y) result(code) bind(C, name="feps_chol_multiply")
+      import :: c_ptr, c_int64_t, c_double, c_int
+      type(c_ptr), value :: handle
+      integer(c_int64_t), value :: n
+      real(c_double), intent(in) :: x(*)
+      real(c_double), intent(inout) :: y(*)
+      integer(c_int) :: code
+    end function feps_chol_multiply
 
     !> Solve A x = b in place; b is n x nrhs, column-major.
     function feps_chol_solve(handle, n, nrhs, b) result(code) bind(C, name="feps_chol_solve")

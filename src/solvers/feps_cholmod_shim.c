@@ -583,6 +583,27 @@ int feps_chol_supernodes(void *handle, int64_t *nsuper, int64_t **super, int64_t
     return 1;
 }
 
+/* y = A x with the matrix last factorized (CHOLMOD's copy of it, both triangles by its
+ * symmetry): the product of mixed precision's test solve.  Returns FEPS_CHOL_OK. */
+int feps_chol_multiply(void *handle, int64_t n, const double *x, double *y)
+{
+    feps_chol_handle *h = handle;
+    if (h == NULL || !h->factorized || h->a == NULL) return FEPS_CHOL_NOT_READY;
+    if (n != h->n || x == NULL || y == NULL) return FEPS_CHOL_BAD_INPUT;
+    cholmod_dense xd, yd;
+    memset(&xd, 0, sizeof(xd));
+    xd.nrow = xd.d = xd.nzmax = (size_t)n;
+    xd.ncol = 1;
+    xd.x = (double *)x;
+    xd.xtype = CHOLMOD_REAL;
+    xd.dtype = CHOLMOD_DOUBLE;
+    yd = xd;
+    yd.x = y;
+    double one[2] = {1.0, 0.0}, zero[2] = {0.0, 0.0};
+    if (!cholmod_l_sdmult(h->a, 0, one, zero, &xd, &yd, &h->common)) return FEPS_CHOL_CHOLMOD_ERROR;
+    return FEPS_CHOL_OK;
+}
+
 double feps_chol_flops(void *handle)
 {
     const feps_chol_handle *h = handle;

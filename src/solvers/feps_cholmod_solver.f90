@@ -14,12 +14,27 @@ module feps_cholmod_solver
     feps_chol_factorize, feps_chol_solve, feps_chol_flops, feps_chol_lnz, feps_chol_status, &
     feps_chol_failed_column, feps_chol_min_ratio, feps_chol_max_ratio, feps_chol_min_ratio_column, &
     feps_chol_supervariables, feps_chol_count_supervariables, feps_chol_supernodes, chol_ok, chol_bad_input, &
-    chol_not_posdef, chol_not_ready
+    chol_not_posdef, chol_not_ready, feps_chol_multiply
   use feps_supernodal_solve, only: supernodal_solve_t
   implicit none
   private
 
   public :: count_supervariables
+
+  !> The largest relative error of a mixed-precision factor's test solve for which its solves
+  !! go on in single precision. A step's iterations correct each solve against their
+  !! double-precision residual, as they correct the initial stiffness's difference from the
+  !! tangent; a copy much further off loses what they cannot restore: test/data's
+  !! sec2_3_4_lift.dat (test solve off by 0.17) ended 1.8e-2 from its double-precision run. The
+  !! thesis's models pass well below it (FE1 8.2e-5, PE1 1.6e-4, model C 1.8e-5;
+  !! docs/tradeoff.md).
+  real(dp), parameter, public :: mixed_tolerance = 1.0e-3_dp
+
+  !> Mixed precision makes a factor's single-precision copy at its (mixed_after + 1)-th solve:
+  !! the copy and its test cost about two solves, which a factor solved once or twice (full
+  !! Newton's, one per iteration; an arc-length iteration's pair) would not repay, and whose
+  !! quadratic convergence the inexact solves would slow (docs/tradeoff.md).
+  integer, parameter :: mixed_after = 2
 
   !> CHOLMOD's status when it cannot allocate (CHOLMOD_OUT_OF_MEMORY in cholmod.h).
   integer, parameter :: cholmod_out_of_memory = -2
@@ -35,6 +50,17 @@ module feps_cholmod_solver
     !> feps's own solves with a supernodal factor (threaded, the same bits for any number of
     !! threads); without a plan (no factor, or a simplicial one) CHOLMOD solves
     type(supernodal_solve_t) :: plan
+    !> Mixed precision ('cholmod-mixed'): the factorization in double precision, the solves from
+    !! a factor's third on with a single-precision copy of it, half the bytes each solve
+    !! streams. A solve is then good to about kappa(A) 6e-8, which the iterations of a nonlinear
+    !! step correct against their double-precision residual (docs/tradeoff.md)
+    logical, public :: mixed = .false.
+    !> With mixed precision: the relative error of the test solve of the last factor (see
+    !! `start_single_solves`; the largest of those solved in single precision and the factors
+    !! solved in double precision instead are linear_solver_t's test_solve_error and
+    !! precision_fallbacks), and the solves so far with the current factor
+    real(dp), public :: mixed_error = 0.0_dp
+    integer :: solves_with_factor = 0
   contains
     procedure :: analyze => cholmod_analyze
     procedure :: factorize => cholmod_factorize
@@ -153,6 +179,8 @@ contains
     self%factorized = .true.
     self%factorizations = self%factorizations + 1
     call plan_solves(self)
+    self%solves_with_factor = 0
+    self%mixed_error = 0.0_dp
   end subroutine cholmod_factorize
 
   !> Plan feps's own solves with the new factor, when it is supernodal.
@@ -165,6 +193,36 @@ contains
     call self%plan%setup(self%n, nsuper, super, pi, px, rows, x, perm)
   end subroutine plan_solves
 
+  !> Mixed precision, at a factor's (mixed_after + 1)-th solve: make its single-precision copy
+  !! and measure what it gives. A test solve of A x = A x_true for a known x_true (every
+  !! equation excited, no two alike) gives the relative error of x; a single-precision solve
+  !! is good to about kappa(A) 6e-8, so an ill-conditioned stiffness (a stiff interface on a
+  !! soft continuum) can lose most digits, and above mixed_tolerance the factor is solved in
+  !! double precision instead. The copy and the check cost about two solves, once per factor.
+  subroutine start_single_solves(self, error)
+    type(cholmod_solver_t), intent(inout) :: self
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: x_true(:), x(:)
+    integer :: k
+    call self%plan%add_single_copy()
+    if (.not. self%plan%single_precision()) return
+    x_true = [(1.0_dp + 0.5_dp * sin(0.37_dp * k), k = 1, self%n)]
+    allocate (x(self%n))
+    if (feps_chol_multiply(self%handle, int(self%n, c_int64_t), x_true, x) /= chol_ok) then
+      call fatal_error(error, err_internal, 'cholmod: the product of the test solve failed')
+      return
+    end if
+    call self%plan%solve(x)
+    self%mixed_error = maxval(abs(x - x_true)) / maxval(abs(x_true))
+    if (self%mixed_error <= mixed_tolerance) then
+      self%lower_precision_factors = self%lower_precision_factors + 1
+      self%test_solve_error = max(self%test_solve_error, self%mixed_error)
+    else
+      self%precision_fallbacks = self%precision_fallbacks + 1
+      call self%plan%drop_single_copy()
+    end if
+  end subroutine start_single_solves
+
   !> Solve A x = b in place; size(b) = n * nrhs holds nrhs right-hand sides one after another.
   subroutine cholmod_solve(self, b, error)
     class(cholmod_solver_t), intent(inout) :: self
@@ -173,7 +231,12 @@ contains
     call check_solve(self, b, error)
     if (allocated(error)) return
     if (self%plan%ready()) then
-      call self%plan%solve(b)
+      if (self%mixed .and. .not. self%exact_solves) then
+        self%solves_with_factor = self%solves_with_factor + 1
+        if (self%solves_with_factor == mixed_after + 1) call start_single_solves(self, error)
+        if (allocated(error)) return
+      end if
+      call self%plan%solve(b, exact=self%exact_solves)
     else
       call solve_with_cholmod(self, b, error)
     end if
@@ -231,6 +294,7 @@ contains
     class(cholmod_solver_t), intent(in) :: self
     character(len=:), allocatable :: name
     name = 'cholmod'
+    if (self%mixed) name = 'cholmod-mixed'
   end function cholmod_name
 
   !> +1 after a factorization: LL^T, and a pivot not above pivot_tolerance fails it, so the

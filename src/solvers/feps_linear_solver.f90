@@ -17,6 +17,16 @@ module feps_linear_solver
     real(dp) :: min_pivot_ratio = 0.0_dp  !! min over equations of pivot / diagonal entry
     real(dp) :: max_pivot_ratio = 0.0_dp  !! max over equations of pivot / diagonal entry
     integer :: factorizations = 0         !! how many factorizations so far
+    !> Solvers that may solve in lower precision (CHOLMOD's mixed precision) test each factor
+    !! they would so solve: how many factors were solved in lower precision, the largest
+    !! relative error of their test solves, and how many went back to double precision (their
+    !! test solve too inaccurate)
+    integer :: lower_precision_factors = 0
+    real(dp) :: test_solve_error = 0.0_dp
+    integer :: precision_fallbacks = 0
+    !> Set while a caller needs solves to the factor's own precision (BFGS's secant updates,
+    !! which assume their H0 is K^-1 exactly): lower-precision solvers then solve with the factor
+    logical :: exact_solves = .false.
     real(dp), allocatable :: rank_memory_mb(:)       !! solvers over MPI: each rank's largest factorization memory
     real(dp), allocatable :: rank_factor_seconds(:)  !! and its time in the factorizations, summed
   contains

@@ -13,8 +13,9 @@ module feps_solver_factory
 
 contains
 
-  !> 'skyline' (LDL^T with reverse Cuthill-McKee), 'cholmod' (supernodal, METIS), 'mumps'
-  !! (multifrontal over MPI, in the MPI build) or 'mumps-ooc' (the same, its factors on disk).
+  !> 'skyline' (LDL^T with reverse Cuthill-McKee), 'cholmod' (supernodal, METIS),
+  !! 'cholmod-mixed' (the same, its solves in single precision), 'mumps' (multifrontal over MPI,
+  !! in the MPI build) or 'mumps-ooc' (the same, its factors on disk).
   subroutine new_linear_solver(name, solver, error)
     character(len=*), intent(in) :: name
     class(linear_solver_t), allocatable, intent(out) :: solver
@@ -24,6 +25,8 @@ contains
       allocate (skyline_solver_t :: solver)
     case ('cholmod')
       allocate (cholmod_solver_t :: solver)
+    case ('cholmod-mixed')
+      allocate (solver, source=cholmod_solver_t(mixed=.true.))
     case ('mumps')
       allocate (mumps_solver_t :: solver)
     case ('mumps-ooc')

@@ -24,8 +24,8 @@
 !! the nrow x ncol column-major block at lx(px(k)+1 ..). perm(i)+1 is the equation of row i.
 module feps_supernodal_solve
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int64_t, c_double, c_f_pointer
-  use feps_kinds, only: dp, i8
-  use feps_lapack, only: dgemv, dtrsv
+  use feps_kinds, only: dp, sp, i8
+  use feps_lapack, only: dgemv, dtrsv, sgemv, strsv
   use feps_blas, only: blas_threads, set_blas_threads
   !$ use omp_lib, only: omp_get_max_threads, omp_get_thread_num, omp_get_num_threads
   implicit none
@@ -52,10 +52,18 @@ module feps_supernodal_solve
     real(dp), allocatable :: buf(:)      !! a supernode's contributions to the rows below it
     real(dp), allocatable :: y(:)        !! the permuted right-hand side, then the solution
     real(dp), allocatable :: w(:, :)     !! each thread's supernode workspace
+    !> Mixed precision: the solves may read a single-precision copy of the factor (half the
+    !! bytes that a solve streams), with buf and w in single precision too; y stays double
+    logical :: single = .false.
+    logical :: in_single = .false.       !! the solve under way reads the copy
+    real(sp), allocatable :: lx4(:), buf4(:), w4(:, :)
   contains
     procedure :: setup => plan_setup
     procedure :: ready => plan_ready
     procedure :: thread_count => plan_threads
+    procedure :: single_precision => plan_single
+    procedure :: add_single_copy => plan_add_single_copy
+    procedure :: drop_single_copy => plan_drop_single_copy
     procedure :: solve => plan_solve
     procedure :: clear => plan_clear
   end type supernodal_solve_t
@@ -103,9 +111,30 @@ contains
     self%threads = 1
     !$ self%threads = max(1, omp_get_max_threads())
     call share_tree(self, parent)
-    allocate (self%buf(size(self%rows)), self%y(n), self%w(self%max_rows, self%threads))
+    allocate (self%y(n), self%buf(size(self%rows)), self%w(self%max_rows, self%threads))
     self%buf = 0.0_dp
   end subroutine plan_setup
+
+  !> Mixed precision: from now on the solves read a single-precision copy of the factor (half
+  !! the bytes a solve streams; about kappa(A) 6e-8 relative error), unless one asks for an
+  !! exact solve.
+  subroutine plan_add_single_copy(self)
+    class(supernodal_solve_t), intent(inout) :: self
+    if (self%nsuper < 1 .or. self%single) return
+    allocate (self%lx4(size(self%lx, kind=i8)), self%buf4(size(self%rows)), self%w4(self%max_rows, self%threads))
+    self%lx4 = real(self%lx, sp)
+    self%buf4 = 0.0_sp
+    self%single = .true.
+  end subroutine plan_add_single_copy
+
+  !> Back to solves with the factor itself.
+  subroutine plan_drop_single_copy(self)
+    class(supernodal_solve_t), intent(inout) :: self
+    if (allocated(self%lx4)) deallocate (self%lx4)
+    if (allocated(self%buf4)) deallocate (self%buf4)
+    if (allocated(self%w4)) deallocate (self%w4)
+    self%single = .false.
+  end subroutine plan_drop_single_copy
 
   !> Whether a plan is set up.
   pure logical function plan_ready(self)
@@ -118,6 +147,12 @@ contains
     class(supernodal_solve_t), intent(in) :: self
     plan_threads = self%threads
   end function plan_threads
+
+  !> Whether the plan holds a single-precision copy of the factor for its solves.
+  pure logical function plan_single(self)
+    class(supernodal_solve_t), intent(in) :: self
+    plan_single = self%nsuper > 0 .and. self%single
+  end function plan_single
 
   !> Forget the plan (the factor's arrays are CHOLMOD's and are not freed here).
   subroutine plan_clear(self)
@@ -134,14 +169,20 @@ contains
     if (allocated(self%buf)) deallocate (self%buf)
     if (allocated(self%y)) deallocate (self%y)
     if (allocated(self%w)) deallocate (self%w)
+    call self%drop_single_copy()
+    self%in_single = .false.
   end subroutine plan_clear
 
-  !> Solve A x = b in place for the columns of b (n x nrhs, stored one after another).
-  subroutine plan_solve(self, b)
+  !> Solve A x = b in place for the columns of b (n x nrhs, stored one after another); with the
+  !! factor's single-precision copy where the plan holds one, unless `exact` (then the factor).
+  subroutine plan_solve(self, b, exact)
     class(supernodal_solve_t), intent(inout) :: self
     real(dp), intent(inout) :: b(:)
+    logical, intent(in), optional :: exact
     integer :: i, k, blas
     integer(i8) :: off
+    self%in_single = self%single
+    if (present(exact)) self%in_single = self%single .and. .not. exact
     blas = blas_threads()
     if (blas > 1) call set_blas_threads(1)
     do off = 0, size(b, kind=i8) - self%n, self%n
@@ -150,11 +191,10 @@ contains
       end do
       if (self%threads > 1) call solve_shares(self, forward_pass=.true.)
       do i = 1, size(self%top_nodes)
-        call forward(self%top_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%gather_ptr, &
-                     self%gather_range, self%y, self%buf, self%w(:, 1))
+        call forward_node(self, self%top_nodes(i), 1)
       end do
       do i = size(self%top_nodes), 1, -1
-        call backward(self%top_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, 1))
+        call backward_node(self, self%top_nodes(i), 1)
       end do
       if (self%threads > 1) call solve_shares(self, forward_pass=.false.)
       do k = 1, self%n
@@ -178,17 +218,40 @@ contains
     do part = t, self%threads, team   ! every share, should OpenMP give fewer threads
       if (forward_pass) then
         do i = self%part_ptr(part), self%part_ptr(part + 1) - 1
-          call forward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%gather_ptr, &
-                       self%gather_range, self%y, self%buf, self%w(:, t))
+          call forward_node(self, self%part_nodes(i), t)
         end do
       else
         do i = self%part_ptr(part + 1) - 1, self%part_ptr(part), -1
-          call backward(self%part_nodes(i), self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, t))
+          call backward_node(self, self%part_nodes(i), t)
         end do
       end if
     end do
     !$omp end parallel
   end subroutine solve_shares
+
+  !> Forward pass at supernode k with thread t's workspace, in the plan's precision.
+  subroutine forward_node(self, k, t)
+    type(supernodal_solve_t), intent(inout) :: self
+    integer, intent(in) :: k, t
+    if (self%in_single) then
+      call forward_single(k, self%super, self%pi, self%px, self%rows, self%lx4, self%gather_ptr, &
+                          self%gather_range, self%y, self%buf4, self%w4(:, t))
+    else
+      call forward(k, self%super, self%pi, self%px, self%rows, self%lx, self%gather_ptr, &
+                   self%gather_range, self%y, self%buf, self%w(:, t))
+    end if
+  end subroutine forward_node
+
+  !> Back pass at supernode k with thread t's workspace, in the plan's precision.
+  subroutine backward_node(self, k, t)
+    type(supernodal_solve_t), intent(inout) :: self
+    integer, intent(in) :: k, t
+    if (self%in_single) then
+      call backward_single(k, self%super, self%pi, self%px, self%rows, self%lx4, self%y, self%w4(:, t))
+    else
+      call backward(k, self%super, self%pi, self%px, self%rows, self%lx, self%y, self%w(:, t))
+    end if
+  end subroutine backward_node
 
   !> Forward pass at supernode k: gather what the supernodes below sent to its rows, solve its
   !! diagonal block, and keep its contributions to the rows below (-L21 x1) in buf. The BLAS
@@ -238,6 +301,53 @@ contains
     call dtrsv('L', 'T', 'N', nscol, lx(px(k) + 1), nsrow, w, 1)
     y(k1:k1 + nscol - 1) = w(1:nscol)
   end subroutine backward
+
+  !> `forward` with the factor, its workspace and its contributions in single precision (y, the
+  !! right-hand side and solution, stays double). Fortran has no generics over kinds, hence
+  !! the twin.
+  subroutine forward_single(k, super, pi, px, rows, lx, gather_ptr, gather_range, y, buf, w)
+    integer, intent(in) :: k
+    integer(c_int64_t), intent(in) :: super(:), pi(:), px(:), rows(:)
+    real(sp), intent(in) :: lx(*)
+    integer, intent(in) :: gather_ptr(:)
+    integer(i8), intent(in) :: gather_range(:, :)
+    real(dp), intent(inout) :: y(*)
+    real(sp), intent(inout) :: buf(*), w(*)
+    integer :: nscol, nsrow, k1, g, i
+    integer(i8) :: p, p0
+    call extent(k, super, pi, k1, nscol, nsrow, p0)
+    w(1:nscol) = real(y(k1:k1 + nscol - 1), sp)
+    do g = gather_ptr(k), gather_ptr(k + 1) - 1
+      do p = gather_range(1, g), gather_range(2, g)
+        i = int(rows(p)) + 2 - k1
+        w(i) = w(i) + buf(p)
+      end do
+    end do
+    call strsv('L', 'N', 'N', nscol, lx(px(k) + 1), nsrow, w, 1)
+    if (nsrow > nscol) call sgemv('N', nsrow - nscol, nscol, -1.0_sp, lx(px(k) + nscol + 1), nsrow, w, 1, &
+                                  0.0_sp, buf(p0 + nscol + 1), 1)
+    y(k1:k1 + nscol - 1) = real(w(1:nscol), dp)
+  end subroutine forward_single
+
+  !> `backward` in single precision (see forward_single).
+  subroutine backward_single(k, super, pi, px, rows, lx, y, w)
+    integer, intent(in) :: k
+    integer(c_int64_t), intent(in) :: super(:), pi(:), px(:), rows(:)
+    real(sp), intent(in) :: lx(*)
+    real(dp), intent(inout) :: y(*)
+    real(sp), intent(inout) :: w(*)
+    integer :: nscol, nsrow, k1
+    integer(i8) :: p, p0
+    call extent(k, super, pi, k1, nscol, nsrow, p0)
+    w(1:nscol) = real(y(k1:k1 + nscol - 1), sp)
+    do p = p0 + nscol + 1, p0 + nsrow
+      w(p - p0) = real(y(rows(p) + 1), sp)
+    end do
+    if (nsrow > nscol) call sgemv('T', nsrow - nscol, nscol, -1.0_sp, lx(px(k) + nscol + 1), nsrow, &
+                                  w(nscol + 1), 1, 1.0_sp, w, 1)
+    call strsv('L', 'T', 'N', nscol, lx(px(k) + 1), nsrow, w, 1)
+    y(k1:k1 + nscol - 1) = real(w(1:nscol), dp)
+  end subroutine backward_single
 
   !> Supernode k's first column k1, its columns and rows, and p0, where its row indices start
   !! (0-based).

@@ -1404,6 +1404,18 @@ expect_line "bench_solve_bound.sh with a size that is not a number of bytes" 2 \
 # The test harness: an unknown suite name is an error listing the suites (it passed as 0 of 0).
 tester=${FEPS_TESTER:-$(fpm test --runner echo 2>/dev/null | tail -n 1)}
 expect_line "fpm test -- nosuchsuite" 2 'no test suite "nosuchsuite" (the suites: datain' "$tester" nosuchsuite
+# --mixed-precision (docs/tradeoff.md): CHOLMOD only, else one line, exit 2 and no file; a
+# nonlinear run names how its factors were solved in its summary and /summary (the initial-
+# stiffness slide: 4 of its 12 factors are solved three times or more).
+expect_line "--mixed-precision with --solver skyline" 2 "it needs the cholmod solver, not skyline" \
+  "$feps" test/data/slide_1dof_unload_is.dat --mixed-precision --solver skyline --output "$tmp/mp_sky.h5"
+[ ! -e "$tmp/mp_sky.h5" ] && ok "--mixed-precision with skyline writes no file" || bad "--mixed-precision with skyline wrote a file"
+"$feps" test/data/slide_1dof_unload_is.dat --mixed-precision --output "$tmp/mp.h5" >"$tmp/out" 2>&1 \
+  && grep -q "^solver           cholmod-mixed$" "$tmp/out" \
+  && grep -q "^mixed precision  4 of 12 factors solved in single precision from their third solve on (test solves within" "$tmp/out" \
+  && python3 -c 'import sys, h5py; a = h5py.File(sys.argv[1])["summary"].attrs; sys.exit(not (a["solver"] == b"cholmod-mixed" and a["single_precision_factors"] == 4 and a["precision_fallbacks"] == 0 and 0 < a["test_solve_error"] < 1e-3))' "$tmp/mp.h5" \
+  && ok "--mixed-precision: the summary line and /summary's solver, single_precision_factors, test_solve_error" \
+  || bad "--mixed-precision summary: $(grep -i "mixed\|solver" "$tmp/out" | head -c 300)"
 # The tetrahedra and wedges of the element catalog through the command: the Lame decks run, and
 # their XDMF files (Tetrahedron(_10), Wedge(_15) cells) are read back below with the others.
 for t in tet4 tet10 wedge6 wedge15; do

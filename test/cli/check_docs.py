@@ -571,16 +571,21 @@ def check_shape(f, name, ds, shape, content):
 def check_attribute_row(files, path, content):
     """The attributes a row of the table lists (backticked lower-case names) are there."""
     if path == "/summary":
-        # the attribute names it lists; not the values of `analysis`, nor lu_min_rcond (only
-        # after an LU factorization), nor the ranks' (only under MPI: test/cli/check_mumps.sh)
+        # the attribute names it lists; not the values of `analysis` and `solver`, nor
+        # lu_min_rcond (only after an LU factorization), nor the ranks' (only under MPI:
+        # test/cli/check_mumps.sh)
         names = [n for n in re.findall(r"`([a-z_]+)`", content)
-                 if n not in ("linear", "nonlinear", "lu_min_rcond", "ranks", "rank_memory_mb", "rank_factorization_time")]
+                 if n not in ("linear", "nonlinear", "cholmod", "skyline", "mumps", "lu_min_rcond", "ranks",
+                              "rank_memory_mb", "rank_factorization_time")]
         # only when a stage ran with LINESEARCH=energy: both or neither, and some file has them
         searched = ("line_searches", "line_search_evaluations")
+        # only with --mixed-precision (these decks run without; check_cli.sh runs one with it)
+        mixed = ("single_precision_factors", "test_solve_error", "precision_fallbacks")
         for f in files:
-            missing = [n for n in names if n not in f["summary"].attrs and n not in searched]
+            missing = [n for n in names if n not in f["summary"].attrs and n not in searched + mixed]
             assert not missing, f"/summary lacks {missing}"
             assert len({n in f["summary"].attrs for n in searched}) == 1, f"/summary has one of {searched}"
+            assert len({n in f["summary"].attrs for n in mixed}) == 1, f"/summary has some of {mixed}"
         assert any(searched[0] in f["summary"].attrs for f in files), f"no file has {searched}"
         return len(names)
     if path == "/constraints/<kkkk>":

@@ -1134,6 +1134,10 @@ contains
     data%warned_condition = an%eq%warned_condition
     data%lu_singular = an%eq%lu_singular
     data%solver_factorizations = an%eq%solver%factorizations
+    data%solves_with_factor = an%eq%solver%solves_with_factor
+    data%lower_precision_factors = an%eq%solver%lower_precision_factors
+    data%precision_fallbacks = an%eq%solver%precision_fallbacks
+    data%test_solve_error = an%eq%solver%test_solve_error
     data%lu_factorizations = an%eq%lu%factorizations
     data%lu_min_rcond = an%eq%lu_min_rcond()
   end subroutine save_state
@@ -1186,6 +1190,10 @@ contains
       if (allocated(error)) return
     end if
     an%eq%solver%factorizations = data%solver_factorizations
+    an%eq%solver%solves_with_factor = data%solves_with_factor
+    an%eq%solver%lower_precision_factors = data%lower_precision_factors
+    an%eq%solver%precision_fallbacks = data%precision_fallbacks
+    an%eq%solver%test_solve_error = data%test_solve_error
     if (allocated(data%a_full_val)) then
       call analyze_full_pattern(model, an, error)
       if (allocated(error)) return

@@ -34,6 +34,11 @@ module feps_restart_data
     logical :: warned_condition = .false.
     integer :: lu_singular = 0
     integer :: solver_factorizations = 0
+    !> the symmetric solver's mixed-precision counters (linear_solver_t's)
+    integer :: solves_with_factor = 0
+    integer :: lower_precision_factors = 0
+    integer :: precision_fallbacks = 0
+    real(dp) :: test_solve_error = 0.0_dp
     integer :: lu_factorizations = 0
     real(dp) :: lu_min_rcond = huge(1.0_dp)
     type(factor_state_t) :: factor

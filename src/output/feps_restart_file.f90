@@ -21,7 +21,7 @@ module feps_restart_file
 
   public :: write_restart_point, read_restart_point, restart_steps
 
-  integer, parameter :: n_ints = 14, n_reals = 3
+  integer, parameter :: n_ints = 17, n_reals = 4
 
   interface
     function c_rename(old_name, new_name) bind(C, name='rename') result(status)
@@ -133,10 +133,11 @@ contains
     call put_int(fid, g // '/ints', [int(ishft(data%fingerprint, -31)), int(iand(data%fingerprint, 2147483647_i8)), &
                  data%step, data%stage, data%step_in_stage, flag(data%use_lu), flag(data%symmetrized), &
                  flag(data%warned_condition), data%lu_singular, data%solver_factorizations, data%lu_factorizations, &
-                 flag(data%factor%have_factor), flag(data%factor%factor_elastic), flag(data%factor%elastic_retry)], &
+                 flag(data%factor%have_factor), flag(data%factor%factor_elastic), flag(data%factor%elastic_retry), &
+                 data%solves_with_factor, data%lower_precision_factors, data%precision_fallbacks], &
                  [n_ints], hdferr)
     if (hdferr >= 0) call put_real(fid, g // '/reals', [data%lu_min_rcond, data%factor%rel_prev, &
-                                   data%factor%abs_prev], [n_reals], hdferr)
+                                   data%factor%abs_prev, data%test_solve_error], [n_reals], hdferr)
     if (hdferr >= 0) call put_real(fid, g // '/summary_reals', summary_reals(data%summary), &
                                    [size(summary_reals(data%summary))], hdferr)
     if (hdferr >= 0) call put_int(fid, g // '/summary_ints', summary_ints(data%summary), &
@@ -264,6 +265,8 @@ contains
     g = point_name(at)
     call get_int(fid, g // '/ints', ints, shp, hdferr)
     if (hdferr >= 0) call get_real(fid, g // '/reals', reals, shp, hdferr)
+    ! another layout (an older feps's, before the mixed-precision counters) reads as foreign
+    if (hdferr >= 0 .and. (size(ints) /= n_ints .or. size(reals) /= n_reals)) hdferr = -1
     if (hdferr >= 0) then
       data%fingerprint = fingerprint_of(ints)
       data%step = ints(3)
@@ -278,10 +281,14 @@ contains
       data%factor%have_factor = ints(12) == 1
       data%factor%factor_elastic = ints(13) == 1
       data%factor%elastic_retry = ints(14) == 1
+      data%solves_with_factor = ints(15)
+      data%lower_precision_factors = ints(16)
+      data%precision_fallbacks = ints(17)
       data%lu_min_rcond = reals(1)
       data%factor%rel_prev = reals(2)
       data%factor%rel_accepted = reals(2)   ! written at the end of an accepted step
       data%factor%abs_prev = reals(3)
+      data%test_solve_error = reals(4)
       call get_real(fid, g // '/summary_reals', sr, shp, hdferr)
     end if
     if (hdferr >= 0) call get_int(fid, g // '/summary_ints', nums, shp, hdferr)

@@ -58,9 +58,9 @@ module feps_cholmod_solver
     !> With mixed precision: the relative error of the test solve of the last factor (see
     !! `start_single_solves`; the largest of those solved in single precision and the factors
     !! solved in double precision instead are linear_solver_t's test_solve_error and
-    !! precision_fallbacks), and the solves so far with the current factor
+    !! precision_fallbacks), and whether the current factor's copy was tried
     real(dp), public :: mixed_error = 0.0_dp
-    integer :: solves_with_factor = 0
+    logical :: copy_tried = .false.
   contains
     procedure :: analyze => cholmod_analyze
     procedure :: factorize => cholmod_factorize
@@ -180,6 +180,7 @@ contains
     self%factorizations = self%factorizations + 1
     call plan_solves(self)
     self%solves_with_factor = 0
+    self%copy_tried = .false.
     self%mixed_error = 0.0_dp
   end subroutine cholmod_factorize
 
@@ -199,11 +200,15 @@ contains
   !! is good to about kappa(A) 6e-8, so an ill-conditioned stiffness (a stiff interface on a
   !! soft continuum) can lose most digits, and above mixed_tolerance the factor is solved in
   !! double precision instead. The copy and the check cost about two solves, once per factor.
-  subroutine start_single_solves(self, error)
+  !! A run continued from restart data makes the copy again at its first solve, with the same
+  !! outcome (the same factor, the same test), and counts nothing twice (`counted` false).
+  subroutine start_single_solves(self, counted, error)
     type(cholmod_solver_t), intent(inout) :: self
+    logical, intent(in) :: counted
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: x_true(:), x(:)
     integer :: k
+    self%copy_tried = .true.
     call self%plan%add_single_copy()
     if (.not. self%plan%single_precision()) return
     x_true = [(1.0_dp + 0.5_dp * sin(0.37_dp * k), k = 1, self%n)]
@@ -215,10 +220,10 @@ contains
     call self%plan%solve(x)
     self%mixed_error = maxval(abs(x - x_true)) / maxval(abs(x_true))
     if (self%mixed_error <= mixed_tolerance) then
-      self%lower_precision_factors = self%lower_precision_factors + 1
-      self%test_solve_error = max(self%test_solve_error, self%mixed_error)
+      if (counted) self%lower_precision_factors = self%lower_precision_factors + 1
+      if (counted) self%test_solve_error = max(self%test_solve_error, self%mixed_error)
     else
-      self%precision_fallbacks = self%precision_fallbacks + 1
+      if (counted) self%precision_fallbacks = self%precision_fallbacks + 1
       call self%plan%drop_single_copy()
     end if
   end subroutine start_single_solves
@@ -233,7 +238,8 @@ contains
     if (self%plan%ready()) then
       if (self%mixed .and. .not. self%exact_solves) then
         self%solves_with_factor = self%solves_with_factor + 1
-        if (self%solves_with_factor == mixed_after + 1) call start_single_solves(self, error)
+        if (self%solves_with_factor > mixed_after .and. .not. self%copy_tried) &
+          call start_single_solves(self, self%solves_with_factor == mixed_after + 1, error)
         if (allocated(error)) return
       end if
       call self%plan%solve(b, exact=self%exact_solves)

@@ -24,6 +24,9 @@ module feps_linear_solver
     integer :: lower_precision_factors = 0
     real(dp) :: test_solve_error = 0.0_dp
     integer :: precision_fallbacks = 0
+    !> Solves since the last factorization, counted by the solvers that change precision after
+    !! a few (restart data keep it, so that a continued run changes at the same solve)
+    integer :: solves_with_factor = 0
     !> Set while a caller needs solves to the factor's own precision (BFGS's secant updates,
     !! which assume their H0 is K^-1 exactly): lower-precision solvers then solve with the factor
     logical :: exact_solves = .false.

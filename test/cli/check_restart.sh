@@ -11,7 +11,8 @@
 # deck whose supports change between stages, a post-tensioned bar, a group born in stage 2,
 # FE1 (400 steps) and a model C case (three stages), with restart points mid-stage and at
 # stage boundaries; and the bad input (another model's restart data, a missing file, a step
-# the file does not hold, --step without --restart, a results file that holds no restart data).
+# the file does not hold, --step without --restart, a results file that holds no restart data,
+# restart data of an earlier layout).
 # FEPS names the build to check (default: the release build, which FE1 and model C need).
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -82,6 +83,9 @@ case_ birth test/data/activate_block.dat 1 "1"
 # steps) at the boundary of stages 2 and 3 (251), from the uninterrupted runs' data; model C
 # stopped mid-stage 2 (150) and continued from the file's last point.
 own=1 case_ FE1 input/modelB/FE1.dat 130 "390"
+# FE1 with --mixed-precision: the restored factor's single-precision copy comes back at the
+# first solve (the restart data keep the solves made with it), so the same bits follow too.
+own=1 case_ FE1_mixed input/modelB/FE1.dat 200 "200" --mixed-precision
 own=1 case_ modelC input/modelC/C_G300_nu0.1_b0.09.dat 251 "251"
 "$feps" input/modelC/C_G300_nu0.1_b0.09.dat -q -o "$tmp/mc150.h5" --restart-every 150 --stop-after-step 150 \
   >/dev/null 2>&1
@@ -143,6 +147,19 @@ refused "a step the restart file does not hold" "holds no restart data of step 9
   "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/friction.restart.h5" --step 99
 refused "a results file as restart data" "holds no restart data (no /restart/steps" \
   "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/friction.h5"
+# restart data of an earlier layout (its counters 14 integers, before the mixed-precision ones)
+python3 - "$tmp/friction.restart.h5" "$tmp/older.restart.h5" <<'PY'
+import shutil, sys, h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    for name, g in f["restart"].items():
+        if name.startswith("step_"):
+            ints = g["ints"][...][:14]
+            del g["ints"]
+            g["ints"] = ints
+PY
+refused "restart data of an earlier layout" "the restart data of step 5 cannot be read" \
+  "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/older.restart.h5" --step 5
 refused "a restart point at the run's last step" "its restart point is step 11, the last of the run .*nothing to continue" \
   "$feps" test/data/friction_pull.dat -o "$tmp/refused.h5" --restart "$tmp/friction.restart.h5" --step 11
 refused "--step without --restart" "needs --restart FILE" \

@@ -11,6 +11,7 @@ module feps_analysis_state
   use feps_error, only: error_t, fatal_error, input_error, err_model, err_input, err_memory, str
   use feps_clock, only: wall_clock
   use feps_files, only: memory_limit_bytes
+  use feps_blas, only: blas_threads
   use feps_strings, only: gib_text
   use feps_model, only: model_t, path_load
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
@@ -88,6 +89,11 @@ module feps_analysis_state
   public :: is_linear_model, set_up, init_states, set_crack_bands, state_bytes
   public :: change_supports, activate_groups, check_born_nodes, stage_increments
   public :: set_trial, add_free, update_points, residual, committed_residual, commit, restore
+
+  !> OpenBLAS's work buffer, one per thread at its first level-3 call (BUFFER_SIZE, 32 << 22
+  !! bytes on x86-64). OpenBLAS 0.3.21 retries an allocation that fails forever: FE1 under
+  !! ulimit -v 450000 hung in the factorization's dpotrf, so the check counts the buffers.
+  integer(i8), parameter :: blas_buffer_bytes = 134217728_i8
   public :: factorize_tangent, support_reaction, support_reaction_nodal
   public :: save_state, restore_state
 
@@ -243,8 +249,8 @@ contains
 
   !> A failed run (err_memory, exit status 1) when the memory the solver's analysis foresees for
   !! its factorization (memory_need_bytes: 8 bytes a factor nonzero, a lower bound, or the
-  !! solver's own estimate), with the matrix it is made from, is beyond the memory this process
-  !! may use (memory_limit_bytes), before it is allocated.
+  !! solver's own estimate), with the matrix it is made from and the BLAS's work buffers, is
+  !! beyond the memory this process may still use (memory_limit_bytes), before it is allocated.
   subroutine check_factor_memory(model, an, error)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: an
@@ -252,7 +258,7 @@ contains
     integer(i8) :: need, limit
     limit = memory_limit_bytes()
     if (limit <= 0) return
-    need = an%eq%solver%memory_need_bytes() + 12_i8 * an%eq%a%nnz()
+    need = an%eq%solver%memory_need_bytes() + 12_i8 * an%eq%a%nnz() + blas_buffer_bytes * blas_threads()
     if (need <= limit) return
     call fatal_error(error, err_memory, model%deck_file // ': the factor of the stiffness matrix (' // &
                      str(an%eq%map%neq) // ' equations, ' // str(real(an%eq%solver%factor_nnz, dp)) // &

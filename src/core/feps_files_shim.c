@@ -53,8 +53,20 @@ int feps_remove_regular(const char *path)
     return unlink(path) == 0 ? 0 : -1;
 }
 
-/* Bytes this process may allocate at most: the smaller of its address-space limit
- * (ulimit -v) and the machine's physical memory; -1 when neither is known. */
+/* Bytes this process may allocate at most: the smaller of what is left of its address-space
+ * limit (ulimit -v) and the machine's physical memory; -1 when neither is known. */
+/* The address space this process has mapped already (libraries, thread stacks, the heap):
+ * the first field of /proc/self/statm, in pages; 0 where it cannot be read. */
+static int64_t address_space_in_use(void)
+{
+    long page = sysconf(_SC_PAGESIZE), pages = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (f == NULL) return 0;
+    if (fscanf(f, "%ld", &pages) != 1) pages = 0;
+    fclose(f);
+    return page > 0 && pages > 0 ? (int64_t)pages * (int64_t)page : 0;
+}
+
 int64_t feps_memory_limit(void)
 {
     struct rlimit rl;
@@ -62,7 +74,9 @@ int64_t feps_memory_limit(void)
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
     if (pages > 0 && page > 0) limit = (int64_t)pages * (int64_t)page;
     if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) {
-        int64_t as = (int64_t)rl.rlim_cur;
+        /* what is left of the address-space limit (ulimit -v) */
+        int64_t as = (int64_t)rl.rlim_cur - address_space_in_use();
+        if (as < 1) as = 1;
         if (limit < 0 || as < limit) limit = as;
     }
     return limit;

@@ -117,11 +117,17 @@ contains
 
   !> Mixed precision: from now on the solves read a single-precision copy of the factor (half
   !! the bytes a solve streams; about kappa(A) 6e-8 relative error), unless one asks for an
-  !! exact solve.
+  !! exact solve. Where the copy does not fit in memory the solves stay with the factor.
   subroutine plan_add_single_copy(self)
     class(supernodal_solve_t), intent(inout) :: self
+    integer :: stat
     if (self%nsuper < 1 .or. self%single) return
-    allocate (self%lx4(size(self%lx, kind=i8)), self%buf4(size(self%rows)), self%w4(self%max_rows, self%threads))
+    allocate (self%lx4(size(self%lx, kind=i8)), self%buf4(size(self%rows)), self%w4(self%max_rows, self%threads), &
+              stat=stat)
+    if (stat /= 0) then
+      call self%drop_single_copy()
+      return
+    end if
     self%lx4 = real(self%lx, sp)
     self%buf4 = 0.0_sp
     self%single = .true.

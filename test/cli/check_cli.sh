@@ -174,6 +174,13 @@ hostile "a 50k-DOF mesh whose factor does not fit in 400 MB: one line, exit 1" 1
   bash -c "ulimit -v 400000; exec \"\$0\" \"\$@\"" "$feps_abs" "$tmp/pipe50k.dat" --output "$tmp/pipe50k.h5"
 grep -q "fit in the memory this process may use\|more than the .* GiB this process may use" "$tmp/err" \
   && ok "... saying it does not fit in the memory" || bad "the factor's memory message: $(head -c 300 "$tmp/err")"
+# FE1 under 350 MB of address space: its factor fits, OpenBLAS's 128 MiB work buffer does not,
+# and OpenBLAS 0.3.21 retries that allocation forever (the run hung in dpotrf): refused before
+# the factorization, counting what the process has mapped already and the BLAS's buffers.
+hostile "FE1 under ulimit -v 350 MB: refused before the factorization, not a hang" 1 "$tmp/fe1mem" \
+  bash -c "ulimit -v 350000; exec \"\$0\" \"\$@\"" "$feps_abs" input/modelB/FE1.dat --output "$tmp/fe1mem.h5"
+grep -q "more than the .* GiB this process may use" "$tmp/err" \
+  && ok "... saying what is left of the address space" || bad "FE1's memory message: $(head -c 300 "$tmp/err")"
 # Disk full while the results are written, at several points (the mesh, a step, the XDMF file):
 # a small tmpfs where this machine allows mounting, else a file-size limit (ulimit -f: EFBIG).
 "$feps" input/modelB/SE1.dat --quiet --output "$tmp/se1full.h5" >/dev/null 2>&1

@@ -53,8 +53,6 @@ int feps_remove_regular(const char *path)
     return unlink(path) == 0 ? 0 : -1;
 }
 
-/* Bytes this process may allocate at most: the smaller of what is left of its address-space
- * limit (ulimit -v) and the machine's physical memory; -1 when neither is known. */
 /* The address space this process has mapped already (libraries, thread stacks, the heap):
  * the first field of /proc/self/statm, in pages; 0 where it cannot be read. */
 static int64_t address_space_in_use(void)
@@ -67,6 +65,8 @@ static int64_t address_space_in_use(void)
     return page > 0 && pages > 0 ? (int64_t)pages * (int64_t)page : 0;
 }
 
+/* Bytes this process may allocate at most: the smaller of what is left of its address-space
+ * limit (ulimit -v) and the machine's physical memory; -1 when neither is known. */
 int64_t feps_memory_limit(void)
 {
     struct rlimit rl;

@@ -1,5 +1,6 @@
-!> Explicit interfaces to the LAPACK and BLAS routines feps calls (double precision,
-!! reference argument lists, default-integer LP64 build).
+!> Explicit interfaces to the LAPACK and BLAS routines feps calls (double precision, and the
+!! single-precision sgemv and strsv of mixed-precision solves; reference argument lists,
+!! default-integer LP64 build).
 module feps_lapack
   use feps_kinds, only: dp, sp
   implicit none

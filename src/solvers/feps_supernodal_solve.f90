@@ -111,7 +111,7 @@ contains
     self%threads = 1
     !$ self%threads = max(1, omp_get_max_threads())
     call share_tree(self, parent)
-    allocate (self%y(n), self%buf(size(self%rows)), self%w(self%max_rows, self%threads))
+    allocate (self%buf(size(self%rows)), self%y(n), self%w(self%max_rows, self%threads))
     self%buf = 0.0_dp
   end subroutine plan_setup
 
@@ -157,7 +157,7 @@ contains
   !> Whether the plan holds a single-precision copy of the factor for its solves.
   pure logical function plan_single(self)
     class(supernodal_solve_t), intent(in) :: self
-    plan_single = self%nsuper > 0 .and. self%single
+    plan_single = self%single
   end function plan_single
 
   !> Forget the plan (the factor's arrays are CHOLMOD's and are not freed here).

@@ -729,6 +729,10 @@ contains
         an%path%u_t(:, n) = an%path%u(:, n)
         cycle
       end if
+      if (an%eq%map%node_csys(n) == 0) then   ! the global system: no rotation to make
+        an%path%u_t(:, n) = merge(an%path%uc(:, n), an%path%u(:, n), an%eq%map%constrained(:, n))
+        cycle
+      end if
       ul = matmul(transpose(an%eq%map%basis(:, :, n)), an%path%u(:, n))
       do d = 1, 3
         if (an%eq%map%constrained(d, n)) ul(d) = an%path%uc(d, n)
@@ -737,21 +741,32 @@ contains
     end do
   end subroutine set_trial
 
-  !> u <- u + dx on the free equations (dx in nodal systems).
+  !> u <- u + dx on the free equations (dx in nodal systems). A node in the global system
+  !! takes its DOFs' values directly: its basis is the identity, whose product would give the
+  !! same values (up to the sign of a zero) at many times the cost, once per iteration.
   pure subroutine add_free(an, x, u)
     type(analysis_t), intent(in) :: an
     real(dp), intent(in) :: x(:)
     real(dp), intent(inout) :: u(:, :)
-    integer :: n, d
+    integer :: n, d, ieq
     real(dp) :: dl(3)
-    do n = 1, size(u, 2)
-      if (all(an%eq%map%eq(:, n) == 0)) cycle
-      dl = 0.0_dp
-      do d = 1, 3
-        if (an%eq%map%eq(d, n) > 0) dl(d) = x(an%eq%map%eq(d, n))
+    associate (map => an%eq%map)
+      do n = 1, size(u, 2)
+        if (map%node_csys(n) == 0) then
+          do d = 1, 3
+            ieq = map%eq(d, n)
+            if (ieq > 0) u(d, n) = u(d, n) + x(ieq)
+          end do
+          cycle
+        end if
+        if (all(map%eq(:, n) == 0)) cycle
+        dl = 0.0_dp
+        do d = 1, 3
+          if (map%eq(d, n) > 0) dl(d) = x(map%eq(d, n))
+        end do
+        u(:, n) = u(:, n) + matmul(map%basis(:, :, n), dl)
       end do
-      u(:, n) = u(:, n) + matmul(an%eq%map%basis(:, :, n), dl)
-    end do
+    end associate
   end subroutine add_free
 
   !> Update every point from the committed state with the strain of u_t - u, and sum the
@@ -766,7 +781,7 @@ contains
     type(model_t), intent(in) :: model
     type(analysis_t), intent(inout) :: an
     real(dp), intent(in) :: dps(:)
-    integer :: g, e, i, i0, i1, np, nn, nc
+    integer :: g, e, i, i0, i1, np, nn, nc, a
     integer, allocatable :: own(:)
     real(dp), allocatable :: fe(:, :)
     an%path%fint = 0.0_dp
@@ -789,7 +804,9 @@ contains
           !$omp end parallel do
           do i = i0, i1
             e = own(i)
-            an%path%fint(:, conn(:, e)) = an%path%fint(:, conn(:, e)) + reshape(fe(:, i - i0 + 1), [3, nn])
+            do a = 1, nn
+              an%path%fint(:, conn(a, e)) = an%path%fint(:, conn(a, e)) + fe(3 * a - 2:3 * a, i - i0 + 1)
+            end do
           end do
         end do
       end associate
@@ -825,30 +842,52 @@ contains
   end subroutine update_points
 
   !> R = P - F_int on the free equations; |R| and the reference |P| (the larger of the applied
-  !! load and the support reactions, so displacement-driven steps have a scale too).
+  !! load and the support reactions, so displacement-driven steps have a scale too). One pass
+  !! over the nodes, once per iteration: to_equations' arithmetic, without its temporaries.
   subroutine residual(an, r, rnorm, pnorm)
     type(analysis_t), intent(in) :: an
     real(dp), intent(out) :: r(:)
     real(dp), intent(out) :: rnorm, pnorm
     real(dp), allocatable :: p(:), react(:)
-    real(dp) :: fl(3)
-    integer :: n, d, k
+    real(dp) :: fl(3), pl(3)
+    integer :: n, d, k, ieq
     allocate (p(size(r)), react(3 * size(an%path%fint, 2)))
-    call to_equations(an%eq%map, an%path%f_applied - an%path%fint, r)
-    call to_equations(an%eq%map, an%path%f_applied, p)
+    r = 0.0_dp
+    p = 0.0_dp
+    k = 0
+    associate (map => an%eq%map, fint => an%path%fint, fa => an%path%f_applied)
+      do n = 1, size(fint, 2)
+        if (map%node_csys(n) /= 0) then
+          fl = matmul(transpose(map%basis(:, :, n)), fa(:, n) - fint(:, n))
+          pl = matmul(transpose(map%basis(:, :, n)), fa(:, n))
+        else
+          fl = fa(:, n) - fint(:, n)
+          pl = fa(:, n)
+        end if
+        do d = 1, 3
+          ieq = map%eq(d, n)
+          if (ieq > 0) then
+            r(ieq) = r(ieq) + fl(d)
+            p(ieq) = p(ieq) + pl(d)
+          end if
+        end do
+        if (.not. any(map%constrained(:, n))) cycle
+        ! the reaction: F_int - P in the node's system
+        if (map%node_csys(n) /= 0) then
+          fl = matmul(transpose(map%basis(:, :, n)), fint(:, n) - fa(:, n))
+        else
+          fl = fint(:, n) - fa(:, n)
+        end if
+        do d = 1, 3
+          if (.not. map%constrained(d, n)) cycle
+          k = k + 1
+          react(k) = fl(d)
+        end do
+      end do
+    end associate
     rnorm = norm2(r)
     ! norm2 scales: a sum of squares would overflow for forces near huge() and make the
     ! relative residual zero
-    k = 0
-    do n = 1, size(an%path%fint, 2)
-      if (.not. any(an%eq%map%constrained(:, n))) cycle
-      fl = matmul(transpose(an%eq%map%basis(:, :, n)), an%path%fint(:, n) - an%path%f_applied(:, n))
-      do d = 1, 3
-        if (.not. an%eq%map%constrained(d, n)) cycle
-        k = k + 1
-        react(k) = fl(d)
-      end do
-    end do
     pnorm = max(norm2(p), norm2(react(1:k)), tiny(1.0_dp))
   end subroutine residual
 

@@ -89,6 +89,13 @@ module feps_interface_element
   type, extends(element_t) :: interface_element_t
     integer :: shape_kind = interface_quad4      !! one of the interface_* kinds
     logical :: nodal_integration = .false.       !! nodal (Newton-Cotes/Lobatto) instead of Gauss
+    !> The rule's weights and the shape functions and derivatives at its points, computed once
+    !! by new_interface_element: the element loops ask for them at every point of every
+    !! iteration (an element made otherwise computes them each time).
+    logical :: tabulated = .false.
+    real(dp) :: table_w(max_interface_points) = 0.0_dp
+    real(dp) :: table_n(max_interface_pairs, max_interface_points) = 0.0_dp
+    real(dp) :: table_dn(2, max_interface_pairs, max_interface_points) = 0.0_dp
   contains
     ! the element contract (3 DOFs per node)
     procedure :: nnodes
@@ -132,7 +139,8 @@ contains
     integer :: kind
     logical :: nodal
     character(len=:), allocatable :: known
-    integer :: i
+    real(dp) :: s(2, max_interface_points)
+    integer :: i, g
     call parse_name(type_name, kind, nodal)
     if (kind == 0) then
       known = ''
@@ -145,6 +153,11 @@ contains
     end if
     element%shape_kind = kind
     element%nodal_integration = nodal
+    call element%integration_rule(s, element%table_w)
+    do g = 1, element%ngauss()
+      call element%shape(s(:, g), element%table_n(:, g), element%table_dn(:, :, g))
+    end do
+    element%tabulated = .true.
   end subroutine new_interface_element
 
   !> True if `name` (case-insensitive) names an interface element type, with or without '-nodal'.
@@ -328,6 +341,26 @@ contains
     end if
   end subroutine integration_rule
 
+  !> Shape functions `n`, derivatives `dn` (as `shape`) and weight `wg` at integration point g,
+  !! from the element's table when it has one.
+  pure subroutine point_shape(self, g, n, dn, wg)
+    class(interface_element_t), intent(in) :: self
+    integer, intent(in) :: g
+    real(dp), intent(out) :: n(:), dn(:, :), wg
+    real(dp) :: s(2, max_interface_points), w(max_interface_points)
+    integer :: p
+    if (self%tabulated) then
+      p = shape_pairs(self%shape_kind)
+      n(1:p) = self%table_n(1:p, g)
+      dn(:, 1:p) = self%table_dn(:, 1:p, g)
+      wg = self%table_w(g)
+      return
+    end if
+    call self%integration_rule(s, w)
+    call self%shape(s(:, g), n, dn)
+    wg = w(g)
+  end subroutine point_shape
+
   !> Natural coordinates `s(2, npairs)` of the nodes of one layer, in connectivity order
   !! (s(2, :) = 0 for lines).
   pure subroutine node_coordinates(self, s)
@@ -407,15 +440,14 @@ contains
     real(dp), intent(out) :: b(:, :)      !! (ncomp, ndim nnodes)
     real(dp), intent(out) :: wdet
     real(dp), intent(out) :: frame(:, :)  !! (ndim, ndim)
-    real(dp) :: s(2, max_interface_points), w(max_interface_points)
+    real(dp) :: wg
     real(dp) :: n(max_interface_pairs), dn(2, max_interface_pairs), nstar(3), jac
     integer :: p, nd, a, lo, up
     p = self%npairs()
     nd = self%ndim()
-    call self%integration_rule(s, w)
-    call self%shape(s(:, g), n, dn)
+    call point_shape(self, g, n, dn, wg)
     call local_frame(nd, p, xe, dn, frame, jac, nstar)
-    wdet = w(g) * jac
+    wdet = wg * jac
     b = 0.0_dp
     do a = 1, p
       lo = nd * (a - 1)
@@ -433,20 +465,19 @@ contains
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
     real(dp), intent(in) :: d(:, :, :)   !! (ncomp, ncomp, ngauss)
     real(dp), intent(out) :: ke(:, :)    !! (ndim nnodes, ndim nnodes)
-    real(dp) :: s(2, max_interface_points), w(max_interface_points)
+    real(dp) :: wg
     real(dp) :: n(max_interface_pairs), dn(2, max_interface_pairs), nstar(3), jac
     real(dp) :: frame(3, 3), dglobal(3, 3), blk(3, 3)
     integer :: p, nd, g, a, c, la, ua, lc, uc
     p = self%npairs()
     nd = self%ndim()
-    call self%integration_rule(s, w)
     ke = 0.0_dp
     do g = 1, self%ngauss()
-      call self%shape(s(:, g), n, dn)
+      call point_shape(self, g, n, dn, wg)
       call local_frame(nd, p, xe, dn, frame, jac, nstar)
       ! B^T D B = [-F F]^T (C^T D C) [-F F]: one global pair matrix, scaled by N_a N_c
       dglobal(1:nd, 1:nd) = matmul(transpose(frame(1:nd, 1:nd)), matmul(d(1:nd, 1:nd, g), frame(1:nd, 1:nd))) &
-                            * (w(g) * jac)
+                            * (wg * jac)
       do c = 1, p
         lc = nd * (c - 1)
         uc = nd * (p + c - 1)
@@ -470,19 +501,18 @@ contains
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
     real(dp), intent(in) :: sig(:, :)    !! (ncomp, ngauss)
     real(dp), intent(out) :: fe(:)       !! (ndim nnodes)
-    real(dp) :: s(2, max_interface_points), w(max_interface_points)
+    real(dp) :: wg
     real(dp) :: n(max_interface_pairs), dn(2, max_interface_pairs), nstar(3), jac
     real(dp) :: frame(3, 3), traction(3)
     integer :: p, nd, g, a, la, ua
     p = self%npairs()
     nd = self%ndim()
-    call self%integration_rule(s, w)
     fe = 0.0_dp
     do g = 1, self%ngauss()
-      call self%shape(s(:, g), n, dn)
+      call point_shape(self, g, n, dn, wg)
       call local_frame(nd, p, xe, dn, frame, jac, nstar)
       ! global traction C^T sig acts on the upper layer, its opposite on the lower one
-      traction(1:nd) = matmul(sig(1:nd, g), frame(1:nd, 1:nd)) * (w(g) * jac)
+      traction(1:nd) = matmul(sig(1:nd, g), frame(1:nd, 1:nd)) * (wg * jac)
       do a = 1, p
         la = nd * (a - 1)
         ua = nd * (p + a - 1)
@@ -499,15 +529,14 @@ contains
     real(dp), intent(in) :: xe(:, :)     !! (ndim, nnodes)
     real(dp), intent(in) :: ue(:)        !! (ndim nnodes)
     real(dp), intent(out) :: eps(:, :)   !! (ncomp, ngauss)
-    real(dp) :: s(2, max_interface_points), w(max_interface_points)
+    real(dp) :: wg
     real(dp) :: n(max_interface_pairs), dn(2, max_interface_pairs), nstar(3), jac
     real(dp) :: frame(3, 3), jump(3)
     integer :: p, nd, g, a, la, ua
     p = self%npairs()
     nd = self%ndim()
-    call self%integration_rule(s, w)
     do g = 1, self%ngauss()
-      call self%shape(s(:, g), n, dn)
+      call point_shape(self, g, n, dn, wg)
       call local_frame(nd, p, xe, dn, frame, jac, nstar)
       ! displacement jump (upper minus lower) in global axes, then in the local frame
       jump = 0.0_dp

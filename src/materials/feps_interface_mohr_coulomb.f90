@@ -90,18 +90,19 @@ contains
     real(dp), intent(out) :: dtan(:, :)
     real(dp), intent(in), optional :: var0(:)   !! no internal variables (state_size 0)
     real(dp), intent(out), optional :: var(:)
-    real(dp) :: d(size(sig0), size(sig0)), jac(size(sig0), size(sig0)), amat(size(sig0), size(sig0))
-    real(dp) :: sig_tr(size(sig0)), eps_n, t, dt_ddeps_n
+    ! fixed-size locals (an interface has at most 3 components): arrays sized by size(sig0)
+    ! would be taken from the heap and given back at every point of every iteration
+    real(dp) :: d(3, 3), jac(3, 3), amat(3, 3), sig_tr(3), eps_n, t, dt_ddeps_n
     integer :: i, n, ns
 
     n = size(sig0)
     ns = n - 1
-    call self%elastic_tangent(d)
+    call self%elastic_tangent(d(1:n, 1:n))
 
     if (state0 == state_open) then
       eps_n = eps0(n) + deps(n)
       if (eps_n > 0.0_dp) then
-        call set_open(self, d, sig, state, dtan)
+        call set_open(self, d(1:n, 1:n), sig, state, dtan)
         return
       end if
       ! Closure inside the step (eq. 2.3.22): stress restarts from zero at the contact instant.
@@ -115,21 +116,21 @@ contains
       end if
       sig_tr(1:ns) = t * self%ks * deps(1:ns)
       sig_tr(n) = self%kn * eps_n
-      jac = d
+      jac(1:n, 1:n) = d(1:n, 1:n)
       do i = 1, ns
         jac(i, i) = t * self%ks
         jac(i, n) = self%ks * deps(i) * dt_ddeps_n
       end do
     else
-      sig_tr = sig0 + matmul(d, deps)
-      jac = d
+      sig_tr(1:n) = sig0 + matmul(d(1:n, 1:n), deps)
+      jac(1:n, 1:n) = d(1:n, 1:n)
     end if
 
-    call return_map(self, sig_tr, sig, state, amat)
+    call return_map(self, sig_tr(1:n), sig, state, amat(1:n, 1:n))
     if (state == state_open) then
-      call set_open(self, d, sig, state, dtan)
+      call set_open(self, d(1:n, 1:n), sig, state, dtan)
     else
-      dtan = matmul(amat, jac)
+      dtan = matmul(amat(1:n, 1:n), jac(1:n, 1:n))
     end if
   end subroutine mc_update
 
@@ -155,7 +156,7 @@ contains
     integer, intent(out) :: state
     real(dp), intent(out) :: amat(:, :)
     real(dp) :: tan_phi, tan_psi, tau_tr, sn_tr, strength, f_lin, h, dlambda, tau, ratio
-    real(dp) :: m(size(sig_tr) - 1)
+    real(dp) :: m(2)   !! the slip direction (ns components; fixed size: no heap)
     integer :: i, j, n, ns
 
     n = size(sig_tr)
@@ -201,14 +202,14 @@ contains
     dlambda = max(f_lin, 0.0_dp) / h
     tau = max(tau_tr - self%ks * dlambda, 0.0_dp)
     if (tau_tr > 0.0_dp) then
-      m = sig_tr(1:ns) / tau_tr
+      m(1:ns) = sig_tr(1:ns) / tau_tr
       ratio = tau / tau_tr
     else
       ! Only at a zero-strength point (the apex, or phi = c = 0): no slip direction, zero shear.
-      m = 0.0_dp
+      m(1:ns) = 0.0_dp
       ratio = 0.0_dp
     end if
-    sig(1:ns) = tau * m
+    sig(1:ns) = tau * m(1:ns)
     sig(n) = sn_tr - self%kn * tan_psi * dlambda
     state = state_plastic
 

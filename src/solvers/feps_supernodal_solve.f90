@@ -72,6 +72,10 @@ module feps_supernodal_solve
   !! at most max_splits times per thread (each split moves a supernode to the serial top).
   real(dp), parameter :: balance = 1.05_dp
   integer, parameter :: max_splits = 64
+  !> Single precision: diagonal blocks of at most this many columns are solved by feps's own
+  !! loops (lower_solve), larger ones by strsv (OpenBLAS's blocked kernels; 64 is the block
+  !! size below which strsv does no more than these loops, plus its buffer's lock).
+  integer, parameter :: small_triangle = 64
 
 contains
 
@@ -329,7 +333,11 @@ contains
         w(i) = w(i) + buf(p)
       end do
     end do
-    call strsv('L', 'N', 'N', nscol, lx(px(k) + 1), nsrow, w, 1)
+    if (nscol <= small_triangle) then
+      call lower_solve(nscol, lx(px(k) + 1), nsrow, w)
+    else
+      call strsv('L', 'N', 'N', nscol, lx(px(k) + 1), nsrow, w, 1)
+    end if
     if (nsrow > nscol) call sgemv('N', nsrow - nscol, nscol, -1.0_sp, lx(px(k) + nscol + 1), nsrow, w, 1, &
                                   0.0_sp, buf(p0 + nscol + 1), 1)
     y(k1:k1 + nscol - 1) = real(w(1:nscol), dp)
@@ -351,9 +359,49 @@ contains
     end do
     if (nsrow > nscol) call sgemv('T', nsrow - nscol, nscol, -1.0_sp, lx(px(k) + nscol + 1), nsrow, &
                                   w(nscol + 1), 1, 1.0_sp, w, 1)
-    call strsv('L', 'T', 'N', nscol, lx(px(k) + 1), nsrow, w, 1)
+    if (nscol <= small_triangle) then
+      call lower_transpose_solve(nscol, lx(px(k) + 1), nsrow, w)
+    else
+      call strsv('L', 'T', 'N', nscol, lx(px(k) + 1), nsrow, w, 1)
+    end if
     y(k1:k1 + nscol - 1) = real(w(1:nscol), dp)
   end subroutine backward_single
+
+  !> w <- L^-1 w for the n x n lower triangle of the column-major block a (leading dimension
+  !! lda), in single precision. strsv's arithmetic in a loop of feps's own: OpenBLAS's strsv
+  !! takes and returns a work buffer under a lock on every call, which on FE1's small
+  !! supernodes (414 of its 474 have at most 64 columns) cost about as much as their
+  !! arithmetic (docs/performance.md, "FE1's serial work").
+  pure subroutine lower_solve(n, a, lda, w)
+    integer, intent(in) :: n, lda
+    real(sp), intent(in) :: a(lda, n)
+    real(sp), intent(inout) :: w(n)
+    integer :: j, i
+    real(sp) :: wj
+    do j = 1, n
+      wj = w(j) / a(j, j)
+      w(j) = wj
+      do i = j + 1, n
+        w(i) = w(i) - wj * a(i, j)
+      end do
+    end do
+  end subroutine lower_solve
+
+  !> w <- L^-T w for the lower triangle of a, as lower_solve.
+  pure subroutine lower_transpose_solve(n, a, lda, w)
+    integer, intent(in) :: n, lda
+    real(sp), intent(in) :: a(lda, n)
+    real(sp), intent(inout) :: w(n)
+    integer :: j, i
+    real(sp) :: s
+    do j = n, 1, -1
+      s = w(j)
+      do i = j + 1, n
+        s = s - a(i, j) * w(i)
+      end do
+      w(j) = s / a(j, j)
+    end do
+  end subroutine lower_transpose_solve
 
   !> Supernode k's first column k1, its columns and rows, and p0, where its row indices start
   !! (0-based).

@@ -16,6 +16,7 @@ program feps_main
   use feps_joint_command, only: joint_request_t, set_joint_option, run_joint_command, joint_usage
   use feps_element_table, only: element_table_lines
   use omp_lib, only: omp_set_num_threads, omp_get_num_procs, omp_get_max_threads
+  use feps_cores, only: idle_cores
   implicit none
 
   interface
@@ -33,7 +34,7 @@ program feps_main
   integer :: rank, ranks           !! this process's MPI rank and the number of ranks (0 and 1 without MPI)
 
   call choose_blas_kernels()
-  call set_threads()
+  call set_threads(probe=.false.)
   ! MPI build: every rank runs the same analysis, each on its own elements (feps_parallel);
   ! the ranks above 0 print nothing and write no file, and all of them end with one status
   call mpi_start(rank, ranks)
@@ -45,7 +46,7 @@ program feps_main
   end if
   call parse_arguments(options, status)
   if (status >= 0) call leave(status)
-  call set_threads()
+  call set_threads(probe=.true.)
 
   if (options%quiet) then
     call run_feps(options, summary, error)
@@ -327,14 +328,18 @@ contains
   end function value_kind
 
   !> Threads of the element loops and CHOLMOD's solves (OpenMP) and of the factorization (OpenBLAS).
-  !! Element loops and solves: --threads N; else OMP_NUM_THREADS when set; else one. One by
-  !! default because a waiting OpenMP thread slowed FE1 twofold on a 2-core machine whose other
-  !! core was taken (docs/performance.md); the results are the same for any number.
+  !! Element loops and solves: --threads N; else OMP_NUM_THREADS when set; else the cores that
+  !! no other process is running on at start (idle_cores), at least one: a waiting OpenMP thread
+  !! whose core another process holds slowed FE1 twofold on a 2-core machine
+  !! (docs/performance.md); the results are the same for any number.
   !! Factorization: at most factorization_threads(cores) (three quarters of a machine above 4
   !! cores: all 16 of 16 measured 10x slower than 12), and no more than --threads N or
   !! OMP_NUM_THREADS; OPENBLAS_NUM_THREADS or GOTO_NUM_THREADS, when set, stand as set. The
   !! BLAS threads change the factorization at round-off; the element threads change nothing.
-  subroutine set_threads()
+  !! Without `probe` (before the command line is read: --version, the joint and elements
+  !! commands) the default is one thread, without the 40 ms of looking at the machine's load.
+  subroutine set_threads(probe)
+    logical, intent(in) :: probe
     integer :: blas
     blas = factorization_threads(omp_get_num_procs())
     if (threads > 0) then
@@ -342,6 +347,8 @@ contains
       blas = min(blas, threads)
     else if (is_set('OMP_NUM_THREADS')) then
       blas = min(blas, omp_get_max_threads())
+    else if (probe) then
+      call omp_set_num_threads(idle_cores(omp_get_num_procs()))
     else
       call omp_set_num_threads(1)
     end if
@@ -461,6 +468,8 @@ contains
       if (s%solver == 'cholmod-mixed') call print_mixed_precision(s)
       if (allocated(s%rank_memory_mb)) call print_ranks(s)
       write (output_unit, '(a)') 'blas             ' // s%blas
+      write (output_unit, '(a)') 'threads          ' // str(omp_get_max_threads()) // ' of ' // &
+        str(omp_get_num_procs()) // ' cores (element loops, solves)'
       if (s%linear) then
         write (output_unit, '(a)') 'analysis         linear: ' // str(s%factorizations) // ' factorization(s)'
       else

@@ -21,7 +21,8 @@
 #   FEPS        the feps executable: a path (relative or absolute) or a command on PATH (default:
 #               fpm's release build of the repository, copied to results/NAME/feps so that
 #               rebuilds during the campaign do not disturb it)
-#   JOBS        cases at once (default: nproc)
+#   JOBS        cases at once (default: nproc); each case gets nproc / JOBS threads (at least
+#               one) unless OMP_NUM_THREADS is set
 #   TIMEOUT     seconds a case may run (default: no limit); a case stopped by it has status timeout
 #   FEPS_ARGS   extra feps options for every case, e.g. "--method initial-stiffness"
 #   PEAK_GROUP  the group whose peak principal stress goes into the CSV (default pipe)
@@ -87,6 +88,10 @@ fi
 FEPS=$(cd "$(dirname "$FEPS")" && pwd)/$(basename "$FEPS")
 JOBS_SET=${JOBS:-}
 JOBS=${JOBS:-$(nproc)}
+# Each case's element-loop threads: the cores shared among the cases that run at once. feps's
+# own default (the cores idle when it starts) would count cases that start together as idle.
+cores=$(nproc)
+export OMP_NUM_THREADS=${OMP_NUM_THREADS:-$((cores / JOBS > 0 ? cores / JOBS : 1))}
 export FEPS CAMPAIGN TIMEOUT="${TIMEOUT:-}" FEPS_ARGS="${FEPS_ARGS:-}" RERUN="${RERUN:-}"
 if [[ -n $SLURM ]] && ! command -v sbatch >/dev/null; then
     echo "campaign: --slurm: no sbatch on PATH (a Slurm client; to try it here: scripts/slurm_localhost.sh start)" >&2

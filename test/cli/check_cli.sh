@@ -84,6 +84,25 @@ env -u OPENBLAS_NUM_THREADS -u GOTO_NUM_THREADS -u OMP_NUM_THREADS "$feps" --ver
 env -u OPENBLAS_NUM_THREADS -u GOTO_NUM_THREADS "$feps" test/data/cube.dat --threads 1 --output "$tmp/th.h5" >"$tmp/th.out"
 grep -Eq "^blas +(OpenBLAS .*, 1 thread \(|not OpenBLAS)" "$tmp/th.out" \
   && ok "--threads 1 holds the BLAS to one thread" || bad "--threads 1 and the BLAS threads"
+# The element loops' and solves' threads (issue 28 item 2): --threads N as given; by default
+# the cores no other process runs on at start, so with every core taken by a busy loop one
+# thread, never a thread that would wait for a taken core.
+grep -Eq "^threads +1 of $cores cores \(element loops, solves\)$" "$tmp/th.out" \
+  && ok "--threads 1: the summary's threads line" || bad "--threads 1's threads line: $(grep '^threads' "$tmp/th.out")"
+busy=()
+for _ in $(seq "$cores"); do
+  (while :; do :; done) &
+  busy+=("$!")
+done
+sleep 0.3
+env -u OMP_NUM_THREADS "$feps" test/data/cube.dat --output "$tmp/thb.h5" >"$tmp/thb.out"
+kill "${busy[@]}"
+wait "${busy[@]}" 2>/dev/null || true
+grep -Eq "^threads +1 of $cores cores " "$tmp/thb.out" \
+  && ok "every core busy: the default is one thread" || bad "every core busy, the default threads: $(grep '^threads' "$tmp/thb.out")"
+OMP_NUM_THREADS=3 "$feps" test/data/cube.dat --output "$tmp/tho.h5" >"$tmp/tho.out"
+grep -Eq "^threads +3 of $cores cores " "$tmp/tho.out" \
+  && ok "OMP_NUM_THREADS=3 stands" || bad "OMP_NUM_THREADS=3's threads line: $(grep '^threads' "$tmp/tho.out")"
 expect_status "no deck" 2 "$feps"
 # A deck that cannot be read is bad input (the user fixes the command or the file): exit 2, one
 # line naming the file, no result file; results that cannot be written are a failed run: exit 1.

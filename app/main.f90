@@ -331,7 +331,9 @@ contains
   !! Element loops and solves: --threads N; else OMP_NUM_THREADS when set; else the cores that
   !! no other process is running on at start (idle_cores), at least one: a waiting OpenMP thread
   !! whose core another process holds slowed FE1 twofold on a 2-core machine
-  !! (docs/performance.md); the results are the same for any number.
+  !! (docs/performance.md); and no more than the factorization's share of a large machine (on
+  !! 16 cores FE1 was slower on 16 element threads than on 8). The results are the same for
+  !! any number.
   !! Factorization: at most factorization_threads(cores) (three quarters of a machine above 4
   !! cores: all 16 of 16 measured 10x slower than 12), and no more than --threads N or
   !! OMP_NUM_THREADS; OPENBLAS_NUM_THREADS or GOTO_NUM_THREADS, when set, stand as set. The
@@ -348,7 +350,7 @@ contains
     else if (is_set('OMP_NUM_THREADS')) then
       blas = min(blas, omp_get_max_threads())
     else if (probe) then
-      call omp_set_num_threads(idle_cores(omp_get_num_procs()))
+      call omp_set_num_threads(min(idle_cores(omp_get_num_procs()), blas))
     else
       call omp_set_num_threads(1)
     end if

@@ -47,7 +47,10 @@ feps=$(cd "$(dirname "$feps")" && pwd)/$(basename "$feps")
 case $csv in /*) ;; *) csv=$PWD/$csv ;; esac
 abs_decks=()
 IFS=, read -ra deck_list <<<"$decks"
-for d in "${deck_list[@]}"; do abs_decks+=("$(cd "$(dirname "$d")" && pwd)/$(basename "$d")"); done
+for d in "${deck_list[@]}"; do
+  [ -f "$d" ] || { echo "bench_threads: no deck $d" >&2; exit 2; }
+  abs_decks+=("$(cd "$(dirname "$d")" && pwd)/$(basename "$d")")
+done
 IFS=, read -ra counts <<<"$threads"
 mkdir -p "$workdir"
 cd "$workdir"

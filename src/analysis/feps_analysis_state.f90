@@ -11,7 +11,8 @@ module feps_analysis_state
   use feps_error, only: error_t, fatal_error, input_error, err_model, err_input, err_memory, str
   use feps_clock, only: wall_clock
   use feps_files, only: memory_limit_bytes
-  use feps_blas, only: blas_threads
+  use feps_blas, only: blas_threads, take_blas_buffers
+  !$ use omp_lib, only: omp_get_max_threads
   use feps_strings, only: gib_text
   use feps_model, only: model_t, path_load
   use feps_dof_map, only: dof_map_t, build_dof_map, build_all_dofs_map
@@ -90,10 +91,17 @@ module feps_analysis_state
   public :: change_supports, activate_groups, check_born_nodes, stage_increments
   public :: set_trial, add_free, update_points, residual, committed_residual, commit, restore
 
-  !> OpenBLAS's work buffer, one per thread at its first level-3 call (BUFFER_SIZE, 32 << 22
-  !! bytes on x86-64). OpenBLAS 0.3.21 retries an allocation that fails forever: FE1 under
-  !! ulimit -v 450000 hung in the factorization's dpotrf, so the check counts the buffers.
+  !> OpenBLAS's work buffer (BUFFER_SIZE, 32 << 22 bytes on x86-64), taken by each of its
+  !! threads at its first level-3 call and by each caller of its level-2 routines (dtrsv, dgemv)
+  !! for the length of the call. OpenBLAS 0.3.21 retries an allocation that fails forever: FE1
+  !! under ulimit -v 450000 hung in the factorization's dpotrf, so the check counts the buffers.
   integer(i8), parameter :: blas_buffer_bytes = 134217728_i8
+  !> Room for the threads CHOLMOD's supernodal factorization starts (OpenMP, up to 4 in Debian's
+  !! build): their stacks, 8 MiB each under the usual stack limit, and what they allocate.
+  !! Where they did not fit, libgomp ended the run itself ("Thread creation failed", exit 1):
+  !! FE1 on one thread under ulimit -v 440000-450000 with nothing counted, 455000-458000 with
+  !! 32 MiB; with 64 MiB it is refused up to the limit where it runs.
+  integer(i8), parameter :: thread_stacks_bytes = 8_i8 * 8388608_i8
   public :: factorize_tangent, support_reaction, support_reaction_nodal
   public :: save_state, restore_state
 
@@ -256,10 +264,20 @@ contains
     type(analysis_t), intent(in) :: an
     type(error_t), allocatable, intent(out) :: error
     integer(i8) :: need, limit
+    integer :: solve_threads
     limit = memory_limit_bytes()
     if (limit <= 0) return
-    need = an%eq%solver%memory_need_bytes() + 12_i8 * an%eq%a%nnz() + blas_buffer_bytes * blas_threads()
-    if (need <= limit) return
+    ! the factorization's BLAS threads hold a buffer each, and the solves' threads (OpenMP,
+    ! calling dtrsv and dgemv at once) one each besides, the main thread's reused: with one
+    ! buffer fewer, FE1 on two threads hung or crashed under ulimit -v 560000-650000
+    solve_threads = 1
+    !$ solve_threads = omp_get_max_threads()
+    need = an%eq%solver%memory_need_bytes() + 12_i8 * an%eq%a%nnz() + &
+           blas_buffer_bytes * (blas_threads() + solve_threads - 1) + thread_stacks_bytes
+    if (need <= limit) then
+      call take_blas_buffers()
+      return
+    end if
     call fatal_error(error, err_memory, model%deck_file // ': the factor of the stiffness matrix (' // &
                      str(an%eq%map%neq) // ' equations, ' // str(real(an%eq%solver%factor_nnz, dp)) // &
                      ' nonzeros) needs about ' // gib_text(need) // ' GiB at least, more than the ' // &

@@ -2,10 +2,13 @@
 !! chose for this CPU and its threads, or that the BLAS is another one.
 module feps_blas
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+  use feps_kinds, only: dp
+  use feps_lapack, only: dgemm
   implicit none
   private
 
   public :: blas_description, choose_blas_kernels, factorization_threads, set_blas_threads, blas_threads
+  public :: take_blas_buffers
 
   interface
     subroutine feps_blas_describe(buf, len) bind(C, name="feps_blas_describe")
@@ -56,6 +59,20 @@ contains
   integer function blas_threads()
     blas_threads = int(feps_blas_get_threads())
   end function blas_threads
+
+  !> Make OpenBLAS take its work buffers now, with one 256 x 256 dgemm on its threads. OpenBLAS
+  !! 0.3.21 takes a buffer of 128 MiB per thread at its first level-3 call and retries an
+  !! allocation that fails for ever (FE1 under ulimit -v 430000-450000 hung in CHOLMOD's dpotrf).
+  !! Taken right after the memory check found room for them, they are there for the
+  !! factorization's calls to reuse, and a factorization short of memory fails where CHOLMOD
+  !! allocates (one line, exit 1) instead.
+  subroutine take_blas_buffers()
+    integer, parameter :: n = 256
+    real(dp), allocatable :: a(:, :), c(:, :)
+    allocate (a(n, n), c(n, n))
+    a = 1.0_dp
+    call dgemm('N', 'N', n, n, n, 1.0_dp, a, n, a, n, 0.0_dp, c, n)
+  end subroutine take_blas_buffers
 
   !> Start this program again with the OpenBLAS kernels this CPU runs, when OpenBLAS chose older
   !! ones and the user did not choose (OPENBLAS_CORETYPE). Returns when nothing is to be done or

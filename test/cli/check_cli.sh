@@ -200,6 +200,14 @@ hostile "FE1 under ulimit -v 350 MB: refused before the factorization, not a han
   bash -c "ulimit -v 350000; exec \"\$0\" \"\$@\"" "$feps_abs" input/modelB/FE1.dat --output "$tmp/fe1mem.h5"
 grep -q "more than the .* GiB this process may use" "$tmp/err" \
   && ok "... saying what is left of the address space" || bad "FE1's memory message: $(head -c 300 "$tmp/err")"
+# Just above that check, the factorization used to start and then hang or crash: OpenBLAS's
+# buffer taken at the first level-3 call (dpotrf), one more for each thread of the solves, the
+# threads CHOLMOD starts (libgomp ended the run: "Thread creation failed"). The check now counts
+# them and the buffers are taken right after it: refused with one line, or run.
+hostile "FE1 on one thread under ulimit -v 450 MB (hung in dpotrf): refused" 1 "$tmp/fe1mem1" \
+  bash -c "ulimit -v 450000; exec \"\$0\" \"\$@\"" "$feps_abs" input/modelB/FE1.dat --threads 1 --output "$tmp/fe1mem1.h5"
+hostile "FE1 on two threads under ulimit -v 600 MB (hung in the solves): refused" 1 "$tmp/fe1mem2" \
+  bash -c "ulimit -v 600000; exec \"\$0\" \"\$@\"" "$feps_abs" input/modelB/FE1.dat --threads 2 --output "$tmp/fe1mem2.h5"
 # Disk full while the results are written, at several points (the mesh, a step, the XDMF file):
 # a small tmpfs where this machine allows mounting, else a file-size limit (ulimit -f: EFBIG).
 "$feps" input/modelB/SE1.dat --quiet --output "$tmp/se1full.h5" >/dev/null 2>&1

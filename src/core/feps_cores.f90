@@ -1,7 +1,8 @@
 !> The cores a run may take by default: those of this machine that nothing else is using when
 !! it starts (feps_cores_shim.c reads /proc/stat). A waiting OpenMP thread whose core another
 !! process holds slows every parallel region down (FE1 twofold on 2 cores, docs/performance.md),
-!! so a default that counts only idle cores never makes a run slower than one thread.
+!! so the default counts only the cores idle at the start (a process that starts later is not
+!! seen).
 module feps_cores
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none

@@ -259,6 +259,8 @@ contains
   !! its factorization (memory_need_bytes: 8 bytes a factor nonzero, a lower bound, or the
   !! solver's own estimate), with the matrix it is made from and the BLAS's work buffers, is
   !! beyond the memory this process may still use (memory_limit_bytes), before it is allocated.
+  !! When it fits, the BLAS's buffers are taken at once (take_blas_buffers), while the room is
+  !! there.
   subroutine check_factor_memory(model, an, error)
     type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: an
@@ -860,37 +862,26 @@ contains
   end subroutine update_points
 
   !> R = P - F_int on the free equations; |R| and the reference |P| (the larger of the applied
-  !! load and the support reactions, so displacement-driven steps have a scale too). One pass
-  !! over the nodes, once per iteration: to_equations' arithmetic, without its temporaries.
+  !! load and the support reactions, so displacement-driven steps have a scale too).
   subroutine residual(an, r, rnorm, pnorm)
     type(analysis_t), intent(in) :: an
     real(dp), intent(out) :: r(:)
     real(dp), intent(out) :: rnorm, pnorm
     real(dp), allocatable :: p(:), react(:)
-    real(dp) :: fl(3), pl(3)
-    integer :: n, d, k, ieq
+    real(dp) :: fl(3)
+    integer :: n, d, k
     allocate (p(size(r)), react(3 * size(an%path%fint, 2)))
-    r = 0.0_dp
-    p = 0.0_dp
+    call to_equations(an%eq%map, an%path%f_applied - an%path%fint, r)
+    call to_equations(an%eq%map, an%path%f_applied, p)
+    rnorm = norm2(r)
+    ! norm2 scales: a sum of squares would overflow for forces near huge() and make the
+    ! relative residual zero
     k = 0
     associate (map => an%eq%map, fint => an%path%fint, fa => an%path%f_applied)
       do n = 1, size(fint, 2)
-        if (map%node_csys(n) /= 0) then
-          fl = matmul(transpose(map%basis(:, :, n)), fa(:, n) - fint(:, n))
-          pl = matmul(transpose(map%basis(:, :, n)), fa(:, n))
-        else
-          fl = fa(:, n) - fint(:, n)
-          pl = fa(:, n)
-        end if
-        do d = 1, 3
-          ieq = map%eq(d, n)
-          if (ieq > 0) then
-            r(ieq) = r(ieq) + fl(d)
-            p(ieq) = p(ieq) + pl(d)
-          end if
-        end do
         if (.not. any(map%constrained(:, n))) cycle
-        ! the reaction: F_int - P in the node's system
+        ! F_int - P in the node's system; a node in the global system without the product with
+        ! its identity basis (a library matmul for each node, once per iteration)
         if (map%node_csys(n) /= 0) then
           fl = matmul(transpose(map%basis(:, :, n)), fint(:, n) - fa(:, n))
         else
@@ -903,9 +894,6 @@ contains
         end do
       end do
     end associate
-    rnorm = norm2(r)
-    ! norm2 scales: a sum of squares would overflow for forces near huge() and make the
-    ! relative residual zero
     pnorm = max(norm2(p), norm2(react(1:k)), tiny(1.0_dp))
   end subroutine residual
 
